@@ -1,0 +1,302 @@
+/*
+ * phos.h — the public interface of libphos, the Phos render core.
+ *
+ * Conventions
+ *  - Opaque handles with create/destroy pairs; destroying NULL is a no-op.
+ *  - Every description struct has a phos_*_init() that fills the defaults;
+ *    callers init, then set the fields they need.
+ *  - Bulk inputs are pointer + count and are copied by the core: the caller
+ *    may free them as soon as the call returns.
+ *  - Every call that can fail returns a phos_status; the readable message is
+ *    kept on the handle that was passed (phos_scene_error, phos_render_error).
+ *  - Units: lengths in scene units (metres in Blender), angles in radians,
+ *    radiometric quantities as documented on each field.
+ *  - Pixels: (0,0) is the bottom-left pixel of the full frame, rows go up,
+ *    as in Blender's render results.
+ *  - Matrices: row-major 3x4 (the top three rows of a 4x4 affine matrix),
+ *    mapping local coordinates to world coordinates.
+ *
+ * Thread safety: a scene is built from one thread. Once committed it is
+ * read-only and may be shared by several renders. phos_render_cancel and
+ * phos_render_progress may be called from any thread at any time.
+ */
+#ifndef PHOS_H
+#define PHOS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32)
+#define PHOS_API __declspec(dllexport)
+#else
+#define PHOS_API __attribute__((visibility("default")))
+#endif
+
+/* Version: major.minor.patch packed as (major << 16) | (minor << 8) | patch.
+ * The add-on refuses a library whose major or minor differs from its own. */
+#define PHOS_VERSION_MAJOR 0
+#define PHOS_VERSION_MINOR 1
+#define PHOS_VERSION_PATCH 0
+#define PHOS_VERSION \
+    ((PHOS_VERSION_MAJOR << 16) | (PHOS_VERSION_MINOR << 8) | PHOS_VERSION_PATCH)
+
+PHOS_API uint32_t phos_version(void);
+
+/* Size in bytes of a public struct, by its name ("phos_light_desc"), or 0
+ * for an unknown name: lets a binding check that its mirror of the layout
+ * matches the library it loaded. */
+PHOS_API uint32_t phos_struct_size(const char *struct_name);
+
+typedef enum phos_status {
+    PHOS_OK = 0,
+    PHOS_ERROR_INVALID_ARGUMENT = 1, /* a NULL handle, bad value, out-of-range index */
+    PHOS_ERROR_INVALID_STATE = 2,    /* e.g. editing a committed scene */
+    PHOS_ERROR_OUT_OF_MEMORY = 3,
+    PHOS_ERROR_EMBREE = 4,           /* the ray-tracing kernel reported an error */
+    PHOS_ERROR_CANCELLED = 5,        /* the render was cancelled */
+    PHOS_ERROR_TIMEOUT = 6,          /* phos_render_wait returned before the end */
+    PHOS_ERROR_INTERNAL = 7
+} phos_status;
+
+/* One line describing a status code ("invalid argument"). Never NULL. */
+PHOS_API const char *phos_status_string(phos_status status);
+
+typedef struct phos_scene phos_scene;
+typedef struct phos_render phos_render;
+
+/* ------------------------------------------------------------------ scene */
+
+/* Returns NULL only when memory is exhausted. */
+PHOS_API phos_scene *phos_scene_create(void);
+PHOS_API void phos_scene_destroy(phos_scene *scene);
+/* The message of the last failed call on this scene, "" if none. */
+PHOS_API const char *phos_scene_error(const phos_scene *scene);
+
+/* Images: linear RGBA float pixels, rows bottom-up (as Blender stores them). */
+enum phos_image_interpolation { PHOS_INTERP_LINEAR = 0, PHOS_INTERP_CLOSEST = 1 };
+enum phos_image_extension { PHOS_EXTEND_REPEAT = 0, PHOS_EXTEND_EXTEND = 1, PHOS_EXTEND_CLIP = 2 };
+
+typedef struct phos_image_desc {
+    uint32_t width, height;
+    const float *pixels;        /* width*height*4 floats, linear RGBA */
+    uint32_t interpolation;     /* enum phos_image_interpolation */
+    uint32_t extension;         /* enum phos_image_extension */
+} phos_image_desc;
+PHOS_API void phos_image_desc_init(phos_image_desc *desc);
+PHOS_API phos_status phos_scene_add_image(phos_scene *scene, const phos_image_desc *desc,
+                                          uint32_t *out_image_id);
+
+/*
+ * Materials are weighted sums of closures, the way Cycles flattens a shader
+ * node tree: Mix and Add shaders with constant factors only scale and
+ * concatenate closure lists. The add-on translates node trees into closures.
+ */
+enum phos_closure_type {
+    PHOS_CLOSURE_DIFFUSE = 0,            /* Lambert, f = weight/π */
+    PHOS_CLOSURE_PRINCIPLED_DIFFUSE = 1, /* Disney/Burley diffuse with roughness retro-reflection */
+    PHOS_CLOSURE_REFLECTION = 2,         /* GGX microfacet reflection, F = 1 (Glossy BSDF); sharp if roughness = 0 */
+    PHOS_CLOSURE_REFLECTION_FRESNEL = 3, /* GGX reflection with Fresnel blended from specular_color
+                                            (f0) to white by the dielectric Fresnel of ior (Principled) */
+    PHOS_CLOSURE_REFRACTION = 4,         /* GGX microfacet refraction, no Fresnel; sharp if roughness = 0 */
+    PHOS_CLOSURE_GLASS = 5,              /* dielectric: reflection + refraction split by Fresnel */
+    PHOS_CLOSURE_TRANSPARENT = 6,        /* straight pass-through */
+    PHOS_CLOSURE_EMISSION = 7,           /* radiance weight W/(m²·sr), both faces */
+    PHOS_CLOSURE_TYPE_COUNT = 8
+};
+
+/* How GLASS splits reflection and refraction. */
+enum phos_glass_fresnel {
+    PHOS_GLASS_FRESNEL_MACRO = 0,     /* Fresnel at the shading normal (Cycles before 4.0) */
+    PHOS_GLASS_FRESNEL_MICROFACET = 1 /* Fresnel per sampled microfacet (Cycles 4.0+) */
+};
+
+typedef struct phos_closure_desc {
+    uint32_t type;             /* enum phos_closure_type */
+    float weight[3];           /* linear RGB weight (colour × mix factors); radiance for EMISSION */
+    int32_t weight_image;      /* image id multiplied into weight (RGB), -1 for none */
+    float roughness;           /* Blender roughness in [0,1]; GGX alpha = roughness² */
+    float ior;                 /* index of refraction, > 0 (GLASS, REFRACTION, REFLECTION_FRESNEL) */
+    float specular_color[3];   /* REFLECTION_FRESNEL: reflectance at normal incidence */
+    uint32_t glass_fresnel;    /* enum phos_glass_fresnel */
+} phos_closure_desc;
+PHOS_API void phos_closure_desc_init(phos_closure_desc *desc);
+
+typedef struct phos_material_desc {
+    uint32_t closure_count;               /* 0..PHOS_MAX_CLOSURES; 0 = black */
+    const phos_closure_desc *closures;
+} phos_material_desc;
+#define PHOS_MAX_CLOSURES 16
+PHOS_API void phos_material_desc_init(phos_material_desc *desc);
+PHOS_API phos_status phos_scene_add_material(phos_scene *scene, const phos_material_desc *desc,
+                                             uint32_t *out_material_id);
+
+/* A triangle mesh in its own (object) space. */
+typedef struct phos_mesh_desc {
+    uint32_t vertex_count;
+    const float *positions;      /* vertex_count*3 */
+    uint32_t triangle_count;
+    const uint32_t *indices;     /* triangle_count*3 vertex indices */
+    const float *normals;        /* triangle_count*9 per-corner normals, or NULL (flat shading) */
+    const float *uvs;            /* triangle_count*6 per-corner UVs, or NULL */
+    const uint32_t *material_slots; /* triangle_count slot indices into the instance's materials, or NULL (slot 0) */
+} phos_mesh_desc;
+PHOS_API void phos_mesh_desc_init(phos_mesh_desc *desc);
+PHOS_API phos_status phos_scene_add_mesh(phos_scene *scene, const phos_mesh_desc *desc,
+                                         uint32_t *out_mesh_id);
+
+/* A placement of a mesh. Instances of one mesh share its acceleration
+ * structure. Slot i of the mesh renders with materials[i]; a slot beyond
+ * material_count renders with the default grey material. */
+typedef struct phos_instance_desc {
+    uint32_t mesh_id;
+    float transform[12];         /* object → world, row-major 3x4 */
+    uint32_t material_count;
+    const uint32_t *materials;   /* material ids */
+} phos_instance_desc;
+PHOS_API void phos_instance_desc_init(phos_instance_desc *desc);
+PHOS_API phos_status phos_scene_add_instance(phos_scene *scene, const phos_instance_desc *desc,
+                                             uint32_t *out_instance_id);
+
+/*
+ * Lights, in physical quantities; the add-on converts Blender's units (which
+ * differ between Blender versions) into these.
+ */
+enum phos_light_type {
+    PHOS_LIGHT_POINT = 0, /* a sphere of `radius` (0: a point) */
+    PHOS_LIGHT_SPOT = 1,  /* a point light restricted to a cone */
+    PHOS_LIGHT_AREA = 2,  /* a one-sided rectangle or ellipse */
+    PHOS_LIGHT_SUN = 3    /* a distant light subtending `angle` */
+};
+enum phos_area_shape { PHOS_AREA_RECTANGLE = 0, PHOS_AREA_ELLIPSE = 1 };
+/* How a point or spot light of nonzero radius looks from a shading point. */
+enum phos_point_shape {
+    PHOS_POINT_DISK = 0,   /* a disk of the radius facing the shading point (Cycles < 4.0, soft falloff) */
+    PHOS_POINT_SPHERE = 1  /* a sphere (Cycles 4.0+) */
+};
+
+typedef struct phos_light_desc {
+    uint32_t type;             /* enum phos_light_type */
+    float color[3];            /* POINT/SPOT: intensity W/sr; AREA: radiance W/(m²·sr);
+                                  SUN: irradiance W/m² at normal incidence */
+    float position[3];         /* POINT/SPOT/AREA centre */
+    float direction[3];        /* SPOT axis, AREA normal (the emitting side), SUN direction of travel */
+    float axis_u[3], axis_v[3];/* AREA: full edge vectors (size included), perpendicular to direction */
+    uint32_t area_shape;       /* enum phos_area_shape */
+    float radius;              /* POINT/SPOT radius */
+    uint32_t point_shape;      /* enum phos_point_shape */
+    float spot_angle;          /* SPOT full cone angle, (0, π] */
+    float spot_blend;          /* SPOT smooth edge fraction, [0,1] */
+    uint32_t spot_cosine;      /* SPOT: 1 multiplies the intensity by cos(angle to axis) (Cycles < 3.5) */
+    float sun_angle;           /* SUN angular diameter, [0, π) */
+} phos_light_desc;
+PHOS_API void phos_light_desc_init(phos_light_desc *desc);
+PHOS_API phos_status phos_scene_add_light(phos_scene *scene, const phos_light_desc *desc,
+                                          uint32_t *out_light_id);
+
+typedef struct phos_world_desc {
+    float color[3];            /* background radiance W/(m²·sr) (colour × strength) */
+} phos_world_desc;
+PHOS_API void phos_world_desc_init(phos_world_desc *desc);
+PHOS_API phos_status phos_scene_set_world(phos_scene *scene, const phos_world_desc *desc);
+
+enum phos_camera_type { PHOS_CAMERA_PERSPECTIVE = 0, PHOS_CAMERA_ORTHOGRAPHIC = 1 };
+typedef struct phos_camera_desc {
+    uint32_t type;             /* enum phos_camera_type */
+    float transform[12];       /* camera → world; the camera looks down its −Z, +Y up */
+    /* The full frame on the image plane, in camera space: PERSPECTIVE on the
+     * plane z = −1 (so it holds tan of the half angles, with shift and sensor
+     * fit applied); ORTHOGRAPHIC in scene units. */
+    float frame_min[2], frame_max[2];
+    float aperture_radius;     /* PERSPECTIVE depth of field: lens radius; 0 = pinhole */
+    float focus_distance;      /* distance along −Z that is in focus, > 0 */
+    float clip_start, clip_end;/* ray extent along the view direction */
+} phos_camera_desc;
+PHOS_API void phos_camera_desc_init(phos_camera_desc *desc);
+PHOS_API phos_status phos_scene_set_camera(phos_scene *scene, const phos_camera_desc *desc);
+
+/* Builds acceleration structures and light tables. After commit the scene is
+ * read-only; adding to it fails with PHOS_ERROR_INVALID_STATE. */
+PHOS_API phos_status phos_scene_commit(phos_scene *scene);
+
+/* ----------------------------------------------------------------- render */
+
+enum phos_integrator { PHOS_INTEGRATOR_PATH = 0 };
+
+enum phos_pass {
+    PHOS_PASS_COMBINED = 0,   /* RGBA */
+    PHOS_PASS_COUNT = 1
+};
+/* Channels of a pass (4 for COMBINED), 0 for an unknown pass. */
+PHOS_API uint32_t phos_pass_channels(uint32_t pass);
+
+typedef struct phos_render_settings {
+    uint32_t integrator;       /* enum phos_integrator */
+    uint32_t width, height;    /* full frame in pixels */
+    /* The rendered region (Blender's border), full-frame pixel coordinates;
+     * width or height 0 means the full frame. */
+    uint32_t region_x, region_y, region_width, region_height;
+    uint32_t samples;          /* per pixel, >= 1 */
+    uint32_t seed;
+    uint32_t max_bounces;      /* scattering events after the camera ray */
+    uint32_t threads;          /* 0: one per core */
+    uint32_t tile_size;        /* pixels, >= 8 */
+    float filter_width;        /* Blackman-Harris pixel filter width in pixels (Cycles: 1.5); 0 = box */
+    uint32_t transparent_background; /* 1: the world is not seen by camera rays, alpha = coverage */
+    uint32_t pass_mask;        /* bit (1 << pass) per enabled pass; COMBINED is always on */
+} phos_render_settings;
+PHOS_API void phos_render_settings_init(phos_render_settings *settings);
+
+/* Validates the settings against the committed scene and allocates the
+ * film; the message of a failure is put on the scene. The render keeps the
+ * scene alive until it is destroyed. */
+PHOS_API phos_status phos_render_create(phos_scene *scene, const phos_render_settings *settings,
+                                        phos_render **out_render);
+PHOS_API void phos_render_destroy(phos_render *render);
+PHOS_API const char *phos_render_error(const phos_render *render);
+
+/* Starts the worker threads and returns at once. A render starts once. */
+PHOS_API phos_status phos_render_start(phos_render *render);
+
+enum phos_render_state {
+    PHOS_STATE_IDLE = 0, PHOS_STATE_RUNNING = 1, PHOS_STATE_DONE = 2,
+    PHOS_STATE_CANCELLED = 3, PHOS_STATE_FAILED = 4
+};
+
+typedef struct phos_progress {
+    uint32_t state;            /* enum phos_render_state */
+    float fraction;            /* of the whole render, 0..1 */
+    uint32_t tiles_done, tiles_total;
+    uint32_t samples;          /* samples per pixel of this render */
+    char stage[64];            /* what is running now, e.g. "Path tracing" */
+} phos_progress;
+PHOS_API phos_status phos_render_progress(phos_render *render, phos_progress *out);
+
+typedef struct phos_tile {
+    uint32_t x, y, width, height; /* full-frame pixel coordinates */
+} phos_tile;
+/* Hands out each finished tile once, in the order they finish. *out_count is
+ * 1 if a tile was written to *out, 0 if none is waiting. */
+PHOS_API phos_status phos_render_next_tile(phos_render *render, phos_tile *out, uint32_t *out_count);
+
+/* Copies a rectangle of a pass (inside the region) into dst: rows bottom-up,
+ * phos_pass_channels(pass) floats per pixel; dst_count is dst's length in
+ * floats. Pixels of tiles not yet finished read as zero. */
+PHOS_API phos_status phos_render_read(phos_render *render, uint32_t pass, uint32_t x, uint32_t y,
+                                      uint32_t width, uint32_t height, float *dst, size_t dst_count);
+
+/* Asks the workers to stop; safe from any thread, returns at once. */
+PHOS_API void phos_render_cancel(phos_render *render);
+
+/* Waits for the workers; timeout_seconds < 0 waits without limit. Returns
+ * PHOS_OK when finished, PHOS_ERROR_CANCELLED after a cancel,
+ * PHOS_ERROR_TIMEOUT if still running, or the failure's status. */
+PHOS_API phos_status phos_render_wait(phos_render *render, double timeout_seconds);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* PHOS_H */

@@ -1,0 +1,40 @@
+/*
+ * film.h — the image being rendered: one float plane per enabled pass over
+ * the render region, and the pixel filter used to place samples.
+ */
+#ifndef PHOS_FILM_H
+#define PHOS_FILM_H
+
+#include "phos.h"
+
+#define PIXEL_FILTER_TABLE_SIZE 1024
+
+typedef struct film {
+    uint32_t x0, y0, width, height;   /* region in full-frame pixels */
+    uint32_t pass_mask;
+    float *planes[PHOS_PASS_COUNT];   /* width*height*channels each, or NULL if disabled */
+} film;
+
+/* Returns 0 when memory is exhausted. */
+int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, uint32_t pass_mask);
+void film_free(film *f);
+
+/* The channels of pixel (x, y) (full-frame coordinates) of a pass. */
+static inline float *film_pixel(const film *f, uint32_t pass, uint32_t x, uint32_t y)
+{
+    return f->planes[pass] + ((size_t)(y - f->y0) * f->width + (x - f->x0)) * phos_pass_channels(pass);
+}
+
+/* Importance sampling of a separable pixel filter (Cycles' approach: every
+ * sample weighs the same and lands where the filter puts it, so a pixel is
+ * the plain mean of its samples and tiles never share pixels). */
+typedef struct pixel_filter {
+    float width;                         /* Blackman-Harris support is ±width pixels */
+    float table[PIXEL_FILTER_TABLE_SIZE];/* inverse CDF: u → offset in pixels */
+} pixel_filter;
+
+void pixel_filter_init(pixel_filter *pf, float width);
+/* Offset from the pixel centre, in pixels, for u in [0,1). */
+float pixel_filter_sample(const pixel_filter *pf, float u);
+
+#endif /* PHOS_FILM_H */

@@ -1,0 +1,844 @@
+/*
+ * test_bsdf.c — checks of the BSDF closures (bsdf.c, microfacet.c):
+ *
+ *  1. chi-square goodness of fit of bsdf_sample's directions against the
+ *     pdf reported by bsdf_eval, for every non-delta closure and a few
+ *     mixtures, several incident angles and roughnesses, both sides of a
+ *     dielectric (the test of Mitsuba and pbrt-v3: bin the sphere, integrate
+ *     the pdf per bin, pool small bins, compare with the chi-square law);
+ *  2. consistency of each sample: weight = eval / pdf, pdf = eval's pdf;
+ *  3. energy: white albedos ≤ 1, Lambert = 1, delta lobes and Fresnel split;
+ *  4. reciprocity of the reflection lobes and the η² law of refraction;
+ *  5. the dielectric Fresnel against known values, and total internal
+ *     reflection; plus the GGX normalisation and the closed-form values of
+ *     the Cycles 3.4 formulas, written independently here.
+ */
+#include <float.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "bsdf.h"
+#include "microfacet.h"
+#include "test_util.h"
+
+#define SAMPLES_PER_TEST 200000
+#define COS_BINS 16  /* bins of cos θ in [−1, 1] (even: the horizon is a bin edge) */
+#define PHI_BINS 32  /* bins of φ in [0, 2π) */
+#define SUBCELLS 4   /* each bin starts as SUBCELLS² cells of adaptive Simpson */
+#define MAX_DEPTH 8  /* adaptive Simpson refinements per cell */
+
+static const float ROUGHNESS[3] = {0.1f, 0.3f, 0.7f};
+static const float COS_VIEW[3] = {0.9f, 0.5f, 0.15f};
+
+/* ------------------------------------------------------------ helpers */
+
+static closure make_closure(uint32_t type, float roughness, float eta)
+{
+    closure c;
+    memset(&c, 0, sizeof c);
+    c.type = type;
+    c.weight = v3s(1.0f);
+    c.roughness = roughness;
+    c.alpha = roughness * roughness;
+    c.eta = eta;
+    c.f0 = v3(0.9f, 0.5f, 0.1f);
+    c.glass_fresnel = PHOS_GLASS_FRESNEL_MACRO;
+    return c;
+}
+
+static closure make_glass(float roughness, float eta, uint32_t mode)
+{
+    closure c = make_closure(PHOS_CLOSURE_GLASS, roughness, eta);
+    c.glass_fresnel = mode;
+    return c;
+}
+
+static closure weighted(closure c, float w)
+{
+    c.weight = v3s(w);
+    return c;
+}
+
+static void make_bsdf(bsdf *b, const closure *cl, int n, vec3 ns, vec3 ng)
+{
+    bsdf_init(b, v3_normalize(ns), v3_normalize(ng));
+    for (int i = 0; i < n; i++)
+        bsdf_add_closure(b, &cl[i]);
+}
+
+/* Direction at cos θ = z and azimuth phi in the frame f. */
+static vec3 dir_in_frame(const frame *f, double z, double phi)
+{
+    double s = sqrt(fmax(0.0, 1.0 - z * z));
+    return v3_normalize(frame_to_world(f, v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)z)));
+}
+
+/* wo at cos θ = z around n with a fixed, off-axis azimuth. */
+static vec3 view_dir(vec3 n, float z)
+{
+    frame f = frame_from_normal(v3_normalize(n));
+    return dir_in_frame(&f, z, 0.7);
+}
+
+static float avg3(vec3 v) { return (v.x + v.y + v.z) / 3.0f; }
+
+static double rel_diff(double a, double b)
+{
+    double m = fmax(fabs(a), fabs(b));
+    return m > 0.0 ? fabs(a - b) / m : 0.0;
+}
+
+/* -------------------------------------------------- chi-square law */
+
+/* Regularized lower incomplete gamma P(a, x) by its power series
+ * (Abramowitz & Stegun 6.5.29), valid for x < a + 1. */
+static double gamma_p_series(double a, double x)
+{
+    double term = 1.0 / a, sum = term;
+    for (int n = 1; n < 1000; n++) {
+        term *= x / (a + n);
+        sum += term;
+        if (fabs(term) < fabs(sum) * 1e-15)
+            break;
+    }
+    return sum * exp(-x + a * log(x) - lgamma(a));
+}
+
+/* Regularized upper incomplete gamma Q(a, x) by its continued fraction
+ * (A&S 6.5.31), evaluated with the modified Lentz method, for x ≥ a + 1. */
+static double gamma_q_fraction(double a, double x)
+{
+    const double tiny = 1e-300;
+    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
+    for (int i = 1; i < 1000; i++) {
+        double an = -i * (i - a);
+        b += 2.0;
+        d = an * d + b;
+        if (fabs(d) < tiny)
+            d = tiny;
+        c = b + an / c;
+        if (fabs(c) < tiny)
+            c = tiny;
+        d = 1.0 / d;
+        double delta = d * c;
+        h *= delta;
+        if (fabs(delta - 1.0) < 1e-15)
+            break;
+    }
+    return exp(-x + a * log(x) - lgamma(a)) * h;
+}
+
+/* P(X ≥ chi2) for X chi-square distributed with dof degrees of freedom. */
+static double chi2_survival(double chi2, int dof)
+{
+    double a = 0.5 * dof, x = 0.5 * chi2;
+    if (x <= 0.0)
+        return 1.0;
+    return x < a + 1.0 ? 1.0 - gamma_p_series(a, x) : gamma_q_fraction(a, x);
+}
+
+/* ------------------------------------------- pdf integration per bin */
+
+typedef struct integrand {
+    const bsdf *b;
+    vec3 wo;
+} integrand;
+
+static double pdf_at(const integrand *g, double z, double phi)
+{
+    float pdf;
+    bsdf_eval(g->b, g->wo, dir_in_frame(&g->b->shading, z, phi), &pdf);
+    return pdf;
+}
+
+/* Tensor-product Simpson rule on a 3×3 grid over a cell of the given area. */
+static double simpson9(double f[3][3], double area)
+{
+    static const double w[3] = {1.0, 4.0, 1.0};
+    double s = 0.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            s += w[i] * w[j] * f[i][j];
+    return s * area / 36.0;
+}
+
+/* Adaptive 2D Simpson over [z0,z1]×[p0,p1] in (cos θ, φ), where dω = dz dφ:
+ * split into four until the halves agree (relative 1e-4 or 1e-10 absolute),
+ * then apply the Richardson correction. f holds the cell's 3×3 values. */
+static double integrate_cell(const integrand *g, double z0, double z1, double p0, double p1,
+                             double f[3][3], double whole, int depth)
+{
+    double v[5][5];
+    for (int a = 0; a < 5; a++)
+        for (int c = 0; c < 5; c++)
+            v[a][c] = (a % 2 == 0 && c % 2 == 0)
+                          ? f[a / 2][c / 2]
+                          : pdf_at(g, z0 + (z1 - z0) * a / 4.0, p0 + (p1 - p0) * c / 4.0);
+    double area = 0.25 * (z1 - z0) * (p1 - p0);
+    double q[2][2][3][3], part[2][2], total = 0.0;
+    for (int qa = 0; qa < 2; qa++)
+        for (int qc = 0; qc < 2; qc++) {
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    q[qa][qc][i][j] = v[2 * qa + i][2 * qc + j];
+            part[qa][qc] = simpson9(q[qa][qc], area);
+            total += part[qa][qc];
+        }
+    if (depth == 0 || fabs(total - whole) <= fmax(1e-4 * fabs(total), 1e-10))
+        return total + (total - whole) / 15.0;
+    double zm = 0.5 * (z0 + z1), pm = 0.5 * (p0 + p1), sum = 0.0;
+    for (int qa = 0; qa < 2; qa++)
+        for (int qc = 0; qc < 2; qc++)
+            sum += integrate_cell(g, qa ? zm : z0, qa ? z1 : zm, qc ? pm : p0, qc ? p1 : pm,
+                                  q[qa][qc], part[qa][qc], depth - 1);
+    return sum;
+}
+
+static double integrate_bin(const integrand *g, double z0, double z1, double p0, double p1)
+{
+    double sum = 0.0;
+    double dz = (z1 - z0) / SUBCELLS, dp = (p1 - p0) / SUBCELLS;
+    for (int i = 0; i < SUBCELLS; i++)
+        for (int j = 0; j < SUBCELLS; j++) {
+            double a0 = z0 + i * dz, c0 = p0 + j * dp, f[3][3];
+            for (int a = 0; a < 3; a++)
+                for (int c = 0; c < 3; c++)
+                    f[a][c] = pdf_at(g, a0 + 0.5 * dz * a, c0 + 0.5 * dp * c);
+            sum += integrate_cell(g, a0, a0 + dz, c0, c0 + dp, f, simpson9(f, dz * dp), MAX_DEPTH);
+        }
+    return fmax(sum, 0.0);
+}
+
+/* ----------------------------------------------------- chi-square test */
+
+#define NUM_CELLS (COS_BINS * PHI_BINS + 2) /* + a delta bin + an "absorbed" bin */
+
+typedef struct fit_stats {
+    int consistency_failures; /* samples whose weight/pdf disagree with bsdf_eval */
+    int nonfinite;            /* samples with NaN/Inf */
+    double mean_weight;       /* Monte Carlo albedo estimate (average over RGB) */
+    double weight_sigma;      /* its standard error */
+} fit_stats;
+
+static int count_chi2_tests;
+
+/* Draws SAMPLES_PER_TEST directions, bins them in the shading frame and
+ * runs the chi-square test against the integrated pdf. delta_mass is the
+ * probability of a delta (transparent) sample. Returns the p-value. */
+static double chi2_fit(const bsdf *b, vec3 wo, double delta_mass, uint32_t seed, fit_stats *st)
+{
+    static double expected[NUM_CELLS];
+    static double observed[NUM_CELLS];
+    const int delta_cell = COS_BINS * PHI_BINS, absorbed_cell = delta_cell + 1;
+    memset(observed, 0, sizeof observed);
+    memset(st, 0, sizeof *st);
+
+    double sum_w = 0.0, sum_w2 = 0.0;
+    for (uint32_t i = 0; i < SAMPLES_PER_TEST; i++) {
+        sampler s = sampler_for_index(seed, 7, i);
+        bsdf_sample bs;
+        double w = 0.0;
+        if (!bsdf_sample(b, wo, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs)) {
+            observed[absorbed_cell] += 1.0;
+        } else if (!v3_is_finite(bs.weight) || !isfinite(bs.pdf) || !v3_is_finite(bs.wi)) {
+            st->nonfinite++;
+        } else if (bs.flags & BSDF_DELTA) {
+            observed[delta_cell] += 1.0;
+            w = avg3(bs.weight);
+        } else {
+            vec3 l = frame_to_local(&b->shading, bs.wi);
+            int iz = (int)((clampf(l.z, -1.0f, 1.0f) + 1.0f) * 0.5f * COS_BINS);
+            double phi = atan2(l.y, l.x);
+            if (phi < 0.0)
+                phi += 2.0 * PHOS_PI;
+            int ip = (int)(phi / (2.0 * PHOS_PI) * PHI_BINS);
+            iz = iz < 0 ? 0 : (iz >= COS_BINS ? COS_BINS - 1 : iz);
+            ip = ip < 0 ? 0 : (ip >= PHI_BINS ? PHI_BINS - 1 : ip);
+            observed[iz * PHI_BINS + ip] += 1.0;
+
+            /* Test 2: the sample agrees with an independent evaluation. */
+            float pdf;
+            vec3 f = bsdf_eval(b, wo, bs.wi, &pdf);
+            vec3 expect = v3_scale(f, 1.0f / pdf);
+            double scale = fmax(v3_max_component(v3_max(bs.weight, v3_neg(bs.weight))), 1e-6);
+            if (!(pdf > 0.0f) || rel_diff(bs.pdf, pdf) > 1e-3 ||
+                fabs(expect.x - bs.weight.x) > 1e-3 * scale ||
+                fabs(expect.y - bs.weight.y) > 1e-3 * scale ||
+                fabs(expect.z - bs.weight.z) > 1e-3 * scale)
+                st->consistency_failures++;
+            w = avg3(bs.weight);
+        }
+        sum_w += w;
+        sum_w2 += w * w;
+    }
+    st->mean_weight = sum_w / SAMPLES_PER_TEST;
+    st->weight_sigma = sqrt(fmax(sum_w2 / SAMPLES_PER_TEST - st->mean_weight * st->mean_weight, 0.0) /
+                            SAMPLES_PER_TEST);
+
+    /* Expected counts: N ∫_bin pdf dω. */
+    integrand g = {b, wo};
+    double mass = 0.0;
+    for (int iz = 0; iz < COS_BINS; iz++)
+        for (int ip = 0; ip < PHI_BINS; ip++) {
+            double z0 = -1.0 + 2.0 * iz / COS_BINS, z1 = -1.0 + 2.0 * (iz + 1) / COS_BINS;
+            double p0 = 2.0 * PHOS_PI * ip / PHI_BINS, p1 = 2.0 * PHOS_PI * (ip + 1) / PHI_BINS;
+            double p = integrate_bin(&g, z0, z1, p0, p1);
+            expected[iz * PHI_BINS + ip] = p * SAMPLES_PER_TEST;
+            mass += p;
+        }
+    expected[delta_cell] = delta_mass * SAMPLES_PER_TEST;
+    expected[absorbed_cell] = fmax(1.0 - mass - delta_mass, 0.0) * SAMPLES_PER_TEST;
+
+    /* Pool the cells expecting < 5 samples (smallest first) into one. */
+    int order[NUM_CELLS];
+    for (int i = 0; i < NUM_CELLS; i++)
+        order[i] = i;
+    for (int i = 1; i < NUM_CELLS; i++) { /* insertion sort by expected count */
+        int k = order[i], j = i - 1;
+        while (j >= 0 && expected[order[j]] > expected[k]) {
+            order[j + 1] = order[j];
+            j--;
+        }
+        order[j + 1] = k;
+    }
+    double chi2 = 0.0, pool_e = 0.0, pool_o = 0.0;
+    int categories = 0, i = 0;
+    for (; i < NUM_CELLS && (expected[order[i]] < 5.0 || pool_e < 5.0); i++) {
+        if (expected[order[i]] >= 5.0 && pool_e == 0.0)
+            break; /* nothing to pool */
+        pool_e += expected[order[i]];
+        pool_o += observed[order[i]];
+    }
+    if (pool_e > 0.0) {
+        chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+        categories++;
+    } else if (pool_o > 0.0) {
+        return 0.0; /* samples where the pdf says none can be */
+    }
+    for (; i < NUM_CELLS; i++) {
+        double e = expected[order[i]], o = observed[order[i]];
+        chi2 += (o - e) * (o - e) / e;
+        categories++;
+    }
+    count_chi2_tests++;
+    if (categories < 2)
+        return 1.0;
+    return chi2_survival(chi2, categories - 1);
+}
+
+/* A chi-square scenario: closures, normals and the incident direction. */
+typedef struct scenario {
+    char name[96];
+    closure cl[4];
+    int n;
+    vec3 ns, ng;
+    int albedo_bounded; /* Burley diffuse is not energy conserving */
+} scenario;
+
+static int build_scenarios(scenario *sc)
+{
+    int n = 0;
+    const vec3 z = v3(0.0f, 0.0f, 1.0f);
+    static const float etas[2] = {1.5f, 1.0f / 1.5f};
+    static const char *mode_name[2] = {"macro", "microfacet"};
+
+#define ADD(NAME, ...)                                                            \
+    do {                                                                          \
+        scenario *s_ = &sc[n++];                                                  \
+        closure tmp_[] = {__VA_ARGS__};                                           \
+        memset(s_, 0, sizeof *s_);                                                \
+        snprintf(s_->name, sizeof s_->name, "%s", NAME);                          \
+        s_->n = (int)(sizeof tmp_ / sizeof tmp_[0]);                              \
+        memcpy(s_->cl, tmp_, sizeof tmp_);                                        \
+        s_->ns = z;                                                               \
+        s_->ng = z;                                                               \
+        s_->albedo_bounded = 1;                                                   \
+    } while (0)
+
+    char name[96];
+    ADD("diffuse", make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f));
+    for (int r = 0; r < 3; r++) {
+        float rough = ROUGHNESS[r];
+        snprintf(name, sizeof name, "principled diffuse r=%.1f", rough);
+        ADD(name, make_closure(PHOS_CLOSURE_PRINCIPLED_DIFFUSE, rough, 1.0f));
+        sc[n - 1].albedo_bounded = 0;
+        snprintf(name, sizeof name, "reflection r=%.1f", rough);
+        ADD(name, make_closure(PHOS_CLOSURE_REFLECTION, rough, 1.0f));
+        snprintf(name, sizeof name, "reflection fresnel r=%.1f", rough);
+        ADD(name, make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, rough, 1.45f));
+        for (int e = 0; e < 2; e++) {
+            snprintf(name, sizeof name, "refraction r=%.1f eta=%.3f", rough, etas[e]);
+            ADD(name, make_closure(PHOS_CLOSURE_REFRACTION, rough, etas[e]));
+            for (uint32_t m = 0; m < 2; m++) {
+                snprintf(name, sizeof name, "glass %s r=%.1f eta=%.3f", mode_name[m], rough, etas[e]);
+                ADD(name, make_glass(rough, etas[e], m));
+            }
+        }
+    }
+    ADD("mix principled: diffuse + specular",
+        weighted(make_closure(PHOS_CLOSURE_PRINCIPLED_DIFFUSE, 0.5f, 1.0f), 0.8f),
+        make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, 0.3f, 1.5f));
+    sc[n - 1].albedo_bounded = 0;
+    ADD("mix diffuse + glass + transparent",
+        weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 0.3f),
+        weighted(make_glass(0.3f, 1.5f, PHOS_GLASS_FRESNEL_MACRO), 0.5f),
+        weighted(make_closure(PHOS_CLOSURE_TRANSPARENT, 0.0f, 1.0f), 0.2f));
+    ADD("mix diffuse + glossy, tilted shading normal",
+        weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 0.5f),
+        weighted(make_closure(PHOS_CLOSURE_REFLECTION, 0.5f, 1.0f), 0.5f));
+    sc[n - 1].ns = v3_normalize(v3(0.35f, 0.1f, 1.0f));
+#undef ADD
+    return n;
+}
+
+static void test_chi2_all(void)
+{
+    static scenario sc[64];
+    int n = build_scenarios(sc);
+    int total_tests = n * 3;
+    double significance = 0.01 / total_tests; /* Šidák/Bonferroni over all tests */
+    uint32_t seed = 1;
+    for (int s = 0; s < n; s++) {
+        bsdf b;
+        make_bsdf(&b, sc[s].cl, sc[s].n, sc[s].ns, sc[s].ng);
+        double delta_mass = 0.0;
+        for (uint32_t k = 0; k < b.count; k++)
+            if (b.closures[k].type == PHOS_CLOSURE_TRANSPARENT)
+                delta_mass += b.closures[k].sample_weight / b.sample_weight_sum;
+        for (int a = 0; a < 3; a++) {
+            vec3 wo = view_dir(sc[s].ns, COS_VIEW[a]);
+            if (v3_dot(wo, sc[s].ng) <= 0.0f)
+                wo = view_dir(sc[s].ng, COS_VIEW[a]);
+            fit_stats st;
+            double p = chi2_fit(&b, wo, delta_mass, seed++, &st);
+            CHECK_MSG(p > significance, "chi2 %s, cos(wo)=%.2f: p-value %.3g < %.3g", sc[s].name,
+                      COS_VIEW[a], p, significance);
+            CHECK_MSG(st.consistency_failures == 0, "%s cos(wo)=%.2f: %d samples disagree with eval",
+                      sc[s].name, COS_VIEW[a], st.consistency_failures);
+            CHECK_MSG(st.nonfinite == 0, "%s: %d non-finite samples", sc[s].name, st.nonfinite);
+            /* Test 3: white albedo ≤ 1 up to Monte Carlo noise. */
+            if (sc[s].albedo_bounded)
+                CHECK_MSG(st.mean_weight <= 1.0 + 4.0 * st.weight_sigma + 1e-4,
+                          "%s cos(wo)=%.2f: albedo %.4f > 1", sc[s].name, COS_VIEW[a], st.mean_weight);
+        }
+    }
+    CHECK(count_chi2_tests == total_tests);
+}
+
+/* --------------------------------------------------------- energy */
+
+/* Quadrature of Σ f·|cos θi| over the sphere: the directional albedo. */
+static double albedo_quadrature(const bsdf *b, vec3 wo, int nz, int np)
+{
+    /* Midpoint rule in (cos θ, φ); fine enough for smooth lobes. */
+    double sum = 0.0;
+    for (int i = 0; i < nz; i++)
+        for (int j = 0; j < np; j++) {
+            double z = -1.0 + 2.0 * (i + 0.5) / nz, phi = 2.0 * PHOS_PI * (j + 0.5) / np;
+            vec3 f = bsdf_eval(b, wo, dir_in_frame(&b->shading, z, phi), NULL);
+            sum += avg3(f);
+        }
+    return sum * (2.0 / nz) * (2.0 * PHOS_PI / np);
+}
+
+static void test_energy(void)
+{
+    const vec3 z = v3(0.0f, 0.0f, 1.0f);
+    bsdf b;
+
+    /* Lambert: albedo 1 by quadrature of eval, and every sample weighs 1. */
+    closure lambert = make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f);
+    make_bsdf(&b, &lambert, 1, z, z);
+    for (int a = 0; a < 3; a++) {
+        vec3 wo = view_dir(z, COS_VIEW[a]);
+        CHECK_REL(albedo_quadrature(&b, wo, 400, 64), 1.0, 0.01);
+        fit_stats st;
+        chi2_fit(&b, wo, 0.0, 100 + a, &st);
+        CHECK_REL(st.mean_weight, 1.0, 0.01);
+    }
+    count_chi2_tests -= 3;
+
+    /* Sharp mirror: one direction, weight 1, pdf 1 (the only closure). */
+    closure mirror = make_closure(PHOS_CLOSURE_REFLECTION, 0.0f, 1.0f);
+    make_bsdf(&b, &mirror, 1, z, z);
+    vec3 wo = view_dir(z, 0.6f);
+    bsdf_sample bs;
+    int ok = bsdf_sample(&b, wo, 0.3f, (float2){0.2f, 0.9f}, &bs);
+    CHECK(ok);
+    if (ok) {
+        CHECK(bs.flags & BSDF_DELTA);
+        CHECK_REL(bs.weight.x, 1.0, 1e-6);
+        CHECK_REL(bs.weight.z, 1.0, 1e-6);
+        CHECK_REL(bs.pdf, 1.0, 1e-6);
+        CHECK_REL(bs.wi.z, wo.z, 1e-5);
+        CHECK(fabsf(bs.wi.x + wo.x) < 1e-5f && fabsf(bs.wi.y + wo.y) < 1e-5f);
+    }
+    float pdf = 1.0f;
+    CHECK(avg3(bsdf_eval(&b, wo, v3(-wo.x, -wo.y, wo.z), &pdf)) == 0.0f && pdf == 0.0f);
+
+    /* Sharp glass at normal incidence, η = 1.5: reflected with probability
+     * F = 0.04, both outcomes weigh 1 (white), refraction goes straight on. */
+    for (uint32_t mode = 0; mode < 2; mode++) {
+        closure glass = make_glass(0.0f, 1.5f, mode);
+        make_bsdf(&b, &glass, 1, z, z);
+        int n = 100000, reflected = 0, bad = 0;
+        for (int i = 0; i < n; i++) {
+            sampler s = sampler_for_index(99, mode, (uint64_t)i);
+            if (!bsdf_sample(&b, z, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs)) {
+                bad++;
+                continue;
+            }
+            int refl = bs.wi.z > 0.0f;
+            reflected += refl;
+            if (!(bs.flags & BSDF_DELTA) || rel_diff(bs.weight.y, 1.0) > 1e-5 ||
+                rel_diff(bs.pdf, refl ? 0.04 : 0.96) > 1e-4 || (!refl && bs.wi.z > -0.99999f) ||
+                (!refl && !(bs.flags & BSDF_TRANSMISSION)))
+                bad++;
+        }
+        double frac = (double)reflected / n, sigma = sqrt(0.04 * 0.96 / n);
+        CHECK_MSG(fabs(frac - 0.04) < 4.0 * sigma, "sharp glass reflected fraction %.4f", frac);
+        CHECK(bad == 0);
+    }
+
+    /* Sharp glass at 45°: the reflected fraction follows Fresnel (0.0502). */
+    {
+        closure glass = make_glass(0.0f, 1.5f, PHOS_GLASS_FRESNEL_MACRO);
+        make_bsdf(&b, &glass, 1, z, z);
+        vec3 w45 = v3_normalize(v3(1.0f, 0.0f, 1.0f));
+        int n = 100000, reflected = 0;
+        for (int i = 0; i < n; i++) {
+            sampler s = sampler_for_index(98, 0, (uint64_t)i);
+            if (bsdf_sample(&b, w45, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) && bs.wi.z > 0.0f)
+                reflected++;
+        }
+        double F = 0.0502, frac = (double)reflected / n;
+        CHECK_MSG(fabs(frac - F) < 4.0 * sqrt(F * (1.0 - F) / n), "glass 45° reflected %.4f", frac);
+    }
+
+    /* Sharp refraction under total internal reflection: nothing sampled. */
+    {
+        closure refr = make_closure(PHOS_CLOSURE_REFRACTION, 0.0f, 1.0f / 1.5f);
+        make_bsdf(&b, &refr, 1, z, z);
+        CHECK(!bsdf_sample(&b, view_dir(z, 0.5f), 0.5f, (float2){0.5f, 0.5f}, &bs));
+        /* ... but below the critical angle it refracts by Snell's law. */
+        vec3 w = view_dir(z, 0.95f);
+        CHECK(bsdf_sample(&b, w, 0.5f, (float2){0.5f, 0.5f}, &bs));
+        float sin_o = sqrtf(1.0f - w.z * w.z), sin_i = sqrtf(1.0f - bs.wi.z * bs.wi.z);
+        CHECK_REL(sin_i * (1.0f / 1.5f), sin_o, 1e-4);
+        CHECK(bs.wi.z < 0.0f && (bs.flags & BSDF_TRANSMISSION) && (bs.flags & BSDF_DELTA));
+    }
+
+    /* Transparent: straight through, weight / pick probability. */
+    {
+        closure cl[2] = {weighted(make_closure(PHOS_CLOSURE_TRANSPARENT, 0, 1), 0.25f),
+                         weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0, 1), 0.75f)};
+        cl[0].weight = v3(0.25f, 0.5f, 0.0f); /* sample weight 0.25 */
+        make_bsdf(&b, cl, 2, z, z);
+        CHECK(b.count == 2);
+        CHECK(bsdf_sample(&b, wo, 0.1f, (float2){0.5f, 0.5f}, &bs));
+        CHECK(bs.flags == (BSDF_DELTA | BSDF_TRANSPARENT | BSDF_TRANSMISSION));
+        CHECK_REL(bs.pdf, 0.25, 1e-6);
+        CHECK_REL(bs.weight.y, 2.0, 1e-6);
+        CHECK(v3_length(v3_add(bs.wi, wo)) < 1e-6f);
+        vec3 t = bsdf_transparency(&b);
+        CHECK(t.x == 0.25f && t.y == 0.5f && t.z == 0.0f);
+        /* eval sees only the diffuse part; its pdf is scaled by 0.75. */
+        vec3 wi = view_dir(z, 0.8f);
+        vec3 f = bsdf_eval(&b, wo, wi, &pdf);
+        CHECK_REL(f.x, 0.75 * wi.z / PHOS_PI, 1e-5);
+        CHECK_REL(pdf, 0.75 * wi.z / PHOS_PI, 1e-5);
+    }
+
+    /* Bookkeeping: emission is never a BSDF closure, zero weights are
+     * dropped, and a full BSDF refuses more. */
+    {
+        bsdf_init(&b, z, z);
+        closure e = make_closure(PHOS_CLOSURE_EMISSION, 0, 1);
+        CHECK(bsdf_add_closure(&b, &e) == 1 && b.count == 0);
+        closure zero = weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0, 1), 0.0f);
+        CHECK(bsdf_add_closure(&b, &zero) == 1 && b.count == 0);
+        CHECK(!bsdf_sample(&b, wo, 0.5f, (float2){0.5f, 0.5f}, &bs));
+        closure d = weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0, 1), 0.5f);
+        d.weight = v3(-0.3f, 0.6f, 0.9f);
+        for (int i = 0; i < PHOS_MAX_CLOSURES; i++)
+            CHECK(bsdf_add_closure(&b, &d) == 1);
+        CHECK(bsdf_add_closure(&b, &d) == 0);
+        CHECK_REL(b.closures[0].sample_weight, 0.6, 1e-6);
+    }
+}
+
+/* --------------------------------------------- geometric robustness */
+
+static void test_light_leaks(void)
+{
+    /* Shading normal tilted 40° from the geometric normal. */
+    vec3 ng = v3(0.0f, 0.0f, 1.0f);
+    vec3 ns = v3_normalize(v3(sinf(0.7f), 0.0f, cosf(0.7f)));
+    bsdf b;
+    closure cl[3] = {make_closure(PHOS_CLOSURE_DIFFUSE, 0, 1),
+                     make_closure(PHOS_CLOSURE_REFLECTION, 0.0f, 1),
+                     make_closure(PHOS_CLOSURE_REFRACTION, 0.3f, 1.5f)};
+    /* A direction above the shading horizon but below the geometric one. */
+    vec3 wi = v3_normalize(v3(1.0f, 0.0f, -0.2f));
+    vec3 wo = v3_normalize(v3(0.3f, 0.2f, 1.0f));
+    CHECK(v3_dot(wi, ns) > 0.0f && v3_dot(wi, ng) < 0.0f);
+    float pdf;
+    make_bsdf(&b, &cl[0], 1, ns, ng);
+    CHECK(avg3(bsdf_eval(&b, wo, wi, &pdf)) == 0.0f && pdf == 0.0f);
+
+    /* Mirror direction below the geometric surface: rejected. */
+    make_bsdf(&b, &cl[1], 1, ns, ng);
+    vec3 grazing = v3_normalize(v3(-1.0f, 0.0f, 0.3f));
+    bsdf_sample bs;
+    CHECK(v3_dot(grazing, ns) > 0.0f);
+    CHECK(!bsdf_sample(&b, grazing, 0.5f, (float2){0.5f, 0.5f}, &bs));
+
+    /* Transmission never returns a direction above the geometric normal. */
+    make_bsdf(&b, &cl[2], 1, ns, ng);
+    int leaks = 0;
+    for (int i = 0; i < 20000; i++) {
+        sampler s = sampler_for_index(5, 0, (uint64_t)i);
+        vec3 w = view_dir(ns, 0.3f + 0.7f * sampler_1d(&s, 3));
+        if (v3_dot(w, ng) <= 0.0f)
+            continue;
+        if (bsdf_sample(&b, w, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) && v3_dot(bs.wi, ng) >= 0.0f)
+            leaks++;
+    }
+    CHECK(leaks == 0);
+
+    /* Never NaN or Inf, even for grazing, degenerate or flipped directions. */
+    closure all[6] = {make_closure(PHOS_CLOSURE_PRINCIPLED_DIFFUSE, 0.5f, 1),
+                      make_closure(PHOS_CLOSURE_REFLECTION, 0.01f, 1),
+                      make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, 0.02f, 1.5f),
+                      make_closure(PHOS_CLOSURE_REFRACTION, 0.012f, 1.0f / 1.5f),
+                      make_glass(0.011f, 1.5f, PHOS_GLASS_FRESNEL_MICROFACET),
+                      make_glass(0.2f, 1.00001f, PHOS_GLASS_FRESNEL_MACRO)};
+    make_bsdf(&b, all, 6, ns, ng);
+    int bad = 0;
+    for (int i = 0; i < 200000; i++) {
+        sampler s = sampler_for_index(6, 0, (uint64_t)i);
+        float2 a = sampler_2d(&s, 3), c = sampler_2d(&s, 5);
+        /* Includes exact poles and horizons. */
+        double zo = (i % 7 == 0) ? 1.0 : (i % 11 == 0) ? 0.0 : 2.0 * a.x - 1.0;
+        double zi = (i % 5 == 0) ? -1.0 : (i % 13 == 0) ? 0.0 : 2.0 * c.x - 1.0;
+        vec3 o = dir_in_frame(&b.shading, zo, 2.0 * PHOS_PI * a.y);
+        vec3 w = dir_in_frame(&b.shading, zi, 2.0 * PHOS_PI * c.y);
+        vec3 f = bsdf_eval(&b, o, w, &pdf);
+        if (!v3_is_finite(f) || !isfinite(pdf) || pdf < 0.0f)
+            bad++;
+        if (bsdf_sample(&b, o, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) &&
+            (!v3_is_finite(bs.weight) || !(bs.pdf > 0.0f) || !isfinite(bs.pdf)))
+            bad++;
+    }
+    CHECK_MSG(bad == 0, "%d non-finite results", bad);
+}
+
+/* ---------------------------------------------------- reciprocity */
+
+static void test_reciprocity(void)
+{
+    const vec3 z = v3(0.0f, 0.0f, 1.0f);
+    closure refl[6] = {make_closure(PHOS_CLOSURE_DIFFUSE, 0, 1),
+                       make_closure(PHOS_CLOSURE_PRINCIPLED_DIFFUSE, 0.8f, 1),
+                       make_closure(PHOS_CLOSURE_REFLECTION, 0.3f, 1),
+                       make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, 0.4f, 1.45f),
+                       make_glass(0.5f, 1.5f, PHOS_GLASS_FRESNEL_MICROFACET),
+                       make_glass(0.5f, 1.0f / 1.5f, PHOS_GLASS_FRESNEL_MICROFACET)};
+    int bad = 0, nonzero = 0;
+    for (int k = 0; k < 6; k++) {
+        bsdf b;
+        make_bsdf(&b, &refl[k], 1, z, z);
+        for (int i = 0; i < 2000; i++) {
+            sampler s = sampler_for_index(11, (uint32_t)k, (uint64_t)i);
+            vec3 wo = dir_in_frame(&b.shading, 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
+            vec3 wi = dir_in_frame(&b.shading, 0.02 + 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
+            /* eval includes |cos θi|: f(wo,wi) = eval(wo,wi) / cos θi. */
+            vec3 a = v3_scale(bsdf_eval(&b, wo, wi, NULL), 1.0f / wi.z);
+            vec3 c = v3_scale(bsdf_eval(&b, wi, wo, NULL), 1.0f / wo.z);
+            if (rel_diff(a.x, c.x) > 1e-3 || rel_diff(a.z, c.z) > 1e-3)
+                bad++;
+            nonzero += a.x > 0.0f;
+        }
+    }
+    CHECK_MSG(bad == 0, "%d non-reciprocal reflection pairs", bad);
+    CHECK(nonzero > 6 * 1900);
+
+    /* Refraction (no 1/η² scaling, as Cycles): f(wo→wi; η) = η² f(wi→wo; 1/η),
+     * the second seen from the other side (normal flipped). */
+    closure refr[4] = {make_closure(PHOS_CLOSURE_REFRACTION, 0.4f, 1.5f),
+                       make_closure(PHOS_CLOSURE_REFRACTION, 0.2f, 1.0f / 1.33f),
+                       make_glass(0.4f, 1.5f, PHOS_GLASS_FRESNEL_MICROFACET),
+                       make_glass(0.3f, 1.0f / 1.5f, PHOS_GLASS_FRESNEL_MICROFACET)};
+    bad = 0;
+    nonzero = 0;
+    for (int k = 0; k < 4; k++) {
+        bsdf front, back;
+        closure inv = refr[k];
+        inv.eta = 1.0f / refr[k].eta;
+        make_bsdf(&front, &refr[k], 1, z, z);
+        make_bsdf(&back, &inv, 1, v3_neg(z), v3_neg(z));
+        for (int i = 0; i < 2000; i++) {
+            sampler s = sampler_for_index(12, (uint32_t)k, (uint64_t)i);
+            vec3 wo = dir_in_frame(&front.shading, 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
+            vec3 wi = dir_in_frame(&front.shading, -0.02 - 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
+            double a = avg3(bsdf_eval(&front, wo, wi, NULL)) / fabs(wi.z);
+            double c = avg3(bsdf_eval(&back, wi, wo, NULL)) / fabs(wo.z);
+            double eta = refr[k].eta;
+            if (rel_diff(a, eta * eta * c) > 2e-3)
+                bad++;
+            nonzero += a > 0.0;
+        }
+    }
+    CHECK_MSG(bad == 0, "%d refraction pairs break f = η² f'", bad);
+    CHECK(nonzero > 1000);
+}
+
+/* ------------------------------------------------------- Fresnel */
+
+static void test_fresnel(void)
+{
+    CHECK_REL(fresnel_dielectric(1.0f, 1.5f), 0.04, 1e-5);
+    CHECK_REL(fresnel_dielectric(1.0f, 1.0f / 1.5f), 0.04, 1e-5);       /* symmetric at normal incidence */
+    CHECK_REL(fresnel_dielectric(cosf(PHOS_PI / 4.0f), 1.5f), 0.0502236, 1e-4);
+    /* Brewster's angle: R_p = 0, R = R_s / 2 = ((n² − 1)/(n² + 1))² / 2. */
+    CHECK_REL(fresnel_dielectric(cosf(atanf(1.5f)), 1.5f), 0.5 * sqr(1.25f / 3.25f), 1e-4);
+    CHECK_REL(fresnel_dielectric(0.0f, 1.5f), 1.0, 1e-6);                /* grazing */
+    CHECK(fresnel_dielectric(1.0f, 1.0f) == 0.0f);                       /* index matched */
+    CHECK(fresnel_dielectric(-1.0f, 1.5f) == fresnel_dielectric(1.0f, 1.5f));
+    /* Total internal reflection beyond the critical angle asin(1/1.5) = 41.8°. */
+    CHECK(fresnel_dielectric(cosf(0.75f), 1.0f / 1.5f) == 1.0f);
+    CHECK(fresnel_dielectric(0.5f, 1.0f / 1.5f) == 1.0f);
+    CHECK(fresnel_dielectric(cosf(0.72f), 1.0f / 1.5f) < 1.0f);
+    /* The same interface seen from both sides: F(θi, η) = F(θt, 1/η). */
+    float ci = 0.7f, st = sqrtf(1.0f - ci * ci) / 1.5f, ct = sqrtf(1.0f - st * st);
+    CHECK_REL(fresnel_dielectric(ci, 1.5f), fresnel_dielectric(ct, 1.0f / 1.5f), 1e-4);
+}
+
+/* ------------------------- GGX normalisation and closed-form values */
+
+static void test_microfacet(void)
+{
+    /* ∫ D(h) cos θh dω = 1 and ∫ D_wo(h) dω = 1 (Heitz 2014 eq. 4 and 16),
+     * by quadrature in θ with a substitution that resolves the peak. */
+    static const float alphas[4] = {0.01f, 0.09f, 0.49f, 1.0f};
+    for (int k = 0; k < 4; k++) {
+        float alpha = alphas[k];
+        vec3 wo = v3_normalize(v3(0.6f, 0.2f, 0.4f));
+        double proj = 0.0, visible = 0.0;
+        const int nt = 4000, np = 256;
+        for (int i = 0; i < nt; i++) {
+            /* θ = atan(α tan(π/2 · t)): dense where D is. */
+            double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
+            double theta = atan(alpha * tan(u));
+            double dtheta = alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
+            double s = sin(theta), c = cos(theta);
+            for (int j = 0; j < np; j++) {
+                double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
+                vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
+                double dw = s * dtheta * 2.0 * PHOS_PI / np;
+                proj += ggx_D(h, alpha) * c * dw;
+                visible += ggx_visible_normal_pdf(wo, h, alpha) * dw;
+            }
+        }
+        CHECK_REL(proj, 1.0, 2e-3);
+        CHECK_REL(visible, 1.0, 2e-3);
+    }
+    /* Λ and G1 against the tan form of Walter 2007 eq. 34. */
+    vec3 w = v3_normalize(v3(0.8f, 0.1f, 0.3f));
+    double tan2 = (w.x * w.x + w.y * w.y) / (w.z * w.z);
+    CHECK_REL(ggx_G1(w, 0.3f), 2.0 / (1.0 + sqrt(1.0 + 0.09 * tan2)), 1e-5);
+    CHECK_REL(ggx_G_correlated(w, w, 0.3f),
+              1.0 / (1.0 + 2.0 * ggx_lambda(w, 0.3f)), 1e-6);
+
+    /* Closed forms, written with angles as in the papers. */
+    const vec3 z = v3(0.0f, 0.0f, 1.0f);
+    bsdf b;
+    vec3 wo = v3_normalize(v3(0.5f, -0.2f, 0.8f));
+    vec3 wi = v3_normalize(v3(-0.3f, 0.4f, 0.6f));
+    double co = wo.z, ci = wi.z;
+
+    /* GGX reflection (Cycles 3.4 bsdf_microfacet_ggx_eval_reflect):
+     * f cos θi = D G1(o) G1(i) / (4 cos θo). */
+    {
+        double alpha = 0.3 * 0.3, a2 = alpha * alpha;
+        vec3 h = v3_normalize(v3_add(wo, wi));
+        double ch = h.z, t2 = (1.0 - ch * ch) / (ch * ch);
+        double D = a2 / (PHOS_PI * pow(ch, 4) * sqr((float)(a2 + t2)));
+        double g1o = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 - co * co) / (co * co)));
+        double g1i = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 - ci * ci) / (ci * ci)));
+        closure c = make_closure(PHOS_CLOSURE_REFLECTION, 0.3f, 1.0f);
+        make_bsdf(&b, &c, 1, z, z);
+        float pdf;
+        vec3 f = bsdf_eval(&b, wo, wi, &pdf);
+        CHECK_REL(f.y, D * g1o * g1i / (4.0 * co), 1e-4);
+        CHECK_REL(pdf, D * g1o / (4.0 * co), 1e-4);
+
+        /* Principled specular: the colour blends f0 → 1 with the Fresnel of η. */
+        closure cf = make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, 0.3f, 1.45f);
+        make_bsdf(&b, &cf, 1, z, z);
+        vec3 ff = bsdf_eval(&b, wo, wi, NULL);
+        double F0 = sqr(0.45f / 2.45f), F = fresnel_dielectric(v3_dot(wo, h), 1.45f);
+        double t = (F - F0) / (1.0 - F0);
+        CHECK_REL(ff.x, f.x * (0.9 * (1.0 - t) + t), 1e-4);
+        CHECK_REL(ff.z, f.z * (0.1 * (1.0 - t) + t), 1e-4);
+    }
+
+    /* GGX refraction (Walter 2007 eq. 21, Cycles 3.4 eval_transmit) with η_i = 1
+     * on the viewer side and η_o = 1.5: f |cos θi| =
+     * |i·h||o·h| η² D G / (cos θo (i·h + η o·h)²). */
+    {
+        float eta = 1.5f;
+        vec3 wt = v3_normalize(v3(-0.2f, 0.1f, -0.9f));
+        vec3 ht = v3_normalize(v3_neg(v3_madd(wo, wt, eta)));
+        double alpha = 0.4 * 0.4, a2 = alpha * alpha;
+        double ch = ht.z, t2 = (1.0 - ch * ch) / (ch * ch);
+        double D = a2 / (PHOS_PI * pow(ch, 4) * sqr((float)(a2 + t2)));
+        double ct = wt.z;
+        double g1o = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 - co * co) / (co * co)));
+        double g1t = 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 - ct * ct) / (ct * ct)));
+        double oh = v3_dot(wo, ht), th = v3_dot(wt, ht);
+        double expect = fabs(oh * th) * eta * eta * D * g1o * g1t / (co * sqr((float)(oh + eta * th)));
+        closure c = make_closure(PHOS_CLOSURE_REFRACTION, 0.4f, eta);
+        make_bsdf(&b, &c, 1, z, z);
+        CHECK_REL(avg3(bsdf_eval(&b, wo, wt, NULL)), expect, 1e-4);
+        CHECK(expect > 0.0);
+
+        /* Cycles 3.4 Glass: the same refraction lobe times 1 − F(N·wo). */
+        closure g = make_glass(0.4f, eta, PHOS_GLASS_FRESNEL_MACRO);
+        make_bsdf(&b, &g, 1, z, z);
+        CHECK_REL(avg3(bsdf_eval(&b, wo, wt, NULL)), expect * (1.0 - fresnel_dielectric(co, eta)), 1e-4);
+    }
+
+    /* Burley diffuse with retro-reflection (Cycles 3.4 PRINCIPLED_DIFFUSE_FULL). */
+    {
+        double rough = 0.6, fl = pow(1.0 - ci, 5), fv = pow(1.0 - co, 5);
+        vec3 h = v3_normalize(v3_add(wo, wi));
+        double cd = v3_dot(wi, h), rr = 2.0 * rough * cd * cd;
+        double f = (1.0 - 0.5 * fl) * (1.0 - 0.5 * fv) + rr * (fl + fv + fl * fv * (rr - 1.0));
+        closure c = make_closure(PHOS_CLOSURE_PRINCIPLED_DIFFUSE, (float)rough, 1.0f);
+        make_bsdf(&b, &c, 1, z, z);
+        CHECK_REL(avg3(bsdf_eval(&b, wo, wi, NULL)), f * ci / PHOS_PI, 1e-4);
+    }
+}
+
+/* The chi-square law itself: textbook critical values. */
+static void test_chi2_law(void)
+{
+    CHECK_REL(chi2_survival(3.841459, 1), 0.05, 1e-4);
+    CHECK_REL(chi2_survival(18.307038, 10), 0.05, 1e-4);
+    CHECK_REL(chi2_survival(6.634897, 1), 0.01, 1e-4);
+    CHECK_REL(chi2_survival(124.342, 100), 0.05, 1e-3);
+    CHECK_REL(chi2_survival(2.0, 2), exp(-1.0), 1e-9); /* dof 2: e^(−x/2) */
+}
+
+int main(void)
+{
+    test_chi2_law();
+    test_fresnel();
+    test_microfacet();
+    test_energy();
+    test_reciprocity();
+    test_light_leaks();
+    test_chi2_all();
+    return test_summary("test_bsdf");
+}

@@ -1,0 +1,186 @@
+/*
+ * test_scenes.h — small scenes built through the public API for the C
+ * tests, and a helper that renders them synchronously.
+ */
+#ifndef PHOS_TEST_SCENES_H
+#define PHOS_TEST_SCENES_H
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "phos.h"
+
+/* A UV sphere of `radius` at `center`, normals pointing outward (or inward
+ * if `inward`), with smooth per-corner normals. Returns the mesh id. */
+static uint32_t test_add_sphere_mesh(phos_scene *s, float radius, int segments, int rings, int inward)
+{
+    uint32_t nv = (uint32_t)((rings + 1) * (segments + 1));
+    uint32_t nt = (uint32_t)(2 * rings * segments);
+    float *pos = malloc(sizeof(float) * 3 * nv);
+    uint32_t *idx = malloc(sizeof(uint32_t) * 3 * nt);
+    float *nrm = malloc(sizeof(float) * 9 * nt);
+    uint32_t t = 0;
+    for (int r = 0; r <= rings; r++) {
+        double th = M_PI * r / rings;
+        for (int sg = 0; sg <= segments; sg++) {
+            double ph = 2.0 * M_PI * sg / segments;
+            float *p = pos + 3 * (r * (segments + 1) + sg);
+            p[0] = (float)(radius * sin(th) * cos(ph));
+            p[1] = (float)(radius * sin(th) * sin(ph));
+            p[2] = (float)(radius * cos(th));
+        }
+    }
+    for (int r = 0; r < rings; r++) {
+        for (int sg = 0; sg < segments; sg++) {
+            uint32_t a = (uint32_t)(r * (segments + 1) + sg), b = a + 1;
+            uint32_t c = a + (uint32_t)(segments + 1), d = c + 1;
+            uint32_t tri[2][3] = {{a, c, b}, {b, c, d}};
+            for (int k = 0; k < 2; k++) {
+                if (inward) {
+                    uint32_t tmp = tri[k][1];
+                    tri[k][1] = tri[k][2];
+                    tri[k][2] = tmp;
+                }
+                for (int j = 0; j < 3; j++) {
+                    idx[3 * t + j] = tri[k][j];
+                    const float *p = pos + 3 * tri[k][j];
+                    float sgn = inward ? -1.0f : 1.0f;
+                    for (int c2 = 0; c2 < 3; c2++)
+                        nrm[9 * t + 3 * j + c2] = sgn * p[c2] / radius;
+                }
+                t++;
+            }
+        }
+    }
+    phos_mesh_desc md;
+    phos_mesh_desc_init(&md);
+    md.vertex_count = nv;
+    md.positions = pos;
+    md.triangle_count = t;
+    md.indices = idx;
+    md.normals = nrm;
+    uint32_t id = 0;
+    phos_scene_add_mesh(s, &md, &id);
+    free(pos);
+    free(idx);
+    free(nrm);
+    return id;
+}
+
+/* A square of side 2·half in the z = 0 plane, normal +Z. */
+static uint32_t test_add_quad_mesh(phos_scene *s, float half)
+{
+    float pos[12] = {-half, -half, 0, half, -half, 0, half, half, 0, -half, half, 0};
+    uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    phos_mesh_desc md;
+    phos_mesh_desc_init(&md);
+    md.vertex_count = 4;
+    md.positions = pos;
+    md.triangle_count = 2;
+    md.indices = idx;
+    uint32_t id = 0;
+    phos_scene_add_mesh(s, &md, &id);
+    return id;
+}
+
+static uint32_t test_add_diffuse(phos_scene *s, float r, float g, float b)
+{
+    phos_closure_desc c;
+    phos_closure_desc_init(&c);
+    c.type = PHOS_CLOSURE_DIFFUSE;
+    c.weight[0] = r;
+    c.weight[1] = g;
+    c.weight[2] = b;
+    phos_material_desc m;
+    phos_material_desc_init(&m);
+    m.closure_count = 1;
+    m.closures = &c;
+    uint32_t id = 0;
+    phos_scene_add_material(s, &m, &id);
+    return id;
+}
+
+static uint32_t test_add_instance(phos_scene *s, uint32_t mesh, uint32_t material, float tx, float ty, float tz)
+{
+    phos_instance_desc d;
+    phos_instance_desc_init(&d);
+    d.mesh_id = mesh;
+    d.transform[3] = tx;
+    d.transform[7] = ty;
+    d.transform[11] = tz;
+    d.material_count = 1;
+    d.materials = &material;
+    uint32_t id = 0;
+    phos_scene_add_instance(s, &d, &id);
+    return id;
+}
+
+/* Camera at `pos` looking down −Z (identity rotation), field of view given
+ * by tan of the half angle. */
+static void test_set_camera(phos_scene *s, float x, float y, float z, float tan_half)
+{
+    phos_camera_desc c;
+    phos_camera_desc_init(&c);
+    c.transform[3] = x;
+    c.transform[7] = y;
+    c.transform[11] = z;
+    c.frame_min[0] = c.frame_min[1] = -tan_half;
+    c.frame_max[0] = c.frame_max[1] = tan_half;
+    c.clip_start = 1e-3f;
+    c.clip_end = 1e4f;
+    phos_scene_set_camera(s, &c);
+}
+
+/* Camera at (x, y, z) pitched down by `pitch` radians from looking along
+ * −Z (a rotation about X: −Z maps to (0, sin p, −cos p)). */
+static void test_set_camera_pitched(phos_scene *s, float x, float y, float z, float pitch, float tan_half)
+{
+    phos_camera_desc c;
+    phos_camera_desc_init(&c);
+    float cp = cosf(pitch), sp = sinf(pitch);
+    float m[12] = {1, 0, 0, x, 0, cp, -sp, y, 0, sp, cp, z};
+    memcpy(c.transform, m, sizeof(m));
+    c.frame_min[0] = c.frame_min[1] = -tan_half;
+    c.frame_max[0] = c.frame_max[1] = tan_half;
+    c.clip_start = 1e-3f;
+    c.clip_end = 1e4f;
+    phos_scene_set_camera(s, &c);
+}
+
+/* Renders synchronously; returns a malloc'd RGBA image or NULL. */
+static float *test_render(phos_scene *s, const phos_render_settings *rs)
+{
+    phos_render *r = NULL;
+    if (phos_render_create(s, rs, &r) != PHOS_OK)
+        return NULL;
+    if (phos_render_start(r) != PHOS_OK || phos_render_wait(r, -1.0) != PHOS_OK) {
+        phos_render_destroy(r);
+        return NULL;
+    }
+    uint32_t w = rs->region_width ? rs->region_width : rs->width;
+    uint32_t h = rs->region_height ? rs->region_height : rs->height;
+    float *img = malloc(sizeof(float) * 4 * w * h);
+    if (phos_render_read(r, PHOS_PASS_COMBINED, rs->region_x, rs->region_y, w, h, img, (size_t)4 * w * h) != PHOS_OK) {
+        free(img);
+        img = NULL;
+    }
+    phos_render_destroy(r);
+    return img;
+}
+
+/* Mean and standard error of the mean of one channel over all pixels. */
+static void test_image_stats(const float *img, size_t pixels, int channel, double *mean, double *stderr_mean)
+{
+    double s = 0.0, s2 = 0.0;
+    for (size_t i = 0; i < pixels; i++) {
+        double v = img[4 * i + channel];
+        s += v;
+        s2 += v * v;
+    }
+    *mean = s / (double)pixels;
+    double var = s2 / (double)pixels - (*mean) * (*mean);
+    *stderr_mean = sqrt(fmax(var, 0.0) / (double)pixels);
+}
+
+#endif /* PHOS_TEST_SCENES_H */
