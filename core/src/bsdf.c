@@ -70,6 +70,21 @@ float fresnel_dielectric(float cos_theta_i, float eta)
     return clampf(0.5f * a * a * (1.0f + b * b), 0.0f, 1.0f);
 }
 
+/* 1 − F without the cancellation of subtracting F ≈ 1 at grazing angles:
+ * with g = η cos θt, T_s = 4cg / (c + g)² and T_p = 4η²cg / (η²c + g)²
+ * (Hecht, Optics §4.6.2), T = (T_s + T_p) / 2. */
+static float fresnel_dielectric_transmittance(float cos_theta_i, float eta)
+{
+    float c = fabsf(cos_theta_i);
+    float g2 = eta * eta - 1.0f + c * c;
+    if (!(g2 > 0.0f))
+        return 0.0f;
+    float g = sqrtf(g2), e2c = eta * eta * c;
+    float ts = 4.0f * c * g / sqr(c + g);
+    float tp = 4.0f * e2c * g / sqr(e2c + g);
+    return clampf(0.5f * (ts + tp), 0.0f, 1.0f);
+}
+
 /* Schlick's weight (1 − cos)⁵ with cos clamped to [0,1] (Burley 2012). */
 static float schlick_weight(float cos_theta)
 {
@@ -240,17 +255,17 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
             v = ggx_refraction(q, c->alpha, c->eta, 1, &h, pdf);
         if (v == 0.0f)
             return v3s(0.0f);
-        float F = fresnel_dielectric(v3_dot(q->wo, h), c->eta);
-        lobe = q->wi.z > 0.0f ? F : 1.0f - F;
+        float cos_oh = v3_dot(q->wo, h);
+        lobe = q->wi.z > 0.0f ? fresnel_dielectric(cos_oh, c->eta)
+                              : fresnel_dielectric_transmittance(cos_oh, c->eta);
     } else {
         /* Cycles 3.4: two closures weighted F and 1 − F, F at the shading normal. */
-        float F = fresnel_dielectric(q->wo.z, c->eta);
         if (q->wi.z > 0.0f) {
             v = ggx_reflection(q, c->alpha, 0, &h, pdf);
-            lobe = F;
+            lobe = fresnel_dielectric(q->wo.z, c->eta);
         } else {
             v = closure_index_matched(c) ? 0.0f : ggx_refraction(q, c->alpha, c->eta, 0, &h, pdf);
-            lobe = 1.0f - F;
+            lobe = fresnel_dielectric_transmittance(q->wo.z, c->eta);
         }
     }
     *pdf *= lobe;
@@ -354,7 +369,8 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
     if (closure_is_sharp(c) || closure_index_matched(c)) {
         if (!refract_about(wo, n, c->eta, &wi))
             return 0;
-        return sample_delta(s, wi, BSDF_TRANSMISSION, v3_scale(c->weight, 1.0f - F), 1.0f - F);
+        float T = fresnel_dielectric_transmittance(wo.z, c->eta);
+        return sample_delta(s, wi, BSDF_TRANSMISSION, v3_scale(c->weight, T), T);
     }
     vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
     if (!refract_about(wo, h, c->eta, &wi))
@@ -497,6 +513,8 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
     float pick = c->sample_weight / b->sample_weight_sum;
 
     lobe_sample s;
+    s.value = v3s(0.0f);
+    s.prob = 0.0f;
     vec3 wo_local = frame_to_local(&b->shading, wo);
     if (!closure_sample(c, wo_local, u_lobe, u, &s))
         return 0;
@@ -521,9 +539,13 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
         return 1;
     }
 
-    /* Non-delta: the direction only counts where its own closure has
-     * density (the same tests as eval), then the mixture weights it. */
+    /* Non-delta: the direction only counts where the lobe that produced it
+     * has density — on that lobe's side of both normals (a reflection that
+     * dips below the horizon is lost, not mistaken for a transmission) and
+     * where its closure's eval is nonzero — then the mixture weights it. */
     query q = make_query(b, wo, wi);
+    if (!((s.flags & BSDF_TRANSMISSION) ? transmission_side(&q) : reflection_side(&q)))
+        return 0;
     float pdf_own, pdf;
     closure_eval(c, &q, &pdf_own);
     if (!(pdf_own > 0.0f))

@@ -1,7 +1,7 @@
 /*
  * test_bsdf.c — checks of the BSDF closures (bsdf.c, microfacet.c):
  *
- *  1. chi-square goodness of fit of bsdf_sample's directions against the
+ *  1. chi-square goodness of fit of bsdf_sample_direction's directions against the
  *     pdf reported by bsdf_eval, for every non-delta closure and a few
  *     mixtures, several incident angles and roughnesses, both sides of a
  *     dielectric (the test of Mitsuba and pbrt-v3: bin the sphere, integrate
@@ -238,7 +238,7 @@ static double chi2_fit(const bsdf *b, vec3 wo, double delta_mass, uint32_t seed,
         sampler s = sampler_for_index(seed, 7, i);
         bsdf_sample bs;
         double w = 0.0;
-        if (!bsdf_sample(b, wo, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs)) {
+        if (!bsdf_sample_direction(b, wo, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs)) {
             observed[absorbed_cell] += 1.0;
         } else if (!v3_is_finite(bs.weight) || !isfinite(bs.pdf) || !v3_is_finite(bs.wi)) {
             st->nonfinite++;
@@ -463,7 +463,7 @@ static void test_energy(void)
     make_bsdf(&b, &mirror, 1, z, z);
     vec3 wo = view_dir(z, 0.6f);
     bsdf_sample bs;
-    int ok = bsdf_sample(&b, wo, 0.3f, (float2){0.2f, 0.9f}, &bs);
+    int ok = bsdf_sample_direction(&b, wo, 0.3f, (float2){0.2f, 0.9f}, &bs);
     CHECK(ok);
     if (ok) {
         CHECK(bs.flags & BSDF_DELTA);
@@ -484,7 +484,7 @@ static void test_energy(void)
         int n = 100000, reflected = 0, bad = 0;
         for (int i = 0; i < n; i++) {
             sampler s = sampler_for_index(99, mode, (uint64_t)i);
-            if (!bsdf_sample(&b, z, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs)) {
+            if (!bsdf_sample_direction(&b, z, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs)) {
                 bad++;
                 continue;
             }
@@ -508,10 +508,10 @@ static void test_energy(void)
         int n = 100000, reflected = 0;
         for (int i = 0; i < n; i++) {
             sampler s = sampler_for_index(98, 0, (uint64_t)i);
-            if (bsdf_sample(&b, w45, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) && bs.wi.z > 0.0f)
+            if (bsdf_sample_direction(&b, w45, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) && bs.wi.z > 0.0f)
                 reflected++;
         }
-        double F = 0.0502, frac = (double)reflected / n;
+        double F = 0.050240, frac = (double)reflected / n;
         CHECK_MSG(fabs(frac - F) < 4.0 * sqrt(F * (1.0 - F) / n), "glass 45° reflected %.4f", frac);
     }
 
@@ -519,10 +519,10 @@ static void test_energy(void)
     {
         closure refr = make_closure(PHOS_CLOSURE_REFRACTION, 0.0f, 1.0f / 1.5f);
         make_bsdf(&b, &refr, 1, z, z);
-        CHECK(!bsdf_sample(&b, view_dir(z, 0.5f), 0.5f, (float2){0.5f, 0.5f}, &bs));
+        CHECK(!bsdf_sample_direction(&b, view_dir(z, 0.5f), 0.5f, (float2){0.5f, 0.5f}, &bs));
         /* ... but below the critical angle it refracts by Snell's law. */
         vec3 w = view_dir(z, 0.95f);
-        CHECK(bsdf_sample(&b, w, 0.5f, (float2){0.5f, 0.5f}, &bs));
+        CHECK(bsdf_sample_direction(&b, w, 0.5f, (float2){0.5f, 0.5f}, &bs));
         float sin_o = sqrtf(1.0f - w.z * w.z), sin_i = sqrtf(1.0f - bs.wi.z * bs.wi.z);
         CHECK_REL(sin_i * (1.0f / 1.5f), sin_o, 1e-4);
         CHECK(bs.wi.z < 0.0f && (bs.flags & BSDF_TRANSMISSION) && (bs.flags & BSDF_DELTA));
@@ -535,7 +535,7 @@ static void test_energy(void)
         cl[0].weight = v3(0.25f, 0.5f, 0.0f); /* sample weight 0.25 */
         make_bsdf(&b, cl, 2, z, z);
         CHECK(b.count == 2);
-        CHECK(bsdf_sample(&b, wo, 0.1f, (float2){0.5f, 0.5f}, &bs));
+        CHECK(bsdf_sample_direction(&b, wo, 0.1f, (float2){0.5f, 0.5f}, &bs));
         CHECK(bs.flags == (BSDF_DELTA | BSDF_TRANSPARENT | BSDF_TRANSMISSION));
         CHECK_REL(bs.pdf, 0.25, 1e-6);
         CHECK_REL(bs.weight.y, 2.0, 1e-6);
@@ -557,7 +557,7 @@ static void test_energy(void)
         CHECK(bsdf_add_closure(&b, &e) == 1 && b.count == 0);
         closure zero = weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0, 1), 0.0f);
         CHECK(bsdf_add_closure(&b, &zero) == 1 && b.count == 0);
-        CHECK(!bsdf_sample(&b, wo, 0.5f, (float2){0.5f, 0.5f}, &bs));
+        CHECK(!bsdf_sample_direction(&b, wo, 0.5f, (float2){0.5f, 0.5f}, &bs));
         closure d = weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0, 1), 0.5f);
         d.weight = v3(-0.3f, 0.6f, 0.9f);
         for (int i = 0; i < PHOS_MAX_CLOSURES; i++)
@@ -588,10 +588,11 @@ static void test_light_leaks(void)
 
     /* Mirror direction below the geometric surface: rejected. */
     make_bsdf(&b, &cl[1], 1, ns, ng);
-    vec3 grazing = v3_normalize(v3(-1.0f, 0.0f, 0.3f));
+    vec3 grazing = v3_normalize(v3(-0.3f, 0.0f, 0.954f));
     bsdf_sample bs;
-    CHECK(v3_dot(grazing, ns) > 0.0f);
-    CHECK(!bsdf_sample(&b, grazing, 0.5f, (float2){0.5f, 0.5f}, &bs));
+    CHECK(v3_dot(grazing, ns) > 0.0f && v3_dot(grazing, ng) > 0.0f);
+    CHECK(v3_dot(v3_sub(v3_scale(ns, 2.0f * v3_dot(grazing, ns)), grazing), ng) < 0.0f);
+    CHECK(!bsdf_sample_direction(&b, grazing, 0.5f, (float2){0.5f, 0.5f}, &bs));
 
     /* Transmission never returns a direction above the geometric normal. */
     make_bsdf(&b, &cl[2], 1, ns, ng);
@@ -601,7 +602,7 @@ static void test_light_leaks(void)
         vec3 w = view_dir(ns, 0.3f + 0.7f * sampler_1d(&s, 3));
         if (v3_dot(w, ng) <= 0.0f)
             continue;
-        if (bsdf_sample(&b, w, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) && v3_dot(bs.wi, ng) >= 0.0f)
+        if (bsdf_sample_direction(&b, w, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) && v3_dot(bs.wi, ng) >= 0.0f)
             leaks++;
     }
     CHECK(leaks == 0);
@@ -626,7 +627,7 @@ static void test_light_leaks(void)
         vec3 f = bsdf_eval(&b, o, w, &pdf);
         if (!v3_is_finite(f) || !isfinite(pdf) || pdf < 0.0f)
             bad++;
-        if (bsdf_sample(&b, o, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) &&
+        if (bsdf_sample_direction(&b, o, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) &&
             (!v3_is_finite(bs.weight) || !(bs.pdf > 0.0f) || !isfinite(bs.pdf)))
             bad++;
     }
@@ -684,7 +685,9 @@ static void test_reciprocity(void)
             double a = avg3(bsdf_eval(&front, wo, wi, NULL)) / fabs(wi.z);
             double c = avg3(bsdf_eval(&back, wi, wo, NULL)) / fabs(wo.z);
             double eta = refr[k].eta;
-            if (rel_diff(a, eta * eta * c) > 2e-3)
+            /* Absolute floor: at the critical angle T ∝ √(η² − sin²θ) is
+             * ill-conditioned in float, for values ~1e-7 of the lobe's O(1). */
+            if (fabs(a - eta * eta * c) > 2e-3 * fmax(a, eta * eta * c) + 1e-5)
                 bad++;
             nonzero += a > 0.0;
         }
@@ -699,7 +702,13 @@ static void test_fresnel(void)
 {
     CHECK_REL(fresnel_dielectric(1.0f, 1.5f), 0.04, 1e-5);
     CHECK_REL(fresnel_dielectric(1.0f, 1.0f / 1.5f), 0.04, 1e-5);       /* symmetric at normal incidence */
-    CHECK_REL(fresnel_dielectric(cosf(PHOS_PI / 4.0f), 1.5f), 0.0502236, 1e-4);
+    /* 45°: from Snell's law and the s/p amplitude ratios (Hecht, Optics §4.6). */
+    {
+        double ci = sqrt(0.5), ct = sqrt(1.0 - 0.5 / 2.25);
+        double rs = (ci - 1.5 * ct) / (ci + 1.5 * ct), rp = (1.5 * ci - ct) / (1.5 * ci + ct);
+        CHECK_REL(fresnel_dielectric((float)ci, 1.5f), 0.5 * (rs * rs + rp * rp), 1e-5);
+        CHECK_REL(0.5 * (rs * rs + rp * rp), 0.050240, 1e-4);
+    }
     /* Brewster's angle: R_p = 0, R = R_s / 2 = ((n² − 1)/(n² + 1))² / 2. */
     CHECK_REL(fresnel_dielectric(cosf(atanf(1.5f)), 1.5f), 0.5 * sqr(1.25f / 3.25f), 1e-4);
     CHECK_REL(fresnel_dielectric(0.0f, 1.5f), 1.0, 1e-6);                /* grazing */

@@ -1,0 +1,333 @@
+/*
+ * test_api.c — the public API under misuse: every bad input returns the
+ * right status with a message that names the problem, nothing crashes, and
+ * the render lifecycle (start, stream tiles, cancel, wait, destroy) holds.
+ */
+#include <pthread.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "test_scenes.h"
+#include "test_util.h"
+
+static int contains(const char *haystack, const char *needle) { return strstr(haystack, needle) != NULL; }
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void test_version_and_layout(void)
+{
+    CHECK(phos_version() == PHOS_VERSION);
+    CHECK(phos_struct_size("phos_light_desc") == sizeof(phos_light_desc));
+    CHECK(phos_struct_size("phos_render_settings") == sizeof(phos_render_settings));
+    CHECK(phos_struct_size("phos_tile") == sizeof(phos_tile));
+    CHECK(phos_struct_size("no_such_struct") == 0);
+    CHECK(phos_struct_size(NULL) == 0);
+    CHECK(strcmp(phos_status_string(PHOS_ERROR_INVALID_ARGUMENT), "invalid argument") == 0);
+    CHECK(phos_pass_channels(PHOS_PASS_COMBINED) == 4);
+    CHECK(phos_pass_channels(12345) == 0);
+}
+
+static void test_null_handles(void)
+{
+    phos_scene_destroy(NULL);
+    phos_render_destroy(NULL);
+    phos_render_cancel(NULL);
+    CHECK(phos_scene_error(NULL)[0] != 0);
+    CHECK(phos_render_error(NULL)[0] != 0);
+    phos_mesh_desc md;
+    phos_mesh_desc_init(&md);
+    CHECK(phos_scene_add_mesh(NULL, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_scene_commit(NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    phos_render *r = NULL;
+    CHECK(phos_render_create(NULL, NULL, &r) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_render_start(NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_render_wait(NULL, 0.0) == PHOS_ERROR_INVALID_ARGUMENT);
+    phos_progress p;
+    CHECK(phos_render_progress(NULL, &p) == PHOS_ERROR_INVALID_ARGUMENT);
+    phos_scene *s = phos_scene_create();
+    CHECK(phos_scene_add_mesh(s, NULL, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(contains(phos_scene_error(s), "NULL"));
+    phos_scene_destroy(s);
+}
+
+static void test_bad_meshes(void)
+{
+    phos_scene *s = phos_scene_create();
+    float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    uint32_t idx[3] = {0, 1, 3};
+    phos_mesh_desc md;
+    phos_mesh_desc_init(&md);
+    md.vertex_count = 3;
+    md.positions = pos;
+    md.triangle_count = 1;
+    md.indices = idx;
+    CHECK(phos_scene_add_mesh(s, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "vertex 3"), "%s", phos_scene_error(s));
+    idx[2] = 2;
+    pos[4] = NAN;
+    CHECK(phos_scene_add_mesh(s, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "non-finite"), "%s", phos_scene_error(s));
+    pos[4] = 0.0f;
+    md.indices = NULL;
+    CHECK(phos_scene_add_mesh(s, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    md.indices = idx;
+    uint32_t id = 99;
+    CHECK(phos_scene_add_mesh(s, &md, &id) == PHOS_OK && id == 0);
+    CHECK(phos_scene_error(s)[0] == 0);
+
+    phos_instance_desc inst;
+    phos_instance_desc_init(&inst);
+    inst.mesh_id = 7;
+    CHECK(phos_scene_add_instance(s, &inst, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "mesh 7"), "%s", phos_scene_error(s));
+    inst.mesh_id = 0;
+    uint32_t mat = 5;
+    inst.material_count = 1;
+    inst.materials = &mat;
+    CHECK(phos_scene_add_instance(s, &inst, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "material 5"), "%s", phos_scene_error(s));
+    inst.material_count = 0;
+    inst.transform[0] = INFINITY;
+    CHECK(phos_scene_add_instance(s, &inst, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    phos_scene_destroy(s);
+}
+
+static void test_bad_materials_lights_camera(void)
+{
+    phos_scene *s = phos_scene_create();
+    phos_closure_desc c;
+    phos_closure_desc_init(&c);
+    phos_material_desc m;
+    phos_material_desc_init(&m);
+    m.closure_count = 1;
+    m.closures = &c;
+    c.type = 99;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "unknown type"), "%s", phos_scene_error(s));
+    c.type = PHOS_CLOSURE_GLASS;
+    c.roughness = 2.0f;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "roughness"), "%s", phos_scene_error(s));
+    c.roughness = 0.1f;
+    c.ior = 0.0f;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    c.ior = 1.5f;
+    c.weight_image = 3;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "image 3"), "%s", phos_scene_error(s));
+    c.weight_image = -1;
+    c.weight[1] = -1.0f;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    c.weight[1] = 0.5f;
+    m.closure_count = PHOS_MAX_CLOSURES + 1;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    m.closure_count = 1;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_OK);
+
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_SPOT;
+    l.spot_angle = 0.0f;
+    CHECK(phos_scene_add_light(s, &l, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "spot angle"), "%s", phos_scene_error(s));
+    l.type = PHOS_LIGHT_AREA;
+    l.axis_v[1] = 0.0f;
+    CHECK(phos_scene_add_light(s, &l, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    l.type = PHOS_LIGHT_POINT;
+    l.color[0] = NAN;
+    CHECK(phos_scene_add_light(s, &l, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    l.color[0] = 1.0f;
+    l.radius = -1.0f;
+    CHECK(phos_scene_add_light(s, &l, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    l.type = 17;
+    CHECK(phos_scene_add_light(s, &l, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+
+    phos_camera_desc cam;
+    phos_camera_desc_init(&cam);
+    memset(cam.transform, 0, sizeof(cam.transform));
+    CHECK(phos_scene_set_camera(s, &cam) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "singular"), "%s", phos_scene_error(s));
+    phos_camera_desc_init(&cam);
+    cam.frame_min[0] = 1.0f;
+    CHECK(phos_scene_set_camera(s, &cam) == PHOS_ERROR_INVALID_ARGUMENT);
+    phos_camera_desc_init(&cam);
+    cam.clip_end = 0.0f;
+    CHECK(phos_scene_set_camera(s, &cam) == PHOS_ERROR_INVALID_ARGUMENT);
+
+    phos_image_desc img;
+    phos_image_desc_init(&img);
+    float px[4] = {0, NAN, 0, 1};
+    img.width = img.height = 1;
+    img.pixels = px;
+    CHECK(phos_scene_add_image(s, &img, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    img.width = 0;
+    CHECK(phos_scene_add_image(s, &img, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    phos_scene_destroy(s);
+}
+
+static phos_scene *small_scene(void)
+{
+    phos_scene *s = phos_scene_create();
+    uint32_t mesh = test_add_sphere_mesh(s, 1.0f, 32, 16, 0);
+    uint32_t mat = test_add_diffuse(s, 0.5f, 0.5f, 0.5f);
+    test_add_instance(s, mesh, mat, 0, 0, 0);
+    phos_world_desc w;
+    phos_world_desc_init(&w);
+    w.color[0] = w.color[1] = w.color[2] = 1.0f;
+    phos_scene_set_world(s, &w);
+    test_set_camera(s, 0, 0, 5, 0.4f);
+    return s;
+}
+
+static void test_lifecycle_errors(void)
+{
+    phos_scene *s = small_scene();
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_STATE && r == NULL);
+    CHECK_MSG(contains(phos_scene_error(s), "committed"), "%s", phos_scene_error(s));
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    CHECK(phos_scene_commit(s) == PHOS_ERROR_INVALID_STATE);
+    phos_world_desc w;
+    phos_world_desc_init(&w);
+    CHECK(phos_scene_set_world(s, &w) == PHOS_ERROR_INVALID_STATE);
+    CHECK(phos_scene_add_mesh(s, &(phos_mesh_desc){0}, NULL) == PHOS_ERROR_INVALID_STATE);
+
+    rs.samples = 0;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "samples"), "%s", phos_scene_error(s));
+    rs.samples = 4;
+    rs.region_x = 600;
+    rs.region_width = 100;
+    rs.region_height = 10;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "region"), "%s", phos_scene_error(s));
+    rs.region_x = rs.region_width = rs.region_height = 0;
+    rs.tile_size = 4;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT);
+    rs.tile_size = 16;
+    rs.filter_width = NAN;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT);
+    rs.filter_width = 1.5f;
+    rs.pass_mask = 0x80000000u;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT);
+    rs.pass_mask = 1;
+    rs.width = rs.height = 32;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_OK && r != NULL);
+    CHECK(phos_render_wait(r, 0.0) == PHOS_ERROR_INVALID_STATE);
+    float buf[4 * 32 * 32];
+    CHECK(phos_render_read(r, PHOS_PASS_COMBINED, 0, 0, 32, 32, buf, 10) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_render_error(r), "buffer"), "%s", phos_render_error(r));
+    CHECK(phos_render_read(r, PHOS_PASS_COMBINED, 30, 0, 4, 4, buf, 64) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_render_read(r, 9, 0, 0, 1, 1, buf, 4) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_render_start(r) == PHOS_OK);
+    CHECK(phos_render_start(r) == PHOS_ERROR_INVALID_STATE);
+    CHECK(phos_render_wait(r, -1.0) == PHOS_OK);
+    /* Every tile is handed out exactly once and covers the frame. */
+    phos_progress p;
+    CHECK(phos_render_progress(r, &p) == PHOS_OK && p.state == PHOS_STATE_DONE && p.fraction == 1.0f);
+    uint32_t n = 0, count = 1, area = 0;
+    phos_tile t;
+    while (phos_render_next_tile(r, &t, &count) == PHOS_OK && count) {
+        n++;
+        area += t.width * t.height;
+    }
+    CHECK(n == p.tiles_total && n == 4 && area == 32 * 32);
+    CHECK(phos_render_read(r, PHOS_PASS_COMBINED, 0, 0, 32, 32, buf, sizeof(buf) / sizeof(float)) == PHOS_OK);
+    CHECK(buf[4 * (16 * 32 + 16) + 3] == 1.0f);
+    /* The render keeps its scene alive after the caller lets go of it. */
+    phos_scene_destroy(s);
+    CHECK(phos_render_read(r, PHOS_PASS_COMBINED, 0, 0, 32, 32, buf, sizeof(buf) / sizeof(float)) == PHOS_OK);
+    phos_render_destroy(r);
+}
+
+typedef struct cancel_args {
+    phos_render *r;
+    double delay;
+} cancel_args;
+
+static void *cancel_later(void *arg)
+{
+    cancel_args *a = arg;
+    struct timespec ts = {0, (long)(a->delay * 1e9)};
+    nanosleep(&ts, NULL);
+    phos_render_cancel(a->r);
+    return NULL;
+}
+
+static void test_cancel(void)
+{
+    phos_scene *s = small_scene();
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 1024;
+    rs.samples = 4096; /* minutes of work */
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+    CHECK(phos_render_start(r) == PHOS_OK);
+    CHECK(phos_render_wait(r, 0.05) == PHOS_ERROR_TIMEOUT);
+    /* Cancel from another thread, as Blender's UI would. */
+    cancel_args a = {r, 0.1};
+    pthread_t th;
+    pthread_create(&th, NULL, cancel_later, &a);
+    pthread_join(th, NULL);
+    double t0 = now_seconds();
+    phos_status st = phos_render_wait(r, 5.0);
+    double dt = now_seconds() - t0;
+    CHECK(st == PHOS_ERROR_CANCELLED);
+    CHECK_MSG(dt < 0.5, "cancel took %.3f s", dt);
+    phos_progress p;
+    phos_render_progress(r, &p);
+    CHECK(p.state == PHOS_STATE_CANCELLED && p.tiles_done < p.tiles_total);
+    phos_render_destroy(r);
+    /* Destroying a running render cancels it too. */
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+    CHECK(phos_render_start(r) == PHOS_OK);
+    t0 = now_seconds();
+    phos_render_destroy(r);
+    CHECK_MSG(now_seconds() - t0 < 0.5, "destroy of a running render took %.3f s", now_seconds() - t0);
+    phos_scene_destroy(s);
+}
+
+static void test_empty_scene_renders_world(void)
+{
+    phos_scene *s = phos_scene_create();
+    phos_world_desc w;
+    phos_world_desc_init(&w);
+    w.color[0] = 0.25f;
+    phos_scene_set_world(s, &w);
+    test_set_camera(s, 0, 0, 0, 1.0f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 8;
+    rs.samples = 2;
+    float *img = test_render(s, &rs);
+    CHECK(img && img[0] == 0.25f && img[1] == 0.0f && img[3] == 1.0f);
+    free(img);
+    rs.transparent_background = 1;
+    img = test_render(s, &rs);
+    CHECK(img && img[0] == 0.0f && img[3] == 0.0f);
+    free(img);
+    phos_scene_destroy(s);
+}
+
+int main(void)
+{
+    test_version_and_layout();
+    test_null_handles();
+    test_bad_meshes();
+    test_bad_materials_lights_camera();
+    test_lifecycle_errors();
+    test_cancel();
+    test_empty_scene_renders_world();
+    return test_summary("test_api");
+}
