@@ -1,0 +1,80 @@
+# Phos — build, test, render and package.
+#
+#   make render [SCENE=name] [SAMPLES=n]  render scenes/<name>.py to out/<name>.png/.exr
+#               [ARGS="--engine CYCLES"]  (more options of the scene script)
+#   make test                             C unit tests + Blender test suite
+#   make install | uninstall              add-on into the user's Blender
+#   make package                          dist/phos-<version>.zip
+#   make deps | build | clean
+#
+# build, test, render, install and package first install the Debian packages
+# that are missing (tools/install-deps.sh): a fresh Debian 12 needs only make.
+
+SHELL := /bin/bash
+MAKEFLAGS += --no-print-directory
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := build
+
+BLENDER   ?= blender
+BUILD_DIR ?= build
+BUILD_TYPE ?= Release
+JOBS      ?= $(shell nproc 2>/dev/null || echo 2)
+SCENE     ?= cornell_box
+SAMPLES   ?=
+ARGS      ?=
+PYTEST_ARGS ?= -q
+
+ADDON_LIB_DIR := $(CURDIR)/addon/phos/lib
+BLENDER_RUN := $(BLENDER) -b --factory-startup --python-exit-code 1
+
+# Tests and renders run against the add-on in this tree, with Blender's user
+# folders redirected into the build folder: an add-on installed with
+# `make install`, or the user's preferences, cannot change their outcome.
+BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scripts \
+                    BLENDER_USER_CONFIG=$(CURDIR)/$(BUILD_DIR)/blender-user/config
+
+.PHONY: deps build test render install uninstall package clean help
+
+help:
+	@sed -n '3,11p' Makefile | sed 's/^# \{0,1\}//'
+
+deps:
+	@tools/install-deps.sh
+
+build: deps
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
+	  -DPHOS_ADDON_LIB_DIR=$(ADDON_LIB_DIR)
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	tools/check-exports.sh $(ADDON_LIB_DIR)/libphos.so
+	@echo "version: $$(python3 tools/version.py) (CMake, phos.h, bl_info and manifest agree)"
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python tests/blender/run_tests.py -- $(PYTEST_ARGS)
+
+render: build
+	@test -f scenes/$(SCENE).py || { echo "render: no scene scenes/$(SCENE).py; scenes:" \
+	  $$(ls scenes/*.py 2>/dev/null | sed 's|scenes/||; s|\.py$$||' | grep -v '^_'); exit 1; }
+	mkdir -p out
+	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python scenes/$(SCENE).py -- \
+	  --render out/$(SCENE) $(if $(SAMPLES),--samples $(SAMPLES)) $(ARGS)
+	@ls -l out/$(SCENE).png out/$(SCENE).exr
+
+# Copies (not symlinks) the add-on: see tools/install-addon.sh. Then renders a
+# tiny scene with `blender -b --addons phos` to prove the install works.
+install: build
+	BLENDER=$(BLENDER) tools/install-addon.sh
+	BLENDER=$(BLENDER) tools/check-addon.sh --installed
+
+uninstall:
+	BLENDER=$(BLENDER) tools/install-addon.sh --remove
+
+# Builds the zip, then installs it with Blender's own add-on installer into
+# throw-away user folders and renders with it.
+package: build
+	python3 tools/package.py
+	BLENDER=$(BLENDER) tools/check-addon.sh --zip dist/phos-$$(python3 tools/version.py).zip
+
+clean:
+	rm -rf $(BUILD_DIR) out dist $(ADDON_LIB_DIR) .pytest_cache
+	find $(wildcard addon scenes tests tools) -name __pycache__ -type d -prune -exec rm -rf {} +

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Phos needs to build, test, render and package.
+# A fast no-op when everything is already installed.
+#
+#   tools/install-deps.sh            install what is missing
+#   tools/install-deps.sh --check    only list what is missing (exit 1 if any)
+set -euo pipefail
+
+PACKAGES=(
+  blender          # the host application (3.4 on Debian 12)
+  libembree-dev    # ray-tracing kernels (Embree 3)
+  cmake gcc make libc6-dev pkg-config
+  python3-numpy    # Blender's Python on Debian is the system Python 3
+  python3-pytest   # the Blender test suite runs pytest inside Blender
+  zip
+)
+
+missing=()
+for pkg in "${PACKAGES[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
+  if [[ "$status" != "installed" ]]; then
+    missing+=("$pkg")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  exit 0
+fi
+
+if [[ "${1:-}" == "--check" ]]; then
+  echo "missing packages: ${missing[*]}"
+  exit 1
+fi
+
+install_cmd="apt-get update && apt-get install -y --no-install-recommends ${missing[*]}"
+if [[ $(id -u) -eq 0 ]]; then
+  SUDO=()
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+  SUDO=(sudo -n)
+else
+  echo "phos: these Debian packages are missing: ${missing[*]}" >&2
+  echo "phos: installing them needs root. Run this once as root, then retry:" >&2
+  echo "" >&2
+  echo "    $install_cmd" >&2
+  echo "" >&2
+  exit 1
+fi
+
+echo "phos: installing missing packages: ${missing[*]}"
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive \
+  apt-get install -y --no-install-recommends "${missing[@]}"
+echo "phos: packages installed"
