@@ -284,7 +284,8 @@ PHOS_API phos_status phos_render_next_tile(phos_render *render, phos_tile *out, 
 
 /* Copies a rectangle of a pass (inside the region) into dst: rows bottom-up,
  * phos_pass_channels(pass) floats per pixel; dst_count is dst's length in
- * floats. Pixels of tiles not yet finished read as zero. */
+ * floats. Pixels not yet rendered read as zero; a tile returned by
+ * phos_render_next_tile is complete. */
 PHOS_API phos_status phos_render_read(phos_render *render, uint32_t pass, uint32_t x, uint32_t y,
                                       uint32_t width, uint32_t height, float *dst, size_t dst_count);
 

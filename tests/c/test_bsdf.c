@@ -24,7 +24,7 @@
 #define SAMPLES_PER_TEST 200000
 #define COS_BINS 16  /* bins of cos θ in [−1, 1] (even: the horizon is a bin edge) */
 #define PHI_BINS 32  /* bins of φ in [0, 2π) */
-#define SUBCELLS 4   /* each bin starts as SUBCELLS² cells of adaptive Simpson */
+#define SUBCELLS 2   /* each bin starts as SUBCELLS² cells of adaptive Simpson */
 #define MAX_DEPTH 8  /* adaptive Simpson refinements per cell */
 
 static const float ROUGHNESS[3] = {0.1f, 0.3f, 0.7f};
@@ -163,7 +163,7 @@ static double simpson9(double f[3][3], double area)
 }
 
 /* Adaptive 2D Simpson over [z0,z1]×[p0,p1] in (cos θ, φ), where dω = dz dφ:
- * split into four until the halves agree (relative 1e-4 or 1e-10 absolute),
+ * split into four until the halves agree (relative 5e-4 or 1e-10 absolute),
  * then apply the Richardson correction. f holds the cell's 3×3 values. */
 static double integrate_cell(const integrand *g, double z0, double z1, double p0, double p1,
                              double f[3][3], double whole, int depth)
@@ -184,7 +184,7 @@ static double integrate_cell(const integrand *g, double z0, double z1, double p0
             part[qa][qc] = simpson9(q[qa][qc], area);
             total += part[qa][qc];
         }
-    if (depth == 0 || fabs(total - whole) <= fmax(1e-4 * fabs(total), 1e-10))
+    if (depth == 0 || fabs(total - whole) <= fmax(5e-4 * fabs(total), 1e-10))
         return total + (total - whole) / 15.0;
     double zm = 0.5 * (z0 + z1), pm = 0.5 * (p0 + p1), sum = 0.0;
     for (int qa = 0; qa < 2; qa++)

@@ -1,0 +1,40 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""State shared by the exporters of one frame.
+
+An ExportContext lives for one render() call: it holds the core scene being
+filled, the caches that make each Blender datablock exported once (meshes,
+materials, images), and the warnings to show in Blender's report. It is
+the only thing the export modules pass around, so none of them needs
+bpy.context (which must not be touched from a final render).
+"""
+
+import bpy
+
+
+class ExportContext:
+    def __init__(self, scene, core_scene, is_preview=False):
+        self.scene = scene                  # evaluated bpy.types.Scene
+        self.core = core_scene              # core.Scene being filled
+        self.is_preview = is_preview
+        self.version = tuple(bpy.app.version)
+        self._warnings = {}                 # message → None, ordered and deduplicated
+        # Caches: Blender datablock → core id, so each is added once per frame.
+        self.meshes = {}                    # geometry key → mesh id, or None for no triangles
+        self.materials = {}                 # material pointer → material id
+        self.images = {}                    # (image pointer, interpolation, extension) → image id or None
+        self.image_pixels = {}              # image pointer → (pixels, width, height) or None
+        self.default_material = None        # id of the grey default, added on first use
+        self.stats = {"objects": 0, "instances": 0, "meshes": 0, "triangles": 0,
+                      "lights": 0, "materials": 0, "images": 0}
+
+    def at_least(self, major, minor=0):
+        """True when the running Blender is version major.minor or later."""
+        return self.version[:2] >= (major, minor)
+
+    def warn(self, message):
+        """Queue a warning for Blender's report; duplicates are dropped."""
+        self._warnings.setdefault(message, None)
+
+    @property
+    def warnings(self):
+        return list(self._warnings)

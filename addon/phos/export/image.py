@@ -1,0 +1,119 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Blender images → core images (linear RGBA float, rows bottom-up).
+
+The pixels of an image are read once per frame (foreach_get into float32)
+and shared by every Image Texture node using it; a core image is added per
+(image, interpolation, extension), because the core keeps the sampling
+mode on the image.
+"""
+
+import numpy as np
+
+from .. import core
+
+# Image Texture node settings → core enums; anything else is approximated.
+INTERPOLATION = {
+    'Linear': core.PHOS_INTERP_LINEAR,
+    'Closest': core.PHOS_INTERP_CLOSEST,
+}
+EXTENSION = {
+    'REPEAT': core.PHOS_EXTEND_REPEAT,
+    'EXTEND': core.PHOS_EXTEND_EXTEND,
+    'CLIP': core.PHOS_EXTEND_CLIP,
+}
+
+# Colour spaces whose stored values are already linear.
+LINEAR_COLORSPACES = {'Linear', 'Linear ACES', 'Linear ACEScg', 'Non-Color', 'Raw', 'XYZ',
+                      'Linear Rec.709', 'Linear Rec.2020', 'Linear CIE-XYZ E'}
+SRGB_COLORSPACES = {'sRGB', 'sRGB 2.1'}
+
+
+def srgb_to_linear(c):
+    """The sRGB EOTF (IEC 61966-2-1), elementwise on a float32 array."""
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4).astype(np.float32)
+
+
+def _read_pixels(image, ctx, owner):
+    """(rgba float32 (w*h*4), width, height) of an image, or None if unusable."""
+    if image.source not in {'FILE', 'GENERATED'}:
+        ctx.warn("Phos: %s: image '%s' is a %s, which is not supported; treated as unlinked"
+                 % (owner, image.name, image.source.lower()))
+        return None
+    width, height = image.size[:]  # loads the file if needed
+    if width == 0 or height == 0 or not image.has_data:
+        where = (" (file '%s')" % image.filepath) if image.filepath else ""
+        ctx.warn("Phos: %s: image '%s' could not be loaded%s; treated as unlinked"
+                 % (owner, image.name, where))
+        return None
+    channels = image.channels
+    buf = np.empty(width * height * channels, dtype=np.float32)
+    image.pixels.foreach_get(buf)
+    buf = buf.reshape(-1, channels)
+    rgba = np.empty((width * height, 4), dtype=np.float32)
+    if channels >= 3:
+        rgba[:, :3] = buf[:, :3]
+        rgba[:, 3] = buf[:, 3] if channels >= 4 else 1.0
+    elif channels == 2:
+        rgba[:, :3] = buf[:, :1]
+        rgba[:, 3] = buf[:, 1]
+    else:
+        rgba[:, :3] = buf[:, :1]
+        rgba[:, 3] = 1.0
+
+    space = image.colorspace_settings.name
+    if not image.is_float:
+        # 8-bit buffers come back as stored: encoded values for sRGB images.
+        if space in SRGB_COLORSPACES:
+            rgba[:, :3] = srgb_to_linear(rgba[:, :3])
+        elif space not in LINEAR_COLORSPACES:
+            ctx.warn("Phos: %s: image '%s' uses colour space '%s', which Phos reads as linear"
+                     % (owner, image.name, space))
+    # Float buffers are converted to scene-linear by Blender on load.
+    return rgba.reshape(-1), width, height
+
+
+def add_image(node, ctx, owner):
+    """Core image id for an Image Texture node, or None if it cannot be used.
+
+    `owner` names the material or world for warnings.
+    """
+    image = node.image
+    if image is None:
+        return None
+    interp = INTERPOLATION.get(node.interpolation)
+    if interp is None:
+        ctx.warn("Phos: %s: node '%s': %s interpolation is not supported; using Linear"
+                 % (owner, node.name, node.interpolation))
+        interp = core.PHOS_INTERP_LINEAR
+    ext = EXTENSION.get(node.extension)
+    if ext is None:
+        ctx.warn("Phos: %s: node '%s': %s extension is not supported; using Repeat"
+                 % (owner, node.name, node.extension.title()))
+        ext = core.PHOS_EXTEND_REPEAT
+    if node.projection != 'FLAT':
+        ctx.warn("Phos: %s: node '%s': %s projection is not supported; using Flat"
+                 % (owner, node.name, node.projection.title()))
+
+    image_key = image.original.as_pointer()
+    key = (image_key, interp, ext)
+    if key in ctx.images:
+        return ctx.images[key]
+    if image_key not in ctx.image_pixels:
+        ctx.image_pixels[image_key] = _read_pixels(image, ctx, owner)
+    data = ctx.image_pixels[image_key]
+    image_id = None
+    if data is not None:
+        pixels, width, height = data
+        image_id = ctx.core.add_image(pixels, width, height, interp, ext)
+        ctx.stats["images"] += 1
+    ctx.images[key] = image_id
+    return image_id
+
+
+def average_color(node, ctx):
+    """Mean linear RGB of the image behind an Image Texture node (already read)."""
+    image = node.image
+    data = ctx.image_pixels.get(image.original.as_pointer()) if image is not None else None
+    if data is None:
+        return np.ones(3, dtype=np.float32)
+    return data[0].reshape(-1, 4)[:, :3].mean(axis=0)

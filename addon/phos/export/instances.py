@@ -1,0 +1,79 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Depsgraph object instances → core meshes, instances and lights.
+
+`depsgraph.object_instances` yields exactly what Blender renders: real
+objects, collection instances, particle and geometry-nodes instances, and
+the mesh component of curves, text, surfaces and metaballs (yielded as a
+MESH instance of their own). Each yielded item is only valid during its
+iteration step, so the matrix is copied and the mesh converted inside the
+loop.
+
+Geometry is shared: the key is the evaluated mesh datablock. Objects using
+the same mesh without modifiers, collection instances of them and
+geometry-nodes instances of one geometry all point at one evaluated mesh,
+while an object with modifiers gets its own evaluated mesh, so the key
+tells them apart without comparing modifier stacks.
+"""
+
+import numpy as np
+
+from .. import core
+from . import light, material, mesh
+
+# Object types whose geometry arrives as a MESH instance, or that do not render.
+_SILENT_TYPES = {'CURVE', 'FONT', 'SURFACE', 'META', 'EMPTY', 'CAMERA', 'ARMATURE',
+                 'LATTICE', 'SPEAKER', 'LIGHT_PROBE'}
+
+
+def _materials(ob, ctx):
+    """Core material ids per material slot (respecting Object/Data links)."""
+    ids = [material.add_material(slot.material, ctx) for slot in ob.material_slots]
+    return ids or [material.default_material(ctx)]
+
+
+def export_instances(depsgraph, ctx, progress=None, cancelled=None):
+    """Add every visible mesh and light instance of the depsgraph.
+
+    `progress(done, total)` is called now and then with the number of
+    objects handled; `cancelled()` returning True stops the export early.
+    """
+    total = len(depsgraph.objects)
+    done = 0
+    material_lists = {}  # (object, mesh) → material ids: instances share them
+    for inst in depsgraph.object_instances:
+        ob = inst.object
+        if not inst.is_instance:
+            done += 1
+            if progress is not None and done % 16 == 0:
+                progress(done, total)
+                if cancelled is not None and cancelled():
+                    return
+        kind = ob.type
+        if kind == 'LIGHT':
+            light.add_light(ob, np.array(inst.matrix_world, dtype=np.float64), ctx)
+            continue
+        if kind != 'MESH':
+            if kind not in _SILENT_TYPES:
+                ctx.warn("Phos: objects of type %s are not supported; '%s' skipped"
+                         % (kind.replace('_', ' ').lower(), ob.name))
+            continue
+        if not inst.show_self:
+            continue  # an emitter whose particles render but not itself
+        matrix = np.array(inst.matrix_world, dtype=np.float64)
+
+        key = ob.data.as_pointer()
+        if key not in ctx.meshes:
+            ctx.meshes[key] = mesh.add_mesh(ob, ctx)
+        mesh_id = ctx.meshes[key]
+        if mesh_id is None:
+            continue
+
+        mat_key = (ob.original.as_pointer(), key)
+        mats = material_lists.get(mat_key)
+        if mats is None:
+            mats = material_lists[mat_key] = _materials(ob, ctx)
+        ctx.core.add_instance(mesh_id, core.matrix_to_3x4(matrix), mats)
+        ctx.stats["instances"] += 1
+    ctx.stats["objects"] = total
+    if progress is not None:
+        progress(total, total)

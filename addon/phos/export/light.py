@@ -1,0 +1,95 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Blender lights → core lights in physical units.
+
+Blender's light units changed between versions; Phos matches the Cycles of
+the Blender it runs in (measured against Cycles 3.4 renders, and read in the
+Cycles sources for later versions; see shared/BLENDER.md). With
+S = colour × power:
+
+  point/spot  intensity I = S/(4π) W/sr in every version. Before 4.0 a
+              radius makes a disk facing the shading point with radiance
+              S/(4π·πr²); 4.0 makes it a sphere of radiance S/(4π²r²), which
+              is the same intensity (projected area πr²). 4.1's soft falloff
+              (default on) is the disk again.
+  spot        × the cone; before 3.5 Cycles also multiplies by the cosine to
+              the spot axis.
+  sun         irradiance E = S W/m² at normal incidence in every version
+              (4.0 spreads it as radiance S/(π·sin²(α/2)) over the disc).
+  area        radiance L = S/(4A) before 4.0, S/(πA) from 4.0, with A the
+              world-space area (object scale included, ×π/4 for disk and
+              ellipse); one-sided, emitting along the object's −Z.
+"""
+
+import math
+
+import numpy as np
+
+from .. import core
+
+
+def _normalized(v):
+    n = float(np.linalg.norm(v))
+    return v / n if n > 0.0 else v
+
+
+def add_light(ob, matrix_world, ctx):
+    """Add one light instance (object + world matrix) to the core scene."""
+    light = ob.data
+    cycles = getattr(light, "cycles", None)
+    if cycles is not None and getattr(cycles, "is_portal", False):
+        return None  # portals only guide Cycles' sampling; they emit nothing
+    strength = np.array(light.color[:], dtype=np.float64) * light.energy
+    if not np.any(strength):
+        return None
+
+    m = np.array(matrix_world, dtype=np.float64).reshape(4, 4)
+    desc = core.new_light()
+    desc.position[:] = [float(v) for v in m[:3, 3]]
+    desc.direction[:] = [float(v) for v in _normalized(-m[:3, 2])]
+
+    if light.type in {'POINT', 'SPOT'}:
+        desc.type = core.PHOS_LIGHT_POINT if light.type == 'POINT' else core.PHOS_LIGHT_SPOT
+        desc.color[:] = [float(v) for v in strength / (4.0 * math.pi)]
+        desc.radius = max(light.shadow_soft_size, 0.0)
+        desc.point_shape = _point_shape(light, ctx)
+        if light.type == 'SPOT':
+            desc.spot_angle = min(max(light.spot_size, 1e-4), math.pi)
+            desc.spot_blend = min(max(light.spot_blend, 0.0), 1.0)
+            desc.spot_cosine = 0 if ctx.at_least(3, 5) else 1
+    elif light.type == 'SUN':
+        desc.type = core.PHOS_LIGHT_SUN
+        desc.color[:] = [float(v) for v in strength]
+        desc.sun_angle = min(max(light.angle, 0.0), math.pi - 1e-4)
+    elif light.type == 'AREA':
+        desc.type = core.PHOS_LIGHT_AREA
+        ellipse = light.shape in {'DISK', 'ELLIPSE'}
+        size_v = light.size_y if light.shape in {'RECTANGLE', 'ELLIPSE'} else light.size
+        u = m[:3, 0] * light.size
+        v = m[:3, 1] * size_v
+        area = float(np.linalg.norm(np.cross(u, v)))
+        if ellipse:
+            area *= math.pi / 4.0
+        if area <= 0.0:
+            ctx.warn("Phos: light '%s' has zero area; skipped" % ob.name)
+            return None
+        denom = (math.pi if ctx.at_least(4, 0) else 4.0) * area
+        desc.color[:] = [float(c) for c in strength / denom]
+        desc.axis_u[:] = [float(c) for c in u]
+        desc.axis_v[:] = [float(c) for c in v]
+        desc.area_shape = core.PHOS_AREA_ELLIPSE if ellipse else core.PHOS_AREA_RECTANGLE
+        spread = getattr(light, "spread", math.pi)
+        if spread < math.pi - 1e-4:
+            ctx.warn("Phos: light '%s': area light spread is not supported; using 180°" % ob.name)
+    else:
+        ctx.warn("Phos: light '%s' of type %s is not supported; skipped" % (ob.name, light.type))
+        return None
+    ctx.stats["lights"] += 1
+    return ctx.core.add_light(desc)
+
+
+def _point_shape(light, ctx):
+    if not ctx.at_least(4, 0):
+        return core.PHOS_POINT_DISK
+    if ctx.at_least(4, 1) and getattr(light, "use_soft_falloff", True):
+        return core.PHOS_POINT_DISK
+    return core.PHOS_POINT_SPHERE

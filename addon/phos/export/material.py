@@ -1,0 +1,659 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Cycles shader node trees → core materials (weighted lists of closures).
+
+Cycles itself flattens a node tree into a sum of weighted closures: Mix and
+Add shaders with constant factors only scale and concatenate closure lists.
+Phos does the same in Python, walking back from the active Material Output's
+Surface socket, so the materials users already have render without a Phos
+node set.
+
+Supported: Principled BSDF, Diffuse, Glossy, Glass, Refraction, Emission,
+Transparent, Mix and Add Shader, Image Texture on colour inputs, RGB and
+Value nodes, reroutes, muted nodes and node groups. Anything else renders
+with the default value of the socket it feeds (the closest match) and one
+warning per (material, node), so a user sees what was approximated.
+
+The Principled BSDF is decomposed the way Cycles 3.4 does it (svm_closure.h,
+CLOSURE_BSDF_PRINCIPLED_ID): Burley diffuse, a GGX specular layer with the
+"principled v1" Fresnel, and a glass layer for transmission.
+"""
+
+import math
+
+import numpy as np
+
+from .. import core
+from . import image as image_export
+
+# Closures whose weight is below this are dropped (Cycles: CLOSURE_WEIGHT_CUTOFF).
+WEIGHT_CUTOFF = 1e-5
+
+# Nodes that only pass data through.
+_REROUTE = 'NodeReroute'
+_GROUP = 'ShaderNodeGroup'
+_GROUP_INPUT = 'NodeGroupInput'
+_GROUP_OUTPUT = 'NodeGroupOutput'
+
+_LUMA = np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)  # colour → float, as Blender's rgb_to_bw
+
+
+class Closure:
+    """One weighted closure before it becomes a core.phos_closure_desc."""
+
+    __slots__ = ("type", "weight", "image", "roughness", "ior", "specular_color", "glass_fresnel")
+
+    def __init__(self, type, weight, image=None, roughness=0.0, ior=1.45,
+                 specular_color=(0.0, 0.0, 0.0), glass_fresnel=core.PHOS_GLASS_FRESNEL_MACRO):
+        self.type = type
+        self.weight = np.asarray(weight, dtype=np.float32).reshape(3).copy()
+        self.image = image
+        self.roughness = float(roughness)
+        self.ior = float(ior)
+        self.specular_color = np.asarray(specular_color, dtype=np.float32).reshape(3)
+        self.glass_fresnel = glass_fresnel
+
+    def scale(self, factor):
+        self.weight *= factor
+        return self
+
+    def negligible(self):
+        return float(np.max(np.abs(self.weight))) <= WEIGHT_CUTOFF
+
+    def to_desc(self):
+        d = core.new_closure()
+        d.type = self.type
+        d.weight[:] = [float(x) for x in self.weight]
+        d.weight_image = -1 if self.image is None else int(self.image)
+        d.roughness = min(max(self.roughness, 0.0), 1.0)
+        d.ior = max(self.ior, 1e-5)
+        d.specular_color[:] = [float(x) for x in self.specular_color]
+        d.glass_fresnel = self.glass_fresnel
+        return d
+
+
+class _Source:
+    """Where an input socket gets its value from, after reroutes, mutes and groups.
+
+    Either `socket` (an unlinked input: use its default_value), or `node`
+    and `output` (a real node's output socket, with the group `stack` it
+    sits in), or neither (nothing: a muted node without pass-through).
+    """
+
+    __slots__ = ("socket", "node", "output", "stack")
+
+    def __init__(self, socket=None, node=None, output=None, stack=()):
+        self.socket, self.node, self.output, self.stack = socket, node, output, stack
+
+
+def _first_link(socket):
+    for link in socket.links:
+        if link.is_valid and not getattr(link, "is_muted", False):
+            return link
+    return None
+
+
+def _resolve(socket, stack):
+    """Follow an input socket back to the node output that feeds it."""
+    for _ in range(1000):  # guards against cycles through groups
+        link = _first_link(socket) if socket.is_linked else None
+        if link is None:
+            return _Source(socket=socket, stack=stack)
+        node, output = link.from_node, link.from_socket
+        if node.bl_idname == _REROUTE:
+            socket = node.inputs[0]
+            continue
+        if node.mute:
+            through = [l.from_socket for l in node.internal_links if l.to_socket == output]
+            if not through:
+                return _Source(stack=stack)
+            socket = through[0]
+            continue
+        if node.bl_idname == _GROUP:
+            tree = node.node_tree
+            out_node = _group_output(tree) if tree is not None else None
+            inner = _socket_by_identifier(out_node.inputs, output.identifier) if out_node else None
+            if inner is None:
+                return _Source(stack=stack)
+            socket, stack = inner, stack + (node,)
+            continue
+        if node.bl_idname == _GROUP_INPUT:
+            if not stack:
+                return _Source(stack=stack)
+            outer = stack[-1]
+            socket = _socket_by_identifier(outer.inputs, output.identifier)
+            stack = stack[:-1]
+            if socket is None:
+                return _Source(stack=stack)
+            continue
+        return _Source(node=node, output=output, stack=stack)
+    return _Source(stack=stack)
+
+
+def _group_output(tree):
+    outputs = [n for n in tree.nodes if n.bl_idname == _GROUP_OUTPUT]
+    for n in outputs:
+        if n.is_active_output:
+            return n
+    return outputs[0] if outputs else None
+
+
+def _socket_by_identifier(sockets, identifier):
+    for s in sockets:
+        if s.identifier == identifier:
+            return s
+    return None
+
+
+def find_input(node, *names):
+    """The first enabled input called one of `names` (names change between versions)."""
+    for name in names:
+        for s in node.inputs:
+            if (s.name == name or s.identifier == name) and s.enabled:
+                return s
+    for name in names:
+        s = node.inputs.get(name)
+        if s is not None:
+            return s
+    return None
+
+
+def active_output(tree, bl_idname):
+    """The output node Cycles would use: the active one targeting Cycles or All."""
+    try:
+        node = tree.get_output_node('CYCLES')
+    except (AttributeError, TypeError):
+        node = None
+    if node is not None and node.bl_idname == bl_idname:
+        return node
+    candidates = [n for n in tree.nodes if n.bl_idname == bl_idname]
+    for n in candidates:
+        if n.is_active_output and getattr(n, "target", 'ALL') in {'ALL', 'CYCLES'}:
+            return n
+    for n in candidates:
+        if getattr(n, "target", 'ALL') in {'ALL', 'CYCLES'}:
+            return n
+    return candidates[0] if candidates else None
+
+
+class NodeTreeWalker:
+    """Turns the shader feeding one socket into a list of Closures.
+
+    `owner` names the material or world in warnings ("material 'Floor'").
+    With `world=True` a Background node becomes an EMISSION closure (the
+    world exporter sums them); BSDFs are meaningless there.
+    """
+
+    def __init__(self, ctx, owner, world=False):
+        self.ctx = ctx
+        self.owner = owner
+        self.world = world
+        self.glass_fresnel = (core.PHOS_GLASS_FRESNEL_MICROFACET if ctx.at_least(4, 0)
+                              else core.PHOS_GLASS_FRESNEL_MACRO)
+        self.stack = ()  # group nodes around the node being translated
+
+    # -------------------------------------------------------------- warnings
+
+    def unsupported(self, node, consequence="using its default input"):
+        self.ctx.warn("Phos: %s: node '%s' is not supported; %s" % (self.owner, node.name, consequence))
+
+    def note(self, node, what):
+        self.ctx.warn("Phos: %s: node '%s': %s" % (self.owner, node.name, what))
+
+    # ---------------------------------------------------------------- values
+
+    def value(self, node, names, default=0.0, consumed=None):
+        """A float input: its default, or a constant node feeding it."""
+        socket = find_input(node, *names) if isinstance(names, tuple) else find_input(node, names)
+        if socket is None:
+            return float(default)
+        if consumed is not None:
+            consumed.add(socket.identifier)
+        src = _resolve(socket, self.stack)
+        return self._float_of(src, socket, default)
+
+    def _float_of(self, src, socket, default):
+        if src.socket is not None:
+            return _socket_float(src.socket, default)
+        if src.node is None:
+            return _socket_float(socket, default)
+        n = src.node
+        if n.bl_idname == 'ShaderNodeValue':
+            return float(n.outputs[0].default_value)
+        if n.bl_idname == 'ShaderNodeRGB':
+            return float(np.dot(_LUMA, np.array(n.outputs[0].default_value[:3], dtype=np.float32)))
+        self.unsupported(n)
+        return _socket_float(socket, default)
+
+    def color(self, node, names, consumed=None, allow_image=True):
+        """A colour input: (linear rgb float32[3], image id or None, image node or None).
+
+        An Image Texture's Color output gives the image with weight (1,1,1).
+        """
+        socket = find_input(node, *names) if isinstance(names, tuple) else find_input(node, names)
+        if socket is None:
+            return np.zeros(3, dtype=np.float32), None, None
+        if consumed is not None:
+            consumed.add(socket.identifier)
+        # The core's world is a constant colour: no images there.
+        return self._color_of(_resolve(socket, self.stack), socket, allow_image and not self.world)
+
+    def _color_of(self, src, socket, allow_image):
+        if src.socket is not None:
+            return _socket_color(src.socket), None, None
+        if src.node is None:
+            return _socket_color(socket), None, None
+        n = src.node
+        if n.bl_idname == 'ShaderNodeRGB':
+            return np.array(n.outputs[0].default_value[:3], dtype=np.float32), None, None
+        if n.bl_idname == 'ShaderNodeValue':
+            return np.full(3, n.outputs[0].default_value, dtype=np.float32), None, None
+        if n.bl_idname == 'ShaderNodeTexImage' and allow_image and src.output.identifier == 'Color':
+            self._check_image_vector(n, src.stack)
+            image_id = image_export.add_image(n, self.ctx, self.owner)
+            if image_id is not None:
+                return np.ones(3, dtype=np.float32), image_id, n
+            return _socket_color(socket), None, None
+        self.unsupported(n)
+        return _socket_color(socket), None, None
+
+    def _check_image_vector(self, node, stack):
+        """Images are looked up with the mesh's active render UVs only."""
+        vector = node.inputs.get('Vector')
+        if vector is None or not vector.is_linked:
+            return
+        src = _resolve(vector, stack)
+        n = src.node
+        if n is None:
+            return
+        if n.bl_idname == 'ShaderNodeTexCoord' and src.output.identifier == 'UV':
+            return
+        if n.bl_idname == 'ShaderNodeUVMap':
+            if n.uv_map:
+                self.note(node, "UV map '%s' is ignored; the active render UV map is used" % n.uv_map)
+            return
+        self.unsupported(n, "the image uses the active render UV map")
+
+    def check_unused_links(self, node, consumed):
+        """Warn about links into inputs this node's translation does not read."""
+        for socket in node.inputs:
+            if not socket.enabled or socket.identifier in consumed or not socket.is_linked:
+                continue
+            if socket.type == 'SHADER':
+                continue
+            src = _resolve(socket, self.stack)
+            if src.node is not None:
+                self.unsupported(src.node)
+
+    # -------------------------------------------------------------- closures
+
+    def closures(self, socket, stack=()):
+        """Closures of the shader feeding an input socket (e.g. the Surface)."""
+        src = _resolve(socket, stack)
+        if src.node is None:
+            return []  # an unlinked shader socket renders black, as in Cycles
+        if src.output.type != 'SHADER':
+            # Cycles turns a colour linked into a shader socket into an emission.
+            outer, self.stack = self.stack, src.stack
+            try:
+                rgb, img, _ = self._color_of(src, socket, True)
+            finally:
+                self.stack = outer
+            return [Closure(core.PHOS_CLOSURE_EMISSION, rgb, img)]
+        return self.node_closures(src.node, src.output, src.stack)
+
+    def node_closures(self, node, output, stack):
+        handler = _HANDLERS.get(node.bl_idname, NodeTreeWalker._fallback_handler)
+        outer, self.stack = self.stack, stack
+        try:
+            return handler(self, node, stack)
+        finally:
+            self.stack = outer
+
+    def _fallback_handler(self, node, stack):
+        return self._fallback(node)
+
+    def _fallback(self, node):
+        """An unsupported shader node: a diffuse of its colour if it has one."""
+        if self.world:
+            self.unsupported(node, "it renders black")
+            return []
+        color_socket = find_input(node, 'Color', 'Base Color')
+        if color_socket is None:
+            self.unsupported(node, "it renders black")
+            return []
+        self.unsupported(node, "rendered as a diffuse of its %s" % color_socket.name)
+        rgb, img, _ = self.color(node, color_socket.name)
+        return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, img)]
+
+    # ---------------------------------------------------------- shader nodes
+
+    def _mix(self, node, stack):
+        consumed = {node.inputs[0].identifier}
+        fac_socket = node.inputs[0]
+        src = _resolve(fac_socket, stack)
+        fac = min(max(self._float_of(src, fac_socket, 0.5), 0.0), 1.0)  # Cycles clamps the factor
+        self.check_unused_links(node, consumed)
+        a = [c.scale(1.0 - fac) for c in self.closures(node.inputs[1], stack)] if fac < 1.0 else []
+        b = [c.scale(fac) for c in self.closures(node.inputs[2], stack)] if fac > 0.0 else []
+        return a + b
+
+    def _add(self, node, stack):
+        return self.closures(node.inputs[0], stack) + self.closures(node.inputs[1], stack)
+
+    def _diffuse(self, node, stack):
+        if self.world:
+            return self._fallback(node)
+        consumed = set()
+        rgb, img, _ = self.color(node, 'Color', consumed)
+        roughness = self.value(node, 'Roughness', 0.0, consumed)
+        if roughness > 0.0:
+            self.note(node, "Oren-Nayar roughness is not supported; rendered as Lambertian")
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, img)]
+
+    def _distribution(self, node, allowed):
+        """Roughness override (0 for Sharp) and a warning for unsupported distributions."""
+        dist = getattr(node, "distribution", 'GGX')
+        if dist == 'SHARP':
+            return 0.0
+        if dist not in allowed:
+            self.note(node, "%s distribution is not supported; using GGX" % _pretty(dist))
+        return None
+
+    def _glossy(self, node, stack):
+        if self.world:
+            return self._fallback(node)
+        consumed = set()
+        rgb, img, _ = self.color(node, 'Color', consumed)
+        roughness = self.value(node, 'Roughness', 0.5, consumed)
+        override = self._distribution(node, {'GGX'})
+        if override is not None:
+            roughness = override
+        if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:
+            self.note(node, "anisotropy is not supported; ignored")
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, img, roughness=roughness)]
+
+    def _anisotropic(self, node, stack):
+        """The 3.x Anisotropic BSDF: a Glossy BSDF whose anisotropy Phos ignores."""
+        if self.world:
+            return self._fallback(node)
+        consumed = set()
+        rgb, img, _ = self.color(node, 'Color', consumed)
+        roughness = self.value(node, 'Roughness', 0.5, consumed)
+        override = self._distribution(node, {'GGX'})
+        if override is not None:
+            roughness = override
+        if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:
+            self.note(node, "anisotropy is not supported; rendered as Glossy")
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, img, roughness=roughness)]
+
+    def _glass(self, node, stack):
+        if self.world:
+            return self._fallback(node)
+        consumed = set()
+        rgb, img, _ = self.color(node, 'Color', consumed)
+        roughness = self.value(node, 'Roughness', 0.0, consumed)
+        ior = self.value(node, 'IOR', 1.45, consumed)
+        override = self._distribution(node, {'GGX'})
+        if override is not None:
+            roughness = override
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_GLASS, rgb, img, roughness=roughness, ior=ior,
+                        glass_fresnel=self.glass_fresnel)]
+
+    def _refraction(self, node, stack):
+        if self.world:
+            return self._fallback(node)
+        consumed = set()
+        rgb, img, _ = self.color(node, 'Color', consumed)
+        roughness = self.value(node, 'Roughness', 0.0, consumed)
+        ior = self.value(node, 'IOR', 1.45, consumed)
+        override = self._distribution(node, {'GGX'})
+        if override is not None:
+            roughness = override
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_REFRACTION, rgb, img, roughness=roughness, ior=ior)]
+
+    def _emission(self, node, stack):
+        consumed = set()
+        rgb, img, _ = self.color(node, 'Color', consumed)
+        strength = self.value(node, 'Strength', 1.0, consumed)
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_EMISSION, rgb * strength, img)]
+
+    def _background(self, node, stack):
+        if not self.world:
+            self.unsupported(node, "it renders black")
+            return []
+        consumed = set()
+        rgb, _, _ = self.color(node, 'Color', consumed, allow_image=False)
+        strength = self.value(node, 'Strength', 1.0, consumed)
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_EMISSION, rgb * strength)]
+
+    def _transparent(self, node, stack):
+        if self.world:
+            return self._fallback(node)
+        consumed = set()
+        rgb, img, _ = self.color(node, 'Color', consumed)
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_TRANSPARENT, rgb, img)]
+
+    def _principled(self, node, stack):
+        if self.world:
+            return self._fallback(node)
+        return principled(self, node)
+
+
+def _pretty(identifier):
+    return identifier.replace('_', ' ').title().replace('Ggx', 'GGX')
+
+
+def _socket_float(socket, default):
+    value = getattr(socket, "default_value", default)
+    try:
+        return float(value)
+    except TypeError:  # a colour or vector socket read as a float
+        v = np.array(value[:3], dtype=np.float32)
+        return float(np.dot(_LUMA, v)) if len(v) == 3 else float(v.mean())
+
+
+def _socket_color(socket):
+    value = getattr(socket, "default_value", None)
+    if value is None:
+        return np.zeros(3, dtype=np.float32)
+    try:
+        return np.array(value[:3], dtype=np.float32)
+    except TypeError:  # a float socket read as a colour
+        return np.full(3, float(value), dtype=np.float32)
+
+
+def principled(walker, node):
+    """Principled BSDF → closures, after Cycles 3.4's svm_closure.h.
+
+    diffuse_weight = (1 − metallic)(1 − transmission); the specular layer
+    has weight 1 − final_transmission, f0 = mix(specular·0.08·tint, base,
+    metallic) and the IOR Cycles derives from Specular; the transmission
+    layer is a glass of weight final_transmission·base, where
+    final_transmission = transmission·(1 − metallic). Cycles 3.4 tints the glass's reflection with
+    mix(white, base, specular_tint) rather than the base colour, and its
+    refraction roughness combines Roughness and Transmission Roughness; the
+    core's GLASS has one tint and one roughness, so the base colour and
+    Roughness are used for both. On 4.x the sockets are found by their new
+    names and mapped onto the same closures (an approximation of the 4.x
+    layered model).
+    """
+    w = walker
+    consumed = set()
+    base, base_img, base_node = w.color(node, ('Base Color',), consumed)
+    metallic = _clamp01(w.value(node, ('Metallic',), 0.0, consumed))
+    roughness = _clamp01(w.value(node, ('Roughness',), 0.5, consumed))
+    ior = max(w.value(node, ('IOR',), 1.45, consumed), 1e-5)
+    transmission = _clamp01(w.value(node, ('Transmission Weight', 'Transmission'), 0.0, consumed))
+    alpha = _clamp01(w.value(node, ('Alpha',), 1.0, consumed))
+    emission, emission_img, _ = w.color(node, ('Emission Color', 'Emission'), consumed)
+    emission_strength = w.value(node, ('Emission Strength',), 1.0, consumed)
+    v4 = w.ctx.at_least(4, 0)
+
+    spec_socket = find_input(node, 'Specular IOR Level', 'Specular')
+    specular = max(w.value(node, (spec_socket.name,), 0.5, consumed), 0.0) if spec_socket else 0.5
+    tint_socket = find_input(node, 'Specular Tint')
+    if tint_socket is not None and tint_socket.type == 'RGBA':
+        tint_rgb, _, _ = w.color(node, ('Specular Tint',), consumed, allow_image=False)
+        tint_scalar = None
+    else:
+        tint_scalar = _clamp01(w.value(node, ('Specular Tint',), 0.0, consumed))
+        tint_rgb = None
+
+    # Parts of the Principled BSDF the core does not have: named once.
+    ignored = []
+    subsurface = w.value(node, ('Subsurface Weight', 'Subsurface'), 0.0, consumed)
+    if subsurface > WEIGHT_CUTOFF:
+        ignored.append("Subsurface")
+    sheen = w.value(node, ('Sheen Weight', 'Sheen'), 0.0, consumed)
+    if sheen > WEIGHT_CUTOFF:
+        ignored.append("Sheen")
+    coat = w.value(node, ('Coat Weight', 'Clearcoat'), 0.0, consumed)
+    if coat > WEIGHT_CUTOFF:
+        ignored.append("Clearcoat" if not v4 else "Coat")
+    if w.value(node, ('Anisotropic',), 0.0, consumed) > WEIGHT_CUTOFF:
+        ignored.append("Anisotropic")
+    distribution = getattr(node, "distribution", 'GGX')
+    if distribution not in {'GGX'}:
+        ignored.append("%s distribution (GGX used)" % _pretty(distribution))
+    transmission_roughness = w.value(node, ('Transmission Roughness',), 0.0, consumed) \
+        if find_input(node, 'Transmission Roughness') is not None else 0.0
+    final_transmission = transmission * (1.0 - metallic)
+    if final_transmission > WEIGHT_CUTOFF and transmission_roughness > 0.0 and not v4:
+        ignored.append("Transmission Roughness")
+    # Inputs that only matter for ignored features: not worth a second warning.
+    consumed |= {s.identifier for s in node.inputs
+                 if s.name.startswith(("Subsurface", "Sheen", "Coat", "Clearcoat", "Anisotropic",
+                                       "Thin Film"))}
+    if ignored:
+        w.note(node, "%s not supported; ignored" % ", ".join(ignored))
+    w.check_unused_links(node, consumed)
+
+    # Colour used where the core needs a constant (specular f0, tint): the
+    # image's average when the base colour is an image.
+    base_const = image_export.average_color(base_node, w.ctx) if base_img is not None else base
+    if base_img is not None and (metallic > WEIGHT_CUTOFF or (tint_scalar or 0.0) > 0.0):
+        w.note(node, "metallic/tinted specular with an image Base Color uses the image's average colour")
+
+    closures = []
+    diffuse_weight = (1.0 - metallic) * (1.0 - transmission)
+    specular_weight = 1.0 - final_transmission
+
+    if diffuse_weight > WEIGHT_CUTOFF:
+        color, img = base, base_img
+        if subsurface > WEIGHT_CUTOFF and not v4:
+            # Closest to Cycles' subsurface albedo: the mixed subsurface colour.
+            ss_color, _, _ = w.color(node, ('Subsurface Color',), consumed, allow_image=False)
+            s = _clamp01(subsurface)
+            if img is None:
+                color = ss_color * s + base * (1.0 - s)
+        closures.append(Closure(core.PHOS_CLOSURE_PRINCIPLED_DIFFUSE, color * diffuse_weight, img,
+                                roughness=roughness))
+
+    if specular_weight > WEIGHT_CUTOFF and (specular > WEIGHT_CUTOFF or metallic > WEIGHT_CUTOFF):
+        if not v4:
+            # Cycles 3.4: IOR from Specular, f0 tinted towards the base hue.
+            spec_ior = 2.0 / (1.0 - math.sqrt(min(0.08 * specular, 0.999999))) - 1.0
+            lum = 0.3 * base_const[0] + 0.6 * base_const[1] + 0.1 * base_const[2]
+            ctint = base_const / lum if lum > 0.0 else np.ones(3, dtype=np.float32)
+            t = tint_scalar or 0.0
+            tmp = (1.0 - t) + ctint * t
+            f0 = (specular * 0.08 * tmp) * (1.0 - metallic) + base_const * metallic
+        else:
+            # 4.x: f0 from IOR scaled by 2·Specular IOR Level, tinted by the colour tint.
+            f0_ior = ((ior - 1.0) / (ior + 1.0)) ** 2
+            f0_d = min(f0_ior * 2.0 * specular, 1.0)
+            sqrt_f0 = math.sqrt(min(f0_d, 0.999999))
+            spec_ior = (1.0 + sqrt_f0) / (1.0 - sqrt_f0)
+            tint = tint_rgb if tint_rgb is not None else np.ones(3, dtype=np.float32)
+            f0 = f0_d * tint * (1.0 - metallic) + base_const * metallic
+        closures.append(Closure(core.PHOS_CLOSURE_REFLECTION_FRESNEL, np.full(3, specular_weight),
+                                roughness=roughness, ior=spec_ior, specular_color=f0))
+
+    if final_transmission > WEIGHT_CUTOFF:
+        closures.append(Closure(core.PHOS_CLOSURE_GLASS, base * final_transmission, base_img,
+                                roughness=roughness, ior=ior, glass_fresnel=w.glass_fresnel))
+
+    emitted = emission * emission_strength
+    if emission_img is not None or float(np.max(np.abs(emitted))) > 0.0:
+        closures.append(Closure(core.PHOS_CLOSURE_EMISSION, emitted, emission_img))
+
+    if alpha < 1.0:
+        # Cycles mixes the whole node (emission included) with a transparent BSDF.
+        closures = [c.scale(alpha) for c in closures]
+        closures.append(Closure(core.PHOS_CLOSURE_TRANSPARENT, np.full(3, 1.0 - alpha)))
+    return closures
+
+
+def _clamp01(x):
+    return min(max(float(x), 0.0), 1.0)
+
+
+_HANDLERS = {
+    'ShaderNodeMixShader': NodeTreeWalker._mix,
+    'ShaderNodeAddShader': NodeTreeWalker._add,
+    'ShaderNodeBsdfDiffuse': NodeTreeWalker._diffuse,
+    'ShaderNodeBsdfGlossy': NodeTreeWalker._glossy,
+    'ShaderNodeBsdfAnisotropic': NodeTreeWalker._anisotropic,
+    'ShaderNodeBsdfGlass': NodeTreeWalker._glass,
+    'ShaderNodeBsdfRefraction': NodeTreeWalker._refraction,
+    'ShaderNodeEmission': NodeTreeWalker._emission,
+    'ShaderNodeBackground': NodeTreeWalker._background,
+    'ShaderNodeBsdfTransparent': NodeTreeWalker._transparent,
+    'ShaderNodeBsdfPrincipled': NodeTreeWalker._principled,
+}
+
+
+# ------------------------------------------------------------------ materials
+
+def material_closures(mat, ctx):
+    """The closure list of a material (before truncation and conversion)."""
+    owner = "material '%s'" % mat.name
+    if not mat.use_nodes or mat.node_tree is None:
+        # What Cycles renders for a material without nodes: a diffuse of its colour.
+        return [Closure(core.PHOS_CLOSURE_DIFFUSE, mat.diffuse_color[:3])]
+    out = active_output(mat.node_tree, 'ShaderNodeOutputMaterial')
+    if out is None:
+        ctx.warn("Phos: %s has no Material Output node; it renders black" % owner)
+        return []
+    walker = NodeTreeWalker(ctx, owner)
+    closures = walker.closures(out.inputs['Surface'])
+    for name in ('Volume', 'Displacement'):
+        s = out.inputs.get(name)
+        if s is not None and s.is_linked:
+            ctx.warn("Phos: %s: the %s output is not supported; ignored" % (owner, name.lower()))
+    return closures
+
+
+def add_material(mat, ctx):
+    """Core material id of a Blender material, exporting it on first use."""
+    if mat is None:
+        return default_material(ctx)
+    key = mat.original.as_pointer()
+    mat_id = ctx.materials.get(key)
+    if mat_id is not None:
+        return mat_id
+    closures = [c for c in material_closures(mat, ctx) if not c.negligible() or c.image is not None]
+    if len(closures) > core.PHOS_MAX_CLOSURES:
+        ctx.warn("Phos: material '%s' has %d closures; only the first %d are rendered"
+                 % (mat.name, len(closures), core.PHOS_MAX_CLOSURES))
+        closures = closures[:core.PHOS_MAX_CLOSURES]
+    mat_id = ctx.core.add_material([c.to_desc() for c in closures])
+    ctx.materials[key] = mat_id
+    ctx.stats["materials"] += 1
+    return mat_id
+
+
+def default_material(ctx):
+    """The grey diffuse (0.8) of objects and slots without a material."""
+    if ctx.default_material is None:
+        grey = Closure(core.PHOS_CLOSURE_DIFFUSE, (0.8, 0.8, 0.8))
+        ctx.default_material = ctx.core.add_material([grey.to_desc()])
+    return ctx.default_material

@@ -1,0 +1,357 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Properties-editor panels for Phos.
+
+Phos draws its own panels for its settings (Render tab), materials, lights
+and the world; for everything engine-independent (output, dimensions,
+colour management, camera, object and physics panels...) it reuses
+Blender's built-in panels by adding 'PHOS' to their COMPAT_ENGINES on
+register and removing it on unregister. Only panels listing
+'BLENDER_RENDER' are touched: Cycles' panels share one COMPAT_ENGINES set
+object, so adding to one of them would show all of them.
+"""
+
+import bpy
+
+from . import core
+
+ENGINE = 'PHOS'
+
+
+class PhosButtonsPanel:
+    """Base of every Phos panel: shown only while Phos is the render engine."""
+
+    bl_space_type = 'PROPERTIES'
+    bl_region_type = 'WINDOW'
+    COMPAT_ENGINES = {ENGINE}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES
+
+
+def _library_warning(layout):
+    """A visible hint in the Render tab when the core library cannot be used."""
+    if core.load() is None:
+        box = layout.box()
+        box.alert = True
+        box.label(text="Phos core library not available", icon='ERROR')
+        box.label(text="See Edit › Preferences › Add-ons › Phos")
+
+
+# ------------------------------------------------------------------- render
+
+class PHOS_RENDER_PT_sampling(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Sampling"
+    bl_context = "render"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        _library_warning(layout)
+        phos = context.scene.phos
+        layout.prop(phos, "integrator")
+        col = layout.column(align=True)
+        col.prop(phos, "samples", text="Render")
+        col.prop(phos, "preview_samples", text="Preview")
+        layout.prop(phos, "seed")
+
+
+class PHOS_RENDER_PT_light_paths(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Light Paths"
+    bl_context = "render"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        layout.prop(context.scene.phos, "max_bounces")
+
+
+class PHOS_RENDER_PT_film(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Film"
+    bl_context = "render"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        layout.prop(context.scene.phos, "filter_width")
+        layout.prop(context.scene.render, "film_transparent", text="Transparent")
+
+
+class PHOS_RENDER_PT_performance(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Performance"
+    bl_context = "render"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        rd = context.scene.render
+        col = layout.column()
+        col.prop(rd, "threads_mode")
+        sub = col.column(align=True)
+        sub.enabled = rd.threads_mode == 'FIXED'
+        sub.prop(rd, "threads")
+        layout.prop(context.scene.phos, "tile_size")
+
+
+# --------------------------------------------------------------- node views
+
+def _output_node(tree, bl_idname):
+    """The output node Cycles renders from (active, targeting Cycles or All)."""
+    node = tree.get_output_node('CYCLES')
+    if node is None or node.bl_idname != bl_idname:
+        node = next((n for n in tree.nodes if n.bl_idname == bl_idname and n.is_active_output), None)
+    return node
+
+
+def draw_node_view(layout, id_data, output_idname, input_name):
+    """Draw the node tree feeding one input of the output node, as Cycles does."""
+    tree = id_data.node_tree
+    node = _output_node(tree, output_idname)
+    if node is None:
+        layout.label(text="No output node")
+        return
+    socket = node.inputs.get(input_name)
+    if socket is None:
+        layout.label(text="Incompatible output node")
+        return
+    layout.template_node_view(tree, node, socket)
+
+
+# ----------------------------------------------------------------- material
+
+class PHOS_MATERIAL_PT_preview(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Preview"
+    bl_context = "material"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    @classmethod
+    def poll(cls, context):
+        return context.material is not None and super().poll(context)
+
+    def draw(self, context):
+        self.layout.template_preview(context.material)
+
+
+class PHOS_MATERIAL_PT_context_material(PhosButtonsPanel, bpy.types.Panel):
+    """Material slots and the active material, like Blender's own slot panel."""
+
+    bl_label = ""
+    bl_context = "material"
+    bl_options = {'HIDE_HEADER'}
+
+    @classmethod
+    def poll(cls, context):
+        if context.active_object and context.active_object.type == 'GPENCIL':
+            return False
+        return (context.material or context.object) and super().poll(context)
+
+    def draw(self, context):
+        layout = self.layout
+        mat = context.material
+        ob = context.object
+        slot = context.material_slot
+        space = context.space_data
+
+        if ob:
+            is_sortable = len(ob.material_slots) > 1
+            rows = 3 if is_sortable else 1
+            row = layout.row()
+            row.template_list("MATERIAL_UL_matslots", "", ob, "material_slots", ob,
+                              "active_material_index", rows=rows)
+            col = row.column(align=True)
+            col.operator("object.material_slot_add", icon='ADD', text="")
+            col.operator("object.material_slot_remove", icon='REMOVE', text="")
+            col.separator()
+            col.menu("MATERIAL_MT_context_menu", icon='DOWNARROW_HLT', text="")
+            if is_sortable:
+                col.separator()
+                col.operator("object.material_slot_move", icon='TRIA_UP', text="").direction = 'UP'
+                col.operator("object.material_slot_move", icon='TRIA_DOWN', text="").direction = 'DOWN'
+            if ob.mode == 'EDIT':
+                row = layout.row(align=True)
+                row.operator("object.material_slot_assign", text="Assign")
+                row.operator("object.material_slot_select", text="Select")
+                row.operator("object.material_slot_deselect", text="Deselect")
+
+        row = layout.row()
+        if ob:
+            row.template_ID(ob, "active_material", new="material.new")
+            if slot:
+                icon_link = 'MESH_DATA' if slot.link == 'DATA' else 'OBJECT_DATA'
+                row.prop(slot, "link", icon=icon_link, icon_only=True)
+        elif mat:
+            row.template_ID(space, "pin_id")
+
+
+class PHOS_MATERIAL_PT_surface(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Surface"
+    bl_context = "material"
+
+    @classmethod
+    def poll(cls, context):
+        return context.material is not None and super().poll(context)
+
+    def draw(self, context):
+        layout = self.layout
+        mat = context.material
+        if not mat.use_nodes or mat.node_tree is None:
+            layout.prop(mat, "use_nodes", icon='NODETREE')
+            layout.separator()
+            layout.use_property_split = True
+            layout.prop(mat, "diffuse_color", text="Color")
+            return
+        draw_node_view(layout, mat, 'ShaderNodeOutputMaterial', 'Surface')
+
+
+# -------------------------------------------------------------------- light
+
+class PHOS_LIGHT_PT_light(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Light"
+    bl_context = "data"
+
+    @classmethod
+    def poll(cls, context):
+        return context.light is not None and super().poll(context)
+
+    def draw(self, context):
+        layout = self.layout
+        light = context.light
+        layout.row().prop(light, "type", expand=True)
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        col = layout.column()
+        col.prop(light, "color")
+        col.prop(light, "energy")
+        col.separator()
+        if light.type in {'POINT', 'SPOT'}:
+            col.prop(light, "shadow_soft_size", text="Radius")
+        elif light.type == 'SUN':
+            col.prop(light, "angle")
+        elif light.type == 'AREA':
+            col.prop(light, "shape")
+            sub = col.column(align=True)
+            if light.shape in {'SQUARE', 'DISK'}:
+                sub.prop(light, "size")
+            else:
+                sub.prop(light, "size", text="Size X")
+                sub.prop(light, "size_y", text="Y")
+
+
+class PHOS_LIGHT_PT_spot(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Spot Shape"
+    bl_parent_id = "PHOS_LIGHT_PT_light"
+    bl_context = "data"
+
+    @classmethod
+    def poll(cls, context):
+        light = context.light
+        return light is not None and light.type == 'SPOT' and super().poll(context)
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        light = context.light
+        col = layout.column()
+        col.prop(light, "spot_size", text="Size")
+        col.prop(light, "spot_blend", text="Blend", slider=True)
+        col.prop(light, "show_cone")
+
+
+# -------------------------------------------------------------------- world
+
+class PHOS_WORLD_PT_preview(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Preview"
+    bl_context = "world"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    @classmethod
+    def poll(cls, context):
+        return context.world is not None and super().poll(context)
+
+    def draw(self, context):
+        self.layout.template_preview(context.world)
+
+
+class PHOS_WORLD_PT_surface(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Surface"
+    bl_context = "world"
+
+    @classmethod
+    def poll(cls, context):
+        return context.world is not None and super().poll(context)
+
+    def draw(self, context):
+        layout = self.layout
+        world = context.world
+        if not world.use_nodes or world.node_tree is None:
+            layout.prop(world, "use_nodes", icon='NODETREE')
+            layout.separator()
+            layout.use_property_split = True
+            layout.prop(world, "color")
+            return
+        draw_node_view(layout, world, 'ShaderNodeOutputWorld', 'Surface')
+
+
+classes = (
+    PHOS_RENDER_PT_sampling,
+    PHOS_RENDER_PT_light_paths,
+    PHOS_RENDER_PT_film,
+    PHOS_RENDER_PT_performance,
+    PHOS_MATERIAL_PT_preview,
+    PHOS_MATERIAL_PT_context_material,
+    PHOS_MATERIAL_PT_surface,
+    PHOS_LIGHT_PT_light,
+    PHOS_LIGHT_PT_spot,
+    PHOS_WORLD_PT_preview,
+    PHOS_WORLD_PT_surface,
+)
+
+
+# ---------------------------------------------------- Blender's own panels
+
+# Built-in panels listing BLENDER_RENDER that Phos replaces with its own.
+EXCLUDED_PANELS = {
+    'DATA_PT_light',          # PHOS_LIGHT_PT_light
+    'DATA_PT_area',           # PHOS_LIGHT_PT_light
+    'DATA_PT_spot',           # PHOS_LIGHT_PT_spot
+    'DATA_PT_falloff_curve',  # falloff curves are not supported
+    'NODE_DATA_PT_light',
+}
+
+_patched_panels = []
+
+
+def builtin_panels():
+    """Blender's own panels Phos can use: those listing 'BLENDER_RENDER'."""
+    for panel in bpy.types.Panel.__subclasses__():
+        engines = getattr(panel, "COMPAT_ENGINES", None)
+        if not isinstance(engines, set) or 'BLENDER_RENDER' not in engines:
+            continue
+        if panel.__name__ in EXCLUDED_PANELS:
+            continue
+        yield panel
+
+
+def register():
+    for cls in classes:
+        bpy.utils.register_class(cls)
+    for panel in builtin_panels():
+        if ENGINE not in panel.COMPAT_ENGINES:
+            panel.COMPAT_ENGINES.add(ENGINE)
+            _patched_panels.append(panel)
+
+
+def unregister():
+    for panel in _patched_panels:
+        panel.COMPAT_ENGINES.discard(ENGINE)
+    _patched_panels.clear()
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

@@ -1,0 +1,227 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Shared helpers for the scene scripts in scenes/.
+
+A scene script builds its scene from Blender's factory startup and then
+hands over to :func:`finish`, which applies the command-line options:
+
+    blender -b --factory-startup --python scenes/SCENE.py -- [options]
+
+    --render OUTPUT_BASE   render and write OUTPUT_BASE.png (8-bit, through
+                           the scene's view transform) and OUTPUT_BASE.exr
+                           (32-bit float, linear scene-referred)
+    --save FILE.blend      save the built scene
+    --samples N            samples per pixel (Phos and Cycles alike)
+    --engine PHOS|CYCLES   the engine to render with and to leave selected
+    --resolution W H       output size in pixels
+    --seed N               seed of both engines
+
+The add-on is imported from this source tree (<repo>/addon), not from an
+installed copy, so a script always renders with the code beside it.
+Cycles is configured for parity with Phos whatever the engine: same samples,
+bounces, seed and pixel filter, no clamping, no glossy blur, no denoising,
+no adaptive sampling, caustics on.
+"""
+
+import argparse
+import os
+import sys
+import time
+
+import addon_utils
+import bpy
+
+REPO_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ADDON_DIR = os.path.join(REPO_DIR, "addon")
+ADDON_NAME = "phos"
+ENGINES = ("PHOS", "CYCLES")
+
+
+def log(msg):
+    print("[scene] %s" % msg, flush=True)
+
+
+# ------------------------------------------------------------------ add-on
+
+def enable_addon():
+    """Import the add-on from the source tree and enable it; True on success."""
+    if ADDON_DIR not in sys.path:
+        sys.path.insert(0, ADDON_DIR)
+    _default, loaded = addon_utils.check(ADDON_NAME)
+    if not loaded:
+        mod = addon_utils.enable(ADDON_NAME, default_set=True)
+        if mod is None:
+            return False
+    return hasattr(bpy.types.Scene, "phos") and "PHOS" in _engine_ids()
+
+
+def _engine_ids():
+    return {cls.bl_idname for cls in bpy.types.RenderEngine.__subclasses__()
+            if getattr(cls, "is_registered", True)}
+
+
+# --------------------------------------------------------------- arguments
+
+def script_argv(argv=None):
+    """The arguments after '--' on Blender's command line."""
+    argv = sys.argv if argv is None else argv
+    return argv[argv.index("--") + 1:] if "--" in argv else []
+
+
+def parse_args(description, default_resolution=(512, 512), default_samples=256, argv=None):
+    p = argparse.ArgumentParser(prog=os.path.basename(sys.argv[0]) if sys.argv else "scene",
+                                description=description)
+    p.add_argument("--render", metavar="OUTPUT_BASE",
+                   help="render and save OUTPUT_BASE.png and OUTPUT_BASE.exr")
+    p.add_argument("--save", metavar="FILE.blend", help="save the scene as a .blend file")
+    p.add_argument("--samples", type=int, default=default_samples, metavar="N")
+    p.add_argument("--engine", default="PHOS", type=str.upper, choices=ENGINES)
+    p.add_argument("--resolution", type=int, nargs=2, metavar=("W", "H"),
+                   default=list(default_resolution))
+    p.add_argument("--seed", type=int, default=0, metavar="N")
+    args, extra = p.parse_known_args(script_argv(argv))
+    if args.samples < 1:
+        p.error("--samples must be >= 1")
+    if min(args.resolution) < 1:
+        p.error("--resolution must be positive")
+    args.extra = extra
+    return args
+
+
+# ------------------------------------------------------------ scene setup
+
+def clear_factory_scene():
+    """Delete the factory startup's objects and the data they used."""
+    for ob in list(bpy.data.objects):
+        bpy.data.objects.remove(ob, do_unlink=True)
+    for coll in (bpy.data.meshes, bpy.data.lights, bpy.data.cameras,
+                 bpy.data.materials, bpy.data.worlds):
+        for block in list(coll):
+            if block.users == 0:
+                coll.remove(block)
+
+
+def look_at_rotation(location, target, up_axis="Y"):
+    """Euler rotation that points an object's −Z at target (camera/light convention)."""
+    from mathutils import Vector
+    d = Vector(target) - Vector(location)
+    return d.to_track_quat("-Z", up_axis).to_euler()
+
+
+def configure_cycles(scene, samples, max_bounces, seed=0, filter_width=1.5):
+    """Cycles settings that make it an unbiased reference for Phos."""
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = samples
+    c.preview_samples = samples
+    c.seed = seed
+    c.use_animated_seed = False
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.use_preview_denoising = False
+    c.sample_clamp_direct = 0.0
+    c.sample_clamp_indirect = 0.0
+    c.blur_glossy = 0.0
+    c.caustics_reflective = True
+    c.caustics_refractive = True
+    c.use_fast_gi = False
+    c.max_bounces = max_bounces
+    c.diffuse_bounces = max_bounces
+    c.glossy_bounces = max_bounces
+    c.transmission_bounces = max_bounces
+    c.transparent_max_bounces = max_bounces
+    c.volume_bounces = 0
+    c.light_sampling_threshold = 0.0  # no stochastic light culling
+    c.pixel_filter_type = "BLACKMAN_HARRIS"
+    c.filter_width = filter_width
+    c.film_exposure = 1.0
+
+
+def configure_phos(scene, samples, max_bounces, seed=0, filter_width=1.5):
+    if not hasattr(scene, "phos"):
+        return
+    p = scene.phos
+    p.integrator = "PATH"
+    p.samples = samples
+    p.preview_samples = samples
+    p.seed = seed
+    p.max_bounces = max_bounces
+    p.filter_width = filter_width
+
+
+def configure_output(scene, resolution):
+    r = scene.render
+    r.resolution_x, r.resolution_y = resolution
+    r.resolution_percentage = 100
+    r.pixel_aspect_x = r.pixel_aspect_y = 1.0
+    r.use_border = False
+    r.film_transparent = False
+
+
+# ---------------------------------------------------------------- rendering
+
+def render_and_save(scene, output_base):
+    """Render the scene and write OUTPUT_BASE.png and OUTPUT_BASE.exr."""
+    output_base = os.path.abspath(output_base)
+    os.makedirs(os.path.dirname(output_base), exist_ok=True)
+    r = scene.render
+    log("rendering %dx%d with %s, %d samples -> %s.{png,exr}"
+        % (r.resolution_x * r.resolution_percentage // 100,
+           r.resolution_y * r.resolution_percentage // 100,
+           r.engine, samples_of(scene), output_base))
+    # In background mode Blender prints the engine's progress and stats
+    # lines ("Fra:1 ... | Path tracing | 12/40 tiles") while it renders.
+    t0 = time.time()
+    bpy.ops.render.render()
+    log("render finished in %.1f s" % (time.time() - t0))
+
+    result = bpy.data.images["Render Result"]
+    fmt = scene.render.image_settings
+    saved = (fmt.file_format, fmt.color_mode, fmt.color_depth)
+    try:
+        fmt.file_format, fmt.color_mode, fmt.color_depth = "PNG", "RGBA", "8"
+        result.save_render(output_base + ".png", scene=scene)
+        fmt.file_format, fmt.color_mode, fmt.color_depth = "OPEN_EXR", "RGBA", "32"
+        fmt.exr_codec = "ZIP"
+        result.save_render(output_base + ".exr", scene=scene)
+    finally:
+        fmt.file_format, fmt.color_mode, fmt.color_depth = saved
+    log("saved %s.png (view transform '%s') and %s.exr (linear)"
+        % (output_base, scene.view_settings.view_transform, output_base))
+
+
+def samples_of(scene):
+    if scene.render.engine == "CYCLES":
+        return scene.cycles.samples
+    if hasattr(scene, "phos"):
+        return scene.phos.samples
+    return 0
+
+
+def finish(scene, args, max_bounces):
+    """Apply the command-line options to a built scene: settings, --save, --render.
+
+    Returns the process exit code (0 on success); scripts pass it to sys.exit.
+    """
+    phos_ok = enable_addon()
+    if not phos_ok:
+        log("warning: the Phos add-on could not be enabled from %s" % ADDON_DIR)
+    configure_output(scene, args.resolution)
+    configure_cycles(scene, args.samples, max_bounces, seed=args.seed)
+    configure_phos(scene, args.samples, max_bounces, seed=args.seed)
+    if args.engine == "PHOS" and not phos_ok:
+        log("error: --engine PHOS needs the add-on")
+        return 1
+    scene.render.engine = args.engine
+
+    if args.save:
+        path = os.path.abspath(args.save)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        bpy.ops.wm.save_as_mainfile(filepath=path, check_existing=False)
+        log("saved %s" % path)
+    if args.render:
+        try:
+            render_and_save(scene, args.render)
+        except RuntimeError as ex:  # an ERROR report of the engine
+            log("error: render failed: %s" % ex)
+            return 1
+    return 0

@@ -1,0 +1,173 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Small scenes rendered by both Phos and Cycles in test_parity.py.
+
+Two families, each a dict name -> builder(scene):
+
+LIGHT_SCENES: one light of each kind over a diffuse floor and a diffuse
+  sphere, in a black world (except the world-lighting scene).
+MATERIAL_SCENES: a sphere with the material under test on a diffuse floor,
+  lit by a square area light and a uniform world.
+
+Builders only create data; engine settings are applied by the test.
+"""
+
+import math
+
+import bpy
+
+import phostest as pt
+
+LIGHT_POS = (1.5, -1.5, 2.5)
+SPHERE_CENTRE = (0.0, 0.0, 0.5)
+
+
+def _stage(scene, sphere_material=None):
+    """Camera, a 8 m diffuse floor and a r=0.5 sphere resting on it."""
+    pt.add_camera(scene, location=(0.0, -4.2, 2.4), target=(0.0, 0.0, 0.45), lens=50.0)
+    floor = pt.diffuse("Floor", (0.8, 0.8, 0.8))
+    pt.add_plane(scene, "Floor", size=8.0, material=floor)
+    if sphere_material is None:
+        sphere_material = pt.diffuse("Sphere", (0.8, 0.55, 0.3))
+    pt.add_sphere(scene, "Sphere", radius=0.5, location=SPHERE_CENTRE, material=sphere_material,
+                  segments=48, rings=24)
+
+
+# ------------------------------------------------------------------ lights
+
+def _light_scene(kind, energy, location=LIGHT_POS, target=SPHERE_CENTRE, **props):
+    def build(scene):
+        _stage(scene)
+        pt.set_world(scene, (0.0, 0.0, 0.0))
+        pt.add_light(scene, kind, energy, location=location, target=target, **props)
+    return build
+
+
+def _emissive_mesh(scene):
+    _stage(scene)
+    pt.set_world(scene, (0.0, 0.0, 0.0))
+    lamp = pt.add_plane(scene, "Lamp", size=1.0, location=LIGHT_POS,
+                        material=pt.emission("Lamp", (1.0, 0.9, 0.8), 12.0))
+    # Aims the plane's back (local −Z) at the sphere: both faces of an
+    # emissive mesh emit the same radiance, so the side does not matter.
+    pt.point_at(lamp, SPHERE_CENTRE)
+
+
+def _world(scene):
+    _stage(scene)
+    pt.set_world(scene, (0.6, 0.7, 0.9), strength=1.0)
+
+
+LIGHT_SCENES = {
+    "point_r0": _light_scene("POINT", 200.0, shadow_soft_size=0.0),
+    "point_r": _light_scene("POINT", 200.0, shadow_soft_size=0.4),
+    "spot_blend": _light_scene("SPOT", 400.0, location=(1.2, -1.2, 3.0), shadow_soft_size=0.1,
+                               spot_size=math.radians(50.0), spot_blend=0.4),
+    "area_square": _light_scene("AREA", 150.0, shape="SQUARE", size=1.0),
+    "area_rectangle": _light_scene("AREA", 150.0, shape="RECTANGLE", size=1.5, size_y=0.5),
+    "area_disk": _light_scene("AREA", 150.0, shape="DISK", size=1.0),
+    "area_ellipse": _light_scene("AREA", 150.0, shape="ELLIPSE", size=1.5, size_y=0.6),
+    "sun_angle0": _light_scene("SUN", 3.0, location=(2.0, -2.0, 4.0), target=(0, 0, 0), angle=0.0),
+    "sun_angle15": _light_scene("SUN", 3.0, location=(2.0, -2.0, 4.0), target=(0, 0, 0),
+                                angle=math.radians(15.0)),
+    "emissive_mesh": _emissive_mesh,
+    "world": _world,
+}
+
+
+# --------------------------------------------------------------- materials
+
+def _material_scene(make_material):
+    def build(scene):
+        _stage(scene, make_material(scene))
+        pt.set_world(scene, (0.3, 0.35, 0.4), strength=1.0)
+        pt.add_light(scene, "AREA", 200.0, location=(1.5, -1.5, 3.0), target=SPHERE_CENTRE,
+                     shape="SQUARE", size=1.5)
+    return build
+
+
+def _one(node_type, inputs=None, props=None):
+    return lambda scene: pt.node_material("Test " + node_type, node_type, inputs, props)
+
+
+def _two(shader_node, a, b, fac=None):
+    """Mix/Add shader of two single-node shaders a, b = (type, inputs, props)."""
+    def make(scene):
+        mat = bpy.data.materials.new("Test " + shader_node)
+        mat.use_nodes = True
+        nt = mat.node_tree
+        nt.nodes.clear()
+        out = nt.nodes.new("ShaderNodeOutputMaterial")
+        mix = nt.nodes.new(shader_node)
+        shaders = []
+        for node_type, inputs, props in (a, b):
+            n = nt.nodes.new(node_type)
+            for k, v in (props or {}).items():
+                setattr(n, k, v)
+            for k, v in (inputs or {}).items():
+                n.inputs[k].default_value = (*v, 1.0) if isinstance(v, tuple) and len(v) == 3 else v
+            shaders.append(n)
+        if fac is not None:
+            mix.inputs["Fac"].default_value = fac
+            nt.links.new(shaders[0].outputs[0], mix.inputs[1])
+            nt.links.new(shaders[1].outputs[0], mix.inputs[2])
+        else:
+            nt.links.new(shaders[0].outputs[0], mix.inputs[0])
+            nt.links.new(shaders[1].outputs[0], mix.inputs[1])
+        nt.links.new(mix.outputs[0], out.inputs["Surface"])
+        return mat
+    return make
+
+
+def _image_texture(scene):
+    import os
+    # Blender's session temp dir, removed when Blender exits.
+    img = pt.checker_image(os.path.join(bpy.app.tempdir, "phos_checker.png"), size=16, squares=4)
+    mat = bpy.data.materials.new("Test Image Texture")
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    bsdf = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    tex.interpolation = "Closest"  # no interpolation across the checker edges
+    nt.links.new(tex.outputs["Color"], bsdf.inputs["Color"])
+    nt.links.new(bsdf.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+MATERIAL_SCENES = {
+    "diffuse": _material_scene(_one("ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.3, 0.2)})),
+    "glossy_sharp": _material_scene(_one("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.9, 0.9)},
+                                         {"distribution": "SHARP"})),
+    "glossy_ggx_r0.3": _material_scene(_one("ShaderNodeBsdfGlossy",
+                                            {"Color": (0.8, 0.8, 0.8), "Roughness": 0.3},
+                                            {"distribution": "GGX"})),
+    "glass_sharp": _material_scene(_one("ShaderNodeBsdfGlass", {"IOR": 1.5},
+                                        {"distribution": "SHARP"})),
+    "glass_ggx": _material_scene(_one("ShaderNodeBsdfGlass", {"IOR": 1.5, "Roughness": 0.2},
+                                      {"distribution": "GGX"})),
+    "refraction": _material_scene(_one("ShaderNodeBsdfRefraction",
+                                       {"IOR": 1.45, "Roughness": 0.1, "Color": (0.9, 0.9, 1.0)},
+                                       {"distribution": "GGX"})),
+    "emission": _material_scene(_one("ShaderNodeEmission",
+                                     {"Color": (1.0, 0.5, 0.2), "Strength": 3.0})),
+    "transparent": _material_scene(_one("ShaderNodeBsdfTransparent", {"Color": (0.7, 0.9, 0.7)})),
+    "principled_default": _material_scene(_one("ShaderNodeBsdfPrincipled")),
+    "principled_metallic": _material_scene(_one("ShaderNodeBsdfPrincipled",
+                                                {"Base Color": (0.9, 0.6, 0.3), "Metallic": 1.0,
+                                                 "Roughness": 0.3})),
+    "principled_transmission": _material_scene(_one("ShaderNodeBsdfPrincipled",
+                                                    {"Transmission": 1.0, "Roughness": 0.05,
+                                                     "IOR": 1.45})),
+    "mix_0.3": _material_scene(_two(
+        "ShaderNodeMixShader",
+        ("ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.2, 0.2)}, None),
+        ("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.9, 0.9), "Roughness": 0.2}, {"distribution": "GGX"}),
+        fac=0.3)),
+    "add": _material_scene(_two(
+        "ShaderNodeAddShader",
+        ("ShaderNodeBsdfDiffuse", {"Color": (0.2, 0.3, 0.5)}, None),
+        ("ShaderNodeBsdfGlossy", {"Color": (0.4, 0.4, 0.4), "Roughness": 0.3}, {"distribution": "GGX"}))),
+    "image_texture": _material_scene(_image_texture),
+}

@@ -1,0 +1,465 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Export of each datablock kind.
+
+Two kinds of checks:
+- through the add-on's export package (phos.export.export_scene and
+  phos.export.material.material_closures): counts of instances, meshes,
+  triangles and lights, closure lists, warnings;
+- through renders: silhouettes compared with Cycles (emission-only scenes in
+  a black world, so an image is just coverage), projected positions against
+  Blender's own camera projection, output sizes, light produced.
+"""
+
+import math
+import os
+
+import bpy
+import numpy as np
+import pytest
+
+import phostest as pt
+
+SIL_RES = (64, 64)
+SIL_SAMPLES = 16
+
+
+# ----------------------------------------------------------------- helpers
+
+def export(scene):
+    """Run the add-on's exporter on the evaluated depsgraph; returns the ExportContext."""
+    from phos import core, export as phos_export
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    cam = scene.camera
+    with core.Scene() as core_scene:
+        ctx = phos_export.export_scene(depsgraph, core_scene, cam, cam.matrix_world)
+        core_scene.commit()
+    return ctx
+
+
+def closures_of(scene, mat):
+    from phos import core
+    from phos.export import material as mexp
+    from phos.export.context import ExportContext
+    with core.Scene() as core_scene:
+        ctx = ExportContext(scene, core_scene)
+        closures = mexp.material_closures(mat, ctx)
+        # The material must also be accepted by the core.
+        mexp.add_material(mat, ctx)
+    return closures, ctx.warnings
+
+
+def ortho_top_camera(scene, scale=4.0):
+    return pt.add_camera(scene, location=(0, 0, 10), target=(0, 0, 0), ortho_scale=scale)
+
+
+def silhouettes(scene, tmp_path, res=SIL_RES, samples=SIL_SAMPLES):
+    """Coverage masks (value > half the emission) of Phos and Cycles renders."""
+    pt.configure_output(scene, *res)
+    pt.configure_phos(scene, samples, max_bounces=0)
+    pt.configure_cycles(scene, samples, max_bounces=0)
+    p = pt.render_array(scene, tmp_path, "PHOS")
+    c = pt.render_array(scene, tmp_path, "CYCLES")
+    return p, c
+
+
+def assert_same_silhouette(p, c, level=0.5, what=""):
+    mp = p[..., 1] > level
+    mc = c[..., 1] > level
+    assert mc.sum() > 10, "%s: the Cycles reference covers nothing" % what
+    inter = np.logical_and(mp, mc).sum()
+    union = np.logical_or(mp, mc).sum()
+    iou = inter / union
+    assert iou > 0.95, "%s: silhouettes differ: IoU %.3f (Phos %d px, Cycles %d px)" % (
+        what, iou, mp.sum(), mc.sum())
+    return mc.sum()
+
+
+def white_emission(name="White Emission"):
+    return pt.emission(name, (1.0, 1.0, 1.0), 1.0)
+
+
+# -------------------------------------------------------------- geometry
+
+def test_mesh_modifier_exported(scene):
+    ortho_top_camera(scene)
+    cube = pt.add_cube(scene, size=1.0)
+    mod = cube.modifiers.new("Subdivision", "SUBSURF")
+    mod.levels = mod.render_levels = 2
+    ctx = export(scene)
+    assert ctx.stats["triangles"] == 6 * 16 * 2  # 96 quads after two Catmull-Clark levels
+    assert ctx.stats["instances"] == 1 and ctx.stats["meshes"] == 1
+
+
+def test_mesh_modifier_silhouette(scene, tmp_path):
+    ortho_top_camera(scene, scale=4.0)
+    pt.set_world(scene, (0, 0, 0))
+    plane = pt.add_plane(scene, size=0.5, location=(-1.0, 0, 0), material=white_emission())
+    arr = plane.modifiers.new("Array", "ARRAY")
+    arr.count = 3
+    arr.relative_offset_displace = (2.0, 0.0, 0.0)
+    p, c = silhouettes(scene, tmp_path)
+    covered = assert_same_silhouette(p, c, what="array modifier")
+    # 3 copies of a 0.5 m square in a 4 m frame of 64 px: 3 × 8 × 8 px.
+    assert covered == pytest.approx(192, rel=0.15)
+
+
+def _instance_source(scene, name="Inst"):
+    """A collection holding one small emissive cube, not linked to the scene."""
+    coll = bpy.data.collections.new(name)
+    me_ob = pt.add_cube(bpy.context.scene, "Src", size=0.4, material=white_emission())
+    scene.collection.objects.unlink(me_ob)
+    coll.objects.link(me_ob)
+    return coll, me_ob
+
+
+def test_collection_instances(scene, tmp_path):
+    ortho_top_camera(scene)
+    pt.set_world(scene, (0, 0, 0))
+    coll, _ = _instance_source(scene)
+    for i, x in enumerate((-1.2, 0.0, 1.2)):
+        empty = bpy.data.objects.new("Instancer%d" % i, None)
+        empty.instance_type = "COLLECTION"
+        empty.instance_collection = coll
+        empty.location = (x, 0.5 * i - 0.5, 0)
+        scene.collection.objects.link(empty)
+    ctx = export(scene)
+    assert ctx.stats["instances"] == 3
+    assert ctx.stats["meshes"] == 1, "collection instances should share one mesh"
+    p, c = silhouettes(scene, tmp_path)
+    covered = assert_same_silhouette(p, c, what="collection instances")
+    assert covered == pytest.approx(3 * (0.4 * 16) ** 2, rel=0.2)
+
+
+def _geometry_nodes_instancer(scene, count):
+    """An object whose geometry nodes put `count` cubes on a mesh line (instances, not realized)."""
+    base = pt.add_plane(scene, "GN", size=0.1)
+    mod = base.modifiers.new("GN", "NODES")
+    tree = bpy.data.node_groups.new("Instancer", "GeometryNodeTree")
+    # Blender 3.4: interface sockets live on the tree itself.
+    tree.inputs.new("NodeSocketGeometry", "Geometry")
+    tree.outputs.new("NodeSocketGeometry", "Geometry")
+    nodes, links = tree.nodes, tree.links
+    gin = nodes.new("NodeGroupInput")
+    gout = nodes.new("NodeGroupOutput")
+    line = nodes.new("GeometryNodeMeshLine")
+    line.mode = "OFFSET"
+    line.inputs["Count"].default_value = count
+    line.inputs["Start Location"].default_value = (-1.5, 0.0, 0.0)
+    line.inputs["Offset"].default_value = (3.0 / max(count - 1, 1), 0.0, 0.0)
+    cube = nodes.new("GeometryNodeMeshCube")
+    cube.inputs["Size"].default_value = (0.3, 0.3, 0.3)
+    setmat = nodes.new("GeometryNodeSetMaterial")
+    setmat.inputs["Material"].default_value = white_emission("GN Emission")
+    iop = nodes.new("GeometryNodeInstanceOnPoints")
+    links.new(cube.outputs["Mesh"], setmat.inputs["Geometry"])
+    links.new(line.outputs["Mesh"], iop.inputs["Points"])
+    links.new(setmat.outputs["Geometry"], iop.inputs["Instance"])
+    links.new(iop.outputs["Instances"], gout.inputs[0])
+    mod.node_group = tree
+    return base
+
+
+def test_geometry_nodes_instances(scene, tmp_path):
+    ortho_top_camera(scene)
+    pt.set_world(scene, (0, 0, 0))
+    _geometry_nodes_instancer(scene, 5)
+    ctx = export(scene)
+    assert ctx.stats["instances"] == 5
+    assert ctx.stats["meshes"] == 1, "geometry-nodes instances of one geometry should share a mesh"
+    p, c = silhouettes(scene, tmp_path)
+    covered = assert_same_silhouette(p, c, what="geometry-nodes instances")
+    assert covered == pytest.approx(5 * (0.3 * 16) ** 2, rel=0.25)
+
+
+def _particle_instancer(scene, count):
+    target = pt.add_cube(scene, "Particle", size=0.15, location=(50, 50, 50),
+                         material=white_emission("Particle Emission"))
+    emitter = pt.add_plane(scene, "Emitter", size=3.0)
+    emitter.modifiers.new("Particles", "PARTICLE_SYSTEM")
+    ps = emitter.particle_systems[0].settings
+    ps.count = count
+    ps.frame_start = ps.frame_end = 1
+    ps.lifetime = 1000
+    ps.emit_from = "FACE"
+    ps.physics_type = "NO"
+    ps.render_type = "OBJECT"
+    ps.instance_object = target
+    ps.particle_size = 1.0
+    ps.use_rotation_instance = False
+    emitter.show_instancer_for_render = False
+    return emitter, target
+
+
+def test_particle_instances(scene, tmp_path):
+    ortho_top_camera(scene)
+    pt.set_world(scene, (0, 0, 0))
+    scene.frame_set(1)
+    _particle_instancer(scene, 12)
+    ctx = export(scene)
+    # 12 particles + the instanced object itself (far out of view); the
+    # emitter is hidden by show_instancer_for_render.
+    assert ctx.stats["instances"] == 13
+    assert ctx.stats["meshes"] == 1
+    p, c = silhouettes(scene, tmp_path)
+    assert_same_silhouette(p, c, what="particle instances")
+
+
+def test_hidden_objects_not_exported(scene):
+    ortho_top_camera(scene)
+    pt.add_cube(scene, "Shown")
+    hidden = pt.add_cube(scene, "Hidden", location=(2, 0, 0))
+    hidden.hide_render = True
+    ctx = export(scene)
+    assert ctx.stats["instances"] == 1
+
+
+def test_material_slots(scene, tmp_path):
+    """Two faces of one mesh with two materials render with their own colours."""
+    ortho_top_camera(scene, scale=2.0)
+    pt.set_world(scene, (0, 0, 0))
+    me = bpy.data.meshes.new("TwoSlots")
+    me.from_pydata([(-1, -1, 0), (0, -1, 0), (0, 1, 0), (-1, 1, 0), (1, -1, 0), (1, 1, 0)], [],
+                   [(0, 1, 2, 3), (1, 4, 5, 2)])
+    me.materials.append(pt.emission("Red", (1, 0, 0), 1.0))
+    me.materials.append(pt.emission("Green", (0, 1, 0), 1.0))
+    me.polygons[1].material_index = 1
+    ob = bpy.data.objects.new("TwoSlots", me)
+    scene.collection.objects.link(ob)
+    pt.configure_output(scene, 32, 32)
+    pt.configure_phos(scene, 8, max_bounces=0)
+    img = pt.render_array(scene, tmp_path, "PHOS")
+    left, right = img[8:24, 2:12, :3].mean(axis=(0, 1)), img[8:24, 20:30, :3].mean(axis=(0, 1))
+    assert left == pytest.approx((1, 0, 0), abs=0.02)
+    assert right == pytest.approx((0, 1, 0), abs=0.02)
+
+
+# ----------------------------------------------------------------- camera
+
+CAMERA_CASES = {
+    # name: (resolution, camera data settings)
+    "persp": ((64, 64), {}),
+    "persp_shift": ((64, 64), {"shift_x": 0.15, "shift_y": -0.1}),
+    "persp_fit_vertical_landscape": ((96, 48), {"sensor_fit": "VERTICAL", "sensor_height": 24.0}),
+    "persp_fit_horizontal_portrait": ((48, 96), {"sensor_fit": "HORIZONTAL", "sensor_width": 30.0}),
+    "persp_fit_auto_portrait": ((48, 96), {"sensor_fit": "AUTO"}),
+    "ortho": ((64, 64), {"type": "ORTHO", "ortho_scale": 5.0}),
+    "ortho_shift_landscape": ((96, 48), {"type": "ORTHO", "ortho_scale": 6.0, "shift_x": -0.1,
+                                         "shift_y": 0.05}),
+}
+
+
+@pytest.mark.parametrize("case", list(CAMERA_CASES))
+def test_camera_projection(case, scene, tmp_path):
+    """A small emissive sphere appears where Blender's camera projection puts it."""
+    (w, h), settings = CAMERA_CASES[case]
+    cam = pt.add_camera(scene, location=(0.3, -6.0, 1.0), target=(0.0, 0.0, 0.3), lens=40.0)
+    for k, v in settings.items():
+        setattr(cam.data, k, v)
+    pt.set_world(scene, (0, 0, 0))
+    target = (0.7, 0.4, 0.8)
+    pt.add_sphere(scene, "Dot", radius=0.08, location=target, material=white_emission(),
+                  segments=24, rings=12)
+    pt.configure_output(scene, w, h)
+    pt.configure_phos(scene, 32, max_bounces=0)
+    img = pt.render_array(scene, tmp_path, "PHOS")
+    assert img.shape[:2] == (h, w)
+    lum = img[..., :3].sum(axis=2)
+    assert lum.sum() > 0, "the dot is not in the image"
+    ys, xs = np.mgrid[0:h, 0:w]
+    cx = (lum * (xs + 0.5)).sum() / lum.sum()
+    cy = (lum * (ys + 0.5)).sum() / lum.sum()
+    ex, ey = pt.project(scene, target)
+    assert 2 < ex < w - 2 and 2 < ey < h - 2, "test setup: the dot should be inside the frame"
+    assert (cx, cy) == pytest.approx((ex, ey), abs=0.25), (
+        "dot centroid at (%.2f, %.2f), Blender projects it to (%.2f, %.2f)" % (cx, cy, ex, ey))
+
+
+def test_resolution_percentage(scene, tmp_path):
+    pt.add_camera(scene)
+    pt.add_sphere(scene, material=white_emission())
+    pt.configure_output(scene, 64, 48, percentage=50)
+    pt.configure_phos(scene, 4, max_bounces=0)
+    img = pt.render_array(scene, tmp_path, "PHOS")
+    assert img.shape[:2] == (24, 32)
+    assert img[..., :3].max() > 0.5
+
+
+# ----------------------------------------------------------------- lights
+
+LIGHT_CASES = {
+    "point": ("POINT", 300.0, {"shadow_soft_size": 0.2}),
+    "spot": ("SPOT", 600.0, {"spot_size": math.radians(60), "spot_blend": 0.2}),
+    "sun": ("SUN", 3.0, {"angle": math.radians(5)}),
+    "area_square": ("AREA", 200.0, {"shape": "SQUARE", "size": 1.0}),
+    "area_rectangle": ("AREA", 200.0, {"shape": "RECTANGLE", "size": 1.0, "size_y": 0.4}),
+    "area_disk": ("AREA", 200.0, {"shape": "DISK", "size": 1.0}),
+    "area_ellipse": ("AREA", 200.0, {"shape": "ELLIPSE", "size": 1.0, "size_y": 0.4}),
+}
+
+
+@pytest.mark.parametrize("case", list(LIGHT_CASES))
+def test_light_produces_light(case, scene, tmp_path):
+    kind, energy, props = LIGHT_CASES[case]
+    pt.add_camera(scene, location=(0, -4, 3), target=(0, 0, 0))
+    pt.add_plane(scene, "Floor", size=6.0, material=pt.diffuse("Floor", (0.8, 0.8, 0.8)))
+    pt.set_world(scene, (0, 0, 0))
+    pt.add_light(scene, kind, energy, location=(0.5, -0.5, 3.0), target=(0, 0, 0), **props)
+    ctx = export(scene)
+    assert ctx.stats["lights"] == 1
+    assert not ctx.warnings, ctx.warnings
+    pt.configure_output(scene, 32, 32)
+    pt.configure_phos(scene, 16, max_bounces=1)
+    pt.configure_cycles(scene, 16, max_bounces=1)
+    p = pt.render_array(scene, tmp_path, "PHOS")[..., :3].mean()
+    c = pt.render_array(scene, tmp_path, "CYCLES")[..., :3].mean()
+    assert p > 1e-3, "no light from a %s light" % case
+    assert p == pytest.approx(c, rel=0.1), "Phos mean %.4f, Cycles %.4f" % (p, c)
+
+
+def test_zero_energy_light_skipped(scene):
+    pt.add_camera(scene)
+    pt.add_light(scene, "POINT", 0.0)
+    pt.add_light(scene, "POINT", 10.0, location=(1, 1, 1))
+    assert export(scene).stats["lights"] == 1
+
+
+# -------------------------------------------------------------- materials
+
+def _closure_types(closures):
+    return [c.type for c in closures]
+
+
+def test_material_closures(scene):
+    """Each supported node becomes the expected closures, without warnings."""
+    from phos import core as C
+    import parity_scenes as ps
+
+    expected = {
+        "diffuse": [C.PHOS_CLOSURE_DIFFUSE],
+        "glossy_sharp": [C.PHOS_CLOSURE_REFLECTION],
+        "glossy_ggx_r0.3": [C.PHOS_CLOSURE_REFLECTION],
+        "glass_sharp": [C.PHOS_CLOSURE_GLASS],
+        "glass_ggx": [C.PHOS_CLOSURE_GLASS],
+        "refraction": [C.PHOS_CLOSURE_REFRACTION],
+        "emission": [C.PHOS_CLOSURE_EMISSION],
+        "transparent": [C.PHOS_CLOSURE_TRANSPARENT],
+        "mix_0.3": [C.PHOS_CLOSURE_DIFFUSE, C.PHOS_CLOSURE_REFLECTION],
+        "add": [C.PHOS_CLOSURE_DIFFUSE, C.PHOS_CLOSURE_REFLECTION],
+        "image_texture": [C.PHOS_CLOSURE_DIFFUSE],
+    }
+    results = {}
+    for name, types in expected.items():
+        sc = pt.reset_file()
+        ps.MATERIAL_SCENES[name](sc)
+        mat = bpy.data.objects["Sphere"].active_material
+        closures, warnings = closures_of(sc, mat)
+        results[name] = closures
+        assert _closure_types(closures) == types, name
+        assert not warnings, "%s: %s" % (name, warnings)
+
+    def only(name):
+        return results[name][0]
+    assert only("glossy_sharp").roughness == 0.0
+    assert only("glossy_ggx_r0.3").roughness == pytest.approx(0.3)
+    assert only("glass_sharp").ior == pytest.approx(1.5) and only("glass_sharp").roughness == 0.0
+    assert only("glass_ggx").roughness == pytest.approx(0.2)
+    assert only("refraction").ior == pytest.approx(1.45)
+    assert tuple(only("emission").weight) == pytest.approx((3.0, 1.5, 0.6))  # colour × strength
+    assert tuple(only("transparent").weight) == pytest.approx((0.7, 0.9, 0.7))
+    mix = results["mix_0.3"]
+    assert tuple(mix[0].weight) == pytest.approx(tuple(0.7 * np.array((0.8, 0.2, 0.2))))
+    assert tuple(mix[1].weight) == pytest.approx(tuple(0.3 * np.array((0.9, 0.9, 0.9))))
+    assert results["image_texture"][0].image is not None
+
+
+def test_principled_closures(scene):
+    from phos import core as C
+    mat = pt.node_material("P", "ShaderNodeBsdfPrincipled")
+    types = _closure_types(closures_of(scene, mat)[0])
+    assert C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE in types
+    assert C.PHOS_CLOSURE_REFLECTION_FRESNEL in types
+    assert C.PHOS_CLOSURE_GLASS not in types
+
+    metal = pt.node_material("M", "ShaderNodeBsdfPrincipled",
+                             {"Base Color": (0.9, 0.6, 0.3), "Metallic": 1.0})
+    closures = closures_of(scene, metal)[0]
+    assert C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE not in _closure_types(closures)
+    spec = [c for c in closures if c.type == C.PHOS_CLOSURE_REFLECTION_FRESNEL]
+    assert spec and tuple(spec[0].specular_color) == pytest.approx((0.9, 0.6, 0.3), abs=1e-3)
+
+    glass = pt.node_material("T", "ShaderNodeBsdfPrincipled", {"Transmission": 1.0})
+    types = _closure_types(closures_of(scene, glass)[0])
+    assert C.PHOS_CLOSURE_GLASS in types
+    assert C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE not in types
+
+
+def test_mesh_without_uv_map_samples_texture_at_origin(scene, tmp_path):
+    """Cycles reads UV (0, 0) on a mesh without a UV map: the texture's corner colour."""
+    pt.add_camera(scene, location=(0, -4, 0), target=(0, 0, 0))
+    pt.set_world(scene, (0, 0, 0))
+    img = pt.checker_image(os.path.join(str(tmp_path), "chk.png"), size=16, squares=4,
+                           colors=((1.0, 0.0, 0.0), (0.0, 0.0, 1.0)))
+    mat = bpy.data.materials.new("Tex Emission")
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    em = nt.nodes.new("ShaderNodeEmission")
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    tex.interpolation = "Closest"
+    nt.links.new(tex.outputs["Color"], em.inputs["Color"])
+    nt.links.new(em.outputs[0], out.inputs["Surface"])
+    pt.add_sphere(scene, "NoUV", radius=1.0, material=mat, uv=False)
+    assert not bpy.data.objects["NoUV"].data.uv_layers
+    pt.configure_output(scene, 32, 32)
+    pt.configure_phos(scene, 8, max_bounces=0)
+    pt.configure_cycles(scene, 8, max_bounces=0)
+    p = pt.render_array(scene, tmp_path, "PHOS")[12:20, 12:20, :3].mean(axis=(0, 1))
+    c = pt.render_array(scene, tmp_path, "CYCLES")[12:20, 12:20, :3].mean(axis=(0, 1))
+    assert tuple(c) == pytest.approx((1.0, 0.0, 0.0), abs=0.02), "test setup: Cycles reference"
+    assert tuple(p) == pytest.approx(tuple(c), abs=0.05), (
+        "Phos %s, Cycles %s: a mesh without UV map must read UV (0,0)" % (p, c))
+
+
+# --------------------------------------------------------------- warnings
+
+UNSUPPORTED_SCRIPT = r'''
+import bpy, phostest as pt
+sc = pt.reset_file()
+assert pt.addon_enabled()
+pt.add_camera(sc)
+mat = pt.node_material("Cartoon Paint", "ShaderNodeBsdfToon", {"Color": (0.2, 0.6, 0.2)})
+mat.node_tree.nodes["Toon BSDF"].name = "My Toon Node"
+pt.add_sphere(sc, "A", material=mat, location=(-0.6, 0, 0.5))
+pt.add_sphere(sc, "B", material=mat, location=(0.6, 0, 0.5))   # same material twice
+pt.add_plane(sc, "Floor", size=4, material=pt.diffuse("Fine", (0.5, 0.5, 0.5)))
+pt.add_light(sc, "SUN", 3.0, location=(1, -1, 3))
+pt.configure_output(sc, 16, 16)
+pt.configure_phos(sc, 2)
+sc.render.engine = "PHOS"
+bpy.ops.render.render()
+print("RENDER DONE")
+'''
+
+
+def test_unsupported_node_warns_once_in_export(scene):
+    pt.add_camera(scene)
+    mat = pt.node_material("Cartoon Paint", "ShaderNodeBsdfToon", {"Color": (0.2, 0.6, 0.2)})
+    pt.add_sphere(scene, "A", material=mat, location=(-0.6, 0, 0))
+    pt.add_sphere(scene, "B", material=mat, location=(0.6, 0, 0))
+    warnings = export(scene).warnings
+    assert len(warnings) == 1, warnings
+    assert "Cartoon Paint" in warnings[0] and "Toon BSDF" in warnings[0]
+
+
+def test_unsupported_node_report(tmp_path):
+    """In a real render the warning reaches Blender's report exactly once."""
+    rc, out = pt.run_script(UNSUPPORTED_SCRIPT, tmp_path)
+    assert rc == 0, out[-3000:]
+    assert "RENDER DONE" in out
+    warning_lines = [line for line in out.splitlines() if line.startswith("Warning:")]
+    ours = [line for line in warning_lines if "Cartoon Paint" in line]
+    assert len(ours) == 1, "warnings naming the material: %s" % ours
+    assert "My Toon Node" in ours[0], ours[0]
+    assert not [line for line in out.splitlines() if line.startswith("Error:")], out[-3000:]

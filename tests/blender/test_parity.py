@@ -1,0 +1,141 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Phos (PATH) against Cycles on small scenes: one per light type, one per
+supported material node (scenes in parity_scenes.py).
+
+Each scene is rendered four times: Phos with seeds 1 and 2 (P1, P2) and
+Cycles with seeds 1 and 2 (C1, C2), at the same resolution, samples, max
+bounces and pixel filter (Blackman-Harris, 1.5 px), Cycles without clamping,
+glossy blur, denoising or adaptive sampling. Two assertions:
+
+(a) Brightness. For each RGB channel, the image mean of Phos (both seeds)
+    is within 2 % of that of Cycles: |mean(P) − mean(C)| / mean(C) < 0.02
+    (a channel far darker than the brightest one is compared relative to
+    5 % of the brightest channel's mean, so near-zero channels don't divide
+    by ~0).
+
+(b) Per-pixel agreement, with a tolerance taken from the measured noise.
+    Model each render as X = μ_X + ε_X per pixel, the ε of different renders
+    independent with zero mean. For a matched pair (P_i, C_i):
+        E[(P_i − C_i)²] = (μ_P − μ_C)² + Var_P + Var_C,
+    so without bias (μ_P = μ_C at every pixel)
+        E[D] = mean(Var_P + Var_C),  D = mean over pixels, channels and the
+        two pairs (P1,C1), (P2,C2) of (P_i − C_i)².
+    Two renders of one engine with different seeds share μ, so
+        E[(P1 − P2)²] = 2 Var_P,   E[(C1 − C2)²] = 2 Var_C,
+    and V = ½·mean((P1 − P2)²) + ½·mean((C1 − C2)²) is an unbiased
+    estimate of E[D] under no bias. Any per-pixel bias b adds mean(b²) to D
+    but not to V. The test asserts
+        D ≤ 1.3·V + 1e-6·mean(C)²,
+    i.e. the squared per-pixel difference between the engines is at most
+    30 % more than their combined noise (the 1e-6 term covers noise-free
+    scenes). Both D and V come from the same four renders, so the tolerance
+    follows the estimator noise of each scene.
+
+A table of the ratios (a) and D/V (b) is printed at the end of the session.
+"""
+
+import time
+
+import bpy
+import numpy as np
+import pytest
+
+import parity_scenes
+import phostest as pt
+
+# Statistical power of (b): under no bias D − V = mean((P1 − C2)(P2 − C1))
+# (the squared terms cancel), whose spread relative to V is about
+# 1/sqrt(number of pixels carrying the noise) and nearly independent of the
+# samples per pixel. So for a given cost, more pixels with fewer samples make
+# D/V tighter: Cycles against itself on the glass_ggx scene spreads D/V over
+# 0.69–1.45 at 32² × 1024 spp, 0.76–1.16 at 48² × 256, 0.93–1.10 at
+# 96² × 128 (8 draws each). (a) depends on the total sample count only.
+RESOLUTION = (96, 96)
+SAMPLES = 128
+MAX_BOUNCES = 8
+SEEDS = (1, 2)
+MEAN_TOLERANCE = 0.02
+NOISE_FACTOR = 1.3
+ABS_FLOOR = 1e-6
+
+ROWS = pt.PARITY_ROWS  # printed by conftest.pytest_terminal_summary
+
+
+def _render_pair(scene, tmp_path, engine, seed):
+    if engine == "PHOS":
+        pt.configure_phos(scene, SAMPLES, MAX_BOUNCES, seed=seed)
+    else:
+        pt.configure_cycles(scene, SAMPLES, MAX_BOUNCES, seed=seed)
+    t0 = time.time()
+    img = pt.render_array(scene, tmp_path, engine=engine, name="%s_%d" % (engine, seed))
+    return img[..., :3].astype(np.float64), time.time() - t0
+
+
+def compare(name, scene, tmp_path):
+    pt.configure_output(scene, *RESOLUTION)
+    pt.configure_threads(scene, None)
+    P, C, times = [], [], {"PHOS": 0.0, "CYCLES": 0.0}
+    for seed in SEEDS:
+        img, t = _render_pair(scene, tmp_path, "PHOS", seed)
+        P.append(img)
+        times["PHOS"] += t
+        img, t = _render_pair(scene, tmp_path, "CYCLES", seed)
+        C.append(img)
+        times["CYCLES"] += t
+
+    assert P[0].shape == C[0].shape, "Phos image %s, Cycles %s" % (P[0].shape, C[0].shape)
+    assert np.all(np.isfinite(P[0])) and np.all(np.isfinite(P[1])), "Phos produced NaN/inf pixels"
+
+    # (a) channel means
+    mean_p = 0.5 * (P[0] + P[1]).reshape(-1, 3).mean(axis=0)
+    mean_c = 0.5 * (C[0] + C[1]).reshape(-1, 3).mean(axis=0)
+    denom = np.maximum(mean_c, 0.05 * mean_c.max())
+    rel = (mean_p - mean_c) / denom
+
+    # (b) per-pixel squared differences against the noise
+    D = 0.5 * (np.mean((P[0] - C[0]) ** 2) + np.mean((P[1] - C[1]) ** 2))
+    var_p = 0.5 * np.mean((P[0] - P[1]) ** 2)
+    var_c = 0.5 * np.mean((C[0] - C[1]) ** 2)
+    V = var_p + var_c
+    bound = NOISE_FACTOR * V + ABS_FLOOR * float(mean_c.mean()) ** 2
+    ratio = D / V if V > 0 else float("inf")
+
+    ROWS.append({
+        "scene": name, "mean_c": mean_c.mean(), "rel": rel, "ratio": ratio,
+        "noise_ratio": var_p / var_c if var_c > 0 else float("inf"),
+        "t_phos": times["PHOS"], "t_cycles": times["CYCLES"],
+    })
+
+    assert mean_c.max() > 1e-3, "the Cycles reference is black: the scene is broken"
+    assert not np.array_equal(C[0], C[1]), "Cycles ignored its seed"
+    assert not np.array_equal(P[0], P[1]), "Phos rendered the same image for seeds 1 and 2"
+    assert np.all(np.abs(rel) < MEAN_TOLERANCE), (
+        "%s: channel means differ: Phos %s, Cycles %s, relative %s (tolerance %.0f %%)"
+        % (name, np.round(mean_p, 5), np.round(mean_c, 5), np.round(rel, 4), MEAN_TOLERANCE * 100))
+    assert D <= bound, (
+        "%s: per-pixel mean squared difference D=%.3g exceeds %.1f x the noise V=%.3g "
+        "(D/V=%.2f; Var_Phos=%.3g, Var_Cycles=%.3g)"
+        % (name, D, NOISE_FACTOR, V, ratio, var_p, var_c))
+
+
+@pytest.mark.parametrize("name", list(parity_scenes.LIGHT_SCENES))
+def test_light(name, scene, tmp_path):
+    parity_scenes.LIGHT_SCENES[name](scene)
+    compare("light/" + name, scene, tmp_path)
+
+
+@pytest.mark.parametrize("name", list(parity_scenes.MATERIAL_SCENES))
+def test_material(name, scene, tmp_path):
+    parity_scenes.MATERIAL_SCENES[name](scene)
+    compare("material/" + name, scene, tmp_path)
+
+
+def format_table(rows):
+    lines = ["%-34s %9s %8s %8s %8s %7s %7s %7s %7s"
+             % ("scene", "mean(C)", "dR", "dG", "dB", "D/V", "VP/VC", "t_phos", "t_cyc")]
+    for r in rows:
+        lines.append("%-34s %9.4f %+7.2f%% %+7.2f%% %+7.2f%% %7.2f %7.2f %6.1fs %6.1fs"
+                     % (r["scene"], r["mean_c"], *(100 * r["rel"]), r["ratio"], r["noise_ratio"],
+                        r["t_phos"], r["t_cycles"]))
+    lines.append("limits: |d| < %.0f %%, D/V <= %.2f" % (MEAN_TOLERANCE * 100, NOISE_FACTOR))
+    return "\n".join(lines)

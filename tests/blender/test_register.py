@@ -1,0 +1,174 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Registration of the add-on: engine, properties, panels, re-registration."""
+
+import addon_utils
+import bpy
+import pytest
+
+import phostest as pt
+
+# Built-in panels Phos must reuse (engine-independent settings).
+REQUIRED_BUILTIN_PANELS = (
+    "RENDER_PT_format",
+    "RENDER_PT_frame_range",
+    "RENDER_PT_output",
+    "RENDER_PT_color_management",
+    "RENDER_PT_stamp",
+    "DATA_PT_context_camera",
+    "DATA_PT_lens",
+    "DATA_PT_camera",
+    "DATA_PT_context_light",
+    "OBJECT_PT_visibility",
+)
+# EEVEE-only panels: they show settings Phos ignores (light specular factor,
+# shadow maps...), so they must not appear for Phos.
+EEVEE_ONLY_PANELS = ("DATA_PT_EEVEE_light", "DATA_PT_EEVEE_shadow", "RENDER_PT_eevee_sampling")
+
+
+def _enable(name=pt.ADDON_NAME):
+    errors = []
+    mod = addon_utils.enable(name, default_set=True, handle_error=errors.append)
+    assert not errors, "enable raised: %r" % errors
+    assert mod is not None
+    return mod
+
+
+def _disable(name=pt.ADDON_NAME):
+    errors = []
+    addon_utils.disable(name, default_set=True, handle_error=errors.append)
+    assert not errors, "disable raised: %r" % errors
+
+
+def _panels_with(engine):
+    out = []
+    for name in dir(bpy.types):
+        cls = getattr(bpy.types, name, None)
+        engines = getattr(cls, "COMPAT_ENGINES", None)
+        if isinstance(engines, set) and engine in engines:
+            out.append(cls)
+    return out
+
+
+def test_engine_registered_and_selectable(scene):
+    assert "PHOS" in pt.engine_ids()
+    scene.render.engine = "PHOS"
+    assert scene.render.engine == "PHOS"
+    engine_cls = next(c for c in bpy.types.RenderEngine.__subclasses__()
+                      if c.bl_idname == "PHOS" and c.is_registered)
+    assert engine_cls.bl_label
+    # BLENDER.md: the standard shader nodes must stay visible, previews on.
+    assert engine_cls.bl_use_shading_nodes_custom is False
+    assert engine_cls.bl_use_preview is True
+
+
+def test_disable_enable_enable(scene):
+    """unregister → register → register (enable on an enabled add-on re-registers)."""
+    _disable()
+    assert "PHOS" not in pt.engine_ids()
+    assert not hasattr(bpy.types.Scene, "phos")
+    with pytest.raises(TypeError):
+        bpy.context.scene.render.engine = "PHOS"
+    assert not _panels_with("PHOS"), "panels still list PHOS after unregister: %s" % [
+        c.__name__ for c in _panels_with("PHOS")]
+    _enable()
+    _enable()  # addon_utils calls unregister() then register() again
+    assert "PHOS" in pt.engine_ids()
+    assert hasattr(bpy.types.Scene, "phos")
+    sc = bpy.context.scene
+    sc.render.engine = "PHOS"
+    assert sc.phos.samples >= 1
+    # Still exactly one engine class and no duplicated panels.
+    assert sum(1 for c in bpy.types.RenderEngine.__subclasses__()
+               if c.bl_idname == "PHOS" and c.is_registered) == 1
+    names = [c.__name__ for c in _panels_with("PHOS")]
+    assert len(names) == len(set(names))
+
+
+def test_disable_twice_and_reenable(scene):
+    _disable()
+    _disable()  # harmless on a disabled add-on
+    _enable()
+    assert "PHOS" in pt.engine_ids()
+
+
+def _settings_rna():
+    return bpy.types.Scene.bl_rna.properties["phos"].fixed_type
+
+
+def test_scene_properties_and_defaults(scene):
+    p = scene.phos
+    for name in ("integrator", "samples", "preview_samples", "seed", "max_bounces",
+                 "filter_width", "tile_size"):
+        assert hasattr(p, name), "scene.phos.%s missing" % name
+    props = _settings_rna().properties
+    # A fresh scene holds the declared defaults.
+    for name in ("integrator", "samples", "preview_samples", "seed", "max_bounces",
+                 "filter_width", "tile_size"):
+        assert getattr(p, name) == props[name].default, name
+    # Defaults the design fixes.
+    assert p.integrator == "PATH"
+    assert p.filter_width == pytest.approx(1.5)  # like Cycles' filter_width
+    assert p.seed == 0
+    assert p.samples >= 1 and p.preview_samples >= 1
+    assert p.preview_samples <= p.samples
+    assert p.max_bounces >= 1
+    assert props["tile_size"].hard_min >= 8  # phos.h: tile_size >= 8
+    assert props["samples"].hard_min >= 1
+
+
+def test_properties_round_trip(scene):
+    p = scene.phos
+    p.samples, p.preview_samples, p.seed, p.max_bounces = 7, 3, 12345, 4
+    p.filter_width, p.tile_size = 2.0, 32
+    assert (p.samples, p.preview_samples, p.seed, p.max_bounces, p.tile_size) == (7, 3, 12345, 4, 32)
+    assert p.filter_width == pytest.approx(2.0)
+
+
+def test_enum_items_have_explicit_indices(scene):
+    """Saved files store enum indices: every item must carry an explicit, unique one."""
+    settings_cls = type(scene.phos)
+    checked = 0
+    for cls in [settings_cls] + [c for c in bpy.types.PropertyGroup.__subclasses__()
+                                 if c.__module__.startswith(pt.ADDON_NAME)]:
+        for name, prop in getattr(cls, "__annotations__", {}).items():
+            if getattr(prop, "function", None) is not bpy.props.EnumProperty:
+                continue
+            items = prop.keywords.get("items")
+            assert not callable(items), "%s.%s: dynamic items cannot be checked" % (cls.__name__, name)
+            assert all(len(item) >= 4 for item in items), (
+                "%s.%s: items without explicit index: %s" % (cls.__name__, name, items))
+            indices = [item[-1] if len(item) == 4 else item[4] for item in items]
+            assert len(set(indices)) == len(indices), "%s.%s: duplicate indices" % (cls.__name__, name)
+            checked += 1
+    assert checked >= 1, "no EnumProperty found (integrator should be one)"
+    rna_items = _settings_rna().properties["integrator"].enum_items
+    assert rna_items["PATH"].value == 0
+
+
+def test_builtin_panels_list_phos(scene):
+    missing = [n for n in REQUIRED_BUILTIN_PANELS if "PHOS" not in getattr(bpy.types, n).COMPAT_ENGINES]
+    assert not missing, "built-in panels without PHOS: %s" % missing
+
+
+def test_cycles_and_eevee_panels_do_not_list_phos(scene):
+    cycles_panels = [c.__name__ for c in _panels_with("PHOS") if c.__module__.startswith("cycles")]
+    assert not cycles_panels, "Cycles panels list PHOS: %s" % cycles_panels
+    cycles_set = bpy.types.CYCLES_RENDER_PT_sampling.COMPAT_ENGINES
+    assert "PHOS" not in cycles_set
+    eevee = [n for n in EEVEE_ONLY_PANELS if hasattr(bpy.types, n)
+             and "PHOS" in getattr(bpy.types, n).COMPAT_ENGINES]
+    assert not eevee, "EEVEE-only panels list PHOS: %s" % eevee
+
+
+def test_light_settings_drawn_once(scene):
+    """Either Blender's DATA_PT_light or a Phos light panel shows the light for Phos, not both."""
+    light_panels = [c.__name__ for c in _panels_with("PHOS")
+                    if getattr(c, "bl_context", "") == "data" and getattr(c, "bl_label", "") == "Light"]
+    assert len(light_panels) == 1, "light panels for PHOS: %s" % light_panels
+
+
+def test_library_loaded(addon):
+    from phos import core
+    assert core.load() is not None, core.load_error()
+    assert core.load_error() == ""
+    assert core.version_string().startswith("%d.%d." % core.EXPECTED_VERSION)
