@@ -192,6 +192,7 @@ typedef struct phos_light_desc {
     float spot_blend;          /* SPOT smooth edge fraction, [0,1] */
     uint32_t spot_cosine;      /* SPOT: 1 multiplies the intensity by cos(angle to axis) (Cycles < 3.5) */
     float sun_angle;           /* SUN angular diameter, [0, π) */
+    uint32_t camera_visible;   /* 1: camera rays see the light's shape (Blender: Object > Visibility > Camera) */
 } phos_light_desc;
 PHOS_API void phos_light_desc_init(phos_light_desc *desc);
 PHOS_API phos_status phos_scene_add_light(phos_scene *scene, const phos_light_desc *desc,

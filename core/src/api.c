@@ -179,6 +179,7 @@ void phos_light_desc_init(phos_light_desc *d)
     d->spot_angle = 0.785398163f; /* 45°, Blender's default */
     d->spot_blend = 0.15f;
     d->spot_cosine = 0;
+    d->camera_visible = 1;
 }
 
 void phos_world_desc_init(phos_world_desc *d)

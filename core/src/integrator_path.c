@@ -144,13 +144,13 @@ sample_result path_trace(const scene *s, const integrator_settings *is, camera_r
         float t_hit = hit ? h.t : tmax;
 
         light_hit lh;
-        if (lights_intersect(s, o, d, t_hit, &lh)) {
+        if (lights_intersect(s, o, d, t_hit, camera_segment, &lh)) {
             float w = prev_delta ? 1.0f : mis_power_heuristic(prev_pdf, lh.pdf);
             L = v3_add(L, v3_scale(v3_mul(beta, lh.radiance), w));
         }
         if (!hit) {
             if (!(camera_segment && is->transparent_background))
-                L = v3_add(L, v3_mul(beta, lights_escape(s, d, prev_pdf, prev_delta)));
+                L = v3_add(L, v3_mul(beta, lights_escape(s, d, prev_pdf, prev_delta, camera_segment)));
             if (camera_segment && !is->transparent_background)
                 res.alpha = 1.0f;
             break;

@@ -116,6 +116,7 @@ static void light_from_desc(const phos_light_desc *d, light *l)
     l->direction = v3_normalize(v3_load(d->direction));
     l->radius = d->radius;
     l->point_shape = d->point_shape;
+    l->camera_visible = d->camera_visible != 0;
     l->sun_cos_half = 1.0f;
     switch (d->type) {
     case PHOS_LIGHT_POINT:
@@ -221,6 +222,18 @@ phos_status light_table_build(scene *s)
     }
     if (t->count == 0)
         return PHOS_OK;
+    /* Rays test only the lights they can hit, not every emissive triangle. */
+    t->shapes = malloc(sizeof(uint32_t) * t->count);
+    if (!t->shapes)
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    for (uint32_t i = 0; i < t->count; i++) {
+        const light *l = &t->lights[i];
+        int hittable = l->kind == LIGHT_AREA || l->kind == LIGHT_WORLD ||
+                       ((l->kind == LIGHT_POINT || l->kind == LIGHT_SPOT) && l->radius > 0.0f) ||
+                       (l->kind == LIGHT_SUN && l->sun_cos_half < 1.0f);
+        if (hittable)
+            t->shapes[t->shape_count++] = i;
+    }
     float *power = malloc(sizeof(float) * t->count);
     if (!power)
         return PHOS_ERROR_OUT_OF_MEMORY;
@@ -234,6 +247,7 @@ phos_status light_table_build(scene *s)
 void light_table_free(light_table *t)
 {
     free(t->lights);
+    free(t->shapes);
     distribution_free(&t->pick);
     memset(t, 0, sizeof(*t));
     t->world = -1;
@@ -508,12 +522,15 @@ static int intersect_area(const light *l, vec3 o, vec3 d, float tmax, light_hit 
     return 1;
 }
 
-int lights_intersect(const scene *s, vec3 o, vec3 d, float tmax, light_hit *out)
+int lights_intersect(const scene *s, vec3 o, vec3 d, float tmax, int camera_ray, light_hit *out)
 {
     const light_table *tab = &s->lights;
     int found = 0;
-    for (uint32_t i = 0; i < tab->count; i++) {
+    for (uint32_t k = 0; k < tab->shape_count; k++) {
+        uint32_t i = tab->shapes[k];
         const light *l = &tab->lights[i];
+        if (camera_ray && !l->camera_visible)
+            continue;
         light_hit h;
         int hit = 0;
         if (l->kind == LIGHT_POINT || l->kind == LIGHT_SPOT)
@@ -530,12 +547,15 @@ int lights_intersect(const scene *s, vec3 o, vec3 d, float tmax, light_hit *out)
     return found;
 }
 
-vec3 lights_escape(const scene *s, vec3 d, float bsdf_pdf, int bsdf_delta)
+vec3 lights_escape(const scene *s, vec3 d, float bsdf_pdf, int bsdf_delta, int camera_ray)
 {
     const light_table *tab = &s->lights;
     vec3 sum = v3s(0.0f);
-    for (uint32_t i = 0; i < tab->count; i++) {
+    for (uint32_t k = 0; k < tab->shape_count; k++) {
+        uint32_t i = tab->shapes[k];
         const light *l = &tab->lights[i];
+        if (camera_ray && l->kind == LIGHT_SUN && !l->camera_visible)
+            continue;
         vec3 L;
         float pdf;
         if (l->kind == LIGHT_WORLD) {

@@ -41,6 +41,7 @@ typedef struct light {
     int spot_cosine;
     float sun_cos_half;         /* cos(sun_angle / 2); 1 for a delta sun */
     vec3 sun_radiance;          /* W/(m²·sr) inside the sun's cone when sun_angle > 0 */
+    int camera_visible;         /* lamps: seen by camera rays */
     uint32_t instance, prim;    /* TRIANGLE */
     vec3 p0, p1, p2;            /* TRIANGLE corners, world space */
 } light;
@@ -50,6 +51,8 @@ typedef struct light_table {
     uint32_t count;
     distribution pick;          /* by estimated power */
     int32_t world;              /* index of the world light, −1 if black */
+    uint32_t *shapes;           /* indices of lights a ray can hit: lamps with area, suns with an angle, world */
+    uint32_t shape_count;
     vec3 center;                /* bounding sphere of the scene, for distant lights */
     float radius;
 } light_table;
@@ -85,13 +88,14 @@ int light_sample_pick(const struct phos_scene *s, vec3 p, float u_pick, float2 u
  * geometric normal ng. */
 float light_pdf_triangle(const struct phos_scene *s, int32_t index, vec3 p, vec3 x, vec3 ng);
 
-/* Nearest lamp (point, spot, area) along the ray within (0, tmax). */
-int lights_intersect(const struct phos_scene *s, vec3 o, vec3 d, float tmax, light_hit *out);
+/* Nearest lamp (point, spot, area) along the ray within (0, tmax);
+ * camera rays skip lamps hidden from the camera. */
+int lights_intersect(const struct phos_scene *s, vec3 o, vec3 d, float tmax, int camera_ray, light_hit *out);
 
 /* Radiance of the distant lights (world, suns with an angle) seen along an
  * escaping ray, each weighted for MIS against a BSDF sample of pdf
  * bsdf_pdf (no weighting if bsdf_delta). */
-vec3 lights_escape(const struct phos_scene *s, vec3 d, float bsdf_pdf, int bsdf_delta);
+vec3 lights_escape(const struct phos_scene *s, vec3 d, float bsdf_pdf, int bsdf_delta, int camera_ray);
 
 /* Spot attenuation for the direction from the light toward the point. */
 float light_spot_attenuation(const light *l, vec3 dir_from_light);

@@ -51,8 +51,7 @@ void surface_from_hit(const scene *s, uint32_t instance_id, uint32_t prim, float
         out->u = b0 * t[0] + b1 * t[2] + b2 * t[4];
         out->v = b0 * t[1] + b1 * t[3] + b2 * t[5];
     } else {
-        out->u = b1;
-        out->v = b2;
+        out->u = out->v = 0.0f; /* no UV map: Cycles reads (0, 0) */
     }
     out->instance = instance_id;
     out->prim = prim;
@@ -111,7 +110,7 @@ vec3 material_emission_at(const scene *s, uint32_t instance_id, uint32_t prim, f
     const instance *inst = &s->instances[instance_id];
     const mesh *m = &s->meshes[inst->mesh_id];
     const material *mat = scene_instance_material(s, inst, mesh_triangle_slot(m, prim));
-    float u = b1, v = b2;
+    float u = 0.0f, v = 0.0f;
     if (m->uvs) {
         const float *t = m->uvs + 6 * (size_t)prim;
         float b0 = 1.0f - b1 - b2;

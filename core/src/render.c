@@ -65,12 +65,16 @@ int render_make_tiles(render *r)
     return 1;
 }
 
-static void render_pixel(render *r, uint32_t x, uint32_t y)
+/* Renders one pixel; returns 0 if cancelled part-way (checked every 64
+ * samples, so even pixels of millions of samples stop at once). */
+static int render_pixel(render *r, uint32_t x, uint32_t y)
 {
     const phos_render_settings *rs = &r->settings;
     const scene *s = r->scene;
     double sum[4] = {0.0, 0.0, 0.0, 0.0};
     for (uint32_t i = 0; i < rs->samples; i++) {
+        if ((i & 63u) == 63u && atomic_load_explicit(&r->cancel, memory_order_relaxed))
+            return 0;
         sampler smp = sampler_for_pixel(rs->seed, x, y, i);
         float2 uf = sampler_2d(&smp, DIM_FILM);
         float fx = ((float)x + 0.5f + pixel_filter_sample(&r->filter, uf.x)) / (float)rs->width;
@@ -90,6 +94,7 @@ static void render_pixel(render *r, uint32_t x, uint32_t y)
     double inv = 1.0 / (double)rs->samples;
     for (int c = 0; c < 4; c++)
         px[c] = (float)(sum[c] * inv);
+    return 1;
 }
 
 /* Renders one tile; returns 0 if cancelled before it was complete. */
@@ -97,9 +102,8 @@ static int render_tile(render *r, const phos_tile *t)
 {
     for (uint32_t y = t->y; y < t->y + t->height; y++) {
         for (uint32_t x = t->x; x < t->x + t->width; x++) {
-            if (atomic_load_explicit(&r->cancel, memory_order_relaxed))
+            if (atomic_load_explicit(&r->cancel, memory_order_relaxed) || !render_pixel(r, x, y))
                 return 0;
-            render_pixel(r, x, y);
         }
     }
     return 1;
