@@ -176,6 +176,9 @@ def build(scene, scale=DEFAULT_SCALE):
     light.energy = LIGHT_POWER_W * (scale / DEFAULT_SCALE) ** 2
     light.color = (1.0, 1.0, 1.0)
     light_ob = bpy.data.objects.new("Ceiling Light", light)
+    # The patch is seen by the camera, as in the photographs. (A light object
+    # made from Python is invisible to camera rays by default in 3.4.)
+    light_ob.visible_camera = True
     light_ob.location = to_blender(((max(xs) + min(xs)) / 2, LIGHT[0][1] - LIGHT_DROP_MM,
                                     (max(zs) + min(zs)) / 2), scale)
     scene.collection.objects.link(light_ob)

@@ -179,6 +179,7 @@ class phos_light_desc(ctypes.Structure):
         ("spot_blend", _f),
         ("spot_cosine", _u32),
         ("sun_angle", _f),          # angular diameter, radians
+        ("camera_visible", _u32),   # 1: camera rays see the light's shape
     ]
 
 

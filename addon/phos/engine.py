@@ -109,11 +109,11 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         if camera_object is None:
             raise core.PhosError("the scene has no active camera")
 
-        self.update_stats("", "Phos | Exporting")
+        self._stats("Phos | Exporting", force=True)
         t0 = time.perf_counter()
         with core.Scene() as core_scene:
             def progress(done, total):
-                self.update_stats("", "Phos | Exporting | Object %d/%d" % (done, total))
+                self._stats("Phos | Exporting | Object %d/%d" % (done, total), force=done == total)
 
             ctx = export.export_scene(
                 depsgraph, core_scene, camera_object,
@@ -124,14 +124,14 @@ class PhosRenderEngine(bpy.types.RenderEngine):
                     self.report({'WARNING'}, message)
             if self.test_break():
                 return
-            self.update_stats("", "Phos | Building acceleration structures")
+            self._stats("Phos | Building acceleration structures", force=True)
             core_scene.commit()
-            t_export = time.perf_counter() - t0
-            s = ctx.stats
-            print("Phos: exported %d instances of %d meshes (%d triangles), %d lights, "
-                  "%d materials, %d images in %.2f s"
-                  % (s["instances"], s["meshes"], s["triangles"], s["lights"],
-                     s["materials"], s["images"], t_export))
+            if not self.is_preview:
+                s = ctx.stats
+                print("Phos: exported %d instances of %d meshes (%d triangles), %d lights, "
+                      "%d materials, %d images in %.2f s"
+                      % (s["instances"], s["meshes"], s["triangles"], s["lights"],
+                         s["materials"], s["images"], time.perf_counter() - t0))
 
             rs = core.new_render_settings()
             rs.integrator = INTEGRATORS.get(settings.integrator, core.PHOS_INTEGRATOR_PATH)
@@ -183,19 +183,23 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             self.update_progress(1.0)
 
     def _show_progress(self, progress, rs, final=False):
-        """Progress bar and stats line; changed text only, and sparingly in -b.
-
-        In background mode Blender prints every stats update as a line, so
-        there it is limited to one line per STATS_SECONDS_BACKGROUND.
-        """
+        """Progress bar and the stats line of the render."""
         self.update_progress(min(max(progress.fraction, 0.0), 1.0))
         stage = progress.stage.decode("utf-8", "replace") or "Rendering"
-        text = "Phos | %s | Sample %d | Tile %d/%d" % (
-            stage, progress.samples or rs.samples, progress.tiles_done, progress.tiles_total)
-        now = time.monotonic()
+        self._stats("Phos | %s | Sample %d | Tile %d/%d" % (
+            stage, progress.samples or rs.samples, progress.tiles_done, progress.tiles_total),
+            force=final)
+
+    def _stats(self, text, force=False):
+        """update_stats with changed text only, and sparingly in background mode.
+
+        `blender -b` prints every stats update as a line, so there it is
+        limited to one line per STATS_SECONDS_BACKGROUND unless forced.
+        """
         if text == self._stats_text:
             return
-        if bpy.app.background and not final and now - self._stats_time < STATS_SECONDS_BACKGROUND:
+        now = time.monotonic()
+        if bpy.app.background and not force and now - self._stats_time < STATS_SECONDS_BACKGROUND:
             return
         self._stats_text, self._stats_time = text, now
         self.update_stats("", text)

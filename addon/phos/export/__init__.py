@@ -18,6 +18,15 @@ from .context import ExportContext
 from . import camera, instances, world
 
 
+def _check_render_settings(ctx):
+    """Scene-wide features the core does not have: say so instead of ignoring them silently."""
+    r = ctx.scene.render
+    if r.use_motion_blur:
+        ctx.warn("Phos: motion blur is not supported; rendering the frame without it")
+    if r.use_multiview:
+        ctx.warn("Phos: stereoscopy / multi-view is not supported; only the first view is rendered")
+
+
 def export_scene(depsgraph, core_scene, camera_object, camera_matrix, is_preview=False,
                  progress=None, cancelled=None):
     """Fill `core_scene` (a core.Scene, not yet committed) from an evaluated depsgraph.
@@ -26,6 +35,7 @@ def export_scene(depsgraph, core_scene, camera_object, camera_matrix, is_preview
     reports. Raises core.PhosError if the core rejects something.
     """
     ctx = ExportContext(depsgraph.scene, core_scene, is_preview)
+    _check_render_settings(ctx)
     camera.export_camera(camera_object, camera_matrix, ctx)
     world.export_world(ctx)
     instances.export_instances(depsgraph, ctx, progress, cancelled)

@@ -10,8 +10,6 @@ radius is focal_length / (2·f-stop) with the focal length in metres, and the
 focus distance is measured along the view axis.
 """
 
-import math
-
 import numpy as np
 
 from .. import core
@@ -89,4 +87,7 @@ def export_camera(cam_ob, matrix_world, ctx):
         else:
             ctx.warn("Phos: camera '%s': depth of field of orthographic cameras is not supported"
                      % cam.name)
-    ctx.core.set_camera(desc)
+    try:
+        ctx.core.set_camera(desc)
+    except core.PhosError as ex:
+        raise core.PhosError("camera '%s': %s" % (cam_ob.name, ex), ex.status) from None

@@ -104,7 +104,10 @@ def add_image(node, ctx, owner):
     image_id = None
     if data is not None:
         pixels, width, height = data
-        image_id = ctx.core.add_image(pixels, width, height, interp, ext)
+        try:
+            image_id = ctx.core.add_image(pixels, width, height, interp, ext)
+        except core.PhosError as ex:
+            raise core.PhosError("image '%s': %s" % (image.name, ex), ex.status) from None
         ctx.stats["images"] += 1
     ctx.images[key] = image_id
     return image_id

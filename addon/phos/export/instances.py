@@ -25,6 +25,22 @@ _SILENT_TYPES = {'CURVE', 'FONT', 'SURFACE', 'META', 'EMPTY', 'CAMERA', 'ARMATUR
                  'LATTICE', 'SPEAKER', 'LIGHT_PROBE'}
 
 
+_VISIBILITY = ("visible_camera", "visible_diffuse", "visible_glossy", "visible_transmission",
+               "visible_shadow")
+
+
+def _check_object(ob, ctx):
+    """Warn about per-object render settings the core does not have (once per object)."""
+    if any(not getattr(ob, name, True) for name in _VISIBILITY) or \
+            getattr(ob, "is_holdout", False) or getattr(ob, "is_shadow_catcher", False):
+        ctx.warn("Phos: object '%s': ray visibility, holdout and shadow catcher settings are "
+                 "not supported; rendered as a normal visible object" % ob.name)
+    for psys in getattr(ob, "particle_systems", ()):
+        settings = psys.settings
+        if settings.type == 'HAIR' and settings.render_type == 'PATH':
+            ctx.warn("Phos: object '%s': hair particles are not supported; skipped" % ob.name)
+
+
 def _materials(ob, ctx):
     """Core material ids per material slot (respecting Object/Data links)."""
     ids = [material.add_material(slot.material, ctx) for slot in ob.material_slots]
@@ -57,6 +73,8 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
                 ctx.warn("Phos: objects of type %s are not supported; '%s' skipped"
                          % (kind.replace('_', ' ').lower(), ob.name))
             continue
+        if not inst.is_instance:
+            _check_object(ob, ctx)
         if not inst.show_self:
             continue  # an emitter whose particles render but not itself
         matrix = np.array(inst.matrix_world, dtype=np.float64)
@@ -72,7 +90,10 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
         mats = material_lists.get(mat_key)
         if mats is None:
             mats = material_lists[mat_key] = _materials(ob, ctx)
-        ctx.core.add_instance(mesh_id, core.matrix_to_3x4(matrix), mats)
+        try:
+            ctx.core.add_instance(mesh_id, core.matrix_to_3x4(matrix), mats)
+        except core.PhosError as ex:
+            raise core.PhosError("object '%s': %s" % (ob.name, ex), ex.status) from None
         ctx.stats["instances"] += 1
     ctx.stats["objects"] = total
     if progress is not None:

@@ -44,6 +44,8 @@ def add_light(ob, matrix_world, ctx):
 
     m = np.array(matrix_world, dtype=np.float64).reshape(4, 4)
     desc = core.new_light()
+    # Object > Visibility > Camera; off by default for lights, as in Cycles.
+    desc.camera_visible = 1 if getattr(ob, "visible_camera", False) else 0
     desc.position[:] = [float(v) for v in m[:3, 3]]
     desc.direction[:] = [float(v) for v in _normalized(-m[:3, 2])]
 
@@ -83,8 +85,12 @@ def add_light(ob, matrix_world, ctx):
     else:
         ctx.warn("Phos: light '%s' of type %s is not supported; skipped" % (ob.name, light.type))
         return None
+    try:
+        light_id = ctx.core.add_light(desc)
+    except core.PhosError as ex:
+        raise core.PhosError("light '%s': %s" % (ob.name, ex), ex.status) from None
     ctx.stats["lights"] += 1
-    return ctx.core.add_light(desc)
+    return light_id
 
 
 def _point_shape(light, ctx):

@@ -221,6 +221,10 @@ class NodeTreeWalker:
             return float(n.outputs[0].default_value)
         if n.bl_idname == 'ShaderNodeRGB':
             return float(np.dot(_LUMA, np.array(n.outputs[0].default_value[:3], dtype=np.float32)))
+        if n.bl_idname == 'ShaderNodeTexImage':
+            self.note(n, "images are only supported on colour inputs; using the default of '%s'"
+                      % socket.name)
+            return _socket_float(socket, default)
         self.unsupported(n)
         return _socket_float(socket, default)
 
@@ -247,11 +251,16 @@ class NodeTreeWalker:
             return np.array(n.outputs[0].default_value[:3], dtype=np.float32), None, None
         if n.bl_idname == 'ShaderNodeValue':
             return np.full(3, n.outputs[0].default_value, dtype=np.float32), None, None
-        if n.bl_idname == 'ShaderNodeTexImage' and allow_image and src.output.identifier == 'Color':
-            self._check_image_vector(n, src.stack)
-            image_id = image_export.add_image(n, self.ctx, self.owner)
-            if image_id is not None:
-                return np.ones(3, dtype=np.float32), image_id, n
+        if n.bl_idname == 'ShaderNodeTexImage':
+            if allow_image and src.output.identifier == 'Color':
+                self._check_image_vector(n, src.stack)
+                image_id = image_export.add_image(n, self.ctx, self.owner)
+                if image_id is not None:
+                    return np.ones(3, dtype=np.float32), image_id, n
+                return _socket_color(socket), None, None
+            why = ("its Alpha output is not supported" if src.output.identifier != 'Color'
+                   else "images are not supported here")
+            self.note(n, "%s; using the default of '%s'" % (why, socket.name))
             return _socket_color(socket), None, None
         self.unsupported(n)
         return _socket_color(socket), None, None
@@ -352,10 +361,16 @@ class NodeTreeWalker:
         return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, img)]
 
     def _distribution(self, node, allowed):
-        """Roughness override (0 for Sharp) and a warning for unsupported distributions."""
+        """Roughness override (0 for Sharp) and a warning for unsupported distributions.
+
+        From 4.0 Multiscatter GGX is the default of the Glossy, Glass and
+        Principled nodes: it is rendered as GGX without a warning there.
+        """
         dist = getattr(node, "distribution", 'GGX')
         if dist == 'SHARP':
             return 0.0
+        if dist == 'MULTI_GGX' and self.ctx.at_least(4, 0):
+            return None
         if dist not in allowed:
             self.note(node, "%s distribution is not supported; using GGX" % _pretty(dist))
         return None
@@ -521,7 +536,7 @@ def principled(walker, node):
     if w.value(node, ('Anisotropic',), 0.0, consumed) > WEIGHT_CUTOFF:
         ignored.append("Anisotropic")
     distribution = getattr(node, "distribution", 'GGX')
-    if distribution not in {'GGX'}:
+    if distribution != 'GGX' and not (distribution == 'MULTI_GGX' and v4):
         ignored.append("%s distribution (GGX used)" % _pretty(distribution))
     transmission_roughness = w.value(node, ('Transmission Roughness',), 0.0, consumed) \
         if find_input(node, 'Transmission Roughness') is not None else 0.0
@@ -645,7 +660,10 @@ def add_material(mat, ctx):
         ctx.warn("Phos: material '%s' has %d closures; only the first %d are rendered"
                  % (mat.name, len(closures), core.PHOS_MAX_CLOSURES))
         closures = closures[:core.PHOS_MAX_CLOSURES]
-    mat_id = ctx.core.add_material([c.to_desc() for c in closures])
+    try:
+        mat_id = ctx.core.add_material([c.to_desc() for c in closures])
+    except core.PhosError as ex:
+        raise core.PhosError("material '%s': %s" % (mat.name, ex), ex.status) from None
     ctx.materials[key] = mat_id
     ctx.stats["materials"] += 1
     return mat_id

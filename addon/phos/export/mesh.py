@@ -9,6 +9,8 @@ milliseconds. The mesh is evaluated (modifiers, geometry nodes applied) by
 
 import numpy as np
 
+from .. import core
+
 
 def read_mesh(ob, ctx):
     """Triangle arrays of an evaluated object, or None if it has no triangles.
@@ -74,7 +76,10 @@ def add_mesh(ob, ctx):
     arrays = read_mesh(ob, ctx)
     if arrays is None:
         return None
-    mesh_id = ctx.core.add_mesh(**arrays)
+    try:
+        mesh_id = ctx.core.add_mesh(**arrays)
+    except core.PhosError as ex:
+        raise core.PhosError("object '%s': %s" % (ob.name, ex), ex.status) from None
     ctx.stats["meshes"] += 1
     ctx.stats["triangles"] += arrays["indices"].size // 3
     return mesh_id

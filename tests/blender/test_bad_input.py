@@ -1,0 +1,198 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Bad input never crashes Blender: each case runs a separate `blender -b`.
+
+A scene is built by a script and saved, then rendered the way a render farm
+does: `blender -b --addons phos FILE -E PHOS -o OUT -F OPEN_EXR -f 1` (EXR
+on purpose: Blender 3.4.1 segfaults on EXR output when an engine delivers no
+result). Expected outcomes:
+- fatal input: an `Error:` line that says what and where, exit code 1, no
+  signal;
+- recoverable input: a `Warning:` line, exit code 0, the image written;
+- harmless oddities: exit code 0, the image written, finite pixels.
+"""
+
+import os
+
+import numpy as np
+import pytest
+
+import phostest as pt
+
+BUILD_PRELUDE = r'''
+import math, sys, bpy, phostest as pt
+sc = pt.reset_file()
+assert pt.addon_enabled(), "add-on not enabled"
+pt.add_camera(sc, location=(0, -5, 2), target=(0, 0, 0.5))
+pt.set_world(sc, (0.2, 0.2, 0.2))
+pt.add_plane(sc, "Floor", size=6, material=pt.diffuse("Floor", (0.8, 0.8, 0.8)))
+pt.add_light(sc, "POINT", 200.0, location=(1, -1, 3))
+pt.configure_output(sc, 24, 16)
+pt.configure_phos(sc, 4, max_bounces=4)
+sc.render.engine = "PHOS"
+'''
+
+BUILD_SAVE = r'''
+bpy.ops.wm.save_as_mainfile(filepath=sys.argv[sys.argv.index("--") + 1])
+print("SAVED")
+'''
+
+
+def build_and_render(tmp_path, scene_code, env=None):
+    blend = os.path.join(str(tmp_path), "case.blend")
+    rc, out = pt.run_script(BUILD_PRELUDE + scene_code + BUILD_SAVE, tmp_path, args=[blend])
+    assert rc == 0 and "SAVED" in out, "building the scene failed:\n" + out[-3000:]
+    out_base = os.path.join(str(tmp_path), "frame_")
+    rc, out = pt.render_blend_cli(blend, tmp_path, out_base, env=env)
+    image = out_base + "0001.exr"
+    return rc, out, image
+
+
+def assert_no_crash(rc, out):
+    assert rc >= 0, "Blender died of %s:\n%s" % (pt.signal_name(rc), out[-3000:])
+    assert rc in (0, 1), "unexpected exit code %d:\n%s" % (rc, out[-3000:])
+    assert "Segmentation fault" not in out and "Writing: /tmp/" not in out, out[-3000:]
+
+
+def error_lines(out):
+    return [line for line in out.splitlines() if line.startswith("Error:")]
+
+
+def warning_lines(out):
+    return [line for line in out.splitlines() if line.startswith("Warning:")]
+
+
+def assert_rendered(rc, out, image):
+    assert rc == 0, out[-3000:]
+    assert not error_lines(out), error_lines(out)
+    assert os.path.isfile(image), "no image written:\n" + out[-3000:]
+    px = pt.load_image_array(image)
+    assert np.all(np.isfinite(px)), "non-finite pixels"
+    return px
+
+
+# ------------------------------------------------------------ fatal input
+
+def test_nan_vertex_is_a_clear_error(tmp_path):
+    code = r'''
+ob = pt.add_cube(sc, "Broken Cube", location=(0, 0, 0.5))
+ob.data.vertices[3].co = (float("nan"), 0.0, 0.0)
+'''
+    rc, out, image = build_and_render(tmp_path, code)
+    assert_no_crash(rc, out)
+    errors = error_lines(out)
+    assert rc == 1 and errors, "a NaN vertex must be an ERROR report (exit code 1):\n" + out[-3000:]
+    text = " ".join(errors).lower()
+    assert "nan" in text or "finite" in text, errors
+    assert "broken cube" in text, "the error should name the object: %s" % errors
+    assert "Traceback" not in out, "an error report, not a Python traceback:\n" + out[-3000:]
+
+
+def test_missing_library_is_a_clear_error(tmp_path):
+    missing = os.path.join(str(tmp_path), "nowhere", "libphos.so")
+    rc, out, image = build_and_render(tmp_path, "", env={"PHOS_LIBRARY": missing})
+    assert_no_crash(rc, out)
+    errors = error_lines(out)
+    assert rc == 1 and errors, out[-3000:]
+    assert any(missing in e for e in errors), "the error should name the library path: %s" % errors
+
+
+MISSING_LIBRARY_RESULT = r'''
+import os, numpy as np
+os.environ  # PHOS_LIBRARY is set by the test
+try:
+    bpy.ops.render.render()
+    print("NO ERROR")
+except RuntimeError as ex:
+    print("RENDER ERROR:", ex)
+out = sys.argv[sys.argv.index("--") + 1]
+bpy.data.images["Render Result"].save_render(out, scene=sc)
+px = pt.load_image_array(out)
+print("RESULT", px.shape, float(np.abs(px).max()))
+'''
+
+
+def test_missing_library_delivers_a_result(tmp_path):
+    """The placeholder result is delivered (a full-size, empty image), in-script render."""
+    out_exr = os.path.join(str(tmp_path), "placeholder.exr")
+    rc, out = pt.run_script(BUILD_PRELUDE + MISSING_LIBRARY_RESULT, tmp_path, args=[out_exr],
+                            env={"PHOS_LIBRARY": os.path.join(str(tmp_path), "missing.so")})
+    assert_no_crash(rc, out)
+    assert "RENDER ERROR:" in out and "missing.so" in out, out[-3000:]
+    assert "RESULT (16, 24, 4) 0.0" in out, out[-3000:]
+
+
+def test_absurd_camera_clipping(tmp_path):
+    code = r'''
+cam = sc.camera.data
+cam.clip_start, cam.clip_end = 50.0, 1.0   # start beyond end
+'''
+    rc, out, image = build_and_render(tmp_path, code)
+    assert_no_crash(rc, out)
+    if rc == 1:
+        assert error_lines(out), out[-3000:]
+        assert "Traceback" not in out
+    else:
+        assert os.path.isfile(image)
+
+
+# ------------------------------------------------------- recoverable input
+
+def test_missing_image_file_warns_and_renders(tmp_path):
+    code = r'''
+img = bpy.data.images.new("Ghost", 4, 4)
+img.source = "FILE"
+img.filepath = "/nonexistent/ghost.png"
+mat = bpy.data.materials.new("Ghost Material")
+mat.use_nodes = True
+nt = mat.node_tree
+tex = nt.nodes.new("ShaderNodeTexImage")
+tex.image = img
+nt.links.new(tex.outputs["Color"], nt.nodes["Principled BSDF"].inputs["Base Color"])
+pt.add_sphere(sc, "Ghost Sphere", location=(0, 0, 0.5), material=mat)
+'''
+    rc, out, image = build_and_render(tmp_path, code)
+    assert_no_crash(rc, out)
+    assert_rendered(rc, out, image)
+    assert any("Ghost" in w for w in warning_lines(out)), (
+        "a missing image should be a warning naming it:\n" + out[-3000:])
+
+
+# ------------------------------------------------------ harmless oddities
+
+@pytest.mark.parametrize("case", ["degenerate_triangles", "huge_coordinates", "empty_scene",
+                                  "one_pixel", "zero_filter", "negative_scale"])
+def test_odd_but_valid_input_renders(case, tmp_path):
+    code = {
+        "degenerate_triangles": r'''
+me = bpy.data.meshes.new("Degenerate")
+me.from_pydata([(0, 0, 1), (0, 0, 1), (0, 0, 1), (1, 0, 1), (2, 0, 1)], [], [(0, 1, 2), (0, 3, 4)])
+sc.collection.objects.link(bpy.data.objects.new("Degenerate", me))
+pt.add_sphere(sc, "Fine", location=(0, 0, 0.5))
+''',
+        "huge_coordinates": r'''
+pt.add_cube(sc, "Far", size=1e6, location=(1e12, 1e12, 1e12))
+pt.add_sphere(sc, "Near", location=(0, 0, 0.5))
+''',
+        "empty_scene": r'''
+for ob in list(sc.objects):
+    if ob.type != "CAMERA":
+        bpy.data.objects.remove(ob)
+''',
+        "one_pixel": r'''
+pt.configure_output(sc, 1, 1)
+''',
+        "zero_filter": r'''
+sc.phos.filter_width = 0.0
+pt.add_sphere(sc, "Ball", location=(0, 0, 0.5))
+''',
+        "negative_scale": r'''
+ob = pt.add_sphere(sc, "Mirrored", location=(0, 0, 0.5))
+ob.scale = (-1, 1, 1)
+''',
+    }[case]
+    rc, out, image = build_and_render(tmp_path, code)
+    assert_no_crash(rc, out)
+    px = assert_rendered(rc, out, image)
+    if case == "empty_scene":
+        # Only the world (0.2) remains: a uniform image.
+        assert np.allclose(px[..., :3], 0.2, atol=1e-4)
