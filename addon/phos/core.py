@@ -133,6 +133,8 @@ class phos_closure_desc(ctypes.Structure):
         ("ior", _f),
         ("specular_color", _f * 3), # REFLECTION_FRESNEL: reflectance at normal incidence
         ("glass_fresnel", _u32),    # enum phos_glass_fresnel
+        ("transmission_tint", _f * 3),   # GLASS: colour of the refracted light only
+        ("transmission_roughness", _f),  # GLASS (MACRO): refraction roughness, < 0 = roughness
     ]
 
 

@@ -122,6 +122,8 @@ typedef struct phos_closure_desc {
     float ior;                 /* index of refraction, > 0 (GLASS, REFRACTION, REFLECTION_FRESNEL) */
     float specular_color[3];   /* REFLECTION_FRESNEL: reflectance at normal incidence */
     uint32_t glass_fresnel;    /* enum phos_glass_fresnel */
+    float transmission_tint[3];/* GLASS: extra colour of the refracted light only (Principled: base colour) */
+    float transmission_roughness; /* GLASS with MACRO Fresnel: roughness of the refraction lobe; < 0 = roughness */
 } phos_closure_desc;
 PHOS_API void phos_closure_desc_init(phos_closure_desc *desc);
 

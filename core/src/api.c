@@ -136,6 +136,8 @@ void phos_closure_desc_init(phos_closure_desc *d)
     d->ior = 1.45f;
     d->specular_color[0] = d->specular_color[1] = d->specular_color[2] = 0.04f;
     d->glass_fresnel = PHOS_GLASS_FRESNEL_MACRO;
+    d->transmission_tint[0] = d->transmission_tint[1] = d->transmission_tint[2] = 1.0f;
+    d->transmission_roughness = -1.0f;
 }
 
 void phos_material_desc_init(phos_material_desc *d)
@@ -289,6 +291,11 @@ static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u IOR %g must be finite and > 0", i, (double)c->ior);
     if (!all_finite_nonnegative(c->specular_color, 3))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u specular colour must be finite and >= 0", i);
+    if (!all_finite_nonnegative(c->transmission_tint, 3))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u transmission tint must be finite and >= 0", i);
+    if (!isfinite(c->transmission_roughness) || c->transmission_roughness > 1.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u transmission roughness %g must be <= 1", i,
+             (double)c->transmission_roughness);
     if (c->glass_fresnel > PHOS_GLASS_FRESNEL_MICROFACET)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown glass Fresnel mode %u", i,
              c->glass_fresnel);

@@ -146,6 +146,9 @@ static int reflection_side(const query *q) { return q->wi.z > 0.0f && q->ng_wi >
 static int transmission_side(const query *q) { return q->wi.z < 0.0f && q->ng_wi < 0.0f; }
 
 static int closure_is_sharp(const closure *c) { return c->alpha < BSDF_SHARP_ALPHA; }
+/* The refraction lobe of a MACRO glass has its own roughness (Cycles 3.4
+ * Principled: 1 − (1 − roughness)(1 − transmission roughness)). */
+static int refraction_is_sharp(const closure *c) { return c->alpha_t < BSDF_SHARP_ALPHA; }
 static int closure_index_matched(const closure *c) { return fabsf(c->eta - 1.0f) < BSDF_INDEX_MATCHED; }
 
 /* GLASS splits by Fresnel at the shading normal (MACRO) or per microfacet.
@@ -243,11 +246,11 @@ static vec3 eval_refraction(const closure *c, const query *q, float *pdf)
 
 static vec3 eval_glass(const closure *c, const query *q, float *pdf)
 {
-    if (closure_is_sharp(c))
-        return v3s(0.0f);
     vec3 h;
     float v, lobe;
     if (glass_per_microfacet(c)) {
+        if (closure_is_sharp(c))
+            return v3s(0.0f);
         /* Walter 2007 eq. 20/21 with F(wo·h); sampling picks the lobe with F(wo·h). */
         if (q->wi.z > 0.0f)
             v = ggx_reflection(q, c->alpha, 1, &h, pdf);
@@ -261,15 +264,22 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
     } else {
         /* Cycles 3.4: two closures weighted F and 1 − F, F at the shading normal. */
         if (q->wi.z > 0.0f) {
-            v = ggx_reflection(q, c->alpha, 0, &h, pdf);
+            v = closure_is_sharp(c) ? 0.0f : ggx_reflection(q, c->alpha, 0, &h, pdf);
             lobe = fresnel_dielectric(q->wo.z, c->eta);
         } else {
-            v = closure_index_matched(c) ? 0.0f : ggx_refraction(q, c->alpha, c->eta, 0, &h, pdf);
+            v = (closure_index_matched(c) || refraction_is_sharp(c))
+                    ? 0.0f
+                    : ggx_refraction(q, c->alpha_t, c->eta, 0, &h, pdf);
             lobe = fresnel_dielectric_transmittance(q->wo.z, c->eta);
         }
     }
+    if (v == 0.0f) {
+        *pdf = 0.0f;
+        return v3s(0.0f);
+    }
     *pdf *= lobe;
-    return v3_scale(c->weight, v * lobe);
+    vec3 colour = q->wi.z > 0.0f ? c->weight : v3_mul(c->weight, c->transmission_tint);
+    return v3_scale(colour, v * lobe);
 }
 
 /* f·|cos θi| of one closure (weight applied) and its own sampling density;
@@ -366,13 +376,15 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
         s->flags = BSDF_GLOSSY;
         return 1;
     }
-    if (closure_is_sharp(c) || closure_index_matched(c)) {
+    vec3 tinted = v3_mul(c->weight, c->transmission_tint);
+    int sharp_refraction = glass_per_microfacet(c) ? closure_is_sharp(c) : refraction_is_sharp(c);
+    if (sharp_refraction || closure_index_matched(c)) {
         if (!refract_about(wo, n, c->eta, &wi))
             return 0;
         float T = fresnel_dielectric_transmittance(wo.z, c->eta);
-        return sample_delta(s, wi, BSDF_TRANSMISSION, v3_scale(c->weight, T), T);
+        return sample_delta(s, wi, BSDF_TRANSMISSION, v3_scale(tinted, T), T);
     }
-    vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+    vec3 h = ggx_sample_visible_normal(wo, c->alpha_t, u);
     if (!refract_about(wo, h, c->eta, &wi))
         return 0;
     s->wi = wi;
@@ -443,6 +455,28 @@ void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric)
     b->sample_weight_sum = 0.0f;
 }
 
+int bsdf_has_non_delta(const bsdf *b)
+{
+    for (uint32_t i = 0; i < b->count; i++) {
+        const closure *c = &b->closures[i];
+        switch (c->type) {
+        case PHOS_CLOSURE_DIFFUSE:
+        case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
+            return 1;
+        case PHOS_CLOSURE_TRANSPARENT:
+            break;
+        case PHOS_CLOSURE_GLASS:
+            if (!closure_is_sharp(c) || (!glass_per_microfacet(c) && !refraction_is_sharp(c)))
+                return 1;
+            break;
+        default:
+            if (!closure_is_sharp(c))
+                return 1;
+        }
+    }
+    return 0;
+}
+
 int bsdf_add_closure(bsdf *b, const closure *c)
 {
     if (c->type == PHOS_CLOSURE_EMISSION || c->type >= PHOS_CLOSURE_TYPE_COUNT)
@@ -452,6 +486,8 @@ int bsdf_add_closure(bsdf *b, const closure *c)
         return 1;
     /* Clamp parameters into their domains as Cycles' setup functions do. */
     k.alpha = k.alpha > 0.0f ? fminf(k.alpha, 1.0f) : 0.0f;
+    k.alpha_t = k.alpha_t > 0.0f ? fminf(k.alpha_t, 1.0f) : 0.0f;
+    k.transmission_tint = v3_max(k.transmission_tint, v3s(0.0f));
     k.roughness = k.roughness > 0.0f ? fminf(k.roughness, 1.0f) : 0.0f;
     k.eta = (k.eta > 0.0f && isfinite(k.eta)) ? fmaxf(k.eta, 1e-5f) : 1.0f;
     k.f0 = v3_min(v3_max(k.f0, v3s(0.0f)), v3s(1.0f));

@@ -35,6 +35,8 @@ typedef struct closure {
     vec3 weight;            /* linear RGB, textures already applied */
     float roughness;        /* Blender roughness in [0,1] */
     float alpha;            /* GGX alpha = roughness² */
+    float alpha_t;          /* GLASS (MACRO): GGX alpha of the refraction lobe */
+    vec3 transmission_tint; /* GLASS: colour applied to refracted light only */
     float eta;              /* relative IOR across the surface as seen from wo's side */
     vec3 f0;                /* REFLECTION_FRESNEL: reflectance at normal incidence */
     uint32_t glass_fresnel; /* enum phos_glass_fresnel */
@@ -71,6 +73,9 @@ vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi, float *pdf);
 /* Samples a direction: u_pick chooses the closure, u the direction within
  * it. Returns 0 when no direction could be sampled (absorbed). */
 int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_sample *out);
+
+/* Whether some closure has a non-delta lobe (next-event estimation helps). */
+int bsdf_has_non_delta(const bsdf *b);
 
 /* Sum of transparent closure weights: how much light passes straight
  * through (used by shadow rays). */

@@ -105,24 +105,6 @@ static vec3 estimate_direct(const scene *s, const surface *sf, const bsdf *b, ve
     return v3_scale(v3_mul(v3_mul(f, ls.radiance), T), w / ls.pdf);
 }
 
-static int has_non_delta(const bsdf *b)
-{
-    for (uint32_t i = 0; i < b->count; i++) {
-        const closure *c = &b->closures[i];
-        switch (c->type) {
-        case PHOS_CLOSURE_DIFFUSE:
-        case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
-            return 1;
-        case PHOS_CLOSURE_TRANSPARENT:
-            break;
-        default:
-            if (c->alpha >= BSDF_SHARP_ALPHA)
-                return 1;
-        }
-    }
-    return 0;
-}
-
 sample_result path_trace(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp)
 {
     sample_result res = {v3s(0.0f), 0.0f};
@@ -180,7 +162,7 @@ sample_result path_trace(const scene *s, const integrator_settings *is, camera_r
             break;
         }
         vec3 wo = v3_neg(d);
-        if (has_non_delta(&b) && s->lights.count > 0)
+        if (bsdf_has_non_delta(&b) && s->lights.count > 0)
             L = v3_add(L, v3_mul(beta, estimate_direct(s, &sf, &b, wo, smp, v_index)));
 
         bsdf_sample bs;

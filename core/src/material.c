@@ -9,7 +9,8 @@
 
 const material scene_default_material = {
     1,
-    {{PHOS_CLOSURE_DIFFUSE, {0.8f, 0.8f, 0.8f}, -1, 0.5f, 1.45f, {0.0f, 0.0f, 0.0f}, PHOS_GLASS_FRESNEL_MACRO}},
+    {{PHOS_CLOSURE_DIFFUSE, {0.8f, 0.8f, 0.8f}, -1, 0.5f, 1.45f, {0.0f, 0.0f, 0.0f}, PHOS_GLASS_FRESNEL_MACRO,
+      {1.0f, 1.0f, 1.0f}, -1.0f}},
     0,
     0,
 };
@@ -79,6 +80,9 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
         c.weight = closure_weight(s, d, sf->u, sf->v);
         c.roughness = clampf(d->roughness, 0.0f, 1.0f);
         c.alpha = c.roughness * c.roughness;
+        float rt = d->transmission_roughness < 0.0f ? c.roughness : d->transmission_roughness;
+        c.alpha_t = rt * rt;
+        c.transmission_tint = v3_load(d->transmission_tint);
         /* The Principled specular IOR describes the coating from outside
          * only; dielectric interfaces invert it when hit from inside. */
         c.eta = (sf->backfacing && d->type != PHOS_CLOSURE_REFLECTION_FRESNEL) ? 1.0f / d->ior : d->ior;

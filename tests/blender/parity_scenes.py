@@ -160,6 +160,10 @@ MATERIAL_SCENES = {
     "principled_transmission": _material_scene(_one("ShaderNodeBsdfPrincipled",
                                                     {"Transmission": 1.0, "Roughness": 0.05,
                                                      "IOR": 1.45})),
+    "principled_glass_tinted": _material_scene(_one("ShaderNodeBsdfPrincipled",
+                                                    {"Base Color": (0.9, 0.5, 0.3), "Transmission": 1.0,
+                                                     "Roughness": 0.2, "Transmission Roughness": 0.4,
+                                                     "IOR": 1.5})),
     "mix_0.3": _material_scene(_two(
         "ShaderNodeMixShader",
         ("ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.2, 0.2)}, None),

@@ -44,6 +44,8 @@ static closure make_closure(uint32_t type, float roughness, float eta)
     c.eta = eta;
     c.f0 = v3(0.9f, 0.5f, 0.1f);
     c.glass_fresnel = PHOS_GLASS_FRESNEL_MACRO;
+    c.alpha_t = c.alpha;
+    c.transmission_tint = v3s(1.0f);
     return c;
 }
 
@@ -51,6 +53,16 @@ static closure make_glass(float roughness, float eta, uint32_t mode)
 {
     closure c = make_closure(PHOS_CLOSURE_GLASS, roughness, eta);
     c.glass_fresnel = mode;
+    return c;
+}
+
+/* A MACRO glass whose refraction lobe has its own roughness and tint, as
+ * the Principled BSDF's transmission (Cycles 3.4). */
+static closure make_glass_split(float roughness, float transmission_roughness, float eta, vec3 tint)
+{
+    closure c = make_glass(roughness, eta, PHOS_GLASS_FRESNEL_MACRO);
+    c.alpha_t = transmission_roughness * transmission_roughness;
+    c.transmission_tint = tint;
     return c;
 }
 
@@ -327,6 +339,12 @@ static int build_scenarios(scenario *sc)
             }
         }
     }
+    for (int e = 0; e < 2; e++) {
+        snprintf(name, sizeof name, "glass split r=0.2/0.6 tinted eta=%.3f", etas[e]);
+        ADD(name, make_glass_split(0.2f, 0.6f, etas[e], v3(0.3f, 0.7f, 1.0f)));
+        snprintf(name, sizeof name, "glass split sharp/0.4 eta=%.3f", etas[e]);
+        ADD(name, make_glass_split(0.0f, 0.4f, etas[e], v3s(1.0f)));
+    }
     ADD("mix principled: diffuse + specular",
         weighted(make_closure(PHOS_CLOSURE_PRINCIPLED_DIFFUSE, 0.5f, 1.0f), 0.8f),
         make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, 0.3f, 1.5f));
@@ -353,14 +371,22 @@ static void test_chi2_all(void)
     for (int s = 0; s < n; s++) {
         bsdf b;
         make_bsdf(&b, sc[s].cl, sc[s].n, sc[s].ns, sc[s].ng);
-        double delta_mass = 0.0;
-        for (uint32_t k = 0; k < b.count; k++)
-            if (b.closures[k].type == PHOS_CLOSURE_TRANSPARENT)
-                delta_mass += b.closures[k].sample_weight / b.sample_weight_sum;
         for (int a = 0; a < 3; a++) {
             vec3 wo = view_dir(sc[s].ns, COS_VIEW[a]);
             if (v3_dot(wo, sc[s].ng) <= 0.0f)
                 wo = view_dir(sc[s].ng, COS_VIEW[a]);
+            /* Probability of a delta sample: transparent closures, and the
+             * mirror lobe of a MACRO glass whose reflection is sharp. */
+            double delta_mass = 0.0;
+            for (uint32_t k = 0; k < b.count; k++) {
+                const closure *c = &b.closures[k];
+                double pick = c->sample_weight / b.sample_weight_sum;
+                if (c->type == PHOS_CLOSURE_TRANSPARENT)
+                    delta_mass += pick;
+                else if (c->type == PHOS_CLOSURE_GLASS && c->glass_fresnel == PHOS_GLASS_FRESNEL_MACRO &&
+                         c->alpha < BSDF_SHARP_ALPHA && c->alpha_t >= BSDF_SHARP_ALPHA)
+                    delta_mass += pick * fresnel_dielectric(v3_dot(wo, b.shading.n), c->eta);
+            }
             fit_stats st;
             double p = chi2_fit(&b, wo, delta_mass, seed++, &st);
             CHECK_MSG(p > significance, "chi2 %s, cos(wo)=%.2f: p-value %.3g < %.3g", sc[s].name,

@@ -40,10 +40,12 @@ _LUMA = np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)  # colour → float
 class Closure:
     """One weighted closure before it becomes a core.phos_closure_desc."""
 
-    __slots__ = ("type", "weight", "image", "roughness", "ior", "specular_color", "glass_fresnel")
+    __slots__ = ("type", "weight", "image", "roughness", "ior", "specular_color", "glass_fresnel",
+                 "transmission_tint", "transmission_roughness")
 
     def __init__(self, type, weight, image=None, roughness=0.0, ior=1.45,
-                 specular_color=(0.0, 0.0, 0.0), glass_fresnel=core.PHOS_GLASS_FRESNEL_MACRO):
+                 specular_color=(0.0, 0.0, 0.0), glass_fresnel=core.PHOS_GLASS_FRESNEL_MACRO,
+                 transmission_tint=(1.0, 1.0, 1.0), transmission_roughness=-1.0):
         self.type = type
         self.weight = np.asarray(weight, dtype=np.float32).reshape(3).copy()
         self.image = image
@@ -51,6 +53,8 @@ class Closure:
         self.ior = float(ior)
         self.specular_color = np.asarray(specular_color, dtype=np.float32).reshape(3)
         self.glass_fresnel = glass_fresnel
+        self.transmission_tint = np.asarray(transmission_tint, dtype=np.float32).reshape(3)
+        self.transmission_roughness = float(transmission_roughness)
 
     def scale(self, factor):
         self.weight *= factor
@@ -68,6 +72,8 @@ class Closure:
         d.ior = max(self.ior, 1e-5)
         d.specular_color[:] = [float(x) for x in self.specular_color]
         d.glass_fresnel = self.glass_fresnel
+        d.transmission_tint[:] = [max(float(x), 0.0) for x in self.transmission_tint]
+        d.transmission_roughness = min(self.transmission_roughness, 1.0)
         return d
 
 
@@ -491,12 +497,12 @@ def principled(walker, node):
     diffuse_weight = (1 − metallic)(1 − transmission); the specular layer
     has weight 1 − final_transmission, f0 = mix(specular·0.08·tint, base,
     metallic) and the IOR Cycles derives from Specular; the transmission
-    layer is a glass of weight final_transmission·base, where
-    final_transmission = transmission·(1 − metallic). Cycles 3.4 tints the glass's reflection with
-    mix(white, base, specular_tint) rather than the base colour, and its
-    refraction roughness combines Roughness and Transmission Roughness; the
-    core's GLASS has one tint and one roughness, so the base colour and
-    Roughness are used for both. On 4.x the sockets are found by their new
+    layer is a glass of weight final_transmission, where final_transmission =
+    transmission·(1 − metallic), whose refracted light is tinted by the base
+    colour and whose refraction roughness is 1 − (1 − Roughness)(1 −
+    Transmission Roughness), as in Cycles 3.4 (which also tints the glass's
+    reflection by mix(white, base, specular_tint): that tint is left out).
+    With an image base colour the image tints the whole glass. On 4.x the sockets are found by their new
     names and mapped onto the same closures (an approximation of the 4.x
     layered model).
     """
@@ -541,8 +547,6 @@ def principled(walker, node):
     transmission_roughness = w.value(node, ('Transmission Roughness',), 0.0, consumed) \
         if find_input(node, 'Transmission Roughness') is not None else 0.0
     final_transmission = transmission * (1.0 - metallic)
-    if final_transmission > WEIGHT_CUTOFF and transmission_roughness > 0.0 and not v4:
-        ignored.append("Transmission Roughness")
     # Inputs that only matter for ignored features: not worth a second warning.
     consumed |= {s.identifier for s in node.inputs
                  if s.name.startswith(("Subsurface", "Sheen", "Coat", "Clearcoat", "Anisotropic",
@@ -593,8 +597,16 @@ def principled(walker, node):
                                 roughness=roughness, ior=spec_ior, specular_color=f0))
 
     if final_transmission > WEIGHT_CUTOFF:
-        closures.append(Closure(core.PHOS_CLOSURE_GLASS, base * final_transmission, base_img,
-                                roughness=roughness, ior=ior, glass_fresnel=w.glass_fresnel))
+        refraction_roughness = -1.0
+        if not v4:
+            refraction_roughness = 1.0 - (1.0 - roughness) * (1.0 - _clamp01(transmission_roughness))
+        if base_img is None:
+            weight, tint = np.full(3, final_transmission), base
+        else:
+            weight, tint = base * final_transmission, (1.0, 1.0, 1.0)
+        closures.append(Closure(core.PHOS_CLOSURE_GLASS, weight, base_img, roughness=roughness,
+                                ior=ior, glass_fresnel=w.glass_fresnel, transmission_tint=tint,
+                                transmission_roughness=refraction_roughness))
 
     emitted = emission * emission_strength
     if emission_img is not None or float(np.max(np.abs(emitted))) > 0.0:
