@@ -169,7 +169,7 @@ int embree_intersect(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, f
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 #if PHOS_EMBREE4
-    RTCIntersectArguments args;
+    struct RTCIntersectArguments args;
     rtcInitIntersectArguments(&args);
     args.flags = coherent ? RTC_RAY_QUERY_FLAG_COHERENT : RTC_RAY_QUERY_FLAG_INCOHERENT;
     rtcIntersect1(bvh->top, &rh, &args);
@@ -196,7 +196,7 @@ int embree_occluded(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, fl
     struct RTCRay r __attribute__((aligned(16)));
     setup_ray(&r, o, d, tmin, tmax);
 #if PHOS_EMBREE4
-    RTCOccludedArguments args;
+    struct RTCOccludedArguments args;
     rtcInitOccludedArguments(&args);
     rtcOccluded1(bvh->top, &r, &args);
 #else
