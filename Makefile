@@ -3,6 +3,8 @@
 #   make render [SCENE=name] [SAMPLES=n]  render scenes/<name>.py to out/<name>.png/.exr
 #               [ARGS="--engine CYCLES"]  (more options of the scene script)
 #   make test                             C unit tests + Blender test suite
+#   make test-blender4                    the same under Blender 4.3 / Embree 4 in a
+#               [PHOS_CHROOT_DIR=dir]     Debian 13 chroot (root; default /var/tmp/...)
 #   make install | uninstall              add-on into the user's Blender
 #   make package                          dist/phos-<version>.zip
 #   make deps | build | clean
@@ -33,10 +35,12 @@ BLENDER_RUN := $(BLENDER) -b --factory-startup --python-exit-code 1
 BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scripts \
                     BLENDER_USER_CONFIG=$(CURDIR)/$(BUILD_DIR)/blender-user/config
 
-.PHONY: deps build test render install uninstall package clean help
+PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
+
+.PHONY: deps build test test-blender4 render install uninstall package clean help
 
 help:
-	@sed -n '3,11p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,13p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -51,6 +55,11 @@ test: build
 	@echo "version: $$(python3 tools/version.py) (CMake, phos.h, bl_info and manifest agree)"
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python tests/blender/run_tests.py -- $(PYTEST_ARGS)
+
+# Debian 13 chroot made once with debootstrap, then reused; the build goes to
+# build-trixie/, never to build/ or addon/phos/lib. See tools/test-blender4.sh.
+test-blender4:
+	PHOS_CHROOT_DIR=$(PHOS_CHROOT_DIR) JOBS=$(JOBS) tools/test-blender4.sh $(PYTEST_ARGS)
 
 render: build
 	@test -f scenes/$(SCENE).py || { echo "render: no scene scenes/$(SCENE).py; scenes:" \

@@ -1,0 +1,322 @@
+#!/usr/bin/env bash
+# Builds Phos against Embree 4 and runs the C tests and the Blender test suite
+# under Blender 4.3, inside a Debian 13 (trixie) chroot. Needs root.
+#
+#   tools/test-blender4.sh [pytest args]   build, ctest, Blender tests (default args: -q)
+#   tools/test-blender4.sh --shell         interactive shell in the chroot, same mounts
+#   tools/test-blender4.sh --remove        delete the chroot
+#
+# The chroot is made once with `debootstrap --variant=minbase trixie` from the
+# Debian mirror in the host's apt sources, then reused; later runs only check
+# that its packages are installed. Every mount (proc, sys, dev, tmp, the
+# checkout read-only at /phos-src, the build folder at /phos-build) is made in
+# a private mount and PID namespace (`unshare`), so nothing stays mounted when
+# the run ends, however it ends, and deleting the chroot cannot reach the
+# checkout. Nothing in the checkout is written except the build folder.
+#
+# Environment:
+#   PHOS_CHROOT_DIR        the chroot (default /var/tmp/phos-trixie-chroot)
+#   PHOS_TRIXIE_BUILD_DIR  build folder (default build-trixie in the checkout); the
+#                          Embree-4 libphos.so goes to its lib/, never to addon/phos/lib
+#   PHOS_DEBIAN_MIRROR     Debian mirror URI (default: from /etc/apt/sources*)
+#   JOBS                   parallel build/ctest jobs (default: nproc)
+set -euo pipefail
+
+PACKAGES=(
+  blender          # 4.3 in trixie
+  libembree-dev    # Embree 4
+  cmake gcc g++ libc6-dev make
+  python3-numpy python3-pytest
+)
+SUITE=trixie
+STAMP=var/lib/phos-chroot/ready   # inside the chroot: written once every package is in
+
+say() { echo "test-blender4: $*"; }
+die() { echo "test-blender4: $*" >&2; exit 1; }
+elapsed() { local s=$(( $(date +%s) - $1 )); printf '%dm%02ds' $((s / 60)) $((s % 60)); }
+
+# ------------------------------------------------ inside the private namespaces
+# `unshare --mount --pid --fork` runs this script again with --in-namespace; it
+# is PID 1 there. When it exits, the kernel ends every process of the PID
+# namespace and with them the mount namespace: no mount survives the run.
+if [[ "${1:-}" == "--in-namespace" ]]; then
+  root=$2 src=$3 build=$4; shift 4
+  trap 'exit 130' INT TERM HUP   # PID 1 ignores signals it has no handler for
+  mount --make-rprivate /
+  mount -t proc -o nosuid,nodev,noexec proc "$root/proc"
+  mount -t sysfs -o ro,nosuid,nodev,noexec sysfs "$root/sys" 2>/dev/null \
+    || mount --rbind -o ro /sys "$root/sys" 2>/dev/null || true
+  mount -t tmpfs -o mode=755,nosuid dev "$root/dev"
+  for n in null zero full random urandom tty; do
+    touch "$root/dev/$n" && mount --bind "/dev/$n" "$root/dev/$n"
+  done
+  mkdir -p "$root/dev/pts" "$root/dev/shm"
+  mount --bind /dev/pts "$root/dev/pts" 2>/dev/null || true
+  mount -t tmpfs -o mode=1777,nosuid,nodev shm "$root/dev/shm"
+  ln -s /proc/self/fd "$root/dev/fd"
+  ln -s /proc/self/fd/0 "$root/dev/stdin"
+  ln -s /proc/self/fd/1 "$root/dev/stdout"
+  ln -s /proc/self/fd/2 "$root/dev/stderr"
+  mount -t tmpfs -o mode=1777,nosuid,nodev tmp "$root/tmp"
+  # Blender reads the mount table through /etc/mtab, which minbase lacks.
+  [[ -e "$root/etc/mtab" || -L "$root/etc/mtab" ]] || ln -s ../proc/self/mounts "$root/etc/mtab"
+  for f in resolv.conf hosts; do   # name resolution for apt, read-only
+    if [[ -L "$root/etc/$f" ]]; then rm -f "$root/etc/$f"; fi   # never follow a link out
+    touch "$root/etc/$f" && mount --bind -o ro "/etc/$f" "$root/etc/$f"
+  done
+  if [[ -n "$src" ]]; then
+    mkdir -p "$root/phos-src"
+    mount --bind "$src" "$root/phos-src"
+    mount -o remount,bind,ro "$root/phos-src"
+  fi
+  if [[ -n "$build" ]]; then
+    mkdir -p "$root/phos-build"
+    mount --bind "$build" "$root/phos-build"
+  fi
+  envs=(HOME=/root LANG=C.UTF-8 TMPDIR=/tmp DEBIAN_FRONTEND=noninteractive
+        PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin)
+  for v in TERM JOBS http_proxy https_proxy no_proxy; do
+    [[ -n "${!v:-}" ]] && envs+=("$v=${!v}")
+  done
+  rc=0
+  chroot "$root" /usr/bin/env -i "${envs[@]}" "$@" || rc=$?
+  exit "$rc"
+fi
+
+# ------------------------------------------------------------------ outside
+cd "$(dirname "$0")/.."
+repo=$(pwd -P)
+chroot_dir=${PHOS_CHROOT_DIR:-/var/tmp/phos-trixie-chroot}
+[[ "$chroot_dir" == /* ]] || chroot_dir="$repo/$chroot_dir"
+chroot_dir=${chroot_dir%/}
+build_dir=${PHOS_TRIXIE_BUILD_DIR:-build-trixie}
+[[ "$build_dir" == /* ]] || build_dir="$repo/$build_dir"
+export JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
+t_start=$(date +%s)
+
+if [[ $(id -u) -ne 0 ]]; then
+  die "needs root: debootstrap, chroot and mounts (even private ones) need it.
+test-blender4: run it as root, e.g.  sudo make test-blender4"
+fi
+case "$chroot_dir" in
+  ''|/|/var|/var/tmp|/tmp|/usr|/home|/root) die "PHOS_CHROOT_DIR=$chroot_dir is not a dedicated folder" ;;
+esac
+case "$chroot_dir/" in
+  "$repo"/*) die "PHOS_CHROOT_DIR must be outside the checkout ($repo)" ;;
+esac
+case "$repo/" in
+  "$chroot_dir"/*) die "the checkout must not be inside PHOS_CHROOT_DIR ($chroot_dir)" ;;
+esac
+for tool in unshare chroot flock findmnt; do
+  command -v "$tool" >/dev/null || die "$tool is missing (util-linux / coreutils)"
+done
+
+# Fails if anything is mounted at or below the chroot in this (the host's)
+# mount namespace: a run never leaves a mount there, so this is a leftover
+# of something else and rm -rf or reuse would be unsafe.
+check_no_mounts() {
+  local m
+  m=$(findmnt -rn -o TARGET | awk -v d="$1" '$0 == d || index($0, d "/") == 1')
+  [[ -z "$m" ]] || die "something is mounted inside $1 (not by this script):
+$m
+test-blender4: unmount it first (umount -R $1)"
+}
+
+# Runs a command inside the chroot with all mounts; the build folder is
+# mounted only when $2 is given.
+in_chroot() {
+  local src=$1 build=$2; shift 2
+  unshare --mount --pid --fork --kill-child --propagation private \
+    "$repo/tools/test-blender4.sh" --in-namespace "$chroot_dir" "$src" "$build" "$@"
+}
+
+# The host's Debian mirror: the first http(s) URI of an enabled "deb" entry
+# that is not a security archive, in apt's own order (sources.list, then
+# sources.list.d/*.list and *.sources).
+host_mirror() {
+  local f
+  for f in /etc/apt/sources.list /etc/apt/sources.list.d/*.list; do
+    [[ -f "$f" ]] || continue
+    awk '$1 == "deb" {
+           i = 2; if ($i ~ /^\[/) { while (i <= NF && $i !~ /\]$/) i++; i++ }
+           if ($i ~ /^https?:\/\// && $(i + 1) !~ /-security/ && $i !~ /security/) { print $i; exit }
+         }' "$f"
+  done
+  for f in /etc/apt/sources.list.d/*.sources; do
+    [[ -f "$f" ]] || continue
+    awk 'function flush() {
+           if (!done && types ~ /(^| )deb( |$)/ && enabled != "no" && suites !~ /-security/) {
+             n = split(uris, u, " ")
+             for (k = 1; k <= n; k++)
+               if (u[k] ~ /^https?:\/\// && u[k] !~ /security/) { print u[k]; done = 1; break }
+           }
+           types = uris = suites = enabled = ""
+         }
+         /^[ \t]*#/ { next }
+         /^[ \t]*$/ { flush(); next }
+         { key = tolower($1); $1 = "" }
+         key == "types:" { types = $0 } key == "uris:" { uris = $0 }
+         key == "suites:" { suites = $0 } key == "enabled:" { enabled = tolower($2) }
+         END { flush() }' "$f"
+  done
+}
+
+# --------------------------------------------------------------- --remove
+if [[ "${1:-}" == "--remove" ]]; then
+  exec 9>"$chroot_dir.lock"
+  flock -n 9 || die "$chroot_dir is in use by another run"
+  for d in "$chroot_dir" "$chroot_dir.partial"; do
+    [[ -e "$d" ]] || continue
+    check_no_mounts "$d"
+    rm -rf --one-file-system "$d"
+    say "removed $d"
+  done
+  rm -f "$chroot_dir.debootstrap.log" "$chroot_dir.apt.log"   # the .lock stays: others may wait on it
+  exit 0
+fi
+
+# ------------------------------------------------------------ the chroot
+# Packages: the stamp is written only after all of them are installed; dpkg's
+# database is read from the host (no chroot, no mounts, a fraction of a
+# second), so a package added to PACKAGES above is installed on the next run.
+missing=()
+check_packages() {
+  local pkg status
+  missing=()
+  for pkg in "${PACKAGES[@]}"; do
+    status=$(dpkg-query --admindir="$chroot_dir/var/lib/dpkg" -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
+    [[ "$status" == installed ]] || missing+=("$pkg")
+  done
+  [[ -f "$chroot_dir/$STAMP" && ${#missing[@]} -eq 0 ]]
+}
+
+# Runs share a ready chroot (shared lock); one run at a time creates or
+# completes it (exclusive lock).
+exec 9>"$chroot_dir.lock"
+lock() {
+  flock -n "$@" 9 && return 0
+  say "waiting for another run that uses $chroot_dir ($chroot_dir.lock)"
+  flock "$@" 9
+}
+lock -s
+if [[ -d "$chroot_dir" ]] && check_packages; then
+  ready=1
+else
+  ready=0
+  lock -x
+fi
+
+if [[ $ready -eq 0 && ! -d "$chroot_dir" ]]; then
+  # debootstrap on the host, installed like tools/install-deps.sh does.
+  if ! command -v debootstrap >/dev/null; then
+    say "installing debootstrap on the host"
+    if ! { DEBIAN_FRONTEND=noninteractive apt-get update -q &&
+           DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends debootstrap; }; then
+      die "could not install debootstrap: apt-get install debootstrap, then retry"
+    fi
+  fi
+  [[ -e /usr/share/debootstrap/scripts/$SUITE ]] \
+    || die "this debootstrap does not know $SUITE: update it (apt-get install debootstrap)"
+  keyring=/usr/share/keyrings/debian-archive-keyring.gpg
+  [[ -f "$keyring" ]] || die "$keyring is missing: apt-get install debian-archive-keyring"
+  mirror=${PHOS_DEBIAN_MIRROR:-$(host_mirror | head -n 1)}
+  [[ -n "$mirror" ]] || die "no Debian mirror found in /etc/apt/sources.list{,.d/*}: set PHOS_DEBIAN_MIRROR=http://.../debian"
+
+  # debootstrap fills $chroot_dir.partial, renamed when complete: an
+  # interrupted first run leaves only .partial, which the next run deletes.
+  partial="$chroot_dir.partial"
+  if [[ -e "$partial" ]]; then
+    check_no_mounts "$partial"
+    say "removing the unfinished $partial of an interrupted run"
+    rm -rf --one-file-system "$partial"
+  fi
+  mkdir -p "$(dirname "$chroot_dir")"
+  say "creating the Debian 13 chroot $chroot_dir from $mirror (a few minutes, once)"
+  t=$(date +%s)
+  # In a private mount namespace too: the mounts debootstrap makes in the
+  # target go away with it even when it is killed.
+  if ! unshare --mount --propagation private \
+      debootstrap --variant=minbase --keyring="$keyring" "$SUITE" "$partial" "$mirror" \
+      >"$chroot_dir.debootstrap.log" 2>&1; then
+    tail -n 25 "$chroot_dir.debootstrap.log" >&2
+    die "debootstrap failed (log: $chroot_dir.debootstrap.log). If the Release signature
+test-blender4: does not verify, the host needs a debian-archive-keyring with the trixie keys
+test-blender4: (bookworm's 2023.3+deb12u2 or later: apt-get install debian-archive-keyring)."
+  fi
+  mkdir -p "$partial/etc/apt/apt.conf.d" "$partial/usr/sbin"
+  printf 'APT::Install-Recommends "false";\nAPT::Install-Suggests "false";\nAcquire::Languages "none";\n' \
+    >"$partial/etc/apt/apt.conf.d/90phos"
+  printf '#!/bin/sh\nexit 101\n' >"$partial/usr/sbin/policy-rc.d"   # never start services
+  chmod 755 "$partial/usr/sbin/policy-rc.d"
+  mv "$partial" "$chroot_dir"
+  say "debootstrap done in $(elapsed "$t")"
+fi
+check_no_mounts "$chroot_dir"
+mkdir -p "$chroot_dir/phos-src" "$chroot_dir/phos-build"
+
+if [[ $ready -eq 0 ]] && ! check_packages; then
+  say "installing in the chroot: ${missing[*]:-(checking all)} (log: $chroot_dir.apt.log)"
+  t=$(date +%s)
+  rm -f "$chroot_dir/$STAMP"
+  if ! in_chroot "" "" /bin/sh -ec "apt-get update
+      dpkg --configure -a
+      apt-get install -y --no-install-recommends ${PACKAGES[*]}
+      apt-get clean" >"$chroot_dir.apt.log" 2>&1; then
+    tail -n 25 "$chroot_dir.apt.log" >&2
+    die "installing packages in the chroot failed (log: $chroot_dir.apt.log); rerun to retry, or start over with: tools/test-blender4.sh --remove"
+  fi
+  mkdir -p "$(dirname "$chroot_dir/$STAMP")"
+  printf '%s\n' "${PACKAGES[@]}" >"$chroot_dir/$STAMP"
+  say "packages installed in $(elapsed "$t")"
+fi
+[[ $ready -eq 1 ]] || lock -s   # set up: other runs may use the chroot alongside
+say "chroot ready ($(elapsed "$t_start"))"
+
+mkdir -p "$build_dir"
+
+if [[ "${1:-}" == "--shell" ]]; then
+  say "shell in $chroot_dir: checkout (read-only) at /phos-src, build folder at /phos-build"
+  rc=0; in_chroot "$repo" "$build_dir" /bin/bash -i || rc=$?
+  check_no_mounts "$chroot_dir"
+  exit "$rc"
+fi
+
+[[ $# -gt 0 ]] || set -- -q   # pytest args
+# Inside: Embree-4 build in /phos-build; libphos.so goes to /phos-build/lib
+# (not the checkout's addon/phos/lib, which belongs to the host's build), and
+# the add-on from the checkout loads it through PHOS_LIBRARY.
+# shellcheck disable=SC2016  # expanded inside the chroot
+inner='set -u
+now() { date +%s; }
+dur() { local s=$(( $(now) - $1 )); printf "%dm%02ds" $((s / 60)) $((s % 60)); }
+say() { echo "test-blender4: $*"; }
+say "$(blender --version 2>/dev/null | head -n 1), Embree $(dpkg-query -W -f="\${Version}" libembree-dev), $(python3 --version)"
+t=$(now)
+cmake -S /phos-src -B /phos-build -DCMAKE_BUILD_TYPE=Release -DPHOS_ADDON_LIB_DIR=/phos-build/lib >/phos-build/cmake.log \
+  || { cat /phos-build/cmake.log; say "cmake configure failed"; exit 1; }
+grep "Phos:" /phos-build/cmake.log || true
+cmake --build /phos-build -j "$JOBS" || { say "build failed"; exit 1; }
+/phos-src/tools/check-exports.sh /phos-build/lib/libphos.so || exit 1
+say "build: $(dur $t)"
+rc=0
+t=$(now)
+(cd /phos-build && ctest --output-on-failure -j "$JOBS") || { rc=1; say "C tests FAILED"; }
+say "C tests: $(dur $t)"
+t=$(now)
+mkdir -p /phos-build/blender-user
+PHOS_LIBRARY=/phos-build/lib/libphos.so \
+BLENDER_USER_SCRIPTS=/phos-build/blender-user/scripts \
+BLENDER_USER_CONFIG=/phos-build/blender-user/config \
+  blender -b --factory-startup --python-exit-code 1 \
+    --python /phos-src/tests/blender/run_tests.py -- "$@" || { rc=1; say "Blender tests FAILED"; }
+say "Blender tests: $(dur $t)"
+exit $rc'
+rc=0
+in_chroot "$repo" "$build_dir" /bin/bash -c "$inner" inner "$@" || rc=$?
+check_no_mounts "$chroot_dir"
+if [[ $rc -eq 0 ]]; then
+  say "passed under Blender 4.3 / Embree 4 (total $(elapsed "$t_start"); no mounts left in $chroot_dir)"
+else
+  say "FAILED (exit $rc; total $(elapsed "$t_start"); no mounts left in $chroot_dir)"
+fi
+exit "$rc"
