@@ -227,13 +227,42 @@ PHOS_API phos_status phos_scene_commit(phos_scene *scene);
 
 /* ----------------------------------------------------------------- render */
 
-enum phos_integrator { PHOS_INTEGRATOR_PATH = 0 };
+enum phos_integrator {
+    PHOS_INTEGRATOR_PATH = 0,   /* unbiased path tracing, the reference */
+    PHOS_INTEGRATOR_PHOTON = 1  /* photon mapping with final gathering (Jensen) */
+};
 
+/* What a photon-mapping render shows for indirect diffuse light. */
+enum phos_photon_view {
+    PHOS_PHOTON_VIEW_FINAL_GATHER = 0, /* final gathering on the global map */
+    PHOS_PHOTON_VIEW_FAST = 1          /* the global map read at the first diffuse hit */
+};
+
+/*
+ * Passes. The light components split the Combined pass (their sum) as in
+ * Jensen's rendering-equation solution; both integrators fill them:
+ *   EMISSION  emitters seen directly     DIRECT    after one scattering
+ *   SPECULAR  after a specular/glossy first bounce
+ *   CAUSTICS  diffuse, then only specular bounces (L S+ D E)
+ *   INDIRECT  diffuse, then further non-specular bounces
+ * Debug passes: PHOTON_MAP and CAUSTIC_MAP, each map's radiance estimate at
+ * the first diffuse surface seen; PHOTONS, every stored photon drawn as a
+ * dot where it lies in the image (colour = its power's hue). The debug
+ * passes build the photon maps for either integrator.
+ */
 enum phos_pass {
     PHOS_PASS_COMBINED = 0,   /* RGBA */
-    PHOS_PASS_COUNT = 1
+    PHOS_PASS_EMISSION = 1,   /* RGB, W/(m²·sr) */
+    PHOS_PASS_DIRECT = 2,
+    PHOS_PASS_SPECULAR = 3,
+    PHOS_PASS_CAUSTICS = 4,
+    PHOS_PASS_INDIRECT = 5,
+    PHOS_PASS_PHOTON_MAP = 6,
+    PHOS_PASS_CAUSTIC_MAP = 7,
+    PHOS_PASS_PHOTONS = 8,
+    PHOS_PASS_COUNT = 9
 };
-/* Channels of a pass (4 for COMBINED), 0 for an unknown pass. */
+/* Channels of a pass (4 for COMBINED, 3 for the others), 0 for an unknown pass. */
 PHOS_API uint32_t phos_pass_channels(uint32_t pass);
 
 typedef struct phos_render_settings {
@@ -250,6 +279,15 @@ typedef struct phos_render_settings {
     float filter_width;        /* Blackman-Harris pixel filter width in pixels (Cycles: 1.5); 0 = box */
     uint32_t transparent_background; /* 1: the world is not seen by camera rays, alpha = coverage */
     uint32_t pass_mask;        /* bit (1 << pass) per enabled pass; COMBINED is always on */
+    /* Photon mapping (PHOTON integrator, and the photon debug passes). */
+    uint32_t global_photons;   /* photons stored in the global map */
+    uint32_t caustic_photons;  /* photons stored in the caustic map */
+    uint32_t global_estimate_photons;  /* k of the global map's radiance estimate */
+    uint32_t caustic_estimate_photons; /* k of the caustic map's (cone-filtered) estimate */
+    float max_radius;          /* search radius cap in scene units; 0 = automatic (scene size / 40) */
+    uint32_t final_gather_rays;/* per camera sample at the first diffuse surface */
+    uint32_t photon_view;      /* enum phos_photon_view */
+    uint32_t max_photons_emitted_millions; /* give up filling a map after this many emitted paths (×10⁶) */
 } phos_render_settings;
 PHOS_API void phos_render_settings_init(phos_render_settings *settings);
 
@@ -269,12 +307,25 @@ enum phos_render_state {
     PHOS_STATE_CANCELLED = 3, PHOS_STATE_FAILED = 4
 };
 
+enum phos_stage {
+    PHOS_STAGE_WAITING = 0,
+    PHOS_STAGE_TRACING_PHOTONS = 1,
+    PHOS_STAGE_BUILDING_KDTREES = 2,
+    PHOS_STAGE_PRECOMPUTING_RADIANCE = 3,
+    PHOS_STAGE_RENDERING = 4,
+    PHOS_STAGE_FINISHED = 5
+};
+
 typedef struct phos_progress {
     uint32_t state;            /* enum phos_render_state */
     float fraction;            /* of the whole render, 0..1 */
     uint32_t tiles_done, tiles_total;
     uint32_t samples;          /* samples per pixel of this render */
-    char stage[64];            /* what is running now, e.g. "Path tracing" */
+    char stage[64];            /* what is running now, e.g. "Tracing photons" */
+    uint32_t stage_id;         /* enum phos_stage */
+    uint32_t photons_stored;   /* global + caustic so far */
+    uint64_t photons_emitted;  /* photon paths so far */
+    uint32_t global_photons, caustic_photons; /* in the maps, once built */
 } phos_progress;
 PHOS_API phos_status phos_render_progress(phos_render *render, phos_progress *out);
 

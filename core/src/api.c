@@ -218,6 +218,14 @@ void phos_render_settings_init(phos_render_settings *s)
     s->tile_size = 64;
     s->filter_width = 1.5f;
     s->pass_mask = 1u << PHOS_PASS_COMBINED;
+    s->global_photons = 200000;
+    s->caustic_photons = 50000;
+    s->global_estimate_photons = 50;
+    s->caustic_estimate_photons = 80;
+    s->max_radius = 0.0f;
+    s->final_gather_rays = 32;
+    s->photon_view = PHOS_PHOTON_VIEW_FINAL_GATHER;
+    s->max_photons_emitted_millions = 50;
 }
 
 /* --------------------------------------------------------------- scene */
@@ -516,8 +524,24 @@ static void render_set_error(render *r, phos_status st, const char *msg)
 
 static phos_status validate_settings(scene *s, const phos_render_settings *rs)
 {
-    if (rs->integrator != PHOS_INTEGRATOR_PATH)
+    if (rs->integrator > PHOS_INTEGRATOR_PHOTON)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: unknown integrator %u", rs->integrator);
+    if (rs->global_photons > (1u << 28) || rs->caustic_photons > (1u << 28))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: %u global / %u caustic photons exceed 2^28", rs->global_photons,
+             rs->caustic_photons);
+    if (rs->global_estimate_photons < 1 || rs->global_estimate_photons > 10000 || rs->caustic_estimate_photons < 1 ||
+        rs->caustic_estimate_photons > 10000)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: photons per estimate must be between 1 and 10000");
+    if (!isfinite(rs->max_radius) || rs->max_radius < 0.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: max radius %g must be finite and >= 0 (0 = automatic)",
+             (double)rs->max_radius);
+    if (rs->final_gather_rays < 1 || rs->final_gather_rays > 65536)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: final gather rays %u must be between 1 and 65536",
+             rs->final_gather_rays);
+    if (rs->photon_view > PHOS_PHOTON_VIEW_FAST)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: unknown photon view %u", rs->photon_view);
+    if (rs->max_photons_emitted_millions < 1 || rs->max_photons_emitted_millions > 100000)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: the emitted-photon cap must be between 1 and 100000 million");
     if (rs->width == 0 || rs->height == 0 || rs->width > 65536 || rs->height > 65536)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: resolution %ux%u must be between 1 and 65536 per side",
              rs->width, rs->height);
@@ -574,22 +598,19 @@ phos_status phos_render_create(phos_scene *s, const phos_render_settings *rs, ph
     pthread_mutex_init(&r->lock, NULL);
     pthread_cond_init(&r->finished_cond, NULL);
     atomic_init(&r->cancel, 0);
-    atomic_init(&r->next_tile, 0u);
     atomic_init(&r->tiles_done, 0u);
+    atomic_init(&r->stage, PHOS_STAGE_WAITING);
+    atomic_init(&r->photon_progress.emitted, 0u);
+    atomic_init(&r->photon_progress.stored, 0u);
     r->state = PHOS_STATE_IDLE;
     r->status = PHOS_OK;
-    r->integrator.max_bounces = rs->max_bounces;
-    r->integrator.transparent_background = rs->transparent_background != 0;
-    pixel_filter_init(&r->filter, rs->filter_width);
-    if (!film_create(&r->film, r->settings.region_x, r->settings.region_y, r->settings.region_width,
-                     r->settings.region_height, rs->pass_mask) ||
-        !render_make_tiles(r)) {
+    r->scene = s;
+    atomic_fetch_add(&s->refcount, 1);
+    if (!render_prepare(r)) {
         uint32_t w = r->settings.region_width, h = r->settings.region_height;
         phos_render_destroy(r);
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "render: out of memory for a %ux%u film", w, h);
     }
-    atomic_fetch_add(&s->refcount, 1);
-    r->scene = s;
     *out = r;
     return PHOS_OK;
 }
@@ -600,10 +621,7 @@ void phos_render_destroy(phos_render *r)
         return;
     atomic_store(&r->cancel, 1);
     render_join(r);
-    film_free(&r->film);
-    free(r->tiles);
-    free(r->finished);
-    free(r->threads);
+    render_free(r);
     pthread_mutex_destroy(&r->lock);
     pthread_cond_destroy(&r->finished_cond);
     if (r->scene)
@@ -624,7 +642,7 @@ phos_status phos_render_start(phos_render *r)
         render_set_error(r, PHOS_ERROR_INVALID_STATE, "start: the render was already started");
         return PHOS_ERROR_INVALID_STATE;
     }
-    phos_status st = render_start_threads(r);
+    phos_status st = render_start(r);
     if (st != PHOS_OK && !r->error[0])
         render_set_error(r, st, "start: could not start the render threads");
     return st;
@@ -640,16 +658,40 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     pthread_mutex_unlock(&r->lock);
     out->tiles_total = r->tile_count;
     out->tiles_done = atomic_load(&r->tiles_done);
-    out->fraction = r->tile_count ? (float)out->tiles_done / (float)r->tile_count : 1.0f;
     out->samples = r->settings.samples;
+    out->stage_id = atomic_load(&r->stage);
+    out->photons_stored = atomic_load(&r->photon_progress.stored);
+    out->photons_emitted = atomic_load(&r->photon_progress.emitted);
+    if (out->stage_id >= PHOS_STAGE_RENDERING) {
+        out->global_photons = r->maps.global.count;
+        out->caustic_photons = r->maps.caustic.count;
+    }
+    /* Photon stages take the first 20 % of the bar when there are any. */
+    float tiles = r->tile_count ? (float)out->tiles_done / (float)r->tile_count : 1.0f;
+    float photons_target = (float)r->settings.global_photons + (float)r->settings.caustic_photons;
+    float before = r->use_maps ? 0.2f : 0.0f;
+    float photon_part = photons_target > 0.0f ? fminf((float)out->photons_stored / photons_target, 1.0f) : 1.0f;
+    switch (out->stage_id) {
+    case PHOS_STAGE_TRACING_PHOTONS: out->fraction = 0.15f * photon_part; break;
+    case PHOS_STAGE_BUILDING_KDTREES: out->fraction = 0.16f; break;
+    case PHOS_STAGE_PRECOMPUTING_RADIANCE: out->fraction = 0.18f; break;
+    case PHOS_STAGE_WAITING: out->fraction = 0.0f; break;
+    default: out->fraction = before + (1.0f - before) * tiles; break;
+    }
     const char *stage = "Waiting";
-    switch (out->state) {
-    case PHOS_STATE_RUNNING: stage = "Path tracing"; break;
-    case PHOS_STATE_DONE: stage = "Finished"; break;
-    case PHOS_STATE_CANCELLED: stage = "Cancelled"; break;
-    case PHOS_STATE_FAILED: stage = "Failed"; break;
+    int photon_render = r->settings.integrator == PHOS_INTEGRATOR_PHOTON;
+    switch (out->stage_id) {
+    case PHOS_STAGE_TRACING_PHOTONS: stage = "Tracing photons"; break;
+    case PHOS_STAGE_BUILDING_KDTREES: stage = "Building kd-trees"; break;
+    case PHOS_STAGE_PRECOMPUTING_RADIANCE: stage = "Precomputing radiance"; break;
+    case PHOS_STAGE_RENDERING: stage = photon_render ? "Rendering with photon maps" : "Path tracing"; break;
+    case PHOS_STAGE_FINISHED: stage = "Finished"; break;
     default: break;
     }
+    if (out->state == PHOS_STATE_CANCELLED)
+        stage = "Cancelled";
+    else if (out->state == PHOS_STATE_FAILED)
+        stage = "Failed";
     snprintf(out->stage, sizeof(out->stage), "%s", stage);
     return PHOS_OK;
 }
@@ -716,7 +758,7 @@ phos_status phos_render_wait(phos_render *r, double timeout_seconds)
         return PHOS_ERROR_INVALID_STATE;
     }
     if (timeout_seconds < 0.0) {
-        while (r->workers_running > 0)
+        while (r->running)
             pthread_cond_wait(&r->finished_cond, &r->lock);
     } else {
         struct timespec ts;
@@ -728,11 +770,11 @@ phos_status phos_render_wait(phos_render *r, double timeout_seconds)
             ts.tv_sec += 1;
             ts.tv_nsec -= 1000000000L;
         }
-        while (r->workers_running > 0)
+        while (r->running)
             if (pthread_cond_timedwait(&r->finished_cond, &r->lock, &ts) == ETIMEDOUT)
                 break;
     }
-    int running = r->workers_running > 0;
+    int running = r->running;
     phos_status st = r->status;
     pthread_mutex_unlock(&r->lock);
     if (running)

@@ -455,6 +455,21 @@ void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric)
     b->sample_weight_sum = 0.0f;
 }
 
+void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other)
+{
+    diffuse->shading = other->shading = b->shading;
+    diffuse->ng = other->ng = b->ng;
+    diffuse->count = other->count = 0;
+    diffuse->sample_weight_sum = other->sample_weight_sum = 0.0f;
+    for (uint32_t i = 0; i < b->count; i++) {
+        const closure *c = &b->closures[i];
+        int is_diffuse = c->type == PHOS_CLOSURE_DIFFUSE || c->type == PHOS_CLOSURE_PRINCIPLED_DIFFUSE;
+        bsdf *dst = is_diffuse ? diffuse : other;
+        dst->closures[dst->count++] = *c;
+        dst->sample_weight_sum += c->sample_weight;
+    }
+}
+
 int bsdf_has_non_delta(const bsdf *b)
 {
     for (uint32_t i = 0; i < b->count; i++) {

@@ -74,6 +74,11 @@ vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi, float *pdf);
  * it. Returns 0 when no direction could be sampled (absorbed). */
 int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_sample *out);
 
+/* Splits b into its diffuse closures (Lambert, Principled diffuse) and all
+ * others (glossy, specular, glass, transparent): the split of Jensen's
+ * rendering equation into f_r,d and f_r,s (course notes 2002). */
+void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other);
+
 /* Whether some closure has a non-delta lobe (next-event estimation helps). */
 int bsdf_has_non_delta(const bsdf *b);
 

@@ -17,7 +17,7 @@ uint32_t phos_pass_channels(uint32_t pass)
     case PHOS_PASS_COMBINED:
         return 4;
     default:
-        return 0;
+        return pass < PHOS_PASS_COUNT ? 3 : 0;
     }
 }
 

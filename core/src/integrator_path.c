@@ -52,17 +52,10 @@ vec3 offset_ray_origin(vec3 p, vec3 n)
     return v3(offset_component(p.x, n.x), offset_component(p.y, n.y), offset_component(p.z, n.z));
 }
 
-/* Next parametric start after passing through a surface at t along the
- * same ray: a few ulps beyond, relative so it holds at any scene scale. */
-static float t_after(float t)
-{
-    return fmaxf(t * (1.0f + 4e-6f), t + 1e-7f);
-}
-
 /* Fraction of light that reaches p from direction wi over distance dist:
  * 0 or 1 for opaque occluders, the product of transparent weights through
  * Transparent closures. */
-static vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist)
+vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist)
 {
     vec3 n = v3_dot(wi, sf->ng) >= 0.0f ? sf->ng : v3_neg(sf->ng);
     vec3 o = offset_ray_origin(sf->p, n);
@@ -80,7 +73,7 @@ static vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, flo
         T = v3_mul(T, material_transparency(s, &occ));
         if (v3_is_zero(T))
             return T;
-        tmin = t_after(h.t);
+        tmin = t_after_hit(h.t);
     }
     return v3s(0.0f);
 }
@@ -105,10 +98,32 @@ static vec3 estimate_direct(const scene *s, const surface *sf, const bsdf *b, ve
     return v3_scale(v3_mul(v3_mul(f, ls.radiance), T), w / ls.pdf);
 }
 
-sample_result path_trace(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp)
+/* Which component a contribution belongs to, from the scattering events on
+ * its path: how many, whether the first was diffuse, and whether all the
+ * later ones were delta lobes. */
+static int classify(uint32_t events, int first_diffuse, int later_delta)
 {
-    sample_result res = {v3s(0.0f), 0.0f};
-    vec3 L = v3s(0.0f);
+    if (events == 0)
+        return COMPONENT_EMISSION;
+    if (events == 1)
+        return COMPONENT_DIRECT;
+    if (!first_diffuse)
+        return COMPONENT_SPECULAR;
+    return later_delta ? COMPONENT_CAUSTICS : COMPONENT_INDIRECT;
+}
+
+static void add_to(sample_result *res, int component, vec3 beta, vec3 L, float w)
+{
+    res->component[component] = v3_madd(res->component[component], v3_mul(beta, L), w);
+}
+
+sample_result path_trace(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                         integrator_scratch *scratch)
+{
+    (void)scratch;
+    sample_result res;
+    memset(&res, 0, sizeof(res));
+    int first_diffuse = 0, later_delta = 1; /* path type so far (classify) */
     vec3 beta = v3s(1.0f);                     /* path throughput */
     vec3 o = ray.o, d = ray.d;
     float tmin = ray.tmin, tmax = ray.tmax;
@@ -128,11 +143,12 @@ sample_result path_trace(const scene *s, const integrator_settings *is, camera_r
         light_hit lh;
         if (lights_intersect(s, o, d, t_hit, camera_segment, &lh)) {
             float w = prev_delta ? 1.0f : mis_power_heuristic(prev_pdf, lh.pdf);
-            L = v3_add(L, v3_scale(v3_mul(beta, lh.radiance), w));
+            add_to(&res, classify(depth, first_diffuse, later_delta), beta, lh.radiance, w);
         }
         if (!hit) {
             if (!(camera_segment && is->transparent_background))
-                L = v3_add(L, v3_mul(beta, lights_escape(s, d, prev_pdf, prev_delta, camera_segment)));
+                add_to(&res, classify(depth, first_diffuse, later_delta), beta,
+                       lights_escape(s, d, prev_pdf, prev_delta, camera_segment), 1.0f);
             if (camera_segment && !is->transparent_background)
                 res.alpha = 1.0f;
             break;
@@ -149,7 +165,7 @@ sample_result path_trace(const scene *s, const integrator_settings *is, camera_r
                 int32_t li = inst->emitter_of_triangle ? inst->emitter_of_triangle[sf.prim] : -1;
                 w = mis_power_heuristic(prev_pdf, light_pdf_triangle(s, li, o, sf.p, sf.ng));
             }
-            L = v3_add(L, v3_scale(v3_mul(beta, Le), w));
+            add_to(&res, classify(depth, first_diffuse, later_delta), beta, Le, w);
         }
         if (emission_only)
             break;
@@ -163,7 +179,8 @@ sample_result path_trace(const scene *s, const integrator_settings *is, camera_r
         }
         vec3 wo = v3_neg(d);
         if (bsdf_has_non_delta(&b) && s->lights.count > 0)
-            L = v3_add(L, v3_mul(beta, estimate_direct(s, &sf, &b, wo, smp, v_index)));
+            add_to(&res, classify(depth + 1, first_diffuse, depth == 0), beta,
+                   estimate_direct(s, &sf, &b, wo, smp, v_index), 1.0f);
 
         bsdf_sample bs;
         float u_pick = sampler_1d(smp, dim_bounce(v_index, DIM_BSDF_PICK));
@@ -179,13 +196,17 @@ sample_result path_trace(const scene *s, const integrator_settings *is, camera_r
         if (bs.flags & BSDF_TRANSPARENT) {
             if (++transparent_steps > MAX_TRANSPARENT_STEPS)
                 break;
-            tmin = t_after(h.t);
+            tmin = t_after_hit(h.t);
             continue;
         }
         if (camera_segment)
             res.alpha = 1.0f;
         camera_segment = 0;
         transparent_steps = 0;
+        if (depth == 0)
+            first_diffuse = (bs.flags & BSDF_DIFFUSE) != 0;
+        else
+            later_delta &= (bs.flags & BSDF_DELTA) != 0;
 
         /* Leave the surface on the side of the sampled direction. */
         vec3 n = v3_dot(bs.wi, sf.ng) >= 0.0f ? sf.ng : v3_neg(sf.ng);
@@ -206,6 +227,5 @@ sample_result path_trace(const scene *s, const integrator_settings *is, camera_r
             beta = v3_scale(beta, 1.0f / q);
         }
     }
-    res.radiance = L;
     return res;
 }

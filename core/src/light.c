@@ -454,6 +454,107 @@ float light_pdf_triangle(const scene *s, int32_t index, vec3 p, vec3 x, vec3 ng)
     return distribution_pdf(&s->lights.pick, (uint32_t)index) * d2 / (l->area * cos_l);
 }
 
+/* ------------------------------------------------------------- emission */
+
+/* Cosine-weighted direction about n (Malley's method). */
+static vec3 sample_cosine_about(vec3 n, float2 u)
+{
+    float2 dk = sample_disk_concentric(u);
+    float z = safe_sqrtf(1.0f - dk.x * dk.x - dk.y * dk.y);
+    frame f = frame_from_normal(n);
+    return frame_to_world(&f, v3(dk.x, dk.y, z));
+}
+
+/* Origin on the disk of the scene's bounding sphere that faces a distant
+ * light sending photons along d: every photon that can reach the scene
+ * crosses it. Returns the disk area πR² (m²). */
+static float distant_origin(const light_table *t, vec3 d, float2 u, vec3 *origin)
+{
+    frame f = frame_from_normal(d);
+    float2 dk = sample_disk_concentric(u);
+    vec3 c = v3_madd(t->center, d, -t->radius);
+    *origin = v3_add(c, v3_add(v3_scale(f.t, dk.x * t->radius), v3_scale(f.b, dk.y * t->radius)));
+    return PHOS_PI * t->radius * t->radius;
+}
+
+int light_sample_emission(const scene *s, const float u[5], vec3 *origin, vec3 *direction, vec3 *power)
+{
+    const light_table *t = &s->lights;
+    if (t->count == 0)
+        return 0;
+    float pick_pdf;
+    uint32_t i = distribution_sample(&t->pick, u[0], &pick_pdf, NULL);
+    if (!(pick_pdf > 0.0f))
+        return 0;
+    const light *l = &t->lights[i];
+    float2 ua = {u[1], u[2]}, ub = {u[3], u[4]};
+    vec3 phi; /* W, for a single photon */
+    switch (l->kind) {
+    case LIGHT_POINT:
+    case LIGHT_SPOT: {
+        vec3 d;
+        float pdf_dir;
+        if (l->kind == LIGHT_SPOT) {
+            d = sample_cone(l->direction, l->spot_cos_half, ub);
+            pdf_dir = 1.0f / (2.0f * PHOS_PI * (1.0f - l->spot_cos_half));
+        } else {
+            d = sample_uniform_sphere(ub);
+            pdf_dir = PHOS_INV_4PI;
+        }
+        float a = l->kind == LIGHT_SPOT ? light_spot_attenuation(l, d) : 1.0f;
+        /* A lamp of radius r emits the same flux from its surface; start
+         * the photon there so it is not born inside nearby geometry. */
+        *origin = l->radius > 0.0f ? v3_madd(l->position, d, l->radius) : l->position;
+        *direction = d;
+        phi = v3_scale(l->color, a / pdf_dir); /* I·a / p_ω */
+        break;
+    }
+    case LIGHT_AREA: {
+        *origin = area_point(l, ua);
+        *direction = sample_cosine_about(l->direction, ub);
+        phi = v3_scale(l->color, PHOS_PI * l->area); /* L cos / (cos/π · 1/A) */
+        break;
+    }
+    case LIGHT_TRIANGLE: {
+        float b1, b2;
+        triangle_barycentrics(ua, &b1, &b2);
+        *origin = v3_add(v3_add(v3_scale(l->p0, 1.0f - b1 - b2), v3_scale(l->p1, b1)), v3_scale(l->p2, b2));
+        vec3 ng = v3_normalize(v3_cross(v3_sub(l->p1, l->p0), v3_sub(l->p2, l->p0)));
+        /* Both faces emit: pick one with probability ½ (reusing ub.x). */
+        float2 ud = ub;
+        if (ub.x < 0.5f) {
+            ng = v3_neg(ng);
+            ud.x = 2.0f * ub.x;
+        } else {
+            ud.x = 2.0f * ub.x - 1.0f;
+        }
+        *direction = sample_cosine_about(ng, ud);
+        vec3 L = material_emission_at(s, l->instance, l->prim, b1, b2);
+        phi = v3_scale(L, 2.0f * PHOS_PI * l->area);
+        break;
+    }
+    case LIGHT_SUN: {
+        vec3 d = l->sun_cos_half < 1.0f ? sample_cone(l->direction, l->sun_cos_half, ub) : l->direction;
+        float area = distant_origin(t, d, ua, origin);
+        *direction = d;
+        phi = v3_scale(l->color, area); /* E · πR² */
+        break;
+    }
+    case LIGHT_WORLD: {
+        vec3 w = sample_uniform_sphere(ub); /* where the light comes from */
+        vec3 d = v3_neg(w);
+        float area = distant_origin(t, d, ua, origin);
+        *direction = d;
+        phi = v3_scale(l->color, area / PHOS_INV_4PI); /* L · πR² / p_ω */
+        break;
+    }
+    default:
+        return 0;
+    }
+    *power = v3_scale(phi, 1.0f / pick_pdf);
+    return !v3_is_zero(*power) && v3_is_finite(*power);
+}
+
 /* --------------------------------------------------------- intersection */
 
 static int intersect_point(const light *l, vec3 o, vec3 d, float tmax, light_hit *out)

@@ -97,6 +97,17 @@ int lights_intersect(const struct phos_scene *s, vec3 o, vec3 d, float tmax, int
  * bsdf_pdf (no weighting if bsdf_delta). */
 vec3 lights_escape(const struct phos_scene *s, vec3 d, float bsdf_pdf, int bsdf_delta, int camera_ray);
 
+/* A photon leaving a light (Jensen 2001 §5.1; pbrt-v4 SampleLe): picks a
+ * light in proportion to its power and samples an origin and direction.
+ * `power` is the flux the photon carries if it were the only one emitted,
+ * Φ = L_e·|cos θ| / (p_light · p_A · p_ω) in W; divide by the number of
+ * photons emitted. Points emit uniformly over the sphere (spots over their
+ * cone), area lights and emissive triangles cosine-weighted from a uniform
+ * point, suns and the world from a disk covering the scene's bounding
+ * sphere. Returns 0 if the sample carries nothing. */
+int light_sample_emission(const struct phos_scene *s, const float u[5], vec3 *origin, vec3 *direction,
+                          vec3 *power);
+
 /* Spot attenuation for the direction from the light toward the point. */
 float light_spot_attenuation(const light *l, vec3 dir_from_light);
 
