@@ -88,10 +88,31 @@ PHOS_CAMERA_ORTHOGRAPHIC = 1
 
 # enum phos_integrator
 PHOS_INTEGRATOR_PATH = 0
+PHOS_INTEGRATOR_PHOTON = 1
+
+# enum phos_photon_view
+PHOS_PHOTON_VIEW_FINAL_GATHER = 0
+PHOS_PHOTON_VIEW_FAST = 1
 
 # enum phos_pass
 PHOS_PASS_COMBINED = 0
-PHOS_PASS_COUNT = 1
+PHOS_PASS_EMISSION = 1
+PHOS_PASS_DIRECT = 2
+PHOS_PASS_SPECULAR = 3
+PHOS_PASS_CAUSTICS = 4
+PHOS_PASS_INDIRECT = 5
+PHOS_PASS_PHOTON_MAP = 6
+PHOS_PASS_CAUSTIC_MAP = 7
+PHOS_PASS_PHOTONS = 8
+PHOS_PASS_COUNT = 9
+
+# enum phos_stage
+PHOS_STAGE_WAITING = 0
+PHOS_STAGE_TRACING_PHOTONS = 1
+PHOS_STAGE_BUILDING_KDTREES = 2
+PHOS_STAGE_PRECOMPUTING_RADIANCE = 3
+PHOS_STAGE_RENDERING = 4
+PHOS_STAGE_FINISHED = 5
 
 # enum phos_render_state
 PHOS_STATE_IDLE = 0
@@ -221,6 +242,14 @@ class phos_render_settings(ctypes.Structure):
         ("filter_width", _f),
         ("transparent_background", _u32),
         ("pass_mask", _u32),
+        ("global_photons", _u32),
+        ("caustic_photons", _u32),
+        ("global_estimate_photons", _u32),
+        ("caustic_estimate_photons", _u32),
+        ("max_radius", _f),                 # scene units, 0 = automatic
+        ("final_gather_rays", _u32),
+        ("photon_view", _u32),              # enum phos_photon_view
+        ("max_photons_emitted_millions", _u32),
     ]
 
 
@@ -232,6 +261,11 @@ class phos_progress(ctypes.Structure):
         ("tiles_total", _u32),
         ("samples", _u32),
         ("stage", ctypes.c_char * 64),
+        ("stage_id", _u32),                 # enum phos_stage
+        ("photons_stored", _u32),
+        ("photons_emitted", ctypes.c_uint64),
+        ("global_photons", _u32),
+        ("caustic_photons", _u32),
     ]
 
 
