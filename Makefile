@@ -7,6 +7,7 @@
 #               [PHOS_CHROOT_DIR=dir]     Debian 13 chroot (root; default /var/tmp/...)
 #   make install | uninstall              add-on into the user's Blender
 #   make package                          dist/phos-<version>.zip
+#   make bench [BENCH_ARGS=...]           kd-tree benchmark vs nanoflann (not in make test)
 #   make deps | build | clean
 #
 # build, test, render, install and package first install the Debian packages
@@ -37,10 +38,10 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
-.PHONY: deps build test test-blender4 render install uninstall package clean help
+.PHONY: deps build test test-blender4 bench render install uninstall package clean help
 
 help:
-	@sed -n '3,13p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,14p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -60,6 +61,17 @@ test: build
 # build-trixie/, never to build/ or addon/phos/lib. See tools/test-blender4.sh.
 test-blender4:
 	PHOS_CHROOT_DIR=$(PHOS_CHROOT_DIR) JOBS=$(JOBS) tools/test-blender4.sh $(PYTEST_ARGS)
+
+# Release build of bench/ in its own folder, so that PHOS_BUILD_BENCH=ON never
+# lands in $(BUILD_DIR)'s cache (and C++ never in `make build` or `make test`).
+# BENCH_ARGS: --photons N --queries Q --k K (default 1000000, 100000, 50).
+BENCH_DIR  ?= $(BUILD_DIR)/bench-release
+BENCH_ARGS ?=
+bench:
+	@tools/install-deps.sh --bench
+	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DPHOS_BUILD_BENCH=ON -DPHOS_BUILD_TESTS=OFF
+	cmake --build $(BENCH_DIR) -j $(JOBS) --target bench_kdtree
+	$(BENCH_DIR)/bench/bench_kdtree $(BENCH_ARGS)
 
 render: build
 	@test -f scenes/$(SCENE).py || { echo "render: no scene scenes/$(SCENE).py; scenes:" \
@@ -85,5 +97,5 @@ package: build
 	BLENDER=$(BLENDER) tools/check-addon.sh --zip dist/phos-$$(python3 tools/version.py).zip
 
 clean:
-	rm -rf $(BUILD_DIR) out dist $(ADDON_LIB_DIR) .pytest_cache
+	rm -rf $(BUILD_DIR) build-trixie out dist $(ADDON_LIB_DIR) .pytest_cache
 	find $(wildcard addon scenes tests tools) -name __pycache__ -type d -prune -exec rm -rf {} +

@@ -4,6 +4,7 @@
 #
 #   tools/install-deps.sh            install what is missing
 #   tools/install-deps.sh --check    only list what is missing (exit 1 if any)
+#   tools/install-deps.sh --bench    also the packages of `make bench` (may be combined with --check)
 set -euo pipefail
 
 PACKAGES=(
@@ -14,6 +15,21 @@ PACKAGES=(
   python3-pytest   # the Blender test suite runs pytest inside Blender
   zip
 )
+
+# Only for `make bench`: the kd-tree benchmark compares with nanoflann (C++).
+BENCH_PACKAGES=(
+  libnanoflann-dev # header-only kd-tree library
+  g++
+)
+
+check=0
+for arg in "$@"; do
+  case "$arg" in
+    --check) check=1 ;;
+    --bench) PACKAGES+=("${BENCH_PACKAGES[@]}") ;;
+    *) echo "usage: $0 [--check] [--bench]" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for pkg in "${PACKAGES[@]}"; do
@@ -27,7 +43,7 @@ if [[ ${#missing[@]} -eq 0 ]]; then
   exit 0
 fi
 
-if [[ "${1:-}" == "--check" ]]; then
+if [[ $check -eq 1 ]]; then
   echo "missing packages: ${missing[*]}"
   exit 1
 fi

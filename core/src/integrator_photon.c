@@ -112,7 +112,7 @@ static vec3 final_gather(const scene *s, const integrator_settings *is, const su
     uint32_t N = total / M;
     if (N < 1)
         N = 1;
-    sampler g = {hash_combine(smp->key, 0x9a7e0000u + vertex)};
+    sampler g = sampler_split(smp, 0x9a7e0000u + vertex);
     frame f = frame_from_normal(sf->ns);
     vec3 o_up = offset_ray_origin(sf->p, sf->ng);
     vec3 sum = v3s(0.0f);

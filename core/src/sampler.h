@@ -14,7 +14,8 @@
 
 #include <stdint.h>
 
-/* "lowbias32" integer finaliser (C. Wellons, 2020): full avalanche, cheap. */
+/* "lowbias32" integer finaliser (C. Wellons, 2020): full avalanche, cheap.
+ * Used for hashing small keys; random numbers come from mix64 below. */
 static inline uint32_t hash_u32(uint32_t x)
 {
     x ^= x >> 16;
@@ -30,31 +31,56 @@ static inline uint32_t hash_combine(uint32_t seed, uint32_t v)
     return hash_u32(seed ^ (v + 0x9e3779b9U + (seed << 6) + (seed >> 2)));
 }
 
+/* SplitMix64's finaliser (Steele, Lea & Flood 2014, "Fast splittable
+ * pseudorandom number generators"; Stafford's Mix13 constants): a bijection
+ * of 64-bit integers with full avalanche. Counter-based use (key + γ·i,
+ * then mix) is SplitMix64 itself, which passes BigCrush. */
+static inline uint64_t mix64(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+#define SAMPLER_GAMMA 0x9e3779b97f4a7c15ULL /* 2^64 / golden ratio, odd */
+
 /* Uniform float in [0, 1) from the top 24 bits. */
 static inline float u32_to_unit_float(uint32_t x) { return (float)(x >> 8) * (1.0f / 16777216.0f); }
+static inline float u64_to_unit_float(uint64_t x) { return (float)(x >> 40) * (1.0f / 16777216.0f); }
 
 typedef struct sampler {
-    uint32_t key; /* hash of (seed, pixel, sample) or (seed, photon) */
+    uint64_t key; /* mix of (seed, pixel, sample) or (seed, stream, photon) */
 } sampler;
 
 static inline sampler sampler_for_pixel(uint32_t seed, uint32_t x, uint32_t y, uint32_t sample)
 {
     sampler s;
-    s.key = hash_combine(hash_combine(hash_combine(hash_u32(seed), x), y), sample);
+    uint64_t k = mix64((uint64_t)seed * SAMPLER_GAMMA + 0x5eedULL);
+    k = mix64(k ^ (((uint64_t)y << 32) | x));
+    s.key = mix64(k + (uint64_t)sample * SAMPLER_GAMMA);
     return s;
 }
 
 static inline sampler sampler_for_index(uint32_t seed, uint32_t stream, uint64_t index)
 {
     sampler s;
-    s.key = hash_combine(hash_combine(hash_combine(hash_u32(seed), stream), (uint32_t)index),
-                         (uint32_t)(index >> 32));
+    uint64_t k = mix64((uint64_t)seed * SAMPLER_GAMMA + 0x9407ULL);
+    k = mix64(k ^ ((uint64_t)stream << 48));
+    s.key = mix64(k + index * SAMPLER_GAMMA);
     return s;
+}
+
+/* Derives an independent sampler (e.g. for the rays of a final gather). */
+static inline sampler sampler_split(const sampler *s, uint32_t stream)
+{
+    sampler r;
+    r.key = mix64(s->key ^ ((uint64_t)stream * 0xd1b54a32d192ed03ULL));
+    return r;
 }
 
 static inline float sampler_1d(const sampler *s, uint32_t dim)
 {
-    return u32_to_unit_float(hash_combine(s->key, dim));
+    return u64_to_unit_float(mix64(s->key + (uint64_t)(dim + 1) * SAMPLER_GAMMA));
 }
 
 typedef struct float2 {

@@ -1,0 +1,271 @@
+// bench_kdtree — Phos's left-balanced photon kd-tree (core/src/kdtree.c)
+// against nanoflann's KDTreeSingleIndexAdaptor on the same photons, in the
+// same run, on one thread.
+//
+// Reports build time, k-nearest queries per second (k = 50 with a maximum
+// radius, the photon map's radiance-estimate query), the ratio, and bytes
+// per photon. The two searches must return the same number of photons and
+// the same final radius² for every query (both accept d² < r² strictly and
+// compute d² in the same float order); the count of agreeing queries is
+// printed. Times are the best of 3 runs; nothing is asserted about them.
+//
+//   bench_kdtree [--photons N] [--queries Q] [--k K]
+//
+// C++ only because nanoflann is a C++ header; Phos itself is C11.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <nanoflann.hpp>
+
+#include "kdtree.h"
+#include "photon.h"
+#include "sampler.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0)
+{
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct Rng {
+    uint32_t state;
+    float next()
+    {
+        state = hash_u32(state + 0x9e3779b9U);
+        return u32_to_unit_float(state);
+    }
+};
+
+// ---- photon sets ----------------------------------------------------------
+
+// A point on the six faces of the unit cube: where photons land in a room.
+vec3 on_box(Rng &r)
+{
+    int face = std::min(5, (int)(r.next() * 6.0f));
+    float u = r.next(), v = r.next(), w = (face & 1) ? 1.0f : 0.0f;
+    return face < 2 ? v3(w, u, v) : face < 4 ? v3(u, w, v) : v3(u, v, w);
+}
+
+// The Cornell-like room: the box's faces plus two spheres standing in it
+// (one photon in three on the spheres).
+vec3 on_room(Rng &r)
+{
+    if (r.next() < 2.0f / 3.0f)
+        return on_box(r);
+    float z = 1.0f - 2.0f * r.next(), phi = 2.0f * PHOS_PI * r.next();
+    float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    vec3 d = v3(s * std::cos(phi), s * std::sin(phi), z);
+    return r.next() < 0.5f ? v3_madd(v3(0.3f, 0.35f, 0.2f), d, 0.2f) : v3_madd(v3(0.7f, 0.6f, 0.25f), d, 0.25f);
+}
+
+struct Scenario {
+    const char *name;
+    vec3 (*point)(Rng &);
+};
+
+std::vector<photon> make_photons(const Scenario &sc, size_t n, uint32_t seed)
+{
+    std::vector<photon> p(n);
+    Rng r{seed};
+    for (size_t i = 0; i < n; i++) {
+        vec3 pos = sc.point(r);
+        vec3 power = v3(r.next(), r.next(), r.next());
+        p[i] = photon_make(pos, v3_scale(power, 1e-6f), v3(0.0f, 0.0f, -1.0f), 0, 1);
+    }
+    return p;
+}
+
+// ---- nanoflann ------------------------------------------------------------
+
+// Positions only, 12 bytes per point: what nanoflann indexes.
+struct Cloud {
+    std::vector<float> xyz;
+    size_t kdtree_get_point_count() const { return xyz.size() / 3; }
+    float kdtree_get_pt(size_t i, size_t d) const { return xyz[3 * i + d]; }
+    template <class Box> bool kdtree_get_bbox(Box &) const { return false; }
+};
+
+using NanoTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Cloud>, Cloud, 3, uint32_t>;
+
+// KNNResultSet with a maximum radius: its worst distance starts at r²
+// instead of +max, so only photons with d² < r² are taken, as in Phos.
+struct KnnWithin : nanoflann::KNNResultSet<float, uint32_t, uint32_t> {
+    KnnWithin(uint32_t k, uint32_t *index, float *dist2, float r2) : KNNResultSet(k)
+    {
+        init(index, dist2);
+        dist2[k - 1] = r2;
+    }
+};
+
+// ---- measurements ---------------------------------------------------------
+
+struct Result {
+    double build_s;
+    double qps;
+    size_t bytes;
+    std::vector<uint32_t> found;
+    std::vector<float> radius2;
+};
+
+template <class F> double best_of(int reps, F f)
+{
+    double best = 1e30;
+    for (int i = 0; i < reps; i++)
+        best = std::min(best, f());
+    return best;
+}
+
+void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
+              Result &res)
+{
+    photon_map map;
+    photon_map_init(&map);
+    res.build_s = best_of(3, [&] {
+        photon_map_free(&map);
+        photon_map_init(&map);
+        photon_map_reserve(&map, (uint32_t)photons.size());
+        photon_map_append(&map, photons.data(), (uint32_t)photons.size());
+        auto t0 = Clock::now();
+        photon_map_build(&map);
+        return seconds_since(t0);
+    });
+    res.bytes = photon_map_memory(&map);
+
+    kdtree_query q;
+    kdtree_query_init(&q, k);
+    res.found.resize(queries.size());
+    res.radius2.resize(queries.size());
+    double t = best_of(3, [&] {
+        auto t0 = Clock::now();
+        for (size_t i = 0; i < queries.size(); i++) {
+            res.found[i] = photon_map_knn(&map, queries[i], r2, &q);
+            res.radius2[i] = q.radius2;
+        }
+        return seconds_since(t0);
+    });
+    res.qps = (double)queries.size() / t;
+    kdtree_query_free(&q);
+    photon_map_free(&map);
+}
+
+void run_nanoflann(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
+                   Result &res)
+{
+    Cloud cloud;
+    cloud.xyz.resize(photons.size() * 3);
+    for (size_t i = 0; i < photons.size(); i++)
+        std::memcpy(&cloud.xyz[3 * i], photons[i].position, sizeof(float) * 3);
+
+    NanoTree *tree = nullptr;
+    res.build_s = best_of(3, [&] {
+        delete tree;
+        auto t0 = Clock::now();
+        tree = new NanoTree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+        return seconds_since(t0);
+    });
+    res.bytes = tree->usedMemory(*tree) + cloud.xyz.size() * sizeof(float);
+
+    std::vector<uint32_t> index(k);
+    std::vector<float> dist2(k);
+    res.found.resize(queries.size());
+    res.radius2.resize(queries.size());
+    nanoflann::SearchParams params(32, 0.0f, false); // exact, unsorted like Phos
+    double t = best_of(3, [&] {
+        auto t0 = Clock::now();
+        for (size_t i = 0; i < queries.size(); i++) {
+            KnnWithin set(k, index.data(), dist2.data(), r2);
+            const float x[3] = {queries[i].x, queries[i].y, queries[i].z};
+            tree->findNeighbors(set, x, params);
+            res.found[i] = set.size();
+            res.radius2[i] = set.worstDist();
+        }
+        return seconds_since(t0);
+    });
+    res.qps = (double)queries.size() / t;
+    delete tree;
+}
+
+size_t agreeing(const Result &a, const Result &b)
+{
+    size_t same = 0;
+    for (size_t i = 0; i < a.found.size(); i++)
+        same += a.found[i] == b.found[i] && a.radius2[i] == b.radius2[i];
+    return same;
+}
+
+void bench_scenario(const Scenario &sc, size_t n, size_t nq, uint32_t k)
+{
+    std::vector<photon> photons = make_photons(sc, n, 1);
+    std::vector<vec3> queries(nq);
+    Rng r{12345};
+    for (auto &q : queries)
+        q = sc.point(r);
+
+    std::printf("\n%s: %zu photons, %zu queries on the same surfaces, k = %u, 1 thread\n", sc.name, n, nq, k);
+    std::printf("  %-30s %14s %14s %10s\n", "", "Phos", "nanoflann", "Phos/nano");
+    bool first = true;
+    const float radii[] = {0.1f, 0.01f};
+    for (float radius : radii) {
+        Result phos, nano;
+        run_phos(photons, queries, k, radius * radius, phos);
+        run_nanoflann(photons, queries, k, radius * radius, nano);
+        if (first) {
+            std::printf("  %-30s %14.1f %14.1f %10.2f\n", "build (ms, best of 3)", 1e3 * phos.build_s,
+                        1e3 * nano.build_s, phos.build_s / nano.build_s);
+            double pb = (double)phos.bytes / (double)n, nb = (double)nano.bytes / (double)n;
+            std::printf("  %-30s %14.2f %14.2f %10.2f\n", "bytes per photon", pb, nb, pb / nb);
+            std::printf("  %-30s %14s %14.2f %10s\n", "  nanoflann + 8 B payload", "", nb + 8.0, "");
+            first = false;
+        }
+        size_t filled = 0;
+        for (uint32_t f : phos.found)
+            filled += f == k;
+        char label[64];
+        std::snprintf(label, sizeof label, "queries/s (best of 3), r %.2g", (double)radius);
+        std::printf("  %-30s %14.0f %14.0f %10.2f\n", label, phos.qps, nano.qps, phos.qps / nano.qps);
+        std::printf("  %-30s %13.1f%% %14s %10s\n", "  queries that found k", 100.0 * filled / (double)nq, "",
+                    "");
+        std::printf("  %-30s %14zu %14s\n", "  results identical", agreeing(phos, nano), "");
+    }
+}
+
+size_t arg_size(int argc, char **argv, const char *name, size_t fallback)
+{
+    for (int i = 1; i + 1 < argc; i++)
+        if (std::strcmp(argv[i], name) == 0)
+            return (size_t)std::strtoull(argv[i + 1], nullptr, 10);
+    return fallback;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    size_t n = arg_size(argc, argv, "--photons", 1000000);
+    size_t nq = arg_size(argc, argv, "--queries", 100000);
+    uint32_t k = (uint32_t)arg_size(argc, argv, "--k", 50);
+    if (n == 0 || n > PHOTON_MAP_MAX_PHOTONS || nq == 0 || k == 0) {
+        std::fprintf(stderr, "usage: bench_kdtree [--photons N] [--queries Q] [--k K]\n");
+        return 2;
+    }
+    std::printf("kd-tree benchmark: Phos (left-balanced heap, 20-byte photons) vs nanoflann %d.%d.%d "
+                "(KDTreeSingleIndexAdaptor, leaf size 10, positions as float[3])\n",
+                NANOFLANN_VERSION >> 8, (NANOFLANN_VERSION >> 4) & 0xf, NANOFLANN_VERSION & 0xf);
+    std::printf("bytes per photon: Phos = the whole photon map (position, power, direction, flags, tree);\n"
+                "nanoflann = its index + 12 B of positions; a photon map on it needs 8 B more per photon.\n"
+                "Phos/nano is the ratio of the two columns: below 1 is better for build time and bytes,\n"
+                "above 1 for queries per second.\n");
+    const Scenario scenarios[] = {{"box faces", on_box}, {"room (box + two spheres)", on_room}};
+    for (const Scenario &sc : scenarios)
+        bench_scenario(sc, n, nq, k);
+    return 0;
+}

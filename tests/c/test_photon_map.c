@@ -1,0 +1,322 @@
+/*
+ * test_photon_map.c — photon tracing and the radiance estimate against
+ * closed forms, and the PHOTON integrator against PATH.
+ *
+ *  - Irradiance: a point light of intensity I at height h over a large
+ *    diffuse plane gives E = I cos θ / d² = Φ cos θ / (4π d²). The estimate
+ *    at 40 points must match within 4 standard errors (1/√k relative, box
+ *    kernel with the k−1 rule) plus 1 %, and their mean within 2 %.
+ *  - Power: every photon from a point light inside a closed sphere lands on
+ *    it, so the direct photons carry Φ = 4πI in all; with albedo ρ the
+ *    stored power (all bounces) is Φ/(1 − ρ) in expectation (Russian
+ *    roulette keeps it unbiased).
+ *  - Determinism: the maps are identical for 1 and 3 threads.
+ *  - PHOTON vs PATH: each light component pass agrees, and Combined is the
+ *    sum of the components.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "kdtree.h"
+#include "photon_trace.h"
+#include "radiance_estimate.h"
+#include "scene.h"
+#include "test_scenes.h"
+#include "test_util.h"
+
+static photon_trace_settings trace_settings(uint32_t global, uint32_t caustic, uint32_t threads)
+{
+    photon_trace_settings ps;
+    memset(&ps, 0, sizeof(ps));
+    ps.global_photons = global;
+    ps.caustic_photons = caustic;
+    ps.max_emitted = 50000000;
+    ps.max_bounces = 16;
+    ps.seed = 3;
+    ps.threads = threads;
+    ps.radiance_k = 50;
+    ps.max_radius = 1.0f;
+    return ps;
+}
+
+static phos_scene *plane_under_point_light(float I, float h, float rho)
+{
+    phos_scene *s = phos_scene_create();
+    uint32_t plane = test_add_quad_mesh(s, 1000.0f);
+    uint32_t mat = test_add_diffuse(s, rho, rho, rho);
+    test_add_instance(s, plane, mat, 0, 0, 0);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.position[2] = h;
+    l.color[0] = l.color[1] = l.color[2] = I;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera(s, 0, 0, 5, 0.5f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    return s;
+}
+
+static void test_point_light_irradiance(void)
+{
+    const float I = 2.0f, h = 1.0f;
+    phos_scene *s = plane_under_point_light(I, h, 0.5f);
+    photon_trace_settings ps = trace_settings(1000000, 0, 0);
+    photon_maps maps;
+    photon_maps_init(&maps);
+    atomic_int cancel = 0;
+    CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
+    CHECK(photon_maps_build(&maps) == PHOS_OK);
+    /* Half the photons go up and escape: about 2 emitted per stored. */
+    CHECK_MSG(maps.global.count >= 1000000 && maps.global_emitted > 1900000 && maps.global_emitted < 2100000,
+              "stored %u, emitted %llu", maps.global.count, (unsigned long long)maps.global_emitted);
+    const uint32_t k = 2000;
+    kdtree_query q;
+    CHECK(kdtree_query_init(&q, k));
+    estimate_params ep = {k, 0.5f, ESTIMATE_BOX, 0};
+    double sum_ratio = 0.0;
+    int n = 0, bad = 0;
+    for (int i = 0; i < 40; i++) {
+        /* Points out to 0.8 m, where the density is still high. */
+        float r = 0.8f * sqrtf((float)(i + 0.5f) / 40.0f), a = 2.4f * (float)i;
+        vec3 x = v3(r * cosf(a), r * sinf(a), 0.0f);
+        vec3 E = photon_irradiance(&maps.global, x, v3(0, 0, 1), &ep, &q);
+        float d2 = r * r + h * h;
+        double expected = I * (h / sqrtf(d2)) / d2;
+        double ratio = E.x / expected;
+        double tol = 4.0 / sqrt((double)k) + 0.01;
+        if (fabs(ratio - 1.0) > tol) {
+            bad++;
+            fprintf(stderr, "  irradiance at r=%.2f: %.4f, expected %.4f\n", r, E.x, expected);
+        }
+        sum_ratio += ratio;
+        n++;
+    }
+    double mean = sum_ratio / n;
+    printf("  point light over a plane: mean estimate / exact = %.4f over %d points\n", mean, n);
+    CHECK_MSG(bad == 0, "%d of %d irradiance estimates outside 4σ + 1%%", bad, n);
+    CHECK_MSG(fabs(mean - 1.0) < 0.02, "mean ratio %.4f", mean);
+    kdtree_query_free(&q);
+    photon_maps_free(&maps);
+    phos_scene_destroy(s);
+}
+
+static void test_power_in_closed_sphere(void)
+{
+    const float I = 1.5f, rho = 0.6f;
+    phos_scene *s = phos_scene_create();
+    uint32_t mesh = test_add_sphere_mesh(s, 1.0f, 48, 24, 1);
+    uint32_t mat = test_add_diffuse(s, rho, rho, rho);
+    test_add_instance(s, mesh, mat, 0, 0, 0);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.color[0] = l.color[1] = l.color[2] = I;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera(s, 0, 0, 0, 1.0f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    photon_trace_settings ps = trace_settings(200000, 0, 0);
+    ps.max_bounces = 200;
+    photon_maps maps;
+    photon_maps_init(&maps);
+    atomic_int cancel = 0;
+    CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
+    double direct = 0.0, all = 0.0;
+    for (uint32_t i = 0; i < maps.global.count; i++) {
+        vec3 p = photon_power(&maps.global.photons[i]);
+        all += p.x;
+        if (photon_is_direct(&maps.global.photons[i]))
+            direct += p.x;
+    }
+    double phi = 4.0 * M_PI * I;
+    printf("  closed sphere: direct power %.4f W, all %.4f W (Φ = %.4f, Φ/(1-ρ) = %.4f)\n", direct, all, phi,
+           phi / (1.0 - rho));
+    /* Direct: exact up to the RGBE rounding of each photon (< 1/256) and the
+     * photons of the last, partial path. */
+    CHECK_REL(direct, phi, 0.005);
+    /* All bounces: a random number of photons per path; 2 % is many σ. */
+    CHECK_REL(all, phi / (1.0 - rho), 0.02);
+    photon_maps_free(&maps);
+    phos_scene_destroy(s);
+}
+
+static phos_scene *glass_sphere_scene(void)
+{
+    phos_scene *s = phos_scene_create();
+    uint32_t plane = test_add_quad_mesh(s, 3.0f);
+    uint32_t white = test_add_diffuse(s, 0.7f, 0.7f, 0.7f);
+    test_add_instance(s, plane, white, 0, 0, 0);
+    phos_closure_desc g;
+    phos_closure_desc_init(&g);
+    g.type = PHOS_CLOSURE_GLASS;
+    g.weight[0] = g.weight[1] = g.weight[2] = 1.0f;
+    g.roughness = 0.0f;
+    g.ior = 1.5f;
+    phos_material_desc gm;
+    phos_material_desc_init(&gm);
+    gm.closure_count = 1;
+    gm.closures = &g;
+    uint32_t glass;
+    phos_scene_add_material(s, &gm, &glass);
+    uint32_t sphere = test_add_sphere_mesh(s, 0.4f, 48, 24, 0);
+    test_add_instance(s, sphere, glass, 0, 0, 0.6f);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_AREA;
+    l.position[2] = 2.5f;
+    l.axis_u[0] = 0.5f;
+    l.axis_v[1] = 0.5f;
+    l.color[0] = l.color[1] = l.color[2] = 60.0f;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera_pitched(s, 0.0f, -3.5f, 3.0f, 0.9f, 0.6f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    return s;
+}
+
+static void test_maps_deterministic(void)
+{
+    phos_scene *s = glass_sphere_scene();
+    photon_maps a, b;
+    photon_maps_init(&a);
+    photon_maps_init(&b);
+    atomic_int cancel = 0;
+    photon_trace_settings p1 = trace_settings(30000, 10000, 1), p3 = trace_settings(30000, 10000, 3);
+    CHECK(photon_maps_trace(s, &p1, &a, &cancel, NULL) == PHOS_OK && photon_maps_build(&a) == PHOS_OK);
+    CHECK(photon_maps_trace(s, &p3, &b, &cancel, NULL) == PHOS_OK && photon_maps_build(&b) == PHOS_OK);
+    CHECK(a.global.count == b.global.count && a.caustic.count == b.caustic.count);
+    CHECK(a.global_emitted == b.global_emitted && a.caustic_emitted == b.caustic_emitted);
+    CHECK(a.global.count && memcmp(a.global.photons, b.global.photons, sizeof(photon) * a.global.count) == 0);
+    CHECK(a.caustic.count && memcmp(a.caustic.photons, b.caustic.photons, sizeof(photon) * a.caustic.count) == 0);
+    /* Caustic photons are flagged, came through at least one bounce, and
+     * most lie in the focus under the sphere (the rest are reflections off
+     * its surface, which land anywhere). */
+    uint32_t unflagged = 0, focused = 0;
+    for (uint32_t i = 0; i < a.caustic.count; i++) {
+        const photon *p = &a.caustic.photons[i];
+        vec3 x = photon_position(p);
+        unflagged += !photon_is_caustic(p) || photon_depth(p) < 1;
+        focused += x.x * x.x + x.y * x.y < 0.5f * 0.5f;
+    }
+    CHECK_MSG(unflagged == 0, "%u caustic photons unflagged or without a bounce", unflagged);
+    CHECK_MSG(focused > a.caustic.count / 2, "only %u of %u caustic photons under the sphere", focused, a.caustic.count);
+    photon_maps_free(&a);
+    photon_maps_free(&b);
+    phos_scene_destroy(s);
+}
+
+static float *render_passes(phos_scene *s, uint32_t integrator, uint32_t samples, uint32_t seed,
+                            float *passes[PHOS_PASS_COUNT], uint32_t w)
+{
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.seed = seed;
+    rs.width = rs.height = w;
+    rs.samples = samples;
+    rs.integrator = integrator;
+    rs.max_bounces = 8;
+    rs.pass_mask = (1u << PHOS_PASS_COUNT) - 1u;
+    rs.global_photons = 100000;
+    rs.caustic_photons = 100000;
+    rs.final_gather_rays = 16;
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+    if (!r)
+        return NULL;
+    CHECK(phos_render_start(r) == PHOS_OK);
+    CHECK(phos_render_wait(r, -1.0) == PHOS_OK);
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        uint32_t ch = phos_pass_channels(p);
+        passes[p] = malloc(sizeof(float) * ch * w * w);
+        CHECK(phos_render_read(r, p, 0, 0, w, w, passes[p], (size_t)ch * w * w) == PHOS_OK);
+    }
+    phos_render_destroy(r);
+    return passes[0];
+}
+
+static double pass_mean(const float *p, uint32_t channels, uint32_t n)
+{
+    double m = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        m += p[i * channels] + p[i * channels + 1] + p[i * channels + 2];
+    return m / (3.0 * n);
+}
+
+/* Standard error of the mean of two renders a and b with different seeds:
+ * per pixel, Var(a − b) = 2σ², and the mean of (a + b)/2 over n pixels has
+ * variance σ²/(2n) = Var(a − b)/(4n). */
+static double pair_stderr(const float *a, const float *b, uint32_t channels, uint32_t n)
+{
+    double m = 0.0, v = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++)
+            m += a[i * channels + c] - b[i * channels + c];
+    m /= 3.0 * n;
+    for (uint32_t i = 0; i < n; i++) {
+        double d = 0.0;
+        for (int c = 0; c < 3; c++)
+            d += (a[i * channels + c] - b[i * channels + c]) / 3.0;
+        v += (d - m) * (d - m);
+    }
+    return sqrt(v / (n - 1) / (4.0 * n));
+}
+
+static void test_photon_vs_path(void)
+{
+    phos_scene *s = glass_sphere_scene();
+    const uint32_t w = 32, n = w * w;
+    float *path[PHOS_PASS_COUNT], *path2[PHOS_PASS_COUNT], *pm[PHOS_PASS_COUNT], *pm2[PHOS_PASS_COUNT];
+    CHECK(render_passes(s, PHOS_INTEGRATOR_PATH, 1024, 1, path, w) != NULL);
+    CHECK(render_passes(s, PHOS_INTEGRATOR_PATH, 1024, 2, path2, w) != NULL);
+    CHECK(render_passes(s, PHOS_INTEGRATOR_PHOTON, 64, 1, pm, w) != NULL);
+    CHECK(render_passes(s, PHOS_INTEGRATOR_PHOTON, 64, 2, pm2, w) != NULL);
+    static const char *names[] = {"combined", "emission", "direct", "specular", "caustics", "indirect"};
+    /* Tolerance: 4 standard errors of the difference of the two means (each
+     * from a pair of renders with different seeds; the caustic focus is a
+     * small part of a pixel, so camera sampling is the main noise of both),
+     * plus 2 % for Direct and Specular (the same estimators in both), and
+     * 10 % for Caustics and Indirect, the photon map's bias. */
+    static const double tol[] = {0.03, 1.0, 0.02, 0.02, 0.10, 0.10};
+    for (uint32_t p = 0; p <= PHOS_PASS_INDIRECT; p++) {
+        uint32_t ch = phos_pass_channels(p);
+        double a = 0.5 * (pass_mean(path[p], ch, n) + pass_mean(path2[p], ch, n));
+        double b = 0.5 * (pass_mean(pm[p], ch, n) + pass_mean(pm2[p], ch, n));
+        double se_a = pair_stderr(path[p], path2[p], ch, n), se_b = pair_stderr(pm[p], pm2[p], ch, n);
+        double limit = 4.0 * sqrt(se_a * se_a + se_b * se_b) + tol[p] * a;
+        printf("  %-9s PATH %.5f  PHOTON %.5f  (limit ±%.5f)\n", names[p], a, b, limit);
+        if (p != PHOS_PASS_EMISSION)
+            CHECK_MSG(fabs(b - a) <= limit, "%s: PHOTON %.5f vs PATH %.5f", names[p], b, a);
+    }
+    /* Combined is the sum of the light components, pixel by pixel. */
+    int mismatches = 0;
+    for (int k = 0; k < 2; k++) {
+        float **img = k ? pm : path;
+        for (uint32_t i = 0; i < n; i++)
+            for (int c = 0; c < 3; c++) {
+                double sum = 0.0;
+                for (uint32_t p = PHOS_PASS_EMISSION; p <= PHOS_PASS_INDIRECT; p++)
+                    sum += img[p][3 * i + c];
+                mismatches += fabs(sum - img[0][4 * i + c]) > 1e-5 * fabs(sum) + 1e-7;
+            }
+    }
+    CHECK_MSG(mismatches == 0, "%d pixels where Combined is not the sum of the components", mismatches);
+    /* The debug passes see the maps: the photon map's estimate is close to
+     * Combined (the scene is diffuse where the camera looks), and photons
+     * are drawn. */
+    double photon_map = pass_mean(pm[PHOS_PASS_PHOTON_MAP], 3, n), combined = pass_mean(pm[0], 4, n);
+    CHECK_MSG(fabs(photon_map - combined) < 0.1 * combined, "photon map pass %.4f vs combined %.4f", photon_map, combined);
+    CHECK(pass_mean(pm[PHOS_PASS_PHOTONS], 3, n) > 0.0);
+    CHECK(pass_mean(pm[PHOS_PASS_CAUSTIC_MAP], 3, n) > 0.0);
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        free(path[p]);
+        free(path2[p]);
+        free(pm[p]);
+        free(pm2[p]);
+    }
+    phos_scene_destroy(s);
+}
+
+int main(void)
+{
+    test_point_light_irradiance();
+    test_power_in_closed_sphere();
+    test_maps_deterministic();
+    test_photon_vs_path();
+    return test_summary("test_photon_map");
+}
