@@ -34,6 +34,7 @@
 #include "bsdf.h"
 
 #include "microfacet.h"
+#include "warp.h"
 
 /* |η − 1| below this: the interface does not bend light, refraction is a
  * straight pass-through whatever the roughness (as Cycles 3.4). */
@@ -102,25 +103,6 @@ static vec3 fresnel_blend_f0(vec3 f0, float eta, float cos_theta)
     float F = fresnel_dielectric(cos_theta, eta);
     float t = F0 < 1.0f - 1e-6f ? (F - F0) / (1.0f - F0) : 1.0f;
     return v3_add(v3_scale(f0, 1.0f - t), v3s(t));
-}
-
-/* Cosine-weighted hemisphere through Shirley & Chiu's (1997) concentric
- * disk mapping (Malley's method); pdf = cos θ / π (1/sr). */
-static vec3 sample_cosine_hemisphere(float2 u)
-{
-    float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
-    if (a == 0.0f && b == 0.0f)
-        return v3(0.0f, 0.0f, 1.0f);
-    float r, phi;
-    if (fabsf(a) > fabsf(b)) {
-        r = a;
-        phi = 0.25f * PHOS_PI * (b / a);
-    } else {
-        r = b;
-        phi = 0.5f * PHOS_PI - 0.25f * PHOS_PI * (a / b);
-    }
-    float x = r * cosf(phi), y = r * sinf(phi);
-    return v3(x, y, safe_sqrtf(1.0f - x * x - y * y));
 }
 
 /* Mirror of wo about the unit normal m. */
@@ -398,7 +380,7 @@ static int closure_sample(const closure *c, vec3 wo, float u_lobe, float2 u, lob
     switch (c->type) {
     case PHOS_CLOSURE_DIFFUSE:
     case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
-        s->wi = sample_cosine_hemisphere(u);
+        s->wi = warp_cosine_hemisphere(u);
         s->flags = BSDF_DIFFUSE;
         return s->wi.z > 0.0f;
     case PHOS_CLOSURE_TRANSPARENT:

@@ -6,24 +6,7 @@
  */
 #include "camera.h"
 
-static float2 concentric_disk(float2 u)
-{
-    float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
-    float2 r = {0.0f, 0.0f};
-    if (ox == 0.0f && oy == 0.0f)
-        return r;
-    float rad, theta;
-    if (fabsf(ox) > fabsf(oy)) {
-        rad = ox;
-        theta = (PHOS_PI / 4.0f) * (oy / ox);
-    } else {
-        rad = oy;
-        theta = (PHOS_PI / 2.0f) - (PHOS_PI / 4.0f) * (ox / oy);
-    }
-    r.x = rad * cosf(theta);
-    r.y = rad * sinf(theta);
-    return r;
-}
+#include "warp.h"
 
 camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, float2 lens)
 {
@@ -42,7 +25,7 @@ camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, fl
             /* Thin lens: aim from a point on the aperture at the point of the
              * primary ray that lies on the focal plane. */
             vec3 focus = v3_scale(dir, c->focus_distance);
-            float2 dk = concentric_disk(lens);
+            float2 dk = warp_disk_concentric(lens);
             o_cam = v3(dk.x * c->aperture_radius, dk.y * c->aperture_radius, 0.0f);
             dir = v3_sub(focus, o_cam);
         }

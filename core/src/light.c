@@ -14,6 +14,7 @@
 
 #include "material.h"
 #include "scene.h"
+#include "warp.h"
 
 static float smoothstepf(float x)
 {
@@ -31,44 +32,6 @@ float light_spot_attenuation(const light *l, vec3 dir_from_light)
     if (l->spot_smooth > 0.0f && t < l->spot_smooth)
         a *= smoothstepf(t / l->spot_smooth);
     return a;
-}
-
-/* Uniform direction in the cone of half-angle acos(cos_max) around axis. */
-static vec3 sample_cone(vec3 axis, float cos_max, float2 u)
-{
-    float cos_t = 1.0f - u.x * (1.0f - cos_max);
-    float sin_t = safe_sqrtf(1.0f - cos_t * cos_t);
-    float phi = 2.0f * PHOS_PI * u.y;
-    frame f = frame_from_normal(axis);
-    return frame_to_world(&f, v3(cosf(phi) * sin_t, sinf(phi) * sin_t, cos_t));
-}
-
-/* Concentric map of the unit square to the unit disk (Shirley & Chiu 1997). */
-static float2 sample_disk_concentric(float2 u)
-{
-    float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
-    float2 r = {0.0f, 0.0f};
-    if (ox == 0.0f && oy == 0.0f)
-        return r;
-    float rad, theta;
-    if (fabsf(ox) > fabsf(oy)) {
-        rad = ox;
-        theta = (PHOS_PI / 4.0f) * (oy / ox);
-    } else {
-        rad = oy;
-        theta = (PHOS_PI / 2.0f) - (PHOS_PI / 4.0f) * (ox / oy);
-    }
-    r.x = rad * cosf(theta);
-    r.y = rad * sinf(theta);
-    return r;
-}
-
-static vec3 sample_uniform_sphere(float2 u)
-{
-    float z = 1.0f - 2.0f * u.x;
-    float r = safe_sqrtf(1.0f - z * z);
-    float phi = 2.0f * PHOS_PI * u.y;
-    return v3(r * cosf(phi), r * sinf(phi), z);
 }
 
 float light_power(const light *l, float scene_radius)
@@ -282,7 +245,7 @@ static int sample_point(const light *l, vec3 p, float2 u, light_sample *out)
             return 0;
         float sin2 = (r * r) / d2;
         float cos_max = safe_sqrtf(1.0f - sin2);
-        vec3 wi = sample_cone(axis, cos_max, u);
+        vec3 wi = warp_cone(axis, cos_max, u);
         /* Distance to the sphere along wi. */
         float b = v3_dot(wi, to_light);
         float disc = b * b - (d2 - r * r);
@@ -299,7 +262,7 @@ static int sample_point(const light *l, vec3 p, float2 u, light_sample *out)
     }
     /* Disk of radius r centred on the light, facing p. */
     frame f = frame_from_normal(v3_neg(axis));
-    float2 dk = sample_disk_concentric(u);
+    float2 dk = warp_disk_concentric(u);
     vec3 x = v3_add(l->position, v3_add(v3_scale(f.t, dk.x * r), v3_scale(f.b, dk.y * r)));
     vec3 to_x = v3_sub(x, p);
     float dist2 = v3_length2(to_x);
@@ -321,7 +284,7 @@ static vec3 area_point(const light *l, float2 u)
 {
     float a, b;
     if (l->area_shape == PHOS_AREA_ELLIPSE) {
-        float2 dk = sample_disk_concentric(u);
+        float2 dk = warp_disk_concentric(u);
         a = 0.5f * dk.x;
         b = 0.5f * dk.y;
     } else {
@@ -363,7 +326,7 @@ static int sample_sun(const light *l, float2 u, light_sample *out)
         out->delta = 1;
         return 1;
     }
-    out->wi = sample_cone(to_sun, l->sun_cos_half, u);
+    out->wi = warp_cone(to_sun, l->sun_cos_half, u);
     out->radiance = l->sun_radiance;
     out->pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - l->sun_cos_half));
     out->delta = 0;
@@ -427,7 +390,7 @@ int light_sample_pick(const scene *s, vec3 p, float u_pick, float2 u, light_samp
         ok = sample_triangle(s, l, p, u, out);
         break;
     case LIGHT_WORLD:
-        out->wi = sample_uniform_sphere(u);
+        out->wi = warp_uniform_sphere(u);
         out->distance = INFINITY;
         out->radiance = l->color;
         out->pdf = PHOS_INV_4PI;
@@ -459,10 +422,8 @@ float light_pdf_triangle(const scene *s, int32_t index, vec3 p, vec3 x, vec3 ng)
 /* Cosine-weighted direction about n (Malley's method). */
 static vec3 sample_cosine_about(vec3 n, float2 u)
 {
-    float2 dk = sample_disk_concentric(u);
-    float z = safe_sqrtf(1.0f - dk.x * dk.x - dk.y * dk.y);
     frame f = frame_from_normal(n);
-    return frame_to_world(&f, v3(dk.x, dk.y, z));
+    return frame_to_world(&f, warp_cosine_hemisphere(u));
 }
 
 /* Origin on the disk of the scene's bounding sphere that faces a distant
@@ -471,7 +432,7 @@ static vec3 sample_cosine_about(vec3 n, float2 u)
 static float distant_origin(const light_table *t, vec3 d, float2 u, vec3 *origin)
 {
     frame f = frame_from_normal(d);
-    float2 dk = sample_disk_concentric(u);
+    float2 dk = warp_disk_concentric(u);
     vec3 c = v3_madd(t->center, d, -t->radius);
     *origin = v3_add(c, v3_add(v3_scale(f.t, dk.x * t->radius), v3_scale(f.b, dk.y * t->radius)));
     return PHOS_PI * t->radius * t->radius;
@@ -495,10 +456,10 @@ int light_sample_emission(const scene *s, const float u[5], vec3 *origin, vec3 *
         vec3 d;
         float pdf_dir;
         if (l->kind == LIGHT_SPOT) {
-            d = sample_cone(l->direction, l->spot_cos_half, ub);
+            d = warp_cone(l->direction, l->spot_cos_half, ub);
             pdf_dir = 1.0f / (2.0f * PHOS_PI * (1.0f - l->spot_cos_half));
         } else {
-            d = sample_uniform_sphere(ub);
+            d = warp_uniform_sphere(ub);
             pdf_dir = PHOS_INV_4PI;
         }
         float a = l->kind == LIGHT_SPOT ? light_spot_attenuation(l, d) : 1.0f;
@@ -534,14 +495,14 @@ int light_sample_emission(const scene *s, const float u[5], vec3 *origin, vec3 *
         break;
     }
     case LIGHT_SUN: {
-        vec3 d = l->sun_cos_half < 1.0f ? sample_cone(l->direction, l->sun_cos_half, ub) : l->direction;
+        vec3 d = l->sun_cos_half < 1.0f ? warp_cone(l->direction, l->sun_cos_half, ub) : l->direction;
         float area = distant_origin(t, d, ua, origin);
         *direction = d;
         phi = v3_scale(l->color, area); /* E · πR² */
         break;
     }
     case LIGHT_WORLD: {
-        vec3 w = sample_uniform_sphere(ub); /* where the light comes from */
+        vec3 w = warp_uniform_sphere(ub); /* where the light comes from */
         vec3 d = v3_neg(w);
         float area = distant_origin(t, d, ua, origin);
         *direction = d;
