@@ -14,6 +14,9 @@ hands over to :func:`finish`, which applies the command-line options:
     --engine PHOS|CYCLES   the engine to render with and to leave selected
     --resolution W H       output size in pixels
     --seed N               seed of both engines
+    --integrator PATH|PHOTON   Phos's integrator (each scene has its default)
+    --global-photons N, --caustic-photons N
+                           photons stored in Phos's photon maps (PHOTON)
 
 The add-on is imported from this source tree (<repo>/addon), not from an
 installed copy, so a script always renders with the code beside it.
@@ -55,8 +58,9 @@ def enable_addon():
 
 
 def _engine_ids():
-    return {cls.bl_idname for cls in bpy.types.RenderEngine.__subclasses__()
-            if getattr(cls, "is_registered", True)}
+    # 4.x lists engine classes without a bl_idname (HydraRenderEngine).
+    return {getattr(cls, "bl_idname", None) for cls in bpy.types.RenderEngine.__subclasses__()
+            if getattr(cls, "is_registered", True)} - {None}
 
 
 # --------------------------------------------------------------- arguments
@@ -67,7 +71,11 @@ def script_argv(argv=None):
     return argv[argv.index("--") + 1:] if "--" in argv else []
 
 
-def parse_args(description, default_resolution=(512, 512), default_samples=256, argv=None):
+INTEGRATORS = ("PATH", "PHOTON")
+
+
+def parse_args(description, default_resolution=(512, 512), default_samples=256, argv=None,
+               default_integrator="PATH"):
     p = argparse.ArgumentParser(prog=os.path.basename(sys.argv[0]) if sys.argv else "scene",
                                 description=description)
     p.add_argument("--render", metavar="OUTPUT_BASE",
@@ -78,6 +86,9 @@ def parse_args(description, default_resolution=(512, 512), default_samples=256, 
     p.add_argument("--resolution", type=int, nargs=2, metavar=("W", "H"),
                    default=list(default_resolution))
     p.add_argument("--seed", type=int, default=0, metavar="N")
+    p.add_argument("--integrator", default=default_integrator, type=str.upper, choices=INTEGRATORS)
+    p.add_argument("--global-photons", type=int, default=None, metavar="N")
+    p.add_argument("--caustic-photons", type=int, default=None, metavar="N")
     args, extra = p.parse_known_args(script_argv(argv))
     if args.samples < 1:
         p.error("--samples must be >= 1")
@@ -98,6 +109,17 @@ def clear_factory_scene():
         for block in list(coll):
             if block.users == 0:
                 coll.remove(block)
+
+
+def set_sharp(bsdf):
+    """A perfectly smooth Glossy/Glass BSDF: the 'SHARP' distribution on 3.x;
+    4.0 removed it, there GGX with roughness 0 is the same (Phos and Cycles
+    both treat such a GGX as a delta lobe)."""
+    if bpy.app.version < (4, 0, 0):
+        bsdf.distribution = "SHARP"
+    else:
+        bsdf.distribution = "GGX"
+    bsdf.inputs["Roughness"].default_value = 0.0
 
 
 def look_at_rotation(location, target, up_axis="Y"):
@@ -136,11 +158,15 @@ def configure_cycles(scene, samples, max_bounces, seed=0, filter_width=1.5):
     c.film_exposure = 1.0
 
 
-def configure_phos(scene, samples, max_bounces, seed=0, filter_width=1.5):
+def configure_phos(scene, samples, max_bounces, seed=0, filter_width=1.5, integrator="PATH",
+                   photon_settings=None):
+    """Phos's settings; photon_settings: scene.phos property → value (photon counts...)."""
     if not hasattr(scene, "phos"):
         return
     p = scene.phos
-    p.integrator = "PATH"
+    p.integrator = integrator
+    for name, value in (photon_settings or {}).items():
+        setattr(p, name, value)
     p.samples = samples
     p.preview_samples = samples
     p.seed = seed
@@ -197,8 +223,11 @@ def samples_of(scene):
     return 0
 
 
-def finish(scene, args, max_bounces):
+def finish(scene, args, max_bounces, photon_settings=None):
     """Apply the command-line options to a built scene: settings, --save, --render.
+
+    photon_settings: the scene's own scene.phos photon settings (counts,
+    estimate sizes...); --global-photons/--caustic-photons override them.
 
     Returns the process exit code (0 on success); scripts pass it to sys.exit.
     """
@@ -207,7 +236,13 @@ def finish(scene, args, max_bounces):
         log("warning: the Phos add-on could not be enabled from %s" % ADDON_DIR)
     configure_output(scene, args.resolution)
     configure_cycles(scene, args.samples, max_bounces, seed=args.seed)
-    configure_phos(scene, args.samples, max_bounces, seed=args.seed)
+    photon_settings = dict(photon_settings or {})
+    if getattr(args, "global_photons", None) is not None:
+        photon_settings["global_photons"] = args.global_photons
+    if getattr(args, "caustic_photons", None) is not None:
+        photon_settings["caustic_photons"] = args.caustic_photons
+    configure_phos(scene, args.samples, max_bounces, seed=args.seed,
+                   integrator=getattr(args, "integrator", "PATH"), photon_settings=photon_settings)
     if args.engine == "PHOS" and not phos_ok:
         log("error: --engine PHOS needs the add-on")
         return 1

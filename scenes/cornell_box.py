@@ -100,7 +100,7 @@ def glass_material(name, ior=1.5):
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
     bsdf = nt.nodes.new("ShaderNodeBsdfGlass")
-    bsdf.distribution = "SHARP"
+    _common.set_sharp(bsdf)
     bsdf.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
     bsdf.inputs["IOR"].default_value = ior
     nt.links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
@@ -114,9 +114,8 @@ def mirror_material(name):
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
     bsdf = nt.nodes.new("ShaderNodeBsdfGlossy")
-    bsdf.distribution = "SHARP"
+    _common.set_sharp(bsdf)
     bsdf.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
-    bsdf.inputs["Roughness"].default_value = 0.0
     nt.links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
     return mat
 

@@ -2,7 +2,8 @@
 # Builds Phos against Embree 4 and runs the C tests and the Blender test suite
 # under Blender 4.3, inside a Debian 13 (trixie) chroot. Needs root.
 #
-#   tools/test-blender4.sh [pytest args]   build, ctest, Blender tests (default args: -q)
+#   tools/test-blender4.sh [pytest args]   build, ctest, Blender tests (default args: -q),
+#                                          then the extension check (below)
 #   tools/test-blender4.sh --shell         interactive shell in the chroot, same mounts
 #   tools/test-blender4.sh --remove        delete the chroot
 #
@@ -13,6 +14,15 @@
 # a private mount and PID namespace (`unshare`), so nothing stays mounted when
 # the run ends, however it ends, and deleting the chroot cannot reach the
 # checkout. Nothing in the checkout is written except the build folder.
+#
+# After the tests, the Blender 4.2+ extension is checked as a user installs
+# it: tools/package.py builds the zip (phos/ with blender_manifest.toml and
+# the Embree-4 lib/libphos.so of this build) into the build folder's dist/,
+# and tools/check-addon.sh --extension validates it with Blender, installs it
+# with `blender --command extension install-file -r user_default -e` into
+# throw-away user folders and renders a tiny scene with engine PHOS headless
+# from there (PHOS_LIBRARY unset: the extension's own library), failing on a
+# missing or black image.
 #
 # Environment:
 #   PHOS_CHROOT_DIR        the chroot (default /var/tmp/phos-trixie-chroot)
@@ -310,6 +320,18 @@ BLENDER_USER_CONFIG=/phos-build/blender-user/config \
   blender -b --factory-startup --python-exit-code 1 \
     --python /phos-src/tests/blender/run_tests.py -- "$@" || { rc=1; say "Blender tests FAILED"; }
 say "Blender tests: $(dur $t)"
+# The 4.2+ extension: the zip of tools/package.py with this Embree-4
+# libphos.so, installed with `blender --command extension install-file` into
+# throw-away user folders and rendered from there, PHOS_LIBRARY unset.
+t=$(now)
+stage=$(mktemp -d /tmp/phos-ext.XXXXXX)
+cp -r /phos-src/addon/phos "$stage/phos" && rm -rf "$stage/phos/lib" && mkdir "$stage/phos/lib" \
+  && cp /phos-build/lib/libphos.so "$stage/phos/lib/" \
+  && python3 /phos-src/tools/package.py --addon "$stage/phos" --dist /phos-build/dist \
+  && /phos-src/tools/check-addon.sh --extension "/phos-build/dist/phos-$(python3 /phos-src/tools/version.py).zip" \
+  || { rc=1; say "extension check FAILED"; }
+rm -rf "$stage"
+say "extension install check: $(dur $t)"
 exit $rc'
 rc=0
 in_chroot "$repo" "$build_dir" /bin/bash -c "$inner" inner "$@" || rc=$?

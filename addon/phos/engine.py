@@ -8,6 +8,11 @@ result, progress and stats are updated, and test_break() is honoured. The
 core's worker threads never call into Python; every bpy call happens on the
 thread running render(), and ctypes releases the GIL during C calls.
 
+Passes: the view layer's toggles (`view_layer.phos`, properties.PASSES)
+become the core's pass_mask and are registered in update_render_passes;
+Blender merges every registered pass of a result whether it was written or
+not, so every tile (and the placeholder) writes every pass of the result.
+
 Whatever happens, one full-frame result is delivered if no tile was (a
 render that produces no result crashes Blender 3.4.1 when the output is
 EXR), and failures are reported with report({'ERROR'}) so that `blender -b`
@@ -20,7 +25,7 @@ import bpy
 import numpy as np
 
 from . import core, export
-from .properties import INTEGRATORS
+from .properties import INTEGRATORS, PASSES, PHOTON_VIEWS, enabled_passes
 
 POLL_SECONDS = 0.03
 STATS_SECONDS_BACKGROUND = 2.0
@@ -47,12 +52,67 @@ def _write_rect(render_pass, pixels):
     render_pass.rect.foreach_set(pixels)
 
 
+# Render pass name → core pass, for every pass Phos can deliver.
+PASS_IDS = {"Combined": core.PHOS_PASS_COMBINED}
+PASS_IDS.update((label, pass_id) for _prop, label, pass_id, _d in PASSES)
+
+
+_DEBUG_PASS_MASK = ((1 << core.PHOS_PASS_PHOTON_MAP) | (1 << core.PHOS_PASS_CAUSTIC_MAP)
+                    | (1 << core.PHOS_PASS_PHOTONS))
+
+
+def _stages_of(rs):
+    """The stages a render with these settings goes through, in order (as
+    render.c runs them: the photon stages for PHOTON or a photon debug pass,
+    the radiance precomputation for final gathering only)."""
+    stages = [core.PHOS_STAGE_WAITING]
+    if rs.integrator == core.PHOS_INTEGRATOR_PHOTON or rs.pass_mask & _DEBUG_PASS_MASK:
+        stages += [core.PHOS_STAGE_TRACING_PHOTONS, core.PHOS_STAGE_BUILDING_KDTREES]
+        if rs.integrator == core.PHOS_INTEGRATOR_PHOTON and \
+                rs.photon_view == core.PHOS_PHOTON_VIEW_FINAL_GATHER:
+            stages.append(core.PHOS_STAGE_PRECOMPUTING_RADIANCE)
+    stages += [core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED]
+    return stages
+
+
+def _stage_text(progress, rs, stage=None):
+    """The status line's stage part, e.g. "Tracing photons | 123,456 stored"."""
+    stage = progress.stage_id if stage is None else stage
+    if stage == core.PHOS_STAGE_TRACING_PHOTONS:
+        return "Tracing photons | {:,} stored | {:,} emitted".format(
+            progress.photons_stored, progress.photons_emitted)
+    if stage == core.PHOS_STAGE_BUILDING_KDTREES:
+        return "Building kd-trees | {:,} photons".format(progress.photons_stored)
+    if stage == core.PHOS_STAGE_PRECOMPUTING_RADIANCE:
+        return "Precomputing radiance"
+    if stage in (core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED):
+        name = "Rendering" if stage == core.PHOS_STAGE_RENDERING else "Finished"
+        if rs.integrator == core.PHOS_INTEGRATOR_PATH and stage == core.PHOS_STAGE_RENDERING:
+            name = "Path tracing"
+        text = "%s | Tile %d/%d | %d samples" % (
+            name, progress.tiles_done, progress.tiles_total, progress.samples or rs.samples)
+        if progress.global_photons or progress.caustic_photons:
+            text += " | photons {:,} global, {:,} caustic".format(
+                progress.global_photons, progress.caustic_photons)
+        return text
+    return progress.stage.decode("utf-8", "replace") or "Waiting"
+
+
 class PhosRenderEngine(bpy.types.RenderEngine):
     bl_idname = "PHOS"
     bl_label = "Phos"
     bl_use_preview = True
     bl_use_shading_nodes_custom = False
     bl_use_eevee_viewport = True
+
+    # ---------------------------------------------------------------- passes
+
+    def update_render_passes(self, scene=None, renderlayer=None):
+        """Declare the passes of a view layer (Blender calls this for renders
+        and for the compositor's Render Layers node)."""
+        self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", 'COLOR')
+        for label, _pass_id in enabled_passes(renderlayer):
+            self.register_pass(scene, renderlayer, label, 3, "RGB", 'COLOR')
 
     # ------------------------------------------------------------- geometry
 
@@ -89,6 +149,7 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         self._layer_name = depsgraph.view_layer.name
         self._stats_text, self._stats_time = "", 0.0
         self._region_origin = region[:2]
+        self._last_stage = None
         try:
             self._render(depsgraph, scene, width, height, region)
         except core.PhosError as ex:
@@ -146,6 +207,17 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             rs.filter_width = settings.filter_width
             rs.transparent_background = 1 if scene.render.film_transparent else 0
             rs.pass_mask = 1 << core.PHOS_PASS_COMBINED
+            if not self.is_preview:
+                for _label, pass_id in enabled_passes(depsgraph.view_layer):
+                    rs.pass_mask |= 1 << pass_id
+            rs.global_photons = settings.global_photons
+            rs.caustic_photons = settings.caustic_photons
+            rs.global_estimate_photons = settings.global_estimate_photons
+            rs.caustic_estimate_photons = settings.caustic_estimate_photons
+            rs.max_radius = settings.max_radius
+            rs.final_gather_rays = settings.final_gather_rays
+            rs.photon_view = PHOTON_VIEWS.get(settings.photon_view, core.PHOS_PHOTON_VIEW_FINAL_GATHER)
+            rs.max_photons_emitted_millions = settings.max_photons_emitted
 
             with core.Render(core_scene, rs) as render:
                 render.start()
@@ -154,14 +226,14 @@ class PhosRenderEngine(bpy.types.RenderEngine):
     def _poll(self, render, rs):
         """Deliver tiles as they finish until the render ends or is cancelled."""
         cancelled = False
-        buffer = None
+        buffers = None
         while True:
             progress = render.progress()
             while True:
                 tile = render.next_tile()
                 if tile is None:
                     break
-                buffer = self._deliver_tile(render, tile, buffer)
+                buffers = self._deliver_tile(render, tile, buffers)
             self._show_progress(progress, rs)
             if progress.state in (core.PHOS_STATE_DONE, core.PHOS_STATE_CANCELLED,
                                   core.PHOS_STATE_FAILED):
@@ -177,18 +249,30 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             tile = render.next_tile()
             if tile is None:
                 break
-            buffer = self._deliver_tile(render, tile, buffer)
+            buffers = self._deliver_tile(render, tile, buffers)
         self._show_progress(render.progress(), rs, final=True)
         if status == core.PHOS_OK:
             self.update_progress(1.0)
 
     def _show_progress(self, progress, rs, final=False):
-        """Progress bar and the stats line of the render."""
+        """Progress bar and the stats line of the render.
+
+        A new stage is always shown (in background mode too, where the lines
+        are otherwise rate-limited), so `blender -b` prints each of them.
+        """
         self.update_progress(min(max(progress.fraction, 0.0), 1.0))
-        stage = progress.stage.decode("utf-8", "replace") or "Rendering"
-        self._stats("Phos | %s | Sample %d | Tile %d/%d" % (
-            stage, progress.samples or rs.samples, progress.tiles_done, progress.tiles_total),
-            force=final)
+        stage = progress.stage_id
+        new_stage = stage != self._last_stage
+        if new_stage and self._last_stage is not None:
+            # Stages that began and ended between two polls (a small photon
+            # map is traced and built in milliseconds) are still logged, in
+            # order, so the stats line and `blender -b` show every stage.
+            stages = _stages_of(rs)
+            if self._last_stage in stages and stage in stages:
+                for skipped in stages[stages.index(self._last_stage) + 1:stages.index(stage)]:
+                    self._stats("Phos | " + _stage_text(progress, rs, skipped), force=True)
+        self._last_stage = stage
+        self._stats("Phos | " + _stage_text(progress, rs), force=final or new_stage)
 
     def _stats(self, text, force=False):
         """update_stats with changed text only, and sparingly in background mode.
@@ -204,24 +288,47 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         self._stats_text, self._stats_time = text, now
         self.update_stats("", text)
 
-    def _deliver_tile(self, render, tile, buffer):
-        """Copy one finished tile into a render result (relative to the border)."""
+    def _deliver_tile(self, render, tile, buffers):
+        """Copy one finished tile into a render result (relative to the border).
+
+        Every pass of the result is written: the ones the core rendered from
+        the core, any other (a pass Phos does not know, or one enabled after
+        the render started) with zeros, since Blender merges them all.
+        `buffers` (pass → float32 array) is reused from tile to tile.
+        """
+        if buffers is None:
+            buffers = {}
         n = tile.width * tile.height
-        if buffer is None or buffer.shape[0] < n:
-            buffer = np.empty((n, 4), dtype=np.float32)  # tiles share one buffer
-        pixels = render.read(core.PHOS_PASS_COMBINED, tile.x, tile.y, tile.width, tile.height,
-                             out=buffer[:n])
         ox, oy = self._region_origin
         result = self.begin_result(tile.x - ox, tile.y - oy, tile.width, tile.height,
                                    layer=self._layer_name)
         try:
-            _write_rect(result.layers[0].passes["Combined"], pixels)
+            enabled = render.settings.pass_mask
+            for render_pass in result.layers[0].passes:
+                pass_id = PASS_IDS.get(render_pass.name)
+                channels = render_pass.channels
+                key = (pass_id, channels) if pass_id is not None and enabled & (1 << pass_id) \
+                    else (None, channels)
+                buffer = buffers.get(key)
+                if buffer is None or buffer.shape[0] < n:
+                    buffer = buffers[key] = np.empty((n, channels), dtype=np.float32)
+                pixels = buffer[:n]
+                if key[0] is None:
+                    pixels[:] = 0.0
+                elif render.channels(pass_id) == channels:
+                    render.read(pass_id, tile.x, tile.y, tile.width, tile.height, out=pixels)
+                else:  # never expected: Blender gave the pass another channel count
+                    data = render.read(pass_id, tile.x, tile.y, tile.width, tile.height)
+                    c = min(channels, data.shape[1])
+                    pixels[:] = 0.0
+                    pixels[:, :c] = data[:, :c]
+                _write_rect(render_pass, pixels)
         except Exception:
             self.end_result(result, cancel=True)
             raise
         self.end_result(result)
         self._delivered = True
-        return buffer
+        return buffers
 
     def _deliver_placeholder(self, region):
         """A transparent black full-region result, so Blender never gets none."""
@@ -231,13 +338,13 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             if result is None:
                 return
             try:
-                zeros = np.zeros((w * h, 4), dtype=np.float32)
+                # Every pass (Combined and the enabled Phos passes alike).
+                zeros = {}
                 for render_pass in result.layers[0].passes:
-                    if render_pass.channels == 4:
-                        _write_rect(render_pass, zeros)
-                    else:
-                        _write_rect(render_pass, np.zeros((w * h, render_pass.channels),
-                                                          dtype=np.float32))
+                    ch = render_pass.channels
+                    if ch not in zeros:
+                        zeros[ch] = np.zeros((w * h, ch), dtype=np.float32)
+                    _write_rect(render_pass, zeros[ch])
             finally:
                 self.end_result(result)
         except Exception as ex:

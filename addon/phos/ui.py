@@ -13,6 +13,7 @@ object, so adding to one of them would show all of them.
 import bpy
 
 from . import core
+from .properties import DEBUG_PASSES, LIGHT_PASSES
 
 ENGINE = 'PHOS'
 
@@ -57,6 +58,41 @@ class PHOS_RENDER_PT_sampling(PhosButtonsPanel, bpy.types.Panel):
         layout.prop(phos, "seed")
 
 
+class PHOS_RENDER_PT_photon_mapping(PhosButtonsPanel, bpy.types.Panel):
+    """The photon maps and their estimates. Shown for every integrator (the
+    photon debug passes build the maps with PATH too), active with PHOTON."""
+
+    bl_label = "Photon Mapping"
+    bl_context = "render"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        phos = context.scene.phos
+        uses_maps = phos.integrator == 'PHOTON' or _debug_passes_enabled(context)
+        layout.active = uses_maps
+        if not uses_maps:
+            layout.label(text="Used by the Photon Mapping integrator", icon='INFO')
+        col = layout.column(align=True)
+        col.prop(phos, "global_photons", text="Photons Global")
+        col.prop(phos, "caustic_photons", text="Caustic")
+        col = layout.column(align=True)
+        col.prop(phos, "global_estimate_photons", text="Estimate Global")
+        col.prop(phos, "caustic_estimate_photons", text="Caustic")
+        layout.prop(phos, "max_radius")
+        layout.prop(phos, "photon_view")
+        sub = layout.column()
+        sub.active = phos.photon_view == 'FINAL_GATHER'
+        sub.prop(phos, "final_gather_rays")
+        layout.prop(phos, "max_photons_emitted")
+
+
+def _debug_passes_enabled(context):
+    settings = getattr(context.view_layer, "phos", None)
+    return settings is not None and any(getattr(settings, prop) for prop, *_ in DEBUG_PASSES)
+
+
 class PHOS_RENDER_PT_light_paths(PhosButtonsPanel, bpy.types.Panel):
     bl_label = "Light Paths"
     bl_context = "render"
@@ -98,6 +134,50 @@ class PHOS_RENDER_PT_performance(PhosButtonsPanel, bpy.types.Panel):
         sub.enabled = rd.threads_mode == 'FIXED'
         sub.prop(rd, "threads")
         layout.prop(context.scene.phos, "tile_size")
+
+
+# --------------------------------------------------------------- view layer
+
+class PHOS_VIEW_LAYER_PT_passes(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Passes"
+    bl_context = "view_layer"
+
+    def draw(self, context):
+        pass
+
+
+class PHOS_VIEW_LAYER_PT_passes_light(PhosButtonsPanel, bpy.types.Panel):
+    """The light components; Combined is their sum."""
+
+    bl_label = "Light"
+    bl_context = "view_layer"
+    bl_parent_id = "PHOS_VIEW_LAYER_PT_passes"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.view_layer.phos
+        col = layout.column(heading="Include", align=True)
+        for prop, label, _pass_id, _d in LIGHT_PASSES:
+            col.prop(settings, prop, text=label)
+
+
+class PHOS_VIEW_LAYER_PT_passes_photon_debug(PhosButtonsPanel, bpy.types.Panel):
+    """The photon maps seen directly; they build the maps for either integrator."""
+
+    bl_label = "Photon Map Debug"
+    bl_context = "view_layer"
+    bl_parent_id = "PHOS_VIEW_LAYER_PT_passes"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.view_layer.phos
+        col = layout.column(heading="Include", align=True)
+        for prop, label, _pass_id, _d in DEBUG_PASSES:
+            col.prop(settings, prop, text=label)
 
 
 # --------------------------------------------------------------- node views
@@ -302,9 +382,13 @@ class PHOS_WORLD_PT_surface(PhosButtonsPanel, bpy.types.Panel):
 
 classes = (
     PHOS_RENDER_PT_sampling,
+    PHOS_RENDER_PT_photon_mapping,
     PHOS_RENDER_PT_light_paths,
     PHOS_RENDER_PT_film,
     PHOS_RENDER_PT_performance,
+    PHOS_VIEW_LAYER_PT_passes,
+    PHOS_VIEW_LAYER_PT_passes_light,
+    PHOS_VIEW_LAYER_PT_passes_photon_debug,
     PHOS_MATERIAL_PT_preview,
     PHOS_MATERIAL_PT_context_material,
     PHOS_MATERIAL_PT_surface,

@@ -9,6 +9,8 @@ MATERIAL_SCENES: a sphere with the material under test on a diffuse floor,
   lit by a square area light and a uniform world.
 
 Builders only create data; engine settings are applied by the test.
+Inputs and properties are given as in Blender 3.x (Principled "Transmission",
+distribution "SHARP"); phostest.setup_node translates them for 4.x.
 """
 
 import math
@@ -100,12 +102,7 @@ def _two(shader_node, a, b, fac=None):
         mix = nt.nodes.new(shader_node)
         shaders = []
         for node_type, inputs, props in (a, b):
-            n = nt.nodes.new(node_type)
-            for k, v in (props or {}).items():
-                setattr(n, k, v)
-            for k, v in (inputs or {}).items():
-                n.inputs[k].default_value = (*v, 1.0) if isinstance(v, tuple) and len(v) == 3 else v
-            shaders.append(n)
+            shaders.append(pt.setup_node(nt.nodes.new(node_type), inputs, props))
         if fac is not None:
             mix.inputs["Fac"].default_value = fac
             nt.links.new(shaders[0].outputs[0], mix.inputs[1])

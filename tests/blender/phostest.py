@@ -34,9 +34,10 @@ PARITY_ROWS = []
 
 def engine_ids():
     """bl_idname of every registered RenderEngine (unregistered classes linger in
-    __subclasses__ until collected, hence the is_registered filter)."""
-    return {cls.bl_idname for cls in bpy.types.RenderEngine.__subclasses__()
-            if getattr(cls, "is_registered", True)}
+    __subclasses__ until collected, hence the is_registered filter; 4.x lists
+    classes without a bl_idname, e.g. HydraRenderEngine, hence the getattr)."""
+    return {getattr(cls, "bl_idname", None) for cls in bpy.types.RenderEngine.__subclasses__()
+            if getattr(cls, "is_registered", True)} - {None}
 
 
 def enable_addon():
@@ -167,6 +168,54 @@ def set_world(scene, color=(0.0, 0.0, 0.0), strength=1.0):
     return world
 
 
+BLENDER_4 = bpy.app.version >= (4, 0, 0)
+
+# Principled BSDF inputs named as in Blender 3.x → their 4.0+ names (Principled
+# v2). None: the input is gone in 4.x (the value is dropped, as 4.x's Cycles
+# has nothing to apply it to). Tests and scenes give the 3.x names.
+PRINCIPLED_4X_NAMES = {
+    "Transmission": "Transmission Weight",
+    "Transmission Roughness": None,
+    "Emission": "Emission Color",
+    "Specular": "Specular IOR Level",
+    "Subsurface": "Subsurface Weight",
+    "Subsurface Color": None,
+    "Clearcoat": "Coat Weight",
+    "Clearcoat Roughness": "Coat Roughness",
+    "Clearcoat Normal": "Coat Normal",
+    "Sheen": "Sheen Weight",
+}
+
+
+def input_name(node, name):
+    """The name of a node input in this Blender (a 3.x name given); None if it has none."""
+    if BLENDER_4 and node.bl_idname == "ShaderNodeBsdfPrincipled":
+        return PRINCIPLED_4X_NAMES.get(name, name)
+    return name
+
+
+def setup_node(node, inputs=None, props=None):
+    """Set a shader node's properties, then its input values (3.x names and
+    values; translated for 4.x). distribution 'SHARP' (removed in 4.0)
+    becomes GGX with roughness 0 on 4.x."""
+    sharp = False
+    for k, v in (props or {}).items():
+        if k == "distribution" and v == "SHARP" and BLENDER_4:
+            v, sharp = "GGX", True
+        setattr(node, k, v)
+    for k, v in (inputs or {}).items():
+        name = input_name(node, k)
+        if name is None:
+            continue
+        sock = node.inputs[name]
+        if isinstance(v, (tuple, list)) and len(v) == 3 and sock.type == "RGBA":
+            v = (*v, 1.0)
+        sock.default_value = v
+    if sharp:
+        node.inputs["Roughness"].default_value = 0.0
+    return node
+
+
 def node_material(name, node_type, inputs=None, props=None):
     """A material whose surface is one shader node (type name, input values, properties)."""
     mat = bpy.data.materials.new(name)
@@ -174,14 +223,7 @@ def node_material(name, node_type, inputs=None, props=None):
     nt = mat.node_tree
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
-    node = nt.nodes.new(node_type)
-    for k, v in (props or {}).items():
-        setattr(node, k, v)
-    for k, v in (inputs or {}).items():
-        sock = node.inputs[k]
-        if isinstance(v, (tuple, list)) and len(v) == 3 and sock.type == "RGBA":
-            v = (*v, 1.0)
-        sock.default_value = v
+    node = setup_node(nt.nodes.new(node_type), inputs, props)
     nt.links.new(node.outputs[0], out.inputs["Surface"])
     return mat
 

@@ -159,9 +159,12 @@ def _geometry_nodes_instancer(scene, count):
     base = pt.add_plane(scene, "GN", size=0.1)
     mod = base.modifiers.new("GN", "NODES")
     tree = bpy.data.node_groups.new("Instancer", "GeometryNodeTree")
-    # Blender 3.4: interface sockets live on the tree itself.
-    tree.inputs.new("NodeSocketGeometry", "Geometry")
-    tree.outputs.new("NodeSocketGeometry", "Geometry")
+    if hasattr(tree, "interface"):  # 4.0+: the tree interface
+        tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+        tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    else:  # 3.x: interface sockets live on the tree itself
+        tree.inputs.new("NodeSocketGeometry", "Geometry")
+        tree.outputs.new("NodeSocketGeometry", "Geometry")
     nodes, links = tree.nodes, tree.links
     nodes.new("NodeGroupInput")  # the input geometry is not used
     gout = nodes.new("NodeGroupOutput")
@@ -340,6 +343,21 @@ def test_light_produces_light(case, scene, tmp_path):
     assert p == pytest.approx(c, rel=0.1), "Phos mean %.4f, Cycles %.4f" % (p, c)
 
 
+@pytest.mark.parametrize("degrees", [0.0, 15.0, 90.0, 170.0])
+def test_sun_disc_mean_cosine(degrees):
+    """Cycles < 4.0 samples a sun of angle α uniformly over a disc of radius
+    tan(α/2) one unit away, each direction carrying the full strength: its
+    irradiance at normal incidence is the mean cosine over that disc (the
+    add-on scales the sun by it on 3.x; 4.x spreads E = S over the cone)."""
+    from phos.export import light as light_export
+    angle = math.radians(degrees)
+    r = math.tan(0.5 * angle)
+    rho = (np.arange(200000) + 0.5) / 200000 * r   # midpoint rule over the disc's area
+    numeric = float(np.sum(2.0 * rho / max(r * r, 1e-30) / np.sqrt(1.0 + rho * rho)) * r / 200000) \
+        if r > 0 else 1.0
+    assert light_export.sun_disc_mean_cosine(angle) == pytest.approx(numeric, rel=1e-6)
+
+
 @pytest.mark.parametrize("visible", [False, True], ids=["hidden", "visible"])
 @pytest.mark.parametrize("kind", ["AREA", "POINT", "SUN"])
 def test_light_camera_visibility(kind, visible, scene, tmp_path):
@@ -432,10 +450,65 @@ def test_principled_closures(scene):
     spec = [c for c in closures if c.type == C.PHOS_CLOSURE_REFLECTION_FRESNEL]
     assert spec and tuple(spec[0].specular_color) == pytest.approx((0.9, 0.6, 0.3), abs=1e-3)
 
-    glass = pt.node_material("T", "ShaderNodeBsdfPrincipled", {"Transmission": 1.0})
-    types = _closure_types(closures_of(scene, glass)[0])
+    glass = pt.node_material("T", "ShaderNodeBsdfPrincipled",
+                             {"Transmission": 1.0, "Base Color": (0.81, 0.49, 0.25)})
+    closures = closures_of(scene, glass)[0]
+    types = _closure_types(closures)
     assert C.PHOS_CLOSURE_GLASS in types
     assert C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE not in types
+    # Each refraction is tinted by the base colour (3.x) or its square root (4.x).
+    tint = next(c for c in closures if c.type == C.PHOS_CLOSURE_GLASS).transmission_tint
+    expected = (0.9, 0.7, 0.5) if pt.BLENDER_4 else (0.81, 0.49, 0.25)
+    assert tuple(tint) == pytest.approx(expected, abs=1e-6)
+
+
+# Distributions of this Blender's nodes → (roughness Phos uses or None for the
+# node's own, warned?). GGX only in the core; SHARP (3.x) is GGX roughness 0.
+_DISTRIBUTIONS = {
+    "SHARP": (0.0, False),
+    "GGX": (None, False),
+    "MULTI_GGX": (None, not pt.BLENDER_4),  # the 4.x default: GGX without a warning
+    "BECKMANN": (None, True),
+    "ASHIKHMIN_SHIRLEY": (None, True),
+}
+
+
+@pytest.mark.parametrize("node_type", ["ShaderNodeBsdfGlossy", "ShaderNodeBsdfGlass",
+                                       "ShaderNodeBsdfRefraction"])
+def test_distributions(node_type, scene):
+    """Every distribution this Blender offers maps to GGX (SHARP: roughness 0);
+    only those that render differently in Cycles are warned about, once,
+    by their UI name."""
+    from phos import core as C
+    probe = bpy.data.materials.new("probe")
+    probe.use_nodes = True
+    items = probe.node_tree.nodes.new(node_type).bl_rna.properties["distribution"].enum_items
+    assert {i.identifier for i in items} <= set(_DISTRIBUTIONS), "a distribution the add-on does not know"
+    assert ("SHARP" in items) == (not pt.BLENDER_4)
+    for item in items:
+        roughness, warned = _DISTRIBUTIONS[item.identifier]
+        mat = pt.node_material("D " + item.identifier, node_type, {"Roughness": 0.25},
+                               {"distribution": item.identifier})
+        closures, warnings = closures_of(scene, mat)
+        assert len(closures) == 1 and closures[0].type != C.PHOS_CLOSURE_DIFFUSE, item.identifier
+        expected = 0.25 if roughness is None else roughness
+        assert closures[0].roughness == pytest.approx(expected), item.identifier
+        if warned:
+            assert len(warnings) == 1 and item.name in warnings[0], (item.identifier, warnings)
+        else:
+            assert not warnings, (item.identifier, warnings)
+
+
+@pytest.mark.parametrize("node_type", ["ShaderNodeBsdfGlossy", "ShaderNodeBsdfGlass"])
+def test_ggx_roughness_zero_is_sharp(node_type, scene):
+    """The 4.x way to make a sharp BSDF (GGX, roughness 0) reaches the core as
+    roughness 0, which the core renders as a perfect mirror/refraction
+    (alpha = roughness² < 1e-4); the same on 3.x, where SHARP also exists."""
+    for dist in ("GGX", "MULTI_GGX") if pt.BLENDER_4 else ("GGX",):
+        mat = pt.node_material("Sharp " + dist, node_type, {"Roughness": 0.0}, {"distribution": dist})
+        closures, warnings = closures_of(scene, mat)
+        assert [c.roughness for c in closures] == [0.0] and not warnings, (dist, warnings)
+        assert closures[0].to_desc().roughness == 0.0
 
 
 def test_material_without_nodes(scene):

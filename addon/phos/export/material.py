@@ -16,6 +16,14 @@ warning per (material, node), so a user sees what was approximated.
 The Principled BSDF is decomposed the way Cycles 3.4 does it (svm_closure.h,
 CLOSURE_BSDF_PRINCIPLED_ID): Burley diffuse, a GGX specular layer with the
 "principled v1" Fresnel, and a glass layer for transmission.
+
+Microfacet distributions (Glossy, Glass, Refraction, Principled): the core
+has GGX only, and a GGX whose alpha = roughness² is below 1e-4 is a perfect
+mirror/refraction. 'SHARP' (3.x only) is GGX with roughness 0, as is 4.x's
+way of making a sharp BSDF (GGX or Multiscatter GGX with roughness 0).
+'MULTI_GGX' (Multiscatter GGX, the 4.x default) is rendered as GGX without a
+warning on 4.x; on 3.x, and for 'BECKMANN' and 'ASHIKHMIN_SHIRLEY' in any
+version, GGX is used with one warning naming the distribution.
 """
 
 import math
@@ -378,7 +386,8 @@ class NodeTreeWalker:
         if dist == 'MULTI_GGX' and self.ctx.at_least(4, 0):
             return None
         if dist not in allowed:
-            self.note(node, "%s distribution is not supported; using GGX" % _pretty(dist))
+            self.note(node, "%s distribution is not supported; using GGX"
+                      % _enum_name(node, "distribution", dist))
         return None
 
     def _glossy(self, node, stack):
@@ -472,6 +481,14 @@ def _pretty(identifier):
     return identifier.replace('_', ' ').title().replace('Ggx', 'GGX')
 
 
+def _enum_name(node, prop, identifier):
+    """The UI name of an enum value ('MULTI_GGX' → 'Multiscatter GGX')."""
+    try:
+        return node.bl_rna.properties[prop].enum_items[identifier].name
+    except (AttributeError, KeyError, TypeError):
+        return _pretty(identifier)
+
+
 def _socket_float(socket, default):
     value = getattr(socket, "default_value", default)
     try:
@@ -504,7 +521,9 @@ def principled(walker, node):
     reflection by mix(white, base, specular_tint): that tint is left out).
     With an image base colour the image tints the whole glass. On 4.x the sockets are found by their new
     names and mapped onto the same closures (an approximation of the 4.x
-    layered model).
+    layered model: the diffuse is not reduced by the specular layer's
+    albedo, and Multiscatter GGX is rendered as GGX); the 4.x glass tints
+    each refraction by √(base colour) and uses the microfacet Fresnel.
     """
     w = walker
     consumed = set()
@@ -543,7 +562,7 @@ def principled(walker, node):
         ignored.append("Anisotropic")
     distribution = getattr(node, "distribution", 'GGX')
     if distribution != 'GGX' and not (distribution == 'MULTI_GGX' and v4):
-        ignored.append("%s distribution (GGX used)" % _pretty(distribution))
+        ignored.append("%s distribution (GGX used)" % _enum_name(node, "distribution", distribution))
     transmission_roughness = w.value(node, ('Transmission Roughness',), 0.0, consumed) \
         if find_input(node, 'Transmission Roughness') is not None else 0.0
     final_transmission = transmission * (1.0 - metallic)
@@ -601,7 +620,11 @@ def principled(walker, node):
         if not v4:
             refraction_roughness = 1.0 - (1.0 - roughness) * (1.0 - _clamp01(transmission_roughness))
         if base_img is None:
-            weight, tint = np.full(3, final_transmission), base
+            # 3.x tints each refraction by the base colour; 4.x by its square
+            # root (clamped to 1), so that light through a closed object
+            # (in and out) takes the base colour (Cycles 4.x svm closure.h).
+            tint = base if not v4 else np.sqrt(np.clip(base, 0.0, 1.0))
+            weight = np.full(3, final_transmission)
         else:
             weight, tint = base * final_transmission, (1.0, 1.0, 1.0)
         closures.append(Closure(core.PHOS_CLOSURE_GLASS, weight, base_img, roughness=roughness,
