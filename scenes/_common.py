@@ -190,10 +190,13 @@ def render_and_save(scene, output_base):
     output_base = os.path.abspath(output_base)
     os.makedirs(os.path.dirname(output_base), exist_ok=True)
     r = scene.render
+    engine = r.engine
+    if engine == "PHOS" and hasattr(scene, "phos"):
+        engine = "PHOS (%s)" % scene.phos.integrator
     log("rendering %dx%d with %s, %d samples -> %s.{png,exr}"
         % (r.resolution_x * r.resolution_percentage // 100,
            r.resolution_y * r.resolution_percentage // 100,
-           r.engine, samples_of(scene), output_base))
+           engine, samples_of(scene), output_base))
     # In background mode Blender prints the engine's progress and stats
     # lines ("Fra:1 ... | Path tracing | 12/40 tiles") while it renders.
     t0 = time.time()
