@@ -200,7 +200,7 @@ static double chi2_fit(const bsdf *b, vec3 wo, double delta_mass, uint32_t seed,
 
     double sum_w = 0.0, sum_w2 = 0.0;
     for (uint32_t i = 0; i < SAMPLES_PER_TEST; i++) {
-        sampler s = sampler_for_index(seed, 7, i);
+        sampler s = sampler_independent(seed, 7, i);
         bsdf_sample bs;
         double w = 0.0;
         if (!bsdf_sample_direction(b, wo, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs)) {
@@ -424,7 +424,7 @@ static double mean_sample_weight(const bsdf *b, vec3 wo, int n, uint32_t seed)
 {
     double sum = 0.0;
     for (int i = 0; i < n; i++) {
-        sampler s = sampler_for_index(seed, 3, (uint64_t)i);
+        sampler s = sampler_independent(seed, 3, (uint64_t)i);
         bsdf_sample bs;
         if (bsdf_sample_direction(b, wo, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs))
             sum += avg3(bs.weight);
@@ -471,7 +471,7 @@ static void test_energy(void)
         make_bsdf(&b, &glass, 1, z, z);
         int n = 100000, reflected = 0, bad = 0;
         for (int i = 0; i < n; i++) {
-            sampler s = sampler_for_index(99, mode, (uint64_t)i);
+            sampler s = sampler_independent(99, mode, (uint64_t)i);
             if (!bsdf_sample_direction(&b, z, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs)) {
                 bad++;
                 continue;
@@ -495,7 +495,7 @@ static void test_energy(void)
         vec3 w45 = v3_normalize(v3(1.0f, 0.0f, 1.0f));
         int n = 100000, reflected = 0;
         for (int i = 0; i < n; i++) {
-            sampler s = sampler_for_index(98, 0, (uint64_t)i);
+            sampler s = sampler_independent(98, 0, (uint64_t)i);
             if (bsdf_sample_direction(&b, w45, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs) && bs.wi.z > 0.0f)
                 reflected++;
         }
@@ -586,7 +586,7 @@ static void test_light_leaks(void)
     make_bsdf(&b, &cl[2], 1, ns, ng);
     int leaks = 0;
     for (int i = 0; i < 20000; i++) {
-        sampler s = sampler_for_index(5, 0, (uint64_t)i);
+        sampler s = sampler_independent(5, 0, (uint64_t)i);
         vec3 w = view_dir(ns, 0.3f + 0.7f * sampler_1d(&s, 3));
         if (v3_dot(w, ng) <= 0.0f)
             continue;
@@ -605,7 +605,7 @@ static void test_light_leaks(void)
     make_bsdf(&b, all, 6, ns, ng);
     int bad = 0;
     for (int i = 0; i < 200000; i++) {
-        sampler s = sampler_for_index(6, 0, (uint64_t)i);
+        sampler s = sampler_independent(6, 0, (uint64_t)i);
         float2 a = sampler_2d(&s, 3), c = sampler_2d(&s, 5);
         /* Includes exact poles and horizons. */
         double zo = (i % 7 == 0) ? 1.0 : (i % 11 == 0) ? 0.0 : 2.0 * a.x - 1.0;
@@ -638,7 +638,7 @@ static void test_reciprocity(void)
         bsdf b;
         make_bsdf(&b, &refl[k], 1, z, z);
         for (int i = 0; i < 2000; i++) {
-            sampler s = sampler_for_index(11, (uint32_t)k, (uint64_t)i);
+            sampler s = sampler_independent(11, (uint32_t)k, (uint64_t)i);
             vec3 wo = dir_in_frame(&b.shading, 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
             vec3 wi = dir_in_frame(&b.shading, 0.02 + 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
             /* eval includes |cos θi|: f(wo,wi) = eval(wo,wi) / cos θi. */
@@ -667,7 +667,7 @@ static void test_reciprocity(void)
         make_bsdf(&front, &refr[k], 1, z, z);
         make_bsdf(&back, &inv, 1, v3_neg(z), v3_neg(z));
         for (int i = 0; i < 2000; i++) {
-            sampler s = sampler_for_index(12, (uint32_t)k, (uint64_t)i);
+            sampler s = sampler_independent(12, (uint32_t)k, (uint64_t)i);
             vec3 wo = dir_in_frame(&front.shading, 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
             vec3 wi = dir_in_frame(&front.shading, -0.02 - 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
             double a = avg3(bsdf_eval(&front, wo, wi, NULL)) / fabs(wi.z);

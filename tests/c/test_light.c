@@ -87,7 +87,7 @@ static void check_light(const char *name, phos_scene *s, vec3 p, vec3 axis, doub
     memset(observed, 0, sizeof(observed));
     int outside = 0, mismatched = 0, produced = 0;
     for (uint32_t i = 0; i < SAMPLES; i++) {
-        sampler smp = sampler_for_index(1234, 0, i);
+        sampler smp = sampler_independent(1234, 0, i);
         light_sample ls;
         if (!light_sample_pick(s, p, sampler_1d(&smp, 0), sampler_2d(&smp, 1), &ls))
             continue;
