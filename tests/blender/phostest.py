@@ -257,29 +257,13 @@ def checker_image(path, size=16, squares=4, colors=((0.9, 0.2, 0.1), (0.1, 0.3, 
 # -------------------------------------------------------------- settings
 
 def configure_cycles(scene, samples, max_bounces=8, seed=0, filter_width=1.5):
-    """Cycles as an unbiased reference: no clamping, blur, denoising or adaptivity."""
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = samples
-    c.seed = seed
-    c.use_animated_seed = False
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.sample_clamp_direct = 0.0
-    c.sample_clamp_indirect = 0.0
-    c.blur_glossy = 0.0
-    c.caustics_reflective = True
-    c.caustics_refractive = True
-    c.use_fast_gi = False
-    c.max_bounces = max_bounces
-    c.diffuse_bounces = max_bounces
-    c.glossy_bounces = max_bounces
-    c.transmission_bounces = max_bounces
-    c.transparent_max_bounces = max_bounces
-    c.volume_bounces = 0
-    c.light_sampling_threshold = 0.0
-    c.pixel_filter_type = "BLACKMAN_HARRIS"
-    c.filter_width = filter_width
+    """Cycles as an unbiased reference: the same settings the scene scripts
+    use (scenes/_common.py), so tests and `make render --engine CYCLES` agree."""
+    scenes_dir = os.path.join(REPO_DIR, "scenes")
+    if scenes_dir not in sys.path:
+        sys.path.insert(0, scenes_dir)
+    import _common
+    _common.configure_cycles(scene, samples, max_bounces, seed=seed, filter_width=filter_width)
 
 
 def configure_phos(scene, samples, max_bounces=8, seed=0, filter_width=1.5, tile_size=None):
