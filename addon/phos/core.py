@@ -156,6 +156,7 @@ class phos_closure_desc(ctypes.Structure):
         ("glass_fresnel", _u32),    # enum phos_glass_fresnel
         ("transmission_tint", _f * 3),   # GLASS: colour of the refracted light only
         ("transmission_roughness", _f),  # GLASS (MACRO): refraction roughness, < 0 = roughness
+        ("layered", _u32),               # 1: under the first REFLECTION_FRESNEL (Principled v2)
     ]
 
 

@@ -124,6 +124,8 @@ typedef struct phos_closure_desc {
     uint32_t glass_fresnel;    /* enum phos_glass_fresnel */
     float transmission_tint[3];/* GLASS: extra colour of the refracted light only (Principled: base colour) */
     float transmission_roughness; /* GLASS with MACRO Fresnel: roughness of the refraction lobe; < 0 = roughness */
+    uint32_t layered;          /* 1: lies under the material's first REFLECTION_FRESNEL closure and is
+                                  scaled by 1 − that layer's directional albedo (Principled v2, Cycles 4) */
 } phos_closure_desc;
 PHOS_API void phos_closure_desc_init(phos_closure_desc *desc);
 

@@ -304,6 +304,8 @@ static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32
     if (!isfinite(c->transmission_roughness) || c->transmission_roughness > 1.0f)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u transmission roughness %g must be <= 1", i,
              (double)c->transmission_roughness);
+    if (c->layered > 1)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u layered flag %u must be 0 or 1", i, c->layered);
     if (c->glass_fresnel > PHOS_GLASS_FRESNEL_MICROFACET)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown glass Fresnel mode %u", i,
              c->glass_fresnel);

@@ -5,12 +5,13 @@
  */
 #include "material.h"
 
+#include "layering.h"
 #include "texture.h"
 
 const material scene_default_material = {
     1,
     {{PHOS_CLOSURE_DIFFUSE, {0.8f, 0.8f, 0.8f}, -1, 0.5f, 1.45f, {0.0f, 0.0f, 0.0f}, PHOS_GLASS_FRESNEL_MACRO,
-      {1.0f, 1.0f, 1.0f}, -1.0f}},
+      {1.0f, 1.0f, 1.0f}, -1.0f, 0}},
     0,
     0,
 };
@@ -40,6 +41,7 @@ void surface_from_hit(const scene *s, uint32_t instance_id, uint32_t prim, float
         if (v3_is_finite(nw) && v3_length2(nw) > 0.5f)
             ns = v3_dot(nw, ng) < 0.0f ? v3_neg(nw) : nw; /* keep it on the winding side */
     }
+    out->wo = v3_neg(d);
     out->backfacing = v3_dot(ng, d) > 0.0f;
     if (out->backfacing) {
         ng = v3_neg(ng);
@@ -67,10 +69,32 @@ static vec3 closure_weight(const scene *s, const phos_closure_desc *c, float u, 
     return w;
 }
 
+/* Weight of the closures layered under the material's specular layer (its
+ * first REFLECTION_FRESNEL closure): 1 − the layer's directional albedo
+ * toward the viewer, the largest channel (Cycles' closure_layering_weight). */
+static float base_layer_scale(const material *m, const surface *sf)
+{
+    int any = 0;
+    for (uint32_t i = 0; i < m->closure_count; i++)
+        any |= m->closures[i].layered != 0;
+    if (!any)
+        return 1.0f;
+    for (uint32_t i = 0; i < m->closure_count; i++) {
+        const phos_closure_desc *d = &m->closures[i];
+        if (d->type != PHOS_CLOSURE_REFLECTION_FRESNEL || d->layered)
+            continue;
+        vec3 E = specular_layer_albedo(v3_dot(sf->wo, sf->ns), clampf(d->roughness, 0.0f, 1.0f), d->ior,
+                                       v3_load(d->specular_color));
+        return clampf(1.0f - v3_max_component(E), 0.0f, 1.0f);
+    }
+    return 1.0f;
+}
+
 void material_bsdf(const scene *s, const surface *sf, bsdf *out)
 {
     bsdf_init(out, sf->ns, sf->ng);
     const material *m = sf->mat;
+    float base_scale = base_layer_scale(m, sf);
     for (uint32_t i = 0; i < m->closure_count; i++) {
         const phos_closure_desc *d = &m->closures[i];
         if (d->type == PHOS_CLOSURE_EMISSION)
@@ -78,6 +102,8 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
         closure c;
         c.type = d->type;
         c.weight = closure_weight(s, d, sf->u, sf->v);
+        if (d->layered)
+            c.weight = v3_scale(c.weight, base_scale);
         c.roughness = clampf(d->roughness, 0.0f, 1.0f);
         c.alpha = c.roughness * c.roughness;
         float rt = d->transmission_roughness < 0.0f ? c.roughness : d->transmission_roughness;

@@ -13,6 +13,7 @@ typedef struct surface {
     vec3 p;                 /* world position */
     vec3 ng;                /* geometric normal, facing the ray origin */
     vec3 ns;                /* shading normal, facing the ray origin */
+    vec3 wo;                /* toward the ray origin */
     float u, v;             /* texture coordinates */
     int backfacing;         /* the ray arrived from behind the triangle's winding normal */
     uint32_t instance, prim;

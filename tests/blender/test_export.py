@@ -438,15 +438,21 @@ def test_material_closures(scene):
 def test_principled_closures(scene):
     from phos import core as C
     mat = pt.node_material("P", "ShaderNodeBsdfPrincipled")
-    types = _closure_types(closures_of(scene, mat)[0])
-    assert C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE in types
+    closures = closures_of(scene, mat)[0]
+    types = _closure_types(closures)
+    # Principled v1 (3.x): Burley diffuse beside the specular. Principled v2
+    # (4.x): a Lambertian base layered under the specular.
+    v4 = bpy.app.version >= (4, 0, 0)
+    base_type = C.PHOS_CLOSURE_DIFFUSE if v4 else C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE
+    assert base_type in types
+    assert next(c for c in closures if c.type == base_type).layered == v4
     assert C.PHOS_CLOSURE_REFLECTION_FRESNEL in types
     assert C.PHOS_CLOSURE_GLASS not in types
 
     metal = pt.node_material("M", "ShaderNodeBsdfPrincipled",
                              {"Base Color": (0.9, 0.6, 0.3), "Metallic": 1.0})
     closures = closures_of(scene, metal)[0]
-    assert C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE not in _closure_types(closures)
+    assert base_type not in _closure_types(closures)
     spec = [c for c in closures if c.type == C.PHOS_CLOSURE_REFLECTION_FRESNEL]
     assert spec and tuple(spec[0].specular_color) == pytest.approx((0.9, 0.6, 0.3), abs=1e-3)
 
@@ -455,7 +461,7 @@ def test_principled_closures(scene):
     closures = closures_of(scene, glass)[0]
     types = _closure_types(closures)
     assert C.PHOS_CLOSURE_GLASS in types
-    assert C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE not in types
+    assert base_type not in types
     # Each refraction is tinted by the base colour (3.x) or its square root (4.x).
     tint = next(c for c in closures if c.type == C.PHOS_CLOSURE_GLASS).transmission_tint
     expected = (0.9, 0.7, 0.5) if pt.BLENDER_4 else (0.81, 0.49, 0.25)

@@ -20,6 +20,7 @@
 #include "bsdf.h"
 #include "microfacet.h"
 #include "chi2.h"
+#include "layering.h"
 #include "test_util.h"
 
 #define SAMPLES_PER_TEST 200000
@@ -849,6 +850,49 @@ static void test_chi2_law(void)
     CHECK_REL(chi2_survival(2.0, 2), exp(-1.0), 1e-9); /* dof 2: e^(−x/2) */
 }
 
+/* The tabulated albedo of the specular layer equals Monte Carlo integration
+ * of the same closure, off the table's grid points. */
+static void test_layer_albedo(void)
+{
+    static const float mus[] = {0.93f, 0.61f, 0.27f, 0.08f};
+    static const float roughs[] = {0.0f, 0.13f, 0.5f, 0.87f};
+    static const float etas[] = {1.45f, 1.5f, 2.2f};
+    int bad = 0, n = 0;
+    for (int a = 0; a < 4; a++)
+        for (int r = 0; r < 4; r++)
+            for (int e = 0; e < 3; e++) {
+                vec3 f0 = v3(0.04f, 0.5f, 1.0f);
+                vec3 tab = specular_layer_albedo(mus[a], roughs[r], etas[e], f0);
+                bsdf b;
+                closure c = make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, roughs[r], etas[e]);
+                c.f0 = f0;
+                make_bsdf(&b, &c, 1, v3(0, 0, 1), v3(0, 0, 1));
+                vec3 wo = v3(sqrtf(1.0f - mus[a] * mus[a]), 0.0f, mus[a]);
+                double sum[3] = {0, 0, 0};
+                const int N = 40000;
+                for (int i = 0; i < N; i++) {
+                    sampler sm = sampler_independent(77, (uint32_t)(a * 100 + r * 10 + e), (uint64_t)i);
+                    bsdf_sample bs;
+                    if (bsdf_sample_direction(&b, wo, sampler_1d(&sm, 0), sampler_2d(&sm, 1), &bs)) {
+                        sum[0] += bs.weight.x;
+                        sum[1] += bs.weight.y;
+                        sum[2] += bs.weight.z;
+                    }
+                }
+                float mc[3] = {(float)(sum[0] / N), (float)(sum[1] / N), (float)(sum[2] / N)};
+                float tb[3] = {tab.x, tab.y, tab.z};
+                for (int ch = 0; ch < 3; ch++) {
+                    n++;
+                    if (fabsf(tb[ch] - mc[ch]) > 0.015f * mc[ch] + 0.003f) {
+                        bad++;
+                        fprintf(stderr, "  layer albedo mu %.2f r %.2f eta %.2f ch %d: table %.4f, MC %.4f\n", mus[a],
+                                roughs[r], etas[e], ch, tb[ch], mc[ch]);
+                    }
+                }
+            }
+    CHECK_MSG(bad == 0, "%d of %d layer albedos differ from Monte Carlo", bad, n);
+}
+
 int main(void)
 {
     test_chi2_law();
@@ -858,5 +902,6 @@ int main(void)
     test_reciprocity();
     test_light_leaks();
     test_chi2_all();
+    test_layer_albedo();
     return test_summary("test_bsdf");
 }

@@ -49,11 +49,11 @@ class Closure:
     """One weighted closure before it becomes a core.phos_closure_desc."""
 
     __slots__ = ("type", "weight", "image", "roughness", "ior", "specular_color", "glass_fresnel",
-                 "transmission_tint", "transmission_roughness")
+                 "transmission_tint", "transmission_roughness", "layered")
 
     def __init__(self, type, weight, image=None, roughness=0.0, ior=1.45,
                  specular_color=(0.0, 0.0, 0.0), glass_fresnel=core.PHOS_GLASS_FRESNEL_MACRO,
-                 transmission_tint=(1.0, 1.0, 1.0), transmission_roughness=-1.0):
+                 transmission_tint=(1.0, 1.0, 1.0), transmission_roughness=-1.0, layered=False):
         self.type = type
         self.weight = np.asarray(weight, dtype=np.float32).reshape(3).copy()
         self.image = image
@@ -63,6 +63,7 @@ class Closure:
         self.glass_fresnel = glass_fresnel
         self.transmission_tint = np.asarray(transmission_tint, dtype=np.float32).reshape(3)
         self.transmission_roughness = float(transmission_roughness)
+        self.layered = bool(layered)
 
     def scale(self, factor):
         self.weight *= factor
@@ -82,6 +83,7 @@ class Closure:
         d.glass_fresnel = self.glass_fresnel
         d.transmission_tint[:] = [max(float(x), 0.0) for x in self.transmission_tint]
         d.transmission_roughness = min(self.transmission_roughness, 1.0)
+        d.layered = 1 if self.layered else 0
         return d
 
 
@@ -592,8 +594,14 @@ def principled(walker, node):
             s = _clamp01(subsurface)
             if img is None:
                 color = ss_color * s + base * (1.0 - s)
-        closures.append(Closure(core.PHOS_CLOSURE_PRINCIPLED_DIFFUSE, color * diffuse_weight, img,
-                                roughness=roughness))
+        if v4:
+            # Principled v2 (Cycles 4): a Lambertian base under the
+            # dielectric specular, scaled by 1 − the specular's albedo
+            # toward the viewer (the core's `layered` closures).
+            closures.append(Closure(core.PHOS_CLOSURE_DIFFUSE, color * diffuse_weight, img, layered=True))
+        else:
+            closures.append(Closure(core.PHOS_CLOSURE_PRINCIPLED_DIFFUSE, color * diffuse_weight, img,
+                                    roughness=roughness))
 
     if specular_weight > WEIGHT_CUTOFF and (specular > WEIGHT_CUTOFF or metallic > WEIGHT_CUTOFF):
         if not v4:
