@@ -263,3 +263,20 @@ def finish(scene, args, max_bounces, photon_settings=None):
             log("error: render failed: %s" % ex)
             return 1
     return 0
+
+
+def run_scene(build, description, max_bounces, photon_settings=None, **parse_kwargs):
+    """The whole main of a scene script: parse the options, build the scene
+    from the factory startup, then finish(); exits with its code on failure.
+
+    parse_kwargs go to parse_args (default_samples, default_integrator...).
+    """
+    args = parse_args(description, **parse_kwargs)
+    if args.extra:
+        log("error: unknown arguments %s" % args.extra)
+        sys.exit(2)
+    scene = bpy.context.scene
+    build(scene)
+    rc = finish(scene, args, max_bounces, photon_settings=photon_settings)
+    if rc:
+        sys.exit(rc)

@@ -69,18 +69,6 @@ def build(scene):
     return scene
 
 
-def main():
-    args = _common.parse_args(__doc__.splitlines()[0], default_samples=DEFAULT_SAMPLES,
-                              default_integrator="PHOTON")
-    if args.extra:
-        _common.log("error: unknown arguments %s" % args.extra)
-        return 2
-    scene = bpy.context.scene
-    build(scene)
-    return _common.finish(scene, args, MAX_BOUNCES, photon_settings=PHOTON_SETTINGS)
-
-
 if __name__ == "__main__":
-    rc = main()
-    if rc:
-        sys.exit(rc)
+    _common.run_scene(build, __doc__.splitlines()[0], MAX_BOUNCES, photon_settings=PHOTON_SETTINGS,
+                      default_samples=DEFAULT_SAMPLES, default_integrator="PHOTON")

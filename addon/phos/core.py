@@ -513,31 +513,24 @@ def new_render_settings():
 
 # -------------------------------------------------------------------- scene
 
-class Scene:
-    """Owner of a phos_scene handle.
+class _Handle:
+    """What both handle owners share: close() frees the handle once (also on
+    leaving a `with` block, and as a last resort when garbage collected), and
+    a failed call raises PhosError with the message the core left on it."""
 
-    Use as a context manager or call close(); every add_* returns the new
-    id and raises PhosError with phos_scene_error() on failure. Array
-    arguments are converted to C-contiguous float32/uint32 and only need to
-    live during the call (the core copies them).
-    """
-
-    def __init__(self):
-        self._lib = lib()
-        self._handle = self._lib.phos_scene_create()
-        if not self._handle:
-            raise PhosError("out of memory creating a scene", PHOS_ERROR_OUT_OF_MEMORY)
+    _kind = "handle"
+    _handle = None
 
     @property
     def handle(self):
         if not self._handle:
-            raise PhosError("the scene was already closed", PHOS_ERROR_INVALID_STATE)
+            raise PhosError("the %s was already closed" % self._kind, PHOS_ERROR_INVALID_STATE)
         return self._handle
 
     def close(self):
         if self._handle:
-            self._lib.phos_scene_destroy(self._handle)
-            self._handle = None
+            handle, self._handle = self._handle, None
+            self._destroy(handle)
 
     def __enter__(self):
         return self
@@ -555,12 +548,35 @@ class Scene:
 
     def _raise_on(self, status, what):
         if status != PHOS_OK:
-            msg = _decode(self._lib.phos_scene_error(self._handle)) or \
-                _decode(self._lib.phos_status_string(status))
+            msg = self._error_text(self._handle) or _decode(self._lib.phos_status_string(status))
             raise PhosError("%s: %s" % (what, msg), status)
 
     def error(self):
-        return _decode(self._lib.phos_scene_error(self.handle))
+        return self._error_text(self.handle)
+
+
+class Scene(_Handle):
+    """Owner of a phos_scene handle.
+
+    Use as a context manager or call close(); every add_* returns the new
+    id and raises PhosError with phos_scene_error() on failure. Array
+    arguments are converted to C-contiguous float32/uint32 and only need to
+    live during the call (the core copies them).
+    """
+
+    _kind = "scene"
+
+    def __init__(self):
+        self._lib = lib()
+        self._handle = self._lib.phos_scene_create()
+        if not self._handle:
+            raise PhosError("out of memory creating a scene", PHOS_ERROR_OUT_OF_MEMORY)
+
+    def _destroy(self, handle):
+        self._lib.phos_scene_destroy(handle)
+
+    def _error_text(self, handle):
+        return _decode(self._lib.phos_scene_error(handle))
 
     def add_image(self, pixels, width, height, interpolation=PHOS_INTERP_LINEAR,
                   extension=PHOS_EXTEND_REPEAT):
@@ -650,12 +666,14 @@ class Scene:
 
 # ------------------------------------------------------------------- render
 
-class Render:
+class Render(_Handle):
     """Owner of a phos_render handle created from a committed Scene.
 
     The core runs its own threads; every method here returns quickly except
     wait(). cancel() is safe from any thread.
     """
+
+    _kind = "render"
 
     def __init__(self, scene, settings):
         self._lib = lib()
@@ -671,41 +689,14 @@ class Render:
         self.settings = settings
         self._channels = {}
 
-    @property
-    def handle(self):
-        if not self._handle:
-            raise PhosError("the render was already closed", PHOS_ERROR_INVALID_STATE)
-        return self._handle
+    def _destroy(self, handle):
+        # A running render is cancelled and joined before it is freed.
+        self._lib.phos_render_cancel(handle)
+        self._lib.phos_render_wait(handle, -1.0)
+        self._lib.phos_render_destroy(handle)
 
-    def close(self):
-        """Cancel if still running, wait for the workers, free the render."""
-        if self._handle:
-            self._lib.phos_render_cancel(self._handle)
-            self._lib.phos_render_wait(self._handle, -1.0)
-            self._lib.phos_render_destroy(self._handle)
-            self._handle = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-        return False
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
-
-    def _raise_on(self, status, what):
-        if status != PHOS_OK:
-            msg = _decode(self._lib.phos_render_error(self._handle)) or \
-                _decode(self._lib.phos_status_string(status))
-            raise PhosError("%s: %s" % (what, msg), status)
-
-    def error(self):
-        return _decode(self._lib.phos_render_error(self.handle))
+    def _error_text(self, handle):
+        return _decode(self._lib.phos_render_error(handle))
 
     def start(self):
         self._raise_on(self._lib.phos_render_start(self.handle), "starting the render")
