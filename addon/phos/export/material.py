@@ -392,7 +392,7 @@ class NodeTreeWalker:
                       % _enum_name(node, "distribution", dist))
         return None
 
-    def _glossy(self, node, stack):
+    def _glossy(self, node, stack, anisotropy_note="anisotropy is not supported; ignored"):
         if self.world:
             return self._fallback(node)
         consumed = set()
@@ -402,24 +402,13 @@ class NodeTreeWalker:
         if override is not None:
             roughness = override
         if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:
-            self.note(node, "anisotropy is not supported; ignored")
+            self.note(node, anisotropy_note)
         self.check_unused_links(node, consumed)
         return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, img, roughness=roughness)]
 
     def _anisotropic(self, node, stack):
         """The 3.x Anisotropic BSDF: a Glossy BSDF whose anisotropy Phos ignores."""
-        if self.world:
-            return self._fallback(node)
-        consumed = set()
-        rgb, img, _ = self.color(node, 'Color', consumed)
-        roughness = self.value(node, 'Roughness', 0.5, consumed)
-        override = self._distribution(node, {'GGX'})
-        if override is not None:
-            roughness = override
-        if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:
-            self.note(node, "anisotropy is not supported; rendered as Glossy")
-        self.check_unused_links(node, consumed)
-        return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, img, roughness=roughness)]
+        return self._glossy(node, stack, "anisotropy is not supported; rendered as Glossy")
 
     def _glass(self, node, stack):
         if self.world:
