@@ -8,6 +8,8 @@
 #   make install | uninstall              add-on into the user's Blender
 #   make package                          dist/phos-<version>.zip
 #   make bench [BENCH_ARGS=...]           kd-tree benchmark vs nanoflann (not in make test)
+#   make image-digests [DIGESTS=file]     SHA-256 of every pass of every test scene, per
+#                                         integrator (compare before/after a refactoring)
 #   make deps | build | clean
 #
 # build, test, render, install and package first install the Debian packages
@@ -38,10 +40,10 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
-.PHONY: deps build test test-blender4 bench render install uninstall package clean help
+.PHONY: deps build test test-blender4 bench render image-digests install uninstall package clean help
 
 help:
-	@sed -n '3,14p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,16p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -72,6 +74,12 @@ bench:
 	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DPHOS_BUILD_BENCH=ON -DPHOS_BUILD_TESTS=OFF
 	cmake --build $(BENCH_DIR) -j $(JOBS) --target bench_kdtree
 	$(BENCH_DIR)/bench/bench_kdtree $(BENCH_ARGS)
+
+# Not a test: digests depend on the compiler, Embree and the CPU, so two runs
+# are compared on one machine (tools/image-digests.py).
+DIGESTS ?= out/image-digests.txt
+image-digests: build
+	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python tools/image-digests.py -- $(DIGESTS)
 
 render: build
 	@test -f scenes/$(SCENE).py || { echo "render: no scene scenes/$(SCENE).py; scenes:" \

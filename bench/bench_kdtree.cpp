@@ -22,9 +22,9 @@
 
 #include <nanoflann.hpp>
 
-#include "kdtree.h"
-#include "photon.h"
-#include "sampler.h"
+#include "photons/kdtree.h"
+#include "photons/photon.h"
+#include "sampling/sampler.h"
 
 namespace {
 

@@ -237,7 +237,9 @@ enum phos_integrator {
 /* What a photon-mapping render shows for indirect diffuse light. */
 enum phos_photon_view {
     PHOS_PHOTON_VIEW_FINAL_GATHER = 0, /* final gathering on the global map */
-    PHOS_PHOTON_VIEW_FAST = 1          /* the global map read at the first diffuse hit */
+    PHOS_PHOTON_VIEW_FAST = 1,         /* the global map read at the first diffuse hit */
+    PHOS_PHOTON_VIEW_PATH_TRACED = 2   /* gather rays continued as unbiased paths (no global map):
+                                          the reference the other two converge to */
 };
 
 /*

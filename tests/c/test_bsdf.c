@@ -17,10 +17,10 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "bsdf.h"
-#include "microfacet.h"
+#include "shading/bsdf.h"
+#include "shading/microfacet.h"
 #include "chi2.h"
-#include "layering.h"
+#include "shading/layering.h"
 #include "test_util.h"
 
 #define SAMPLES_PER_TEST 200000

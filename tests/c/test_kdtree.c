@@ -16,9 +16,9 @@
 #include <pthread.h>
 #include <string.h>
 
-#include "kdtree.h"
-#include "photon.h"
-#include "sampler.h"
+#include "photons/kdtree.h"
+#include "photons/photon.h"
+#include "sampling/sampler.h"
 #include "test_util.h"
 
 static float rnd(uint32_t *state)

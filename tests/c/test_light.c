@@ -12,9 +12,9 @@
 #include <string.h>
 
 #include "chi2.h"
-#include "embree.h"
-#include "light.h"
-#include "scene.h"
+#include "scene/embree.h"
+#include "lights/light.h"
+#include "scene/scene.h"
 #include "test_scenes.h"
 #include "test_util.h"
 

@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "sampler.h"
+#include "sampling/sampler.h"
 #include "test_util.h"
 
 static int one_per_stratum_1d(uint32_t seed, uint32_t px, uint32_t dim, uint32_t n)

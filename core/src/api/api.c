@@ -1,0 +1,806 @@
+/*
+ * api.c — the public functions of phos.h, and the only place that
+ * validates what callers pass in. Everything past this file may assume
+ * valid, finite input. A failure never ends the process: it returns a
+ * status and leaves a message on the handle.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "lights/light.h"
+#include "scene/embree.h"
+#include "shading/texture.h"
+#include "render/film.h"
+#include "phos.h"
+#include "render/render.h"
+#include "scene/scene.h"
+
+/* ------------------------------------------------------------- general */
+
+uint32_t phos_version(void) { return PHOS_VERSION; }
+
+uint32_t phos_struct_size(const char *name)
+{
+    static const struct {
+        const char *name;
+        uint32_t size;
+    } table[] = {
+        {"phos_image_desc", sizeof(phos_image_desc)},
+        {"phos_closure_desc", sizeof(phos_closure_desc)},
+        {"phos_material_desc", sizeof(phos_material_desc)},
+        {"phos_mesh_desc", sizeof(phos_mesh_desc)},
+        {"phos_instance_desc", sizeof(phos_instance_desc)},
+        {"phos_light_desc", sizeof(phos_light_desc)},
+        {"phos_world_desc", sizeof(phos_world_desc)},
+        {"phos_camera_desc", sizeof(phos_camera_desc)},
+        {"phos_render_settings", sizeof(phos_render_settings)},
+        {"phos_progress", sizeof(phos_progress)},
+        {"phos_tile", sizeof(phos_tile)},
+    };
+    if (!name)
+        return 0;
+    for (size_t i = 0; i < sizeof(table) / sizeof(table[0]); i++)
+        if (strcmp(table[i].name, name) == 0)
+            return table[i].size;
+    return 0;
+}
+
+const char *phos_status_string(phos_status status)
+{
+    switch (status) {
+    case PHOS_OK: return "ok";
+    case PHOS_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case PHOS_ERROR_INVALID_STATE: return "invalid state";
+    case PHOS_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case PHOS_ERROR_EMBREE: return "ray-tracing kernel error";
+    case PHOS_ERROR_CANCELLED: return "cancelled";
+    case PHOS_ERROR_TIMEOUT: return "timed out";
+    case PHOS_ERROR_INTERNAL: return "internal error";
+    }
+    return "unknown status";
+}
+
+static int all_finite(const float *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return 0;
+    return 1;
+}
+
+static int all_finite_nonnegative(const float *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]) || v[i] < 0.0f)
+            return 0;
+    return 1;
+}
+
+/* Grows a dynamic array of `count` elements to hold one more. */
+static int grow(void **items, uint32_t count, uint32_t *capacity, size_t elem)
+{
+    if (count < *capacity)
+        return 1;
+    if (count == UINT32_MAX)
+        return 0;
+    uint32_t cap = *capacity ? *capacity * 2 : 8;
+    if (cap < *capacity)
+        cap = UINT32_MAX;
+    void *n = realloc(*items, elem * cap);
+    if (!n)
+        return 0;
+    *items = n;
+    *capacity = cap;
+    return 1;
+}
+
+#define FAIL(s, status, ...)              \
+    do {                                  \
+        scene_set_error((s), __VA_ARGS__); \
+        return (status);                  \
+    } while (0)
+
+/* Common checks of every scene-building call. */
+#define CHECK_EDITABLE(s, what, ptr)                                                            \
+    do {                                                                                        \
+        if (!(s))                                                                               \
+            return PHOS_ERROR_INVALID_ARGUMENT;                                                 \
+        (s)->error[0] = 0;                                                                      \
+        if ((s)->committed)                                                                     \
+            FAIL((s), PHOS_ERROR_INVALID_STATE, "%s: the scene is committed and can no longer be changed", what); \
+        if (!(ptr))                                                                             \
+            FAIL((s), PHOS_ERROR_INVALID_ARGUMENT, "%s: the description is NULL", what);        \
+    } while (0)
+
+/* ------------------------------------------------------------ defaults */
+
+void phos_image_desc_init(phos_image_desc *d)
+{
+    if (!d)
+        return;
+    memset(d, 0, sizeof(*d));
+    d->interpolation = PHOS_INTERP_LINEAR;
+    d->extension = PHOS_EXTEND_REPEAT;
+}
+
+void phos_closure_desc_init(phos_closure_desc *d)
+{
+    if (!d)
+        return;
+    memset(d, 0, sizeof(*d));
+    d->type = PHOS_CLOSURE_DIFFUSE;
+    d->weight[0] = d->weight[1] = d->weight[2] = 0.8f;
+    d->weight_image = -1;
+    d->roughness = 0.5f;
+    d->ior = 1.45f;
+    d->specular_color[0] = d->specular_color[1] = d->specular_color[2] = 0.04f;
+    d->glass_fresnel = PHOS_GLASS_FRESNEL_MACRO;
+    d->transmission_tint[0] = d->transmission_tint[1] = d->transmission_tint[2] = 1.0f;
+    d->transmission_roughness = -1.0f;
+}
+
+void phos_material_desc_init(phos_material_desc *d)
+{
+    if (d)
+        memset(d, 0, sizeof(*d));
+}
+
+void phos_mesh_desc_init(phos_mesh_desc *d)
+{
+    if (d)
+        memset(d, 0, sizeof(*d));
+}
+
+static void identity_3x4(float m[12])
+{
+    memset(m, 0, sizeof(float) * 12);
+    m[0] = m[5] = m[10] = 1.0f;
+}
+
+void phos_instance_desc_init(phos_instance_desc *d)
+{
+    if (!d)
+        return;
+    memset(d, 0, sizeof(*d));
+    identity_3x4(d->transform);
+}
+
+void phos_light_desc_init(phos_light_desc *d)
+{
+    if (!d)
+        return;
+    memset(d, 0, sizeof(*d));
+    d->type = PHOS_LIGHT_POINT;
+    d->color[0] = d->color[1] = d->color[2] = 1.0f;
+    d->direction[2] = -1.0f;
+    d->axis_u[0] = 1.0f;
+    d->axis_v[1] = 1.0f;
+    d->area_shape = PHOS_AREA_RECTANGLE;
+    d->point_shape = PHOS_POINT_DISK;
+    d->spot_angle = 0.785398163f; /* 45°, Blender's default */
+    d->spot_blend = 0.15f;
+    d->spot_cosine = 0;
+    d->camera_visible = 1;
+}
+
+void phos_world_desc_init(phos_world_desc *d)
+{
+    if (d)
+        memset(d, 0, sizeof(*d));
+}
+
+void phos_camera_desc_init(phos_camera_desc *d)
+{
+    if (!d)
+        return;
+    memset(d, 0, sizeof(*d));
+    d->type = PHOS_CAMERA_PERSPECTIVE;
+    identity_3x4(d->transform);
+    /* 50 mm lens on a 36 mm sensor, square frame. */
+    d->frame_min[0] = d->frame_min[1] = -0.36f;
+    d->frame_max[0] = d->frame_max[1] = 0.36f;
+    d->focus_distance = 10.0f;
+    d->clip_start = 0.1f;
+    d->clip_end = 1000.0f;
+}
+
+void phos_render_settings_init(phos_render_settings *s)
+{
+    if (!s)
+        return;
+    memset(s, 0, sizeof(*s));
+    s->integrator = PHOS_INTEGRATOR_PATH;
+    s->width = 640;
+    s->height = 480;
+    s->samples = 64;
+    s->max_bounces = 12;
+    s->tile_size = 64;
+    s->filter_width = 1.5f;
+    s->pass_mask = 1u << PHOS_PASS_COMBINED;
+    s->global_photons = 200000;
+    s->caustic_photons = 50000;
+    s->global_estimate_photons = 50;
+    s->caustic_estimate_photons = 80;
+    s->max_radius = 0.0f;
+    s->final_gather_rays = 32;
+    s->photon_view = PHOS_PHOTON_VIEW_FINAL_GATHER;
+    s->max_photons_emitted_millions = 50;
+}
+
+/* --------------------------------------------------------------- scene */
+
+phos_scene *phos_scene_create(void)
+{
+    scene *s = calloc(1, sizeof(scene));
+    if (!s)
+        return NULL;
+    atomic_init(&s->refcount, 1);
+    s->lights.world = -1;
+    s->camera.type = PHOS_CAMERA_PERSPECTIVE;
+    phos_camera_desc_init(&s->camera);
+    return s;
+}
+
+void phos_scene_destroy(phos_scene *s) { scene_release(s); }
+
+const char *phos_scene_error(const phos_scene *s) { return s ? s->error : "the scene handle is NULL"; }
+
+phos_status phos_scene_add_image(phos_scene *s, const phos_image_desc *d, uint32_t *out_id)
+{
+    CHECK_EDITABLE(s, "phos_scene_add_image", d);
+    if (d->width == 0 || d->height == 0 || d->width > 65536 || d->height > 65536)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "image: size %ux%u must be between 1 and 65536 per side", d->width,
+             d->height);
+    if (!d->pixels)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "image: pixels are NULL");
+    if (d->interpolation > PHOS_INTERP_CLOSEST || d->extension > PHOS_EXTEND_CLIP)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "image: unknown interpolation %u or extension %u", d->interpolation,
+             d->extension);
+    size_t n = (size_t)d->width * d->height * 4;
+    if (!all_finite(d->pixels, n))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "image: pixel values must be finite (found NaN or infinity)");
+    if (!grow((void **)&s->images, s->image_count, &s->image_capacity, sizeof(image)))
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "image: out of memory");
+    image *img = &s->images[s->image_count];
+    memset(img, 0, sizeof(*img));
+    img->pixels = malloc(n * sizeof(float));
+    if (!img->pixels)
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "image: out of memory for %ux%u pixels", d->width, d->height);
+    memcpy(img->pixels, d->pixels, n * sizeof(float));
+    img->width = d->width;
+    img->height = d->height;
+    img->interpolation = d->interpolation;
+    img->extension = d->extension;
+    if (out_id)
+        *out_id = s->image_count;
+    s->image_count++;
+    return PHOS_OK;
+}
+
+static int closure_needs_ior(uint32_t type)
+{
+    return type == PHOS_CLOSURE_GLASS || type == PHOS_CLOSURE_REFRACTION || type == PHOS_CLOSURE_REFLECTION_FRESNEL;
+}
+
+static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32_t i)
+{
+    if (c->type >= PHOS_CLOSURE_TYPE_COUNT)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown type %u", i, c->type);
+    if (!all_finite_nonnegative(c->weight, 3))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u weight must be finite and >= 0", i);
+    if (c->weight_image < -1 || (c->weight_image >= 0 && (uint32_t)c->weight_image >= s->image_count))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u refers to image %d, but the scene has %u images",
+             i, c->weight_image, s->image_count);
+    if (!isfinite(c->roughness) || c->roughness < 0.0f || c->roughness > 1.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u roughness %g must be in [0, 1]", i,
+             (double)c->roughness);
+    if (closure_needs_ior(c->type) && (!isfinite(c->ior) || c->ior <= 0.0f))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u IOR %g must be finite and > 0", i, (double)c->ior);
+    if (!all_finite_nonnegative(c->specular_color, 3))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u specular colour must be finite and >= 0", i);
+    if (!all_finite_nonnegative(c->transmission_tint, 3))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u transmission tint must be finite and >= 0", i);
+    if (!isfinite(c->transmission_roughness) || c->transmission_roughness > 1.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u transmission roughness %g must be <= 1", i,
+             (double)c->transmission_roughness);
+    if (c->layered > 1)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u layered flag %u must be 0 or 1", i, c->layered);
+    if (c->glass_fresnel > PHOS_GLASS_FRESNEL_MICROFACET)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown glass Fresnel mode %u", i,
+             c->glass_fresnel);
+    return PHOS_OK;
+}
+
+phos_status phos_scene_add_material(phos_scene *s, const phos_material_desc *d, uint32_t *out_id)
+{
+    CHECK_EDITABLE(s, "phos_scene_add_material", d);
+    if (d->closure_count > PHOS_MAX_CLOSURES)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: %u closures, at most %d are supported", d->closure_count,
+             PHOS_MAX_CLOSURES);
+    if (d->closure_count > 0 && !d->closures)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closures are NULL");
+    for (uint32_t i = 0; i < d->closure_count; i++) {
+        phos_status st = validate_closure(s, &d->closures[i], i);
+        if (st != PHOS_OK)
+            return st;
+    }
+    if (!grow((void **)&s->materials, s->material_count, &s->material_capacity, sizeof(material)))
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "material: out of memory");
+    material *m = &s->materials[s->material_count];
+    memset(m, 0, sizeof(*m));
+    m->closure_count = d->closure_count;
+    if (d->closure_count)
+        memcpy(m->closures, d->closures, sizeof(phos_closure_desc) * d->closure_count);
+    if (out_id)
+        *out_id = s->material_count;
+    s->material_count++;
+    return PHOS_OK;
+}
+
+static void *copy_array(const void *src, size_t bytes)
+{
+    void *p = malloc(bytes ? bytes : 1);
+    if (p && bytes)
+        memcpy(p, src, bytes);
+    return p;
+}
+
+phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t *out_id)
+{
+    CHECK_EDITABLE(s, "phos_scene_add_mesh", d);
+    if (d->vertex_count > (1u << 30) || d->triangle_count > (1u << 30))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: %u vertices / %u triangles exceed the limit of 2^30",
+             d->vertex_count, d->triangle_count);
+    if (d->triangle_count > 0 && (!d->positions || !d->indices || d->vertex_count == 0))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: positions or indices are NULL");
+    if (d->vertex_count > 0 && !d->positions)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: positions are NULL");
+    size_t nv = (size_t)d->vertex_count, nt = (size_t)d->triangle_count;
+    for (size_t v = 0; v < nv; v++)
+        if (!all_finite(d->positions + 3 * v, 3))
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: vertex %zu has a non-finite coordinate", v);
+    for (size_t t = 0; t < 3 * nt; t++)
+        if (d->indices[t] >= d->vertex_count)
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: triangle %zu uses vertex %u, but there are only %u vertices",
+                 t / 3, d->indices[t], d->vertex_count);
+    if (d->normals && !all_finite(d->normals, 9 * nt))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: normals must be finite");
+    if (d->uvs && !all_finite(d->uvs, 6 * nt))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: UVs must be finite");
+    if (!grow((void **)&s->meshes, s->mesh_count, &s->mesh_capacity, sizeof(mesh)))
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "mesh: out of memory");
+    mesh m;
+    memset(&m, 0, sizeof(m));
+    m.vertex_count = d->vertex_count;
+    m.triangle_count = d->triangle_count;
+    m.positions = copy_array(d->positions, sizeof(float) * 3 * nv);
+    m.indices = copy_array(d->indices, sizeof(uint32_t) * 3 * nt);
+    m.normals = d->normals ? copy_array(d->normals, sizeof(float) * 9 * nt) : NULL;
+    m.uvs = d->uvs ? copy_array(d->uvs, sizeof(float) * 6 * nt) : NULL;
+    m.slots = d->material_slots ? copy_array(d->material_slots, sizeof(uint32_t) * nt) : NULL;
+    if (!m.positions || !m.indices || (d->normals && !m.normals) || (d->uvs && !m.uvs) ||
+        (d->material_slots && !m.slots)) {
+        free(m.positions);
+        free(m.indices);
+        free(m.normals);
+        free(m.uvs);
+        free(m.slots);
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "mesh: out of memory for %u triangles", d->triangle_count);
+    }
+    s->meshes[s->mesh_count] = m;
+    if (out_id)
+        *out_id = s->mesh_count;
+    s->mesh_count++;
+    return PHOS_OK;
+}
+
+phos_status phos_scene_add_instance(phos_scene *s, const phos_instance_desc *d, uint32_t *out_id)
+{
+    CHECK_EDITABLE(s, "phos_scene_add_instance", d);
+    if (d->mesh_id >= s->mesh_count)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: mesh %u does not exist (the scene has %u meshes)", d->mesh_id,
+             s->mesh_count);
+    if (!all_finite(d->transform, 12))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: the transform must be finite");
+    if (d->material_count > 0 && !d->materials)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: materials are NULL");
+    for (uint32_t i = 0; i < d->material_count; i++)
+        if (d->materials[i] >= s->material_count)
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: slot %u uses material %u, but the scene has %u materials", i,
+                 d->materials[i], s->material_count);
+    if (!grow((void **)&s->instances, s->instance_count, &s->instance_capacity, sizeof(instance)))
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "instance: out of memory");
+    instance *inst = &s->instances[s->instance_count];
+    memset(inst, 0, sizeof(*inst));
+    inst->mesh_id = d->mesh_id;
+    memcpy(inst->transform, d->transform, sizeof(inst->transform));
+    inst->material_count = d->material_count;
+    inst->materials = copy_array(d->materials, sizeof(uint32_t) * d->material_count);
+    if (!inst->materials)
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "instance: out of memory");
+    if (out_id)
+        *out_id = s->instance_count;
+    s->instance_count++;
+    return PHOS_OK;
+}
+
+static int nonzero3(const float *v) { return v[0] != 0.0f || v[1] != 0.0f || v[2] != 0.0f; }
+
+phos_status phos_scene_add_light(phos_scene *s, const phos_light_desc *d, uint32_t *out_id)
+{
+    CHECK_EDITABLE(s, "phos_scene_add_light", d);
+    if (d->type > PHOS_LIGHT_SUN)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: unknown type %u", d->type);
+    if (!all_finite_nonnegative(d->color, 3))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: colour must be finite and >= 0");
+    if (!all_finite(d->position, 3) || !all_finite(d->direction, 3) || !all_finite(d->axis_u, 3) ||
+        !all_finite(d->axis_v, 3))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: position, direction and axes must be finite");
+    if (d->type != PHOS_LIGHT_POINT && !nonzero3(d->direction))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: the direction must not be zero");
+    if (d->type == PHOS_LIGHT_AREA) {
+        if (d->area_shape > PHOS_AREA_ELLIPSE)
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: unknown area shape %u", d->area_shape);
+        float c[3] = {d->axis_u[1] * d->axis_v[2] - d->axis_u[2] * d->axis_v[1],
+                      d->axis_u[2] * d->axis_v[0] - d->axis_u[0] * d->axis_v[2],
+                      d->axis_u[0] * d->axis_v[1] - d->axis_u[1] * d->axis_v[0]};
+        if (!(c[0] * c[0] + c[1] * c[1] + c[2] * c[2] > 0.0f))
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: an area light needs a nonzero size along both axes");
+    }
+    if (!isfinite(d->radius) || d->radius < 0.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: radius %g must be finite and >= 0", (double)d->radius);
+    if (d->point_shape > PHOS_POINT_SPHERE)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: unknown point shape %u", d->point_shape);
+    if (d->type == PHOS_LIGHT_SPOT) {
+        if (!(d->spot_angle > 0.0f && d->spot_angle <= 3.14159266f))
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: spot angle %g must be in (0, π]", (double)d->spot_angle);
+        if (!(d->spot_blend >= 0.0f && d->spot_blend <= 1.0f))
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: spot blend %g must be in [0, 1]", (double)d->spot_blend);
+    }
+    if (d->type == PHOS_LIGHT_SUN && !(d->sun_angle >= 0.0f && d->sun_angle < 3.14159265f))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: sun angle %g must be in [0, π)", (double)d->sun_angle);
+    if (!grow((void **)&s->light_descs, s->light_desc_count, &s->light_desc_capacity, sizeof(phos_light_desc)))
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "light: out of memory");
+    s->light_descs[s->light_desc_count] = *d;
+    if (out_id)
+        *out_id = s->light_desc_count;
+    s->light_desc_count++;
+    return PHOS_OK;
+}
+
+phos_status phos_scene_set_world(phos_scene *s, const phos_world_desc *d)
+{
+    CHECK_EDITABLE(s, "phos_scene_set_world", d);
+    if (!all_finite_nonnegative(d->color, 3))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "world: colour must be finite and >= 0");
+    s->world = *d;
+    return PHOS_OK;
+}
+
+phos_status phos_scene_set_camera(phos_scene *s, const phos_camera_desc *d)
+{
+    CHECK_EDITABLE(s, "phos_scene_set_camera", d);
+    if (d->type > PHOS_CAMERA_ORTHOGRAPHIC)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: unknown type %u", d->type);
+    if (!all_finite(d->transform, 12))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: the transform must be finite");
+    const float *m = d->transform;
+    float det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+                m[2] * (m[4] * m[9] - m[5] * m[8]);
+    if (!(fabsf(det) > 1e-12f))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: the transform is singular (zero scale?)");
+    if (!all_finite(d->frame_min, 2) || !all_finite(d->frame_max, 2) || !(d->frame_min[0] < d->frame_max[0]) ||
+        !(d->frame_min[1] < d->frame_max[1]))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: the frame must be finite with min < max");
+    if (!isfinite(d->aperture_radius) || d->aperture_radius < 0.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: aperture radius must be finite and >= 0");
+    if (d->aperture_radius > 0.0f && !(isfinite(d->focus_distance) && d->focus_distance > 0.0f))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: focus distance must be > 0 with depth of field");
+    if (!(isfinite(d->clip_start) && d->clip_start >= 0.0f) || !(d->clip_end > d->clip_start))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: clipping needs 0 <= start < end");
+    s->camera = *d;
+    s->has_camera = 1;
+    return PHOS_OK;
+}
+
+phos_status phos_scene_commit(phos_scene *s)
+{
+    if (!s)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    s->error[0] = 0;
+    if (s->committed)
+        FAIL(s, PHOS_ERROR_INVALID_STATE, "commit: the scene is already committed");
+    /* Scene data first, then what is derived from it: image means (for the
+     * lights' power estimates), the BVH, the light table. */
+    scene_prepare(s);
+    for (uint32_t i = 0; i < s->image_count; i++)
+        s->images[i].average = image_average(&s->images[i]);
+    phos_status st = embree_bvh_build(s->meshes, s->mesh_count, s->instances, s->instance_count, &s->bvh,
+                                      s->error, sizeof(s->error));
+    if (st != PHOS_OK) {
+        if (!s->error[0])
+            scene_set_error(s, "could not build the ray-tracing acceleration structure");
+        return st;
+    }
+    st = light_table_build(s);
+    if (st != PHOS_OK) {
+        scene_set_error(s, "out of memory while building the light table");
+        return st;
+    }
+    s->committed = 1;
+    return PHOS_OK;
+}
+
+/* -------------------------------------------------------------- render */
+
+static void render_set_error(render *r, phos_status st, const char *msg)
+{
+    pthread_mutex_lock(&r->lock);
+    snprintf(r->error, sizeof(r->error), "%s", msg);
+    (void)st;
+    pthread_mutex_unlock(&r->lock);
+}
+
+static phos_status validate_settings(scene *s, const phos_render_settings *rs)
+{
+    if (rs->integrator > PHOS_INTEGRATOR_PHOTON)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: unknown integrator %u", rs->integrator);
+    if (rs->global_photons > (1u << 28) || rs->caustic_photons > (1u << 28))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: %u global / %u caustic photons exceed 2^28", rs->global_photons,
+             rs->caustic_photons);
+    if (rs->global_estimate_photons < 1 || rs->global_estimate_photons > 10000 || rs->caustic_estimate_photons < 1 ||
+        rs->caustic_estimate_photons > 10000)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: photons per estimate must be between 1 and 10000");
+    if (!isfinite(rs->max_radius) || rs->max_radius < 0.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: max radius %g must be finite and >= 0 (0 = automatic)",
+             (double)rs->max_radius);
+    if (rs->final_gather_rays < 1 || rs->final_gather_rays > 65536)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: final gather rays %u must be between 1 and 65536",
+             rs->final_gather_rays);
+    if (rs->photon_view > PHOS_PHOTON_VIEW_PATH_TRACED)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: unknown photon view %u", rs->photon_view);
+    if (rs->max_photons_emitted_millions < 1 || rs->max_photons_emitted_millions > 100000)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: the emitted-photon cap must be between 1 and 100000 million");
+    if (rs->width == 0 || rs->height == 0 || rs->width > 65536 || rs->height > 65536)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: resolution %ux%u must be between 1 and 65536 per side",
+             rs->width, rs->height);
+    if (rs->region_width || rs->region_height) {
+        if (rs->region_width == 0 || rs->region_height == 0 || rs->region_x >= rs->width ||
+            rs->region_y >= rs->height || rs->region_width > rs->width - rs->region_x ||
+            rs->region_height > rs->height - rs->region_y)
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: region %u,%u %ux%u does not lie inside the %ux%u frame",
+                 rs->region_x, rs->region_y, rs->region_width, rs->region_height, rs->width, rs->height);
+    }
+    if (rs->samples == 0 || rs->samples > (1u << 24))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: samples %u must be between 1 and 2^24", rs->samples);
+    if (rs->max_bounces > 1024)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: max bounces %u exceeds 1024", rs->max_bounces);
+    if (rs->threads > 1024)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: %u threads exceeds 1024", rs->threads);
+    if (rs->tile_size < 8 || rs->tile_size > 8192)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: tile size %u must be between 8 and 8192", rs->tile_size);
+    if (!isfinite(rs->filter_width) || rs->filter_width < 0.0f || rs->filter_width > 10.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: filter width %g must be in [0, 10] pixels",
+             (double)rs->filter_width);
+    if (rs->pass_mask & ~((1u << PHOS_PASS_COUNT) - 1u))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: pass mask 0x%x names unknown passes", rs->pass_mask);
+    return PHOS_OK;
+}
+
+phos_status phos_render_create(phos_scene *s, const phos_render_settings *rs, phos_render **out)
+{
+    if (!s)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    s->error[0] = 0;
+    if (!out)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: the output pointer is NULL");
+    *out = NULL;
+    if (!rs)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: the settings are NULL");
+    if (!s->committed)
+        FAIL(s, PHOS_ERROR_INVALID_STATE, "render: the scene must be committed first");
+    if (!s->has_camera)
+        FAIL(s, PHOS_ERROR_INVALID_STATE, "render: the scene has no camera");
+    phos_status st = validate_settings(s, rs);
+    if (st != PHOS_OK)
+        return st;
+
+    render *r = calloc(1, sizeof(render));
+    if (!r)
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "render: out of memory");
+    r->settings = *rs;
+    if (!rs->region_width) {
+        r->settings.region_x = r->settings.region_y = 0;
+        r->settings.region_width = rs->width;
+        r->settings.region_height = rs->height;
+    }
+    pthread_mutex_init(&r->lock, NULL);
+    pthread_cond_init(&r->finished_cond, NULL);
+    atomic_init(&r->cancel, 0);
+    atomic_init(&r->tiles_done, 0u);
+    atomic_init(&r->stage, PHOS_STAGE_WAITING);
+    atomic_init(&r->photon_progress.emitted, 0u);
+    atomic_init(&r->photon_progress.stored, 0u);
+    r->state = PHOS_STATE_IDLE;
+    r->status = PHOS_OK;
+    r->scene = s;
+    atomic_fetch_add(&s->refcount, 1);
+    if (!render_prepare(r)) {
+        uint32_t w = r->settings.region_width, h = r->settings.region_height;
+        phos_render_destroy(r);
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "render: out of memory for a %ux%u film", w, h);
+    }
+    *out = r;
+    return PHOS_OK;
+}
+
+void phos_render_destroy(phos_render *r)
+{
+    if (!r)
+        return;
+    atomic_store(&r->cancel, 1);
+    render_join(r);
+    render_free(r);
+    pthread_mutex_destroy(&r->lock);
+    pthread_cond_destroy(&r->finished_cond);
+    if (r->scene)
+        scene_release(r->scene);
+    free(r);
+}
+
+const char *phos_render_error(const phos_render *r) { return r ? r->error : "the render handle is NULL"; }
+
+phos_status phos_render_start(phos_render *r)
+{
+    if (!r)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    pthread_mutex_lock(&r->lock);
+    int started = r->started;
+    pthread_mutex_unlock(&r->lock);
+    if (started) {
+        render_set_error(r, PHOS_ERROR_INVALID_STATE, "start: the render was already started");
+        return PHOS_ERROR_INVALID_STATE;
+    }
+    phos_status st = render_start(r);
+    if (st != PHOS_OK && !r->error[0])
+        render_set_error(r, st, "start: could not start the render threads");
+    return st;
+}
+
+phos_status phos_render_progress(phos_render *r, phos_progress *out)
+{
+    if (!r || !out)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof(*out));
+    pthread_mutex_lock(&r->lock);
+    out->state = r->state;
+    pthread_mutex_unlock(&r->lock);
+    out->tiles_total = r->tile_count;
+    out->tiles_done = atomic_load(&r->tiles_done);
+    out->samples = r->settings.samples;
+    out->stage_id = atomic_load(&r->stage);
+    out->photons_stored = atomic_load(&r->photon_progress.stored);
+    out->photons_emitted = atomic_load(&r->photon_progress.emitted);
+    if (out->stage_id >= PHOS_STAGE_RENDERING) {
+        out->global_photons = r->maps.global.count;
+        out->caustic_photons = r->maps.caustic.count;
+    }
+    /* Photon stages take the first 20 % of the bar when there are any. */
+    float tiles = r->tile_count ? (float)out->tiles_done / (float)r->tile_count : 1.0f;
+    float photons_target = (float)r->settings.global_photons + (float)r->settings.caustic_photons;
+    float before = r->use_maps ? 0.2f : 0.0f;
+    float photon_part = photons_target > 0.0f ? fminf((float)out->photons_stored / photons_target, 1.0f) : 1.0f;
+    switch (out->stage_id) {
+    case PHOS_STAGE_TRACING_PHOTONS: out->fraction = 0.15f * photon_part; break;
+    case PHOS_STAGE_BUILDING_KDTREES: out->fraction = 0.16f; break;
+    case PHOS_STAGE_PRECOMPUTING_RADIANCE: out->fraction = 0.18f; break;
+    case PHOS_STAGE_WAITING: out->fraction = 0.0f; break;
+    default: out->fraction = before + (1.0f - before) * tiles; break;
+    }
+    const char *stage = "Waiting";
+    int photon_render = r->settings.integrator == PHOS_INTEGRATOR_PHOTON;
+    switch (out->stage_id) {
+    case PHOS_STAGE_TRACING_PHOTONS: stage = "Tracing photons"; break;
+    case PHOS_STAGE_BUILDING_KDTREES: stage = "Building kd-trees"; break;
+    case PHOS_STAGE_PRECOMPUTING_RADIANCE: stage = "Precomputing radiance"; break;
+    case PHOS_STAGE_RENDERING: stage = photon_render ? "Rendering with photon maps" : "Path tracing"; break;
+    case PHOS_STAGE_FINISHED: stage = "Finished"; break;
+    default: break;
+    }
+    if (out->state == PHOS_STATE_CANCELLED)
+        stage = "Cancelled";
+    else if (out->state == PHOS_STATE_FAILED)
+        stage = "Failed";
+    snprintf(out->stage, sizeof(out->stage), "%s", stage);
+    return PHOS_OK;
+}
+
+phos_status phos_render_next_tile(phos_render *r, phos_tile *out, uint32_t *out_count)
+{
+    if (!r || !out || !out_count)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    *out_count = 0;
+    pthread_mutex_lock(&r->lock);
+    if (r->finished_read < r->finished_count) {
+        *out = r->tiles[r->finished[r->finished_read++]];
+        *out_count = 1;
+    }
+    pthread_mutex_unlock(&r->lock);
+    return PHOS_OK;
+}
+
+phos_status phos_render_read(phos_render *r, uint32_t pass, uint32_t x, uint32_t y, uint32_t w, uint32_t h,
+                             float *dst, size_t dst_count)
+{
+    if (!r)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    char msg[256];
+    const film *f = &r->film;
+    if (pass >= PHOS_PASS_COUNT || !f->planes[pass]) {
+        snprintf(msg, sizeof(msg), "read: pass %u is not enabled in this render", pass);
+        render_set_error(r, PHOS_ERROR_INVALID_ARGUMENT, msg);
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    }
+    if (w == 0 || h == 0 || x < f->x0 || y < f->y0 || x - f->x0 > f->width - w || w > f->width ||
+        y - f->y0 > f->height - h || h > f->height) {
+        snprintf(msg, sizeof(msg), "read: rectangle %u,%u %ux%u is not inside the region %u,%u %ux%u", x, y, w, h,
+                 f->x0, f->y0, f->width, f->height);
+        render_set_error(r, PHOS_ERROR_INVALID_ARGUMENT, msg);
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    }
+    uint32_t ch = phos_pass_channels(pass);
+    if (!dst || dst_count < (size_t)w * h * ch) {
+        snprintf(msg, sizeof(msg), "read: the buffer holds %zu floats, %zu are needed", dst_count,
+                 (size_t)w * h * ch);
+        render_set_error(r, PHOS_ERROR_INVALID_ARGUMENT, msg);
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    }
+    for (uint32_t j = 0; j < h; j++)
+        memcpy(dst + (size_t)j * w * ch, film_pixel(f, pass, x, y + j), sizeof(float) * w * ch);
+    return PHOS_OK;
+}
+
+void phos_render_cancel(phos_render *r)
+{
+    if (r)
+        atomic_store(&r->cancel, 1);
+}
+
+phos_status phos_render_wait(phos_render *r, double timeout_seconds)
+{
+    if (!r)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    pthread_mutex_lock(&r->lock);
+    if (!r->started) {
+        pthread_mutex_unlock(&r->lock);
+        render_set_error(r, PHOS_ERROR_INVALID_STATE, "wait: the render was not started");
+        return PHOS_ERROR_INVALID_STATE;
+    }
+    if (timeout_seconds < 0.0) {
+        while (r->running)
+            pthread_cond_wait(&r->finished_cond, &r->lock);
+    } else {
+        struct timespec ts;
+        clock_gettime(CLOCK_REALTIME, &ts);
+        double whole = floor(timeout_seconds);
+        ts.tv_sec += (time_t)whole;
+        ts.tv_nsec += (long)((timeout_seconds - whole) * 1e9);
+        if (ts.tv_nsec >= 1000000000L) {
+            ts.tv_sec += 1;
+            ts.tv_nsec -= 1000000000L;
+        }
+        while (r->running)
+            if (pthread_cond_timedwait(&r->finished_cond, &r->lock, &ts) == ETIMEDOUT)
+                break;
+    }
+    int running = r->running;
+    phos_status st = r->status;
+    pthread_mutex_unlock(&r->lock);
+    if (running)
+        return PHOS_ERROR_TIMEOUT;
+    render_join(r);
+    return st;
+}

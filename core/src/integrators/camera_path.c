@@ -1,0 +1,184 @@
+/*
+ * camera_path.c — the camera-path walker shared by PATH and PHOTON (see
+ * camera_path.h for what it owns and what a vertex policy decides).
+ */
+#include "integrators/camera_path.h"
+
+#include <string.h>
+
+#include "lights/light.h"
+#include "scene/embree.h"
+
+/* Which component a contribution belongs to, from the scattering events on
+ * its path: how many, whether the first was diffuse, and whether all the
+ * later ones were delta lobes (integrator.h). */
+static int classify(uint32_t events, int first_diffuse, int later_delta)
+{
+    if (events == 0)
+        return COMPONENT_EMISSION;
+    if (events == 1)
+        return COMPONENT_DIRECT;
+    if (!first_diffuse)
+        return COMPONENT_SPECULAR;
+    return later_delta ? COMPONENT_CAUSTICS : COMPONENT_INDIRECT;
+}
+
+static void add_to(sample_result *res, int component, vec3 beta, vec3 L, float w)
+{
+    if (component < 0) /* left out (walk_start.indirect_only) */
+        return;
+    res->component[component] = v3_madd(res->component[component], v3_mul(beta, L), w);
+}
+
+void camera_path_add_direct(camera_path *p, vec3 L)
+{
+    /* One more event, non-delta (next-event estimation samples no delta lobe). */
+    add_to(p->res, classify(p->depth + 1, p->first_diffuse, p->depth == 0), p->beta, L, 1.0f);
+}
+
+void camera_path_add_diffuse(camera_path *p, int caustic, vec3 L)
+{
+    /* Two more events at least, the one here diffuse. */
+    int component = p->depth == 0 ? (caustic ? COMPONENT_CAUSTICS : COMPONENT_INDIRECT)
+                                  : classify(p->depth + 2, p->first_diffuse, 0);
+    add_to(p->res, component, p->beta, L, 1.0f);
+}
+
+/* MIS weight of emission found by the ray that left the previous vertex
+ * with BSDF pdf prev_pdf, against that vertex's next-event estimate. */
+static float emission_weight(int prev_delta, float prev_pdf, float light_pdf)
+{
+    return prev_delta ? 1.0f : mis_power_heuristic(prev_pdf, light_pdf);
+}
+
+/* Where a walk starts: the camera, or a vertex of a camera path. */
+typedef struct walk_start {
+    camera_ray ray;
+    int from_camera;
+    uint32_t depth;         /* scattering events before the ray */
+    int indirect_only;      /* leave out emission found before the first non-delta event */
+} walk_start;
+
+static sample_result walk(const scene *s, const integrator_settings *is, const walk_start *start, const sampler *smp,
+                          integrator_scratch *scratch, vertex_policy policy)
+{
+    sample_result res;
+    memset(&res, 0, sizeof(res));
+    camera_path p = {s, is, smp, scratch, &res, v3s(1.0f), start->depth, 0, 1};
+    vec3 o = start->ray.o, d = start->ray.d;
+    float tmin = start->ray.tmin, tmax = start->ray.tmax;
+    int camera_segment = start->from_camera;  /* still on the camera ray (through transparency) */
+    int emission_only = p.depth > is->max_bounces; /* past max_bounces: collect emission, then stop */
+    int only_delta = 1;                        /* no non-delta event since the start */
+    float prev_pdf = 0.0f;
+    int prev_delta = 1;                        /* the camera ray takes emission unweighted */
+    int transparent_steps = 0;
+    uint32_t vertex = 0;                       /* surface interactions, for sample dimensions */
+
+    for (;;) {
+        ray_hit h;
+        int hit = embree_intersect(s->bvh, o, d, tmin, tmax, camera_segment, &h);
+        float t_hit = hit ? h.t : tmax;
+        int emission_component = classify(p.depth, p.first_diffuse, p.later_delta);
+        if (start->indirect_only && only_delta)
+            emission_component = -1;
+
+        light_hit lh;
+        if (lights_intersect(s, o, d, t_hit, camera_segment, &lh))
+            add_to(&res, emission_component, p.beta, lh.radiance, emission_weight(prev_delta, prev_pdf, lh.pdf));
+        if (!hit) {
+            if (!(camera_segment && is->transparent_background))
+                add_to(&res, emission_component, p.beta, lights_escape(s, d, prev_pdf, prev_delta, camera_segment),
+                       1.0f);
+            if (camera_segment && !is->transparent_background)
+                res.alpha = 1.0f;
+            break;
+        }
+
+        surface sf;
+        surface_from_hit(s, h.instance, h.prim, h.b1, h.b2, d, &sf);
+        uint32_t v_index = vertex++;
+        if (sf.mat->emissive) {
+            float w = 1.0f;
+            if (!prev_delta) {
+                const instance *inst = &s->instances[sf.instance];
+                int32_t li = inst->emitter_of_triangle ? inst->emitter_of_triangle[sf.prim] : -1;
+                w = emission_weight(prev_delta, prev_pdf, light_pdf_triangle(s, li, o, sf.p, sf.ng));
+            }
+            add_to(&res, emission_component, p.beta, material_emission(s, &sf), w);
+        }
+        if (emission_only)
+            break;
+
+        bsdf b, storage;
+        material_bsdf(s, &sf, &b);
+        if (b.count == 0) {
+            if (camera_segment)
+                res.alpha = 1.0f;
+            break;
+        }
+        path_vertex v = {&sf, &b, v3_neg(d), v_index};
+        const bsdf *next = policy(&p, &v, &storage);
+
+        bsdf_sample bs;
+        float u_pick = sampler_1d(smp, dim_bounce(v_index, DIM_BSDF_PICK));
+        if (!next ||
+            !bsdf_sample_direction(next, v.wo, u_pick, sampler_2d(smp, dim_bounce(v_index, DIM_BSDF_DIR)), &bs)) {
+            if (camera_segment)
+                res.alpha = 1.0f;
+            break;
+        }
+        p.beta = v3_mul(p.beta, bs.weight);
+        if (!v3_is_finite(p.beta) || v3_is_zero(p.beta))
+            break;
+
+        if (bs.flags & BSDF_TRANSPARENT) {
+            if (++transparent_steps > CAMERA_PATH_MAX_TRANSPARENT_STEPS)
+                break;
+            tmin = t_after_hit(h.t);
+            continue;
+        }
+        if (camera_segment)
+            res.alpha = 1.0f;
+        camera_segment = 0;
+        transparent_steps = 0;
+        if (p.depth == 0)
+            p.first_diffuse = (bs.flags & BSDF_DIFFUSE) != 0;
+        else
+            p.later_delta &= (bs.flags & BSDF_DELTA) != 0;
+
+        o = ray_leave_surface(sf.p, sf.ng, bs.wi);
+        d = bs.wi;
+        tmin = 0.0f;
+        tmax = INFINITY;
+        prev_pdf = bs.pdf;
+        prev_delta = (bs.flags & BSDF_DELTA) != 0;
+        only_delta &= prev_delta;
+        p.depth++;
+        if (p.depth > is->max_bounces)
+            emission_only = 1;
+
+        if (p.depth >= CAMERA_PATH_ROULETTE_START_DEPTH) {
+            float q = fminf(v3_max_component(p.beta), 1.0f);
+            if (sampler_1d(smp, dim_bounce(v_index, DIM_ROULETTE)) >= q)
+                break;
+            p.beta = v3_scale(p.beta, 1.0f / q);
+        }
+    }
+    return res;
+}
+
+sample_result camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                               integrator_scratch *scratch, vertex_policy policy)
+{
+    walk_start start = {ray, 1, 0, 0};
+    return walk(s, is, &start, smp, scratch, policy);
+}
+
+sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, vec3 o, vec3 d,
+                                        uint32_t depth, const sampler *smp, integrator_scratch *scratch,
+                                        vertex_policy policy)
+{
+    walk_start start = {{o, d, 0.0f, INFINITY}, 0, depth, 1};
+    return walk(s, is, &start, smp, scratch, policy);
+}

@@ -1,0 +1,28 @@
+/*
+ * direct_light.h — next-event estimation: light reaching a surface point
+ * straight from an emitter, with a shadow ray, MIS-weighted against BSDF
+ * sampling by the power heuristic (Veach 1997, ch. 9).
+ */
+#ifndef PHOS_DIRECT_LIGHT_H
+#define PHOS_DIRECT_LIGHT_H
+
+#include "sampling/sampler.h"
+#include "shading/material.h"
+
+/* Fraction of light reaching surface point sf from direction wi over
+ * distance dist: 0 or 1 for opaque occluders, the product of transparent
+ * weights through Transparent closures. */
+vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist);
+
+/* Reflected radiance toward wo (W/(m²·sr)) from one light sample at vertex
+ * `vertex` of a path.
+ *
+ * `sampled` is the part of the BSDF the path continues through: its light
+ * is MIS-weighted, since the ray that leaves through it can also find the
+ * emitter. `unsampled` (NULL: none) is a part no ray leaves through (the
+ * diffuse part under photon mapping), so the light sample is its only
+ * estimate and stays unweighted. */
+vec3 direct_light(const scene *s, const surface *sf, const bsdf *sampled, const bsdf *unsampled, vec3 wo,
+                  const sampler *smp, uint32_t vertex);
+
+#endif /* PHOS_DIRECT_LIGHT_H */

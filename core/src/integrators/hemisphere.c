@@ -1,0 +1,40 @@
+/*
+ * hemisphere.c — the stratified cosine hemisphere (hemisphere.h).
+ */
+#include "integrators/hemisphere.h"
+
+#include "scene/ray.h"
+
+vec3 hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming)
+{
+    const surface *sf = q->sf;
+    uint32_t M = (uint32_t)(sqrtf((float)rays / PHOS_PI) + 0.5f);
+    if (M < 1)
+        M = 1;
+    uint32_t N = rays / M;
+    if (N < 1)
+        N = 1;
+    sampler g = sampler_split(q->smp, 0x9a7e0000u + q->vertex);
+    frame f = frame_from_normal(sf->ns);
+    vec3 o_up = offset_ray_origin(sf->p, sf->ng);
+    vec3 sum = v3s(0.0f);
+    uint32_t index = 0;
+    for (uint32_t j = 0; j < M; j++) {
+        for (uint32_t k = 0; k < N; k++, index++) {
+            float2 u = sampler_2d(&g, 2u * index);
+            float sin2 = ((float)j + u.x) / (float)M;
+            float sin_t = sqrtf(sin2), cos_t = safe_sqrtf(1.0f - sin2);
+            float phi = 2.0f * PHOS_PI * ((float)k + u.y) / (float)N;
+            vec3 wi = frame_to_world(&f, v3(cosf(phi) * sin_t, sinf(phi) * sin_t, cos_t));
+            if (v3_dot(wi, sf->ng) <= 0.0f || cos_t <= 0.0f)
+                continue;
+            vec3 fcos = bsdf_eval(q->diffuse, q->wo, wi, NULL);
+            if (v3_is_zero(fcos))
+                continue;
+            vec3 Li = incoming(q, o_up, wi, &g, index);
+            /* f·cos / (cos/π) = π·f */
+            sum = v3_add(sum, v3_scale(v3_mul(fcos, Li), PHOS_PI / cos_t));
+        }
+    }
+    return v3_scale(sum, 1.0f / (float)(M * N));
+}

@@ -1,0 +1,23 @@
+/*
+ * hemisphere.h — the stratified hemisphere over a diffuse surface point,
+ * shared by every gather of indirect light (final gathering, the
+ * path-traced hemisphere, and the irradiance cache's records): M×N strata
+ * θ_j = asin √((j+ξ)/M), φ_k = 2π(k+ψ)/N with N ≈ πM (Ward et al. 1988;
+ * course notes 2002, "Irradiance Sampling"; docs/algorithms.md §5.2).
+ */
+#ifndef PHOS_HEMISPHERE_H
+#define PHOS_HEMISPHERE_H
+
+#include "integrators/indirect_diffuse.h"
+
+/* Radiance W/(m²·sr) arriving at the query's point along wi from a ray
+ * leaving o; g is the gather's sampler and ray_index the ray's number. */
+typedef vec3 (*hemisphere_incoming)(const indirect_query *q, vec3 o, vec3 wi, const sampler *g,
+                                    uint32_t ray_index);
+
+/* ∫ f_d L_i cos dω over the query's hemisphere with `rays` cosine-stratified
+ * rays, each weighted by f_d·π (the cosine pdf's cos θ/π cancels the cosine
+ * of the integrand). */
+vec3 hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming);
+
+#endif /* PHOS_HEMISPHERE_H */

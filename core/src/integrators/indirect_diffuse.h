@@ -1,0 +1,53 @@
+/*
+ * indirect_diffuse.h — the seam through which a camera-path vertex gets
+ * the indirect light its diffuse part reflects,
+ *
+ *   L_indirect(x → wo) = ∫ f_d(x, wi, wo) L_i,indirect(x ← wi) cos θi dωi,
+ *
+ * where L_i,indirect leaves out light that reaches x from an emitter
+ * through specular surfaces only or directly (next-event estimation and
+ * the caustic map count those; Jensen 1996, course notes 2002 "Rendering
+ * Equation Solution"; docs/algorithms.md §5).
+ *
+ * Providers:
+ *  - final gathering on the photon maps (PHOTON; final_gather.c);
+ *  - the global photon map read at x itself (PHOTON's fast estimate);
+ *  - the path-traced hemisphere (path_hemisphere.c): stratified rays, each
+ *    continued as an unbiased path, the reference the others converge to.
+ * An irradiance cache (Ward et al. 1988) wraps one of them: it calls it at
+ * its record positions and interpolates between them.
+ */
+#ifndef PHOS_INDIRECT_DIFFUSE_H
+#define PHOS_INDIRECT_DIFFUSE_H
+
+#include "integrators/integrator.h"
+#include "shading/material.h"
+
+/* Where and how an indirect estimate is asked for. */
+typedef struct indirect_query {
+    const scene *s;
+    const integrator_settings *is;
+    const surface *sf;
+    const bsdf *diffuse;        /* f_d: the diffuse closures of the surface's BSDF */
+    vec3 wo;
+    const sampler *smp;         /* the camera sample's */
+    uint32_t vertex;            /* the camera-path vertex, for independent sample streams */
+    uint32_t depth;             /* scattering events on the camera path before it */
+    integrator_scratch *scratch;
+} indirect_query;
+
+typedef struct indirect_diffuse_provider {
+    const char *name;
+    /* Radiance W/(m²·sr) toward q->wo. */
+    vec3 (*estimate)(const indirect_query *q);
+} indirect_diffuse_provider;
+
+extern const indirect_diffuse_provider indirect_final_gather;   /* final_gather.c */
+extern const indirect_diffuse_provider indirect_photon_map;     /* final_gather.c */
+extern const indirect_diffuse_provider indirect_path_hemisphere; /* path_hemisphere.c */
+
+
+/* The provider of a photon view (enum phos_photon_view); path_hemisphere.c. */
+const indirect_diffuse_provider *indirect_provider_for(uint32_t photon_view);
+
+#endif /* PHOS_INDIRECT_DIFFUSE_H */

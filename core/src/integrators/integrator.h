@@ -1,0 +1,81 @@
+/*
+ * integrator.h — what every integrator supplies to the shared tile loop in
+ * render.c: the radiance carried by one camera ray (pbrt-v4's split between
+ * ImageTileIntegrator and the per-sample step), split into the components
+ * of Jensen's rendering-equation solution (course notes 2002):
+ *
+ *   EMISSION   emitters seen by the camera (no scattering)
+ *   DIRECT     light that reached the eye after exactly one scattering
+ *   SPECULAR   everything after a specular or glossy first bounce
+ *   CAUSTICS   diffuse first bounce, then only specular bounces: L S+ D E
+ *   INDIRECT   diffuse first bounce, then at least one more non-specular one
+ *
+ * Both integrators classify their contributions this way (camera_path.c),
+ * so Combined is the sum of the five and each pass of PHOTON can be checked
+ * against PATH (README, "What the passes mean").
+ */
+#ifndef PHOS_INTEGRATOR_H
+#define PHOS_INTEGRATOR_H
+
+#include "scene/camera.h"
+#include "photons/photon_trace.h"
+#include "photons/radiance_estimate.h"
+#include "sampling/sampler.h"
+#include "scene/ray.h"
+#include "scene/scene.h"
+
+enum light_component {
+    COMPONENT_EMISSION = 0,
+    COMPONENT_DIRECT,
+    COMPONENT_SPECULAR,
+    COMPONENT_CAUSTICS,
+    COMPONENT_INDIRECT,
+    COMPONENT_COUNT
+};
+
+struct indirect_diffuse_provider;
+
+typedef struct integrator_settings {
+    uint32_t max_bounces;          /* scattering events after the camera hit */
+    int transparent_background;    /* camera rays do not see the world */
+    /* Photon mapping (NULL maps: none were built). */
+    const photon_maps *maps;
+    estimate_params global_estimate, caustic_estimate;
+    uint32_t final_gather_rays;
+    float radiance_lookup_radius;  /* scene units */
+    /* PHOTON: where the diffuse part's indirect light comes from
+     * (indirect_diffuse.h; indirect_provider_for chooses it). */
+    const struct indirect_diffuse_provider *indirect;
+} integrator_settings;
+
+/* Per-thread scratch for photon-map queries. */
+typedef struct integrator_scratch {
+    kdtree_query global, caustic, radiance;
+} integrator_scratch;
+
+typedef struct sample_result {
+    vec3 component[COMPONENT_COUNT]; /* W/(m²·sr) along the camera ray */
+    vec3 photon_map;               /* debug: global-map estimate at the first diffuse hit */
+    vec3 caustic_map;              /* debug: caustic-map estimate there */
+    float alpha;                   /* 1 where the ray hit something opaque */
+} sample_result;
+
+/* The integrators: each is a vertex policy of the camera-path walker
+ * (camera_path.h). Unbiased path tracing with next-event estimation and
+ * MIS (Veach 1997); path.c. */
+sample_result path_trace(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                         integrator_scratch *scratch);
+
+/* Photon mapping (Jensen 1996, 2001): direct light by next-event
+ * estimation, specular and glossy by ray tracing, caustics from the
+ * caustic map, indirect diffuse from the settings' indirect provider;
+ * photon.c. */
+sample_result photon_render(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                            integrator_scratch *scratch);
+
+/* The maps' estimates at the first diffuse surface the camera sees (the
+ * debug passes), for either integrator. */
+void photon_debug_estimates(const scene *s, const integrator_settings *is, camera_ray ray,
+                            integrator_scratch *scratch, sample_result *res);
+
+#endif /* PHOS_INTEGRATOR_H */

@@ -1,0 +1,42 @@
+/*
+ * path_hemisphere.c — indirect diffuse light by the path-traced hemisphere:
+ * the stratified gather rays of final gathering, each continued as an
+ * unbiased path (PATH's vertex policy) instead of reading a photon map.
+ * This is the reference every biased provider converges to, and with an
+ * irradiance cache around it, Ward's original method (Ward et al. 1988).
+ */
+#include "integrators/camera_path.h"
+#include "integrators/hemisphere.h"
+
+/* Radiance arriving along a gather ray: the sum of the components of an
+ * indirect-only walk, which leaves out what next-event estimation and the
+ * caustic map count at the gather's point. */
+static vec3 path_traced_ray(const indirect_query *q, vec3 o, vec3 wi, const sampler *g, uint32_t ray_index)
+{
+    sampler ray_smp = sampler_split(g, 0x4a7b0000u + ray_index);
+    sample_result r = camera_path_walk_indirect(q->s, q->is, o, wi, q->depth + 1, &ray_smp, q->scratch,
+                                                path_vertex_policy);
+    vec3 L = v3s(0.0f);
+    for (int c = 0; c < COMPONENT_COUNT; c++)
+        L = v3_add(L, r.component[c]);
+    return L;
+}
+
+static vec3 path_hemisphere(const indirect_query *q)
+{
+    return hemisphere_gather(q, q->is->final_gather_rays, path_traced_ray);
+}
+
+const indirect_diffuse_provider indirect_path_hemisphere = {"path-traced hemisphere", path_hemisphere};
+
+const indirect_diffuse_provider *indirect_provider_for(uint32_t photon_view)
+{
+    switch (photon_view) {
+    case PHOS_PHOTON_VIEW_FAST:
+        return &indirect_photon_map;
+    case PHOS_PHOTON_VIEW_PATH_TRACED:
+        return &indirect_path_hemisphere;
+    default:
+        return &indirect_final_gather;
+    }
+}

@@ -1,0 +1,38 @@
+/*
+ * specular_chain.h — following a ray through specular (delta) and
+ * transparent surfaces to the first surface that a photon-map estimate can
+ * be read at: what a final-gather ray does where it lands (Jensen 2001,
+ * §9.3.2), and what the photon debug passes do from the camera.
+ */
+#ifndef PHOS_SPECULAR_CHAIN_H
+#define PHOS_SPECULAR_CHAIN_H
+
+#include "sampling/sampler.h"
+#include "shading/material.h"
+
+enum specular_chain_stop {
+    STOP_AT_NON_DELTA = 0, /* the first surface with a non-delta lobe (gather rays) */
+    STOP_AT_DIFFUSE = 1    /* the first surface with a diffuse closure; glossy lobes are followed too */
+};
+
+typedef struct specular_chain {
+    enum specular_chain_stop stop;
+    uint32_t max_steps;    /* surfaces the ray may pass before it gives up */
+    int coherent;          /* camera rays (a hint to the ray-tracing kernel) */
+    const sampler *smp;    /* the lobe choice at step k: dimensions dim + 3k (1D pick) and dim + 3k + 1 (2D); */
+    uint32_t dim;          /* smp NULL: always the lobe and direction at u = 0.5 */
+} specular_chain;
+
+typedef struct specular_chain_end {
+    surface sf;
+    bsdf b;                /* the whole BSDF there */
+    vec3 beta;             /* throughput of the surfaces passed */
+    vec3 wo;               /* toward the previous surface */
+} specular_chain_end;
+
+/* Follows the ray (o, d) over t in (tmin, tmax); returns 1 with the surface
+ * it stops at, 0 if it escapes, is absorbed or passes max_steps surfaces. */
+int specular_chain_follow(const scene *s, const specular_chain *c, vec3 o, vec3 d, float tmin, float tmax,
+                          specular_chain_end *out);
+
+#endif /* PHOS_SPECULAR_CHAIN_H */

@@ -1,0 +1,63 @@
+/*
+ * light_table.h — the data of the scene's emitters, built at commit
+ * (light.c) and held by the scene; light.h has the functions that build,
+ * sample and intersect it.
+ */
+#ifndef PHOS_LIGHT_TABLE_H
+#define PHOS_LIGHT_TABLE_H
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "sampling/distribution.h"
+#include "util/vec.h"
+
+enum light_kind {
+    LIGHT_POINT = 0,
+    LIGHT_SPOT,
+    LIGHT_AREA,
+    LIGHT_SUN,
+    LIGHT_TRIANGLE,
+    LIGHT_WORLD
+};
+
+typedef struct light {
+    uint32_t kind;
+    vec3 color;                 /* intensity W/sr, radiance W/(m²·sr) or irradiance W/m² (phos_light_desc) */
+    vec3 position, direction;   /* as phos_light_desc; direction unit length */
+    vec3 axis_u, axis_v;        /* AREA edges */
+    float area;                 /* AREA and TRIANGLE: m² */
+    uint32_t area_shape;
+    float radius;
+    uint32_t point_shape;
+    float spot_cos_half;        /* cos(spot_angle / 2) */
+    float spot_smooth;          /* (1 − spot_cos_half)·blend: width of the smooth edge in cos */
+    int spot_cosine;
+    float sun_cos_half;         /* cos(sun_angle / 2); 1 for a delta sun */
+    vec3 sun_radiance;          /* W/(m²·sr) inside the sun's cone when sun_angle > 0 */
+    int camera_visible;         /* lamps: seen by camera rays */
+    uint32_t instance, prim;    /* TRIANGLE */
+    vec3 p0, p1, p2;            /* TRIANGLE corners, world space */
+} light;
+
+typedef struct light_table {
+    light *lights;
+    uint32_t count;
+    distribution pick;          /* by estimated power */
+    int32_t world;              /* index of the world light, −1 if black */
+    uint32_t *shapes;           /* indices of lights a ray can hit: lamps with area, suns with an angle, world */
+    uint32_t shape_count;
+    vec3 center;                /* bounding sphere of the scene, for distant lights */
+    float radius;
+} light_table;
+
+static inline void light_table_free(light_table *t)
+{
+    free(t->lights);
+    free(t->shapes);
+    distribution_free(&t->pick);
+    memset(t, 0, sizeof(*t));
+    t->world = -1;
+}
+
+#endif /* PHOS_LIGHT_TABLE_H */

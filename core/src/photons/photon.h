@@ -1,0 +1,129 @@
+/*
+ * photon.h — the 20-byte photon record and the photon map that holds them.
+ *
+ * The record is Jensen's compact layout (Jensen 2001, "Realistic Image
+ * Synthesis Using Photon Mapping", §6; Jensen's course notes 2002, "The
+ * photon map datastructure"): position as three floats, power as Ward's
+ * shared-exponent RGBE (Ward 1991, "Real Pixels", Graphics Gems II), the
+ * incoming direction as two bytes decoded through lookup tables, and a
+ * 16-bit flag word that carries the kd-tree split axis.
+ *
+ * A photon map has an explicit lifecycle (as Mitsuba's): reserve → append →
+ * build → read-only queries (kdtree.h). After the build it holds exactly
+ * 20·N bytes of photons plus sizeof(photon_map); nothing else.
+ */
+#ifndef PHOS_PHOTON_H
+#define PHOS_PHOTON_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "util/vec.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct photon {
+    float position[3];  /* world space, scene units */
+    uint8_t power[4];   /* RGBE (rgbe_encode), W; already divided by the photons emitted */
+    uint8_t theta, phi; /* travel direction (direction_encode), world space */
+    uint16_t flags;     /* PHOTON_AXIS_MASK | PHOTON_CAUSTIC | PHOTON_DIRECT | depth << 8 */
+} photon;
+
+/* 12 + 4 + 2 + 2 bytes, alignment 4: no padding (ALGORITHMS.md §1.1). */
+#ifdef __cplusplus
+static_assert(sizeof(photon) == 20, "the photon record is 20 bytes");
+#else
+_Static_assert(sizeof(photon) == 20, "the photon record is 20 bytes");
+#endif
+
+/* The flag word. The slides declare it `short`; it is unsigned here so that
+ * a depth of 128 or more in the top byte does not make it negative. */
+enum {
+    PHOTON_AXIS_MASK = 0x3,  /* kd-tree split axis 0/1/2, written by kdtree_build */
+    PHOTON_CAUSTIC = 1 << 2, /* path L S+ D: also stored in the caustic map */
+    PHOTON_DIRECT = 1 << 3,  /* first hit after leaving the light */
+    PHOTON_DEPTH_SHIFT = 8,  /* bits 8-15: bounce depth, saturating at 255 */
+    PHOTON_DEPTH_MAX = 255
+};
+
+/* RGBE (Ward 1991): the three channels share the exponent of the largest.
+ * Negative and NaN channels encode as 0; powers below 1e-32 encode as all
+ * zero; powers at or above 2^127 saturate. The error of every channel is at
+ * most 1/256 of the largest channel, so a channel weaker than about 1/128 of
+ * the largest keeps no information of its own: it decodes as half the
+ * smallest step (see rgbe_decode). */
+void rgbe_encode(vec3 power, uint8_t rgbe[4]);
+/* Adds half a step to each mantissa, as Radiance's colr_color does: the
+ * encoder truncates, so decoding the bin's lower edge (byte·2^(E-136), as
+ * Mitsuba and Walter's rgbe.c do) darkens by half a step on average, a few
+ * per mille. Only E = 0 decodes to exact zero. Never negative. */
+vec3 rgbe_decode(const uint8_t rgbe[4]);
+
+/* Direction bytes (Jensen 2001 §6; ALGORITHMS.md §1.3): theta = polar angle
+ * from +z in 256 bins over [0, π], phi = azimuth from +x toward +y in 256
+ * bins over [−π, π) wrapped to [0, 2π). Decoding returns the bin centre,
+ * (i + 0.5) of a bin, so the angular error is at most about 0.79°.
+ * `d` should be unit length; a slightly longer z is clamped, not NaN. */
+void direction_encode(vec3 d, uint8_t *theta, uint8_t *phi);
+vec3 direction_decode(uint8_t theta, uint8_t phi);
+
+/* The lookup tables behind direction_decode, exported for the test that
+ * checks them against libm: cos and sin of the bin centres (i + 0.5)·π/256
+ * (theta) and (i + 0.5)·2π/256 (phi). */
+extern const float photon_cos_theta[256], photon_sin_theta[256];
+extern const float photon_cos_phi[256], photon_sin_phi[256];
+
+/* A photon at `position` (scene units) carrying `power` (W, already scaled by
+ * 1/emitted) that travelled along unit `direction`; `flags` is a combination
+ * of PHOTON_CAUSTIC and PHOTON_DIRECT, `depth` the bounce count (saturates). */
+photon photon_make(vec3 position, vec3 power, vec3 direction, unsigned flags, unsigned depth);
+
+static inline vec3 photon_position(const photon *p) { return v3_load(p->position); }
+static inline vec3 photon_power(const photon *p) { return rgbe_decode(p->power); }
+static inline vec3 photon_direction(const photon *p) { return direction_decode(p->theta, p->phi); }
+static inline int photon_axis(const photon *p) { return p->flags & PHOTON_AXIS_MASK; }
+static inline unsigned photon_depth(const photon *p) { return (unsigned)p->flags >> PHOTON_DEPTH_SHIFT; }
+static inline int photon_is_caustic(const photon *p) { return (p->flags & PHOTON_CAUSTIC) != 0; }
+static inline int photon_is_direct(const photon *p) { return (p->flags & PHOTON_DIRECT) != 0; }
+
+/* ---- photon map ---------------------------------------------------------
+ * Lifecycle: photon_map_init → photon_map_reserve (optional) → append ... →
+ * photon_map_build → read-only queries from any number of threads
+ * (kdtree_knn with map->photons, map->count) → photon_map_free.
+ * Appending is single-threaded: a parallel tracer collects per-thread
+ * batches and appends them in photon-index order, and the built map then
+ * depends only on that sequence of photons (not on the reserve size, the
+ * growth pattern or the thread count). */
+typedef struct photon_map {
+    photon *photons;   /* count photons; after the build the kd-tree heap, node i at photons[i-1] */
+    uint32_t count;    /* photons stored */
+    uint32_t capacity; /* photons allocated; equal to count after the build */
+    int built;         /* 1 after photon_map_build: read-only from then on */
+} photon_map;
+
+#define PHOTON_MAP_MAX_PHOTONS 0x7fffffffu
+
+void photon_map_init(photon_map *m);
+/* Frees the photons and returns to the state after photon_map_init. NULL is a no-op. */
+void photon_map_free(photon_map *m);
+/* Room for `capacity` photons in total, so appends do not reallocate.
+ * Returns 0 when memory is exhausted, the map is built, or capacity is too large. */
+int photon_map_reserve(photon_map *m, uint32_t capacity);
+/* Appends count photons (grows ×1.5 when full). A photon whose position is not
+ * finite is rejected, and so is the whole call, before anything is stored.
+ * Returns 0 on rejection, exhausted memory or an already built map. */
+int photon_map_append(photon_map *m, const photon *photons, uint32_t count);
+/* Balances the kd-tree (kdtree_build) and shrinks the storage to exactly
+ * 20·count bytes. Returns 0 when memory is exhausted, in which case the map
+ * keeps its photons unbuilt. Building twice is a no-op. */
+int photon_map_build(photon_map *m);
+/* Bytes the map occupies: sizeof(photon_map) + 20·capacity (= 20·count once built). */
+size_t photon_map_memory(const photon_map *m);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PHOS_PHOTON_H */

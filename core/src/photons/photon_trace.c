@@ -1,0 +1,362 @@
+/*
+ * photon_trace.c — photon tracing (Jensen 2001, ch. 5; course notes 2002).
+ *
+ * Each photon path is a pure function of (seed, map, path index): a light
+ * is picked by power and the photon leaves it carrying Φ_light/N_emitted
+ * (light_sample_emission). At every surface with a non-specular component
+ * the photon is stored before it scatters (global map: every such hit;
+ * caustic map: the first one after one or more specular bounces, L S+ D).
+ * Scattering samples the BSDF and continues by Russian roulette with
+ * probability P = max(Φ·ρ)/max(Φ) (Jensen's max form, ALGORITHMS.md §3.2),
+ * so a grey surface of albedo ρ keeps the photon's power and ends a
+ * fraction 1 − ρ of the paths: powers stay similar.
+ *
+ * Determinism: paths are traced in batches on any number of threads, each
+ * batch into its own buffer; buffers are merged in path order, and a map
+ * takes whole paths until it holds the photons asked for. N_emitted is the
+ * number of paths up to the last one taken, whatever the thread count.
+ */
+#include "photons/photon_trace.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "lights/light.h"
+#include "scene/embree.h"
+#include "scene/ray.h"
+#include "shading/material.h"
+#include "util/parallel.h"
+#include "photons/radiance_estimate.h"
+
+#define PATHS_PER_BATCH 2048u
+#define RADIANCE_SITE_STRIDE 4u   /* Christensen: a quarter of the photons (RAD's default 0.25) */
+
+enum { MAP_GLOBAL = 0, MAP_CAUSTIC = 1 };
+
+typedef struct traced_photon {
+    vec3 position, power, direction; /* power: W for a single emitted photon */
+    vec3 normal, albedo;             /* at the hit, for radiance photons */
+    uint64_t path;
+    uint16_t flags, depth;
+} traced_photon;
+
+typedef struct batch {
+    traced_photon *items;
+    uint32_t count, capacity;
+    int out_of_memory;
+} batch;
+
+static void batch_push(batch *b, const traced_photon *p)
+{
+    if (b->count == b->capacity) {
+        uint32_t cap = b->capacity ? b->capacity * 2 : 1024;
+        traced_photon *n = realloc(b->items, sizeof(traced_photon) * cap);
+        if (!n) {
+            b->out_of_memory = 1;
+            return;
+        }
+        b->items = n;
+        b->capacity = cap;
+    }
+    b->items[b->count++] = *p;
+}
+
+/* Diffuse reflectance of the BSDF, for radiance photons. */
+static vec3 diffuse_albedo(const bsdf *b)
+{
+    vec3 rho = v3s(0.0f);
+    for (uint32_t i = 0; i < b->count; i++)
+        if (b->closures[i].type == PHOS_CLOSURE_DIFFUSE || b->closures[i].type == PHOS_CLOSURE_PRINCIPLED_DIFFUSE)
+            rho = v3_add(rho, b->closures[i].weight);
+    return v3_min(rho, v3s(1.0f));
+}
+
+static float t_after(float t) { return fmaxf(t * (1.0f + 4e-6f), t + 1e-7f); }
+
+enum { DIM_EMIT = 0, DIM_SCATTER_BASE = 5, DIM_SCATTER_STRIDE = 4 };
+
+static void trace_path(const scene *s, const photon_trace_settings *ps, uint32_t map, uint64_t path, batch *out)
+{
+    sampler smp = sampler_for_index(ps->seed, map, path);
+    float u[5];
+    for (int k = 0; k < 5; k++)
+        u[k] = sampler_1d(&smp, DIM_EMIT + (uint32_t)k);
+    vec3 o, d, power;
+    if (!light_sample_emission(s, u, &o, &d, &power))
+        return;
+    int specular_only = 1;   /* every scattering so far was a delta lobe */
+    uint32_t depth = 0;      /* scattering events so far */
+    float tmin = 0.0f;
+    for (uint32_t step = 0; step < 4 * (ps->max_bounces + 16); step++) {
+        ray_hit h;
+        if (!embree_intersect(s->bvh, o, d, tmin, INFINITY, 0, &h))
+            return;
+        surface sf;
+        surface_from_hit(s, h.instance, h.prim, h.b1, h.b2, d, &sf);
+        bsdf b;
+        material_bsdf(s, &sf, &b);
+        if (b.count == 0)
+            return; /* absorbed (black, or an emitter only) */
+        if (bsdf_has_non_delta(&b)) {
+            int caustic = specular_only && depth > 0;
+            if (map == MAP_GLOBAL || caustic) {
+                traced_photon tp = {sf.p, power, d, sf.ns, diffuse_albedo(&b), path,
+                                    (uint16_t)((depth == 0 ? PHOTON_DIRECT : 0) | (caustic ? PHOTON_CAUSTIC : 0)),
+                                    (uint16_t)depth};
+                batch_push(out, &tp);
+            }
+            if (map == MAP_CAUSTIC)
+                return; /* a caustic path ends at its first diffuse surface */
+        }
+        if (depth >= ps->max_bounces)
+            return;
+        uint32_t dim = DIM_SCATTER_BASE + step * DIM_SCATTER_STRIDE;
+        bsdf_sample bs;
+        if (!bsdf_sample_direction(&b, v3_neg(d), sampler_1d(&smp, dim), sampler_2d(&smp, dim + 1), &bs))
+            return;
+        vec3 scattered = v3_mul(power, bs.weight);
+        float p = fminf(1.0f, v3_max_component(scattered) / v3_max_component(power));
+        if (!(p > 0.0f) || sampler_1d(&smp, dim + 3) >= p)
+            return;
+        power = v3_scale(scattered, 1.0f / p);
+        if (!v3_is_finite(power))
+            return;
+        if (bs.flags & BSDF_TRANSPARENT) {
+            tmin = t_after(h.t); /* straight on along the same ray */
+            continue;
+        }
+        specular_only &= (bs.flags & BSDF_DELTA) != 0;
+        o = ray_leave_surface(sf.p, sf.ng, bs.wi);
+        d = bs.wi;
+        tmin = 0.0f;
+        depth++;
+    }
+}
+
+typedef struct wave {
+    const scene *s;
+    const photon_trace_settings *ps;
+    uint32_t map;
+    uint64_t first_path, end_path;
+    batch *batches;
+    photon_trace_progress *progress;
+    atomic_int *cancel;
+} wave;
+
+static void trace_batch(void *ctx, uint32_t item, uint32_t thread)
+{
+    wave *w = ctx;
+    uint64_t begin = w->first_path + (uint64_t)item * PATHS_PER_BATCH;
+    uint64_t end = begin + PATHS_PER_BATCH;
+    if (end > w->end_path)
+        end = w->end_path;
+    batch *b = &w->batches[item];
+    for (uint64_t i = begin; i < end; i++) {
+        if ((i & 255u) == 0 && atomic_load_explicit(w->cancel, memory_order_relaxed))
+            return;
+        trace_path(w->s, w->ps, w->map, i, b);
+    }
+    if (w->progress)
+        atomic_fetch_add(&w->progress->emitted, end - begin);
+}
+
+/* Traces paths until `target` photons are kept; fills *kept (path order)
+ * and *emitted. */
+static phos_status trace_map(const scene *s, const photon_trace_settings *ps, uint32_t map, uint32_t target,
+                             batch *kept, uint64_t *emitted, atomic_int *cancel, photon_trace_progress *progress,
+                             uint32_t stored_before)
+{
+    memset(kept, 0, sizeof(*kept));
+    *emitted = 0;
+    if (target == 0 || s->lights.count == 0)
+        return PHOS_OK;
+    uint32_t threads = parallel_thread_count(ps->threads);
+    uint32_t batches_per_wave = threads * 8;
+    batch *batches = calloc(batches_per_wave, sizeof(batch));
+    if (!batches)
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    phos_status status = PHOS_OK;
+    uint64_t next = 0;
+    int done = 0;
+    while (!done) {
+        wave w = {s, ps, map, next, next + (uint64_t)batches_per_wave * PATHS_PER_BATCH, batches, progress, cancel};
+        if (w.end_path > ps->max_emitted)
+            w.end_path = ps->max_emitted;
+        uint32_t nb = (uint32_t)((w.end_path - next + PATHS_PER_BATCH - 1) / PATHS_PER_BATCH);
+        for (uint32_t i = 0; i < nb; i++)
+            batches[i].count = 0;
+        if (!parallel_for(nb, threads, trace_batch, &w, cancel)) {
+            status = PHOS_ERROR_CANCELLED;
+            break;
+        }
+        /* Merge in path order; stop after the path that fills the map. */
+        uint64_t cut = UINT64_MAX;
+        for (uint32_t i = 0; i < nb && !done; i++) {
+            if (batches[i].out_of_memory) {
+                status = PHOS_ERROR_OUT_OF_MEMORY;
+                done = 1;
+                break;
+            }
+            for (uint32_t j = 0; j < batches[i].count; j++) {
+                const traced_photon *tp = &batches[i].items[j];
+                if (tp->path > cut) {
+                    done = 1;
+                    break;
+                }
+                batch_push(kept, tp);
+                if (kept->count >= target && cut == UINT64_MAX)
+                    cut = tp->path;
+            }
+        }
+        if (kept->out_of_memory)
+            status = PHOS_ERROR_OUT_OF_MEMORY;
+        if (progress)
+            atomic_store(&progress->stored, stored_before + kept->count);
+        if (status != PHOS_OK)
+            break;
+        if (cut != UINT64_MAX) {
+            *emitted = cut + 1;
+            done = 1;
+        } else {
+            next = w.end_path;
+            *emitted = next;
+            if (next >= ps->max_emitted)
+                done = 1; /* photons escape or are absorbed: keep what there is */
+        }
+    }
+    for (uint32_t i = 0; i < batches_per_wave; i++)
+        free(batches[i].items);
+    free(batches);
+    return status;
+}
+
+/* Scales by 1/emitted, packs into 20-byte records and fills the map. */
+static phos_status fill_map(photon_map *m, const batch *kept, uint64_t emitted)
+{
+    if (kept->count == 0)
+        return PHOS_OK;
+    if (!photon_map_reserve(m, kept->count))
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    float scale = 1.0f / (float)emitted;
+    for (uint32_t i = 0; i < kept->count; i++) {
+        const traced_photon *tp = &kept->items[i];
+        photon p = photon_make(tp->position, v3_scale(tp->power, scale), tp->direction, tp->flags, tp->depth);
+        if (!photon_map_append(m, &p, 1))
+            return PHOS_ERROR_OUT_OF_MEMORY;
+    }
+    return PHOS_OK;
+}
+
+void photon_maps_init(photon_maps *m)
+{
+    memset(m, 0, sizeof(*m));
+    photon_map_init(&m->global);
+    photon_map_init(&m->caustic);
+    photon_map_init(&m->radiance);
+}
+
+void photon_maps_free(photon_maps *m)
+{
+    photon_map_free(&m->global);
+    photon_map_free(&m->caustic);
+    photon_map_free(&m->radiance);
+    free(m->radiance_sites);
+    m->radiance_sites = NULL;
+    m->radiance_site_count = 0;
+}
+
+phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, photon_maps *out, atomic_int *cancel,
+                              photon_trace_progress *progress)
+{
+    batch kept;
+    phos_status st = trace_map(s, ps, MAP_GLOBAL, ps->global_photons, &kept, &out->global_emitted, cancel, progress, 0);
+    if (st == PHOS_OK)
+        st = fill_map(&out->global, &kept, out->global_emitted);
+    if (st == PHOS_OK && kept.count > 0) {
+        uint32_t n = (kept.count + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE;
+        out->radiance_sites = malloc(sizeof(float) * 9 * n);
+        if (!out->radiance_sites) {
+            st = PHOS_ERROR_OUT_OF_MEMORY;
+        } else {
+            for (uint32_t i = 0; i < n; i++) {
+                const traced_photon *tp = &kept.items[i * RADIANCE_SITE_STRIDE];
+                float *site = out->radiance_sites + 9 * i;
+                memcpy(site, &tp->position, sizeof(vec3));
+                memcpy(site + 3, &tp->normal, sizeof(vec3));
+                memcpy(site + 6, &tp->albedo, sizeof(vec3));
+            }
+            out->radiance_site_count = n;
+        }
+    }
+    free(kept.items);
+    if (st != PHOS_OK)
+        return st;
+    st = trace_map(s, ps, MAP_CAUSTIC, ps->caustic_photons, &kept, &out->caustic_emitted, cancel, progress,
+                   out->global.count);
+    if (st == PHOS_OK)
+        st = fill_map(&out->caustic, &kept, out->caustic_emitted);
+    free(kept.items);
+    return st;
+}
+
+phos_status photon_maps_build(photon_maps *m)
+{
+    if (!photon_map_build(&m->global) || !photon_map_build(&m->caustic))
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    return PHOS_OK;
+}
+
+typedef struct precompute {
+    const photon_maps *maps;
+    const photon_trace_settings *ps;
+    kdtree_query *queries; /* one per thread */
+    photon *out;
+} precompute;
+
+#define SITES_PER_ITEM 256u
+
+static void precompute_sites(void *ctx, uint32_t item, uint32_t thread)
+{
+    precompute *pc = ctx;
+    const photon_maps *m = pc->maps;
+    estimate_params ep = {pc->ps->radiance_k, pc->ps->max_radius, ESTIMATE_BOX, 0};
+    uint32_t begin = item * SITES_PER_ITEM, end = begin + SITES_PER_ITEM;
+    if (end > m->radiance_site_count)
+        end = m->radiance_site_count;
+    for (uint32_t i = begin; i < end; i++) {
+        const float *site = m->radiance_sites + 9 * i;
+        vec3 p = v3_load(site), n = v3_load(site + 3), rho = v3_load(site + 6);
+        vec3 E = photon_irradiance(&m->global, p, n, &ep, &pc->queries[thread]);
+        /* Lambertian exitance: L = ρ/π · E (W/(m²·sr)). */
+        pc->out[i] = photon_make(p, v3_scale(v3_mul(rho, E), PHOS_INV_PI), n, 0, 0);
+    }
+}
+
+phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_settings *ps, photon_maps *m,
+                                            atomic_int *cancel)
+{
+    (void)s;
+    uint32_t n = m->radiance_site_count;
+    if (n == 0)
+        return PHOS_OK;
+    uint32_t threads = parallel_thread_count(ps->threads);
+    precompute pc = {m, ps, calloc(threads, sizeof(kdtree_query)), malloc(sizeof(photon) * n)};
+    phos_status st = PHOS_OK;
+    if (!pc.queries || !pc.out)
+        st = PHOS_ERROR_OUT_OF_MEMORY;
+    for (uint32_t t = 0; st == PHOS_OK && t < threads; t++)
+        if (!kdtree_query_init(&pc.queries[t], ps->radiance_k))
+            st = PHOS_ERROR_OUT_OF_MEMORY;
+    if (st == PHOS_OK && !parallel_for((n + SITES_PER_ITEM - 1) / SITES_PER_ITEM, threads, precompute_sites, &pc, cancel))
+        st = PHOS_ERROR_CANCELLED;
+    if (st == PHOS_OK && (!photon_map_reserve(&m->radiance, n) || !photon_map_append(&m->radiance, pc.out, n) ||
+                          !photon_map_build(&m->radiance)))
+        st = PHOS_ERROR_OUT_OF_MEMORY;
+    for (uint32_t t = 0; pc.queries && t < threads; t++)
+        kdtree_query_free(&pc.queries[t]);
+    free(pc.queries);
+    free(pc.out);
+    free(m->radiance_sites);
+    m->radiance_sites = NULL;
+    return st;
+}

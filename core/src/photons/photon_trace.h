@@ -1,0 +1,65 @@
+/*
+ * photon_trace.h — photon tracing (Jensen 2001, ch. 5; Jensen's course
+ * notes 2002, "Photon tracing"): emission from the lights, scattering by
+ * Russian roulette, storing at non-specular surfaces into the global and
+ * caustic maps, and Christensen's precomputed radiance photons.
+ */
+#ifndef PHOS_PHOTON_TRACE_H
+#define PHOS_PHOTON_TRACE_H
+
+#include <stdatomic.h>
+
+#include "photons/kdtree.h"
+#include "photons/photon.h"
+#include "scene/scene.h"
+
+typedef struct photon_maps {
+    photon_map global;         /* every non-specular hit: paths L {S|D}* D */
+    photon_map caustic;        /* paths L S+ D */
+    photon_map radiance;       /* Christensen 1999: power = outgoing radiance W/(m²·sr),
+                                  direction = the surface normal on the lit side */
+    uint64_t global_emitted;   /* photon paths emitted to fill each map */
+    uint64_t caustic_emitted;
+    /* Where radiance photons will be computed (every fourth global photon):
+     * position, normal on the lit side, diffuse reflectance; 9 floats each.
+     * Freed by photon_maps_precompute_radiance. */
+    float *radiance_sites;
+    uint32_t radiance_site_count;
+} photon_maps;
+
+typedef struct photon_trace_settings {
+    uint32_t global_photons;   /* photons to store in each map */
+    uint32_t caustic_photons;
+    uint64_t max_emitted;      /* give up on a map after this many paths */
+    uint32_t max_bounces;      /* scattering events per photon path */
+    uint32_t seed;
+    uint32_t threads;
+    uint32_t radiance_k;       /* photons in the estimate behind each radiance photon */
+    float max_radius;          /* search radius cap, scene units */
+} photon_trace_settings;
+
+typedef struct photon_trace_progress {
+    atomic_uint_fast64_t emitted;  /* paths emitted so far, both maps */
+    atomic_uint stored;            /* photons kept so far, both maps */
+} photon_trace_progress;
+
+void photon_maps_init(photon_maps *m);
+void photon_maps_free(photon_maps *m);
+
+/* Traces both maps. Photon path i of a map takes its random numbers from
+ * (seed, map, i) and the maps are assembled in path order, so they are the
+ * same for any thread count. Returns PHOS_ERROR_CANCELLED if *cancel was
+ * set, PHOS_ERROR_OUT_OF_MEMORY, or PHOS_OK. */
+phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, photon_maps *out,
+                              atomic_int *cancel, photon_trace_progress *progress);
+
+/* Balances the kd-trees of the global and caustic maps. */
+phos_status photon_maps_build(photon_maps *m);
+
+/* Christensen 1999: at every fourth global photon, the radiance the
+ * surface reflects there, ρ/π·E, from the global map; stored as its own
+ * map so that final gathering reads one photon instead of k. */
+phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_settings *ps, photon_maps *m,
+                                            atomic_int *cancel);
+
+#endif /* PHOS_PHOTON_TRACE_H */

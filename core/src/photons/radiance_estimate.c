@@ -1,0 +1,111 @@
+/*
+ * radiance_estimate.c — photon density estimates.
+ *
+ * Radius: with k photons found, r is the distance of the k-th and only the
+ * k − 1 inside it are summed; counting the k-th as well would overestimate
+ * by k/(k − 1) (Garcia et al. 2012, "Fast and Accurate ... Unreported
+ * Intrinsic Bias"; ALGORITHMS.md §4). With fewer than k inside the maximum
+ * radius, r is the maximum radius: a fixed-radius estimate, unbiased for
+ * smooth illumination. The search is a disc (the sphere flattened along
+ * the normal) so light from an adjacent wall does not leak into corners.
+ */
+#include "photons/radiance_estimate.h"
+
+typedef struct weighted_photon_sum {
+    float r2;        /* squared radius of the estimate */
+    float norm;      /* the kernel's integral over the disc, in units of πr² */
+} weighted_photon_sum;
+
+/* Searches and returns the index (in q) of the photon to leave out, or
+ * UINT32_MAX, and the radius to use. */
+static uint32_t gather(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q,
+                       weighted_photon_sum *w)
+{
+    float max_r2 = ep->max_radius * ep->max_radius;
+    photon_map_knn_disc(m, x, n, ESTIMATE_DISC_FLATTEN, max_r2, q);
+    uint32_t skip = UINT32_MAX;
+    w->r2 = max_r2;
+    if (q->found == q->k && q->k > 1) {
+        w->r2 = q->radius2;
+        float far = -1.0f;
+        for (uint32_t j = 0; j < q->found; j++)
+            if (q->dist2[j] > far) {
+                far = q->dist2[j];
+                skip = j;
+            }
+    }
+    w->norm = ep->filter == ESTIMATE_CONE ? 1.0f / 3.0f : 1.0f;
+    return skip;
+}
+
+static float kernel_weight(const estimate_params *ep, float d2, float r2)
+{
+    if (ep->filter == ESTIMATE_CONE)
+        return fmaxf(1.0f - sqrtf(d2 / r2), 0.0f); /* Jensen 1996 cone filter with k = 1 */
+    return 1.0f;
+}
+
+vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q)
+{
+    vec3 sum = v3s(0.0f);
+    if (m->count == 0 || !(ep->max_radius > 0.0f))
+        return sum;
+    weighted_photon_sum w;
+    uint32_t skip = gather(m, x, n, ep, q, &w);
+    for (uint32_t j = 0; j < q->found; j++) {
+        if (j == skip)
+            continue;
+        const photon *p = kdtree_result(m->photons, q, j);
+        if (p->flags & ep->exclude_flags)
+            continue;
+        if (v3_dot(photon_direction(p), n) >= 0.0f) /* arrived from behind */
+            continue;
+        sum = v3_madd(sum, photon_power(p), kernel_weight(ep, q->dist2[j], w.r2));
+    }
+    return v3_scale(sum, 1.0f / (PHOS_PI * w.r2 * w.norm));
+}
+
+vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, const estimate_params *ep,
+                     kdtree_query *q)
+{
+    vec3 sum = v3s(0.0f);
+    if (m->count == 0 || !(ep->max_radius > 0.0f) || b->count == 0)
+        return sum;
+    weighted_photon_sum w;
+    uint32_t skip = gather(m, x, n, ep, q, &w);
+    for (uint32_t j = 0; j < q->found; j++) {
+        if (j == skip)
+            continue;
+        const photon *p = kdtree_result(m->photons, q, j);
+        if (p->flags & ep->exclude_flags)
+            continue;
+        vec3 wi = v3_neg(photon_direction(p)); /* toward where the photon came from */
+        float cos_i = v3_dot(wi, n);
+        if (cos_i <= 0.0f)
+            continue;
+        /* bsdf_eval includes |cos θi|; the estimate wants f alone. */
+        vec3 f = v3_scale(bsdf_eval(b, wo, wi, NULL), 1.0f / cos_i);
+        sum = v3_add(sum, v3_scale(v3_mul(f, photon_power(p)), kernel_weight(ep, q->dist2[j], w.r2)));
+    }
+    return v3_scale(sum, 1.0f / (PHOS_PI * w.r2 * w.norm));
+}
+
+vec3 radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q)
+{
+    if (m->count == 0)
+        return v3s(0.0f);
+    photon_map_knn(m, x, max_radius * max_radius, q);
+    float best = INFINITY;
+    vec3 L = v3s(0.0f);
+    for (uint32_t j = 0; j < q->found; j++) {
+        const photon *p = kdtree_result(m->photons, q, j);
+        /* Normal of the record on the same side as the query's (PB2). */
+        if (v3_dot(photon_direction(p), n) <= 0.5f)
+            continue;
+        if (q->dist2[j] < best) {
+            best = q->dist2[j];
+            L = photon_power(p);
+        }
+    }
+    return L;
+}

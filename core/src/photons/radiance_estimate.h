@@ -1,0 +1,45 @@
+/*
+ * radiance_estimate.h — density estimation on a photon map (Jensen 1996,
+ * "Global Illumination using Photon Maps"; Jensen's course notes 2002,
+ * "Radiance Estimate"):
+ *
+ *     L_r(x, ω) ≈ Σ_p f_r(x, ω_p, ω) ΔΦ_p / (π r²)
+ *
+ * over the k nearest photons within a maximum radius.
+ */
+#ifndef PHOS_RADIANCE_ESTIMATE_H
+#define PHOS_RADIANCE_ESTIMATE_H
+
+#include "shading/bsdf.h"
+#include "photons/kdtree.h"
+
+enum estimate_filter {
+    ESTIMATE_BOX = 0,
+    ESTIMATE_CONE = 1 /* Jensen's cone filter, w = 1 − d/r, normalised by 1 − 2/3 */
+};
+
+typedef struct estimate_params {
+    uint32_t k;              /* photons in the estimate */
+    float max_radius;        /* scene units */
+    uint32_t filter;         /* enum estimate_filter */
+    uint16_t exclude_flags;  /* skip photons with any of these flags (PHOTON_DIRECT, PHOTON_CAUSTIC) */
+} estimate_params;
+
+/* Flattening of the search sphere along the normal (ALGORITHMS.md §4): keeps
+ * photons of an adjacent wall or the far side of a thin wall out. */
+#define ESTIMATE_DISC_FLATTEN 4.0f
+
+/* Irradiance E (W/m²) at x on the side of unit normal n: photons whose
+ * travel direction points out of that side are ignored. q must hold k. */
+vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q);
+
+/* Reflected radiance W/(m²·sr) toward wo through the BSDF b at x, n on the
+ * side of wo. */
+vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, const estimate_params *ep,
+                     kdtree_query *q);
+
+/* The precomputed radiance photon nearest to x whose normal agrees with n;
+ * zero if none lies within max_radius. */
+vec3 radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q);
+
+#endif /* PHOS_RADIANCE_ESTIMATE_H */

@@ -1,0 +1,378 @@
+/*
+ * render.c — the stages of a render, the tile loop shared by the
+ * integrators, progress and cancellation.
+ *
+ * A controller thread runs the stages in order; each stage fans out over
+ * the render's threads (parallel.c). Tiles: each pixel is rendered with
+ * all its samples before the next, so a finished tile is final and is
+ * streamed to Blender at once. Every sample's random numbers depend only on
+ * (seed, pixel, sample) and a pixel is the mean of its samples summed in
+ * sample order; the photon maps are assembled in path order: the image is
+ * the same for any thread count, tile order or region.
+ */
+#include "render/render.h"
+
+#include "integrators/indirect_diffuse.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/embree.h"
+#include "util/parallel.h"
+
+/* ---------------------------------------------------------------- tiles */
+
+typedef struct tile_key {
+    float dist2;
+    uint32_t index;
+    phos_tile tile;
+} tile_key;
+
+static int compare_tile_keys(const void *a, const void *b)
+{
+    const tile_key *x = a, *y = b;
+    if (x->dist2 != y->dist2)
+        return x->dist2 < y->dist2 ? -1 : 1;
+    return x->index < y->index ? -1 : (x->index > y->index);
+}
+
+/* Tiles sorted centre-first (stable: ties keep row-major order). */
+static int make_tiles(render *r)
+{
+    const film *f = &r->film;
+    uint32_t ts = r->settings.tile_size;
+    uint32_t nx = (f->width + ts - 1) / ts, ny = (f->height + ts - 1) / ts;
+    r->tile_count = nx * ny;
+    r->tiles = malloc(sizeof(phos_tile) * r->tile_count);
+    r->finished = malloc(sizeof(uint32_t) * r->tile_count);
+    tile_key *keys = malloc(sizeof(tile_key) * r->tile_count);
+    if (!r->tiles || !r->finished || !keys) {
+        free(keys);
+        return 0;
+    }
+    float cx = 0.5f * (float)f->width, cy = 0.5f * (float)f->height;
+    for (uint32_t j = 0; j < ny; j++) {
+        for (uint32_t i = 0; i < nx; i++) {
+            tile_key *k = &keys[j * nx + i];
+            k->index = j * nx + i;
+            k->tile.x = f->x0 + i * ts;
+            k->tile.y = f->y0 + j * ts;
+            k->tile.width = (i + 1) * ts <= f->width ? ts : f->width - i * ts;
+            k->tile.height = (j + 1) * ts <= f->height ? ts : f->height - j * ts;
+            float dx = (float)(i * ts) + 0.5f * (float)k->tile.width - cx;
+            float dy = (float)(j * ts) + 0.5f * (float)k->tile.height - cy;
+            k->dist2 = dx * dx + dy * dy;
+        }
+    }
+    qsort(keys, r->tile_count, sizeof(tile_key), compare_tile_keys);
+    for (uint32_t i = 0; i < r->tile_count; i++)
+        r->tiles[i] = keys[i].tile;
+    free(keys);
+    return 1;
+}
+
+static const uint32_t component_pass[COMPONENT_COUNT] = {PHOS_PASS_EMISSION, PHOS_PASS_DIRECT, PHOS_PASS_SPECULAR,
+                                                          PHOS_PASS_CAUSTICS, PHOS_PASS_INDIRECT};
+
+static int pass_on(const render *r, uint32_t pass) { return r->film.planes[pass] != NULL; }
+
+/* Renders one pixel; returns 0 if cancelled part-way (checked every 64
+ * samples, so even pixels of millions of samples stop at once). */
+static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *scratch)
+{
+    const phos_render_settings *rs = &r->settings;
+    const scene *s = r->scene;
+    int debug = pass_on(r, PHOS_PASS_PHOTON_MAP) || pass_on(r, PHOS_PASS_CAUSTIC_MAP);
+    double comp[COMPONENT_COUNT][3], alpha = 0.0, dbg[2][3];
+    memset(comp, 0, sizeof(comp));
+    memset(dbg, 0, sizeof(dbg));
+    for (uint32_t i = 0; i < rs->samples; i++) {
+        if ((i & 63u) == 63u && atomic_load_explicit(&r->cancel, memory_order_relaxed))
+            return 0;
+        sampler smp = sampler_for_pixel(rs->seed, x, y, i);
+        float2 uf = sampler_2d(&smp, DIM_FILM);
+        float fx = ((float)x + 0.5f + pixel_filter_sample(&r->filter, uf.x)) / (float)rs->width;
+        float fy = ((float)y + 0.5f + pixel_filter_sample(&r->filter, uf.y)) / (float)rs->height;
+        camera_ray ray = camera_generate_ray(&s->camera, fx, fy, sampler_2d(&smp, DIM_LENS));
+        sample_result sr = rs->integrator == PHOS_INTEGRATOR_PHOTON
+                               ? photon_render(s, &r->integrator, ray, &smp, scratch)
+                               : path_trace(s, &r->integrator, ray, &smp, scratch);
+        if (debug)
+            photon_debug_estimates(s, &r->integrator, ray, scratch, &sr);
+        /* A non-finite sample (a numerical failure) is dropped rather than
+         * allowed to poison the pixel. */
+        int finite = 1;
+        for (int c = 0; c < COMPONENT_COUNT; c++)
+            finite &= v3_is_finite(sr.component[c]);
+        if (!finite)
+            memset(sr.component, 0, sizeof(sr.component));
+        for (int c = 0; c < COMPONENT_COUNT; c++) {
+            comp[c][0] += sr.component[c].x;
+            comp[c][1] += sr.component[c].y;
+            comp[c][2] += sr.component[c].z;
+        }
+        if (v3_is_finite(sr.photon_map) && v3_is_finite(sr.caustic_map)) {
+            dbg[0][0] += sr.photon_map.x, dbg[0][1] += sr.photon_map.y, dbg[0][2] += sr.photon_map.z;
+            dbg[1][0] += sr.caustic_map.x, dbg[1][1] += sr.caustic_map.y, dbg[1][2] += sr.caustic_map.z;
+        }
+        alpha += sr.alpha;
+    }
+    double inv = 1.0 / (double)rs->samples;
+    float *px = film_pixel(&r->film, PHOS_PASS_COMBINED, x, y);
+    for (int ch = 0; ch < 3; ch++) {
+        double sum = 0.0;
+        for (int c = 0; c < COMPONENT_COUNT; c++)
+            sum += comp[c][ch];
+        px[ch] = (float)(sum * inv);
+    }
+    px[3] = (float)(alpha * inv);
+    for (int c = 0; c < COMPONENT_COUNT; c++)
+        if (pass_on(r, component_pass[c])) {
+            float *p = film_pixel(&r->film, component_pass[c], x, y);
+            for (int ch = 0; ch < 3; ch++)
+                p[ch] = (float)(comp[c][ch] * inv);
+        }
+    for (int k = 0; k < 2; k++) {
+        uint32_t pass = k == 0 ? PHOS_PASS_PHOTON_MAP : PHOS_PASS_CAUSTIC_MAP;
+        if (pass_on(r, pass)) {
+            float *p = film_pixel(&r->film, pass, x, y);
+            for (int ch = 0; ch < 3; ch++)
+                p[ch] = (float)(dbg[k][ch] * inv);
+        }
+    }
+    return 1;
+}
+
+static void render_tile(void *ctx, uint32_t item, uint32_t thread)
+{
+    render *r = ctx;
+    const phos_tile *t = &r->tiles[item];
+    for (uint32_t y = t->y; y < t->y + t->height; y++)
+        for (uint32_t x = t->x; x < t->x + t->width; x++)
+            if (atomic_load_explicit(&r->cancel, memory_order_relaxed) || !render_pixel(r, x, y, &r->scratch[thread]))
+                return;
+    pthread_mutex_lock(&r->lock);
+    r->finished[r->finished_count++] = item;
+    pthread_mutex_unlock(&r->lock);
+    atomic_fetch_add(&r->tiles_done, 1u);
+}
+
+/* -------------------------------------------------------- photon dots */
+
+/* Film position (pixels) of a world point and whether the camera sees it. */
+static int project_to_film(const render *r, vec3 p, float *px, float *py)
+{
+    const phos_camera_desc *c = &r->scene->camera;
+    const float *m = c->transform;
+    /* Invert the affine camera transform: p_cam = A⁻¹ (p − t). */
+    vec3 q = v3(p.x - m[3], p.y - m[7], p.z - m[11]);
+    vec3 c0 = v3(m[0], m[4], m[8]), c1 = v3(m[1], m[5], m[9]), c2 = v3(m[2], m[6], m[10]);
+    vec3 r0 = v3_cross(c1, c2), r1 = v3_cross(c2, c0), r2 = v3_cross(c0, c1);
+    float det = v3_dot(c0, r0);
+    vec3 pc = v3_scale(v3(v3_dot(r0, q), v3_dot(r1, q), v3_dot(r2, q)), 1.0f / det);
+    float x, y;
+    vec3 origin;
+    if (c->type == PHOS_CAMERA_ORTHOGRAPHIC) {
+        x = pc.x;
+        y = pc.y;
+        origin = xform_point(m, v3(pc.x, pc.y, 0.0f));
+    } else {
+        if (pc.z >= 0.0f)
+            return 0;
+        x = pc.x / -pc.z;
+        y = pc.y / -pc.z;
+        origin = xform_point(m, v3s(0.0f));
+    }
+    *px = (x - c->frame_min[0]) / (c->frame_max[0] - c->frame_min[0]) * (float)r->settings.width;
+    *py = (y - c->frame_min[1]) / (c->frame_max[1] - c->frame_min[1]) * (float)r->settings.height;
+    vec3 to = v3_sub(p, origin);
+    float dist = v3_length(to);
+    if (!(dist > 0.0f))
+        return 0;
+    /* Seen if nothing lies between the camera and just before the photon. */
+    return !embree_occluded(r->scene->bvh, origin, v3_scale(to, 1.0f / dist), 0.0f, dist * (1.0f - 1e-3f));
+}
+
+static void draw_photons(render *r, const photon_map *m)
+{
+    film *f = &r->film;
+    for (uint32_t i = 0; i < m->count; i++) {
+        const photon *p = &m->photons[i];
+        float fx, fy;
+        if (!project_to_film(r, photon_position(p), &fx, &fy) || fx < (float)f->x0 || fy < (float)f->y0)
+            continue;
+        uint32_t x = (uint32_t)fx, y = (uint32_t)fy;
+        if (x >= f->x0 + f->width || y >= f->y0 + f->height)
+            continue;
+        vec3 power = photon_power(p);
+        float mx = v3_max_component(power);
+        if (!(mx > 0.0f))
+            continue;
+        float *px = film_pixel(f, PHOS_PASS_PHOTONS, x, y);
+        px[0] = power.x / mx;
+        px[1] = power.y / mx;
+        px[2] = power.z / mx;
+    }
+}
+
+/* ---------------------------------------------------------- controller */
+
+static void fail(render *r, phos_status st, const char *msg)
+{
+    pthread_mutex_lock(&r->lock);
+    if (r->status == PHOS_OK) {
+        r->status = st;
+        snprintf(r->error, sizeof(r->error), "%s", msg);
+    }
+    pthread_mutex_unlock(&r->lock);
+}
+
+static phos_status photon_stages(render *r)
+{
+    atomic_store(&r->stage, PHOS_STAGE_TRACING_PHOTONS);
+    phos_status st = photon_maps_trace(r->scene, &r->photon_settings, &r->maps, &r->cancel, &r->photon_progress);
+    if (st != PHOS_OK)
+        return st;
+    atomic_store(&r->stage, PHOS_STAGE_BUILDING_KDTREES);
+    st = photon_maps_build(&r->maps);
+    if (st != PHOS_OK)
+        return st;
+    if (r->settings.integrator == PHOS_INTEGRATOR_PHOTON && r->settings.photon_view == PHOS_PHOTON_VIEW_FINAL_GATHER) {
+        atomic_store(&r->stage, PHOS_STAGE_PRECOMPUTING_RADIANCE);
+        st = photon_maps_precompute_radiance(r->scene, &r->photon_settings, &r->maps, &r->cancel);
+        if (st != PHOS_OK)
+            return st;
+    }
+    if (pass_on(r, PHOS_PASS_PHOTONS)) {
+        draw_photons(r, &r->maps.global);
+        draw_photons(r, &r->maps.caustic);
+    }
+    r->integrator.maps = &r->maps;
+    return atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_OK;
+}
+
+static void *controller_main(void *arg)
+{
+    render *r = arg;
+    phos_status st = PHOS_OK;
+    if (r->use_maps)
+        st = photon_stages(r);
+    if (st == PHOS_OK) {
+        atomic_store(&r->stage, PHOS_STAGE_RENDERING);
+        if (!parallel_for(r->tile_count, r->threads, render_tile, r, &r->cancel))
+            st = atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_INTERNAL;
+    }
+    if (st == PHOS_ERROR_OUT_OF_MEMORY)
+        fail(r, st, "out of memory while rendering (try fewer photons or a smaller image)");
+    else if (st == PHOS_ERROR_INTERNAL)
+        fail(r, st, "the render threads could not be started");
+    atomic_store(&r->stage, PHOS_STAGE_FINISHED);
+    pthread_mutex_lock(&r->lock);
+    if (st == PHOS_OK)
+        r->state = PHOS_STATE_DONE;
+    else if (st == PHOS_ERROR_CANCELLED) {
+        r->state = PHOS_STATE_CANCELLED;
+        r->status = PHOS_ERROR_CANCELLED;
+    } else
+        r->state = PHOS_STATE_FAILED;
+    r->running = 0;
+    pthread_cond_broadcast(&r->finished_cond);
+    pthread_mutex_unlock(&r->lock);
+    return NULL;
+}
+
+/* -------------------------------------------------------------- set-up */
+
+static float scene_size(const scene *s) { return v3_length(v3_sub(s->bounds_max, s->bounds_min)); }
+
+int render_prepare(render *r)
+{
+    const phos_render_settings *rs = &r->settings;
+    r->threads = parallel_thread_count(rs->threads);
+    pixel_filter_init(&r->filter, rs->filter_width);
+    if (!film_create(&r->film, rs->region_x, rs->region_y, rs->region_width, rs->region_height, rs->pass_mask) ||
+        !make_tiles(r))
+        return 0;
+    uint32_t debug_mask = (1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_CAUSTIC_MAP) | (1u << PHOS_PASS_PHOTONS);
+    r->use_maps = rs->integrator == PHOS_INTEGRATOR_PHOTON || (rs->pass_mask & debug_mask);
+    photon_maps_init(&r->maps);
+    float radius = rs->max_radius > 0.0f ? rs->max_radius : scene_size(r->scene) / 40.0f;
+    integrator_settings *is = &r->integrator;
+    is->max_bounces = rs->max_bounces;
+    is->transparent_background = rs->transparent_background != 0;
+    is->maps = NULL;
+    is->global_estimate = (estimate_params){rs->global_estimate_photons, radius, ESTIMATE_BOX, 0};
+    is->caustic_estimate = (estimate_params){rs->caustic_estimate_photons, radius, ESTIMATE_CONE, 0};
+    is->final_gather_rays = rs->final_gather_rays;
+    is->radiance_lookup_radius = radius;
+    is->indirect = indirect_provider_for(rs->photon_view);
+    photon_trace_settings *ps = &r->photon_settings;
+    /* The path-traced gather reads no global map: trace one only for the
+     * debug passes that show it. */
+    int global_needed = !(rs->integrator == PHOS_INTEGRATOR_PHOTON && rs->photon_view == PHOS_PHOTON_VIEW_PATH_TRACED) ||
+                        (rs->pass_mask & ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_PHOTONS)));
+    ps->global_photons = global_needed ? rs->global_photons : 0;
+    ps->caustic_photons = rs->caustic_photons;
+    ps->max_emitted = (uint64_t)rs->max_photons_emitted_millions * 1000000u;
+    ps->max_bounces = rs->max_bounces;
+    ps->seed = rs->seed;
+    ps->threads = r->threads;
+    ps->radiance_k = rs->global_estimate_photons;
+    ps->max_radius = radius;
+    r->scratch = calloc(r->threads, sizeof(integrator_scratch));
+    if (!r->scratch)
+        return 0;
+    uint32_t k_radiance = 8;
+    for (uint32_t t = 0; t < r->threads; t++) {
+        integrator_scratch *sc = &r->scratch[t];
+        if (!kdtree_query_init(&sc->global, rs->global_estimate_photons ? rs->global_estimate_photons : 1) ||
+            !kdtree_query_init(&sc->caustic, rs->caustic_estimate_photons ? rs->caustic_estimate_photons : 1) ||
+            !kdtree_query_init(&sc->radiance, k_radiance))
+            return 0;
+    }
+    return 1;
+}
+
+phos_status render_start(render *r)
+{
+    pthread_mutex_lock(&r->lock);
+    r->started = 1;
+    r->running = 1;
+    r->state = PHOS_STATE_RUNNING;
+    if (pthread_create(&r->controller, NULL, controller_main, r) != 0) {
+        r->running = 0;
+        r->state = PHOS_STATE_FAILED;
+        r->status = PHOS_ERROR_INTERNAL;
+        snprintf(r->error, sizeof(r->error), "could not start the render thread");
+        pthread_mutex_unlock(&r->lock);
+        return PHOS_ERROR_INTERNAL;
+    }
+    r->controller_started = 1;
+    pthread_mutex_unlock(&r->lock);
+    return PHOS_OK;
+}
+
+void render_join(render *r)
+{
+    if (!r->controller_started || r->joined)
+        return;
+    pthread_join(r->controller, NULL);
+    r->joined = 1;
+}
+
+void render_free(render *r)
+{
+    film_free(&r->film);
+    free(r->tiles);
+    free(r->finished);
+    if (r->scratch) {
+        for (uint32_t t = 0; t < r->threads; t++) {
+            kdtree_query_free(&r->scratch[t].global);
+            kdtree_query_free(&r->scratch[t].caustic);
+            kdtree_query_free(&r->scratch[t].radiance);
+        }
+        free(r->scratch);
+    }
+    photon_maps_free(&r->maps);
+}

@@ -1,0 +1,59 @@
+/*
+ * render.h — one render of a committed scene: the stages it runs (photon
+ * tracing, kd-tree builds, radiance precomputation, tiles), the film, and
+ * the state Python polls.
+ */
+#ifndef PHOS_RENDER_H
+#define PHOS_RENDER_H
+
+#include <pthread.h>
+#include <stdatomic.h>
+
+#include "render/film.h"
+#include "integrators/integrator.h"
+#include "photons/photon_trace.h"
+#include "scene/scene.h"
+
+struct phos_render {
+    scene *scene;
+    phos_render_settings settings;
+    integrator_settings integrator;
+    film film;
+    pixel_filter filter;
+    uint32_t threads;
+
+    photon_maps maps;
+    int use_maps;                  /* the PHOTON integrator or a photon debug pass */
+    photon_trace_settings photon_settings;
+    photon_trace_progress photon_progress;
+    integrator_scratch *scratch;   /* one per thread */
+
+    phos_tile *tiles;
+    uint32_t tile_count;
+    atomic_uint tiles_done;
+    atomic_uint stage;             /* enum phos_stage */
+
+    pthread_mutex_t lock;          /* guards everything below */
+    pthread_cond_t finished_cond;
+    uint32_t *finished;            /* finished tile indices, in finishing order */
+    uint32_t finished_count, finished_read;
+    int started, running, joined, controller_started;
+    uint32_t state;                /* enum phos_render_state */
+    phos_status status;
+    char error[512];
+
+    atomic_int cancel;
+    pthread_t controller;
+};
+
+typedef struct phos_render render;
+
+/* Sets up film, tiles, pixel filter, integrator and photon settings;
+ * returns 0 when memory is exhausted. */
+int render_prepare(render *r);
+/* Starts the controller thread that runs the stages. */
+phos_status render_start(render *r);
+void render_join(render *r);
+void render_free(render *r);
+
+#endif /* PHOS_RENDER_H */

@@ -1,0 +1,21 @@
+/*
+ * camera.h — primary rays for Blender's perspective and orthographic
+ * cameras, with a thin-lens aperture for depth of field.
+ */
+#ifndef PHOS_CAMERA_H
+#define PHOS_CAMERA_H
+
+#include "phos.h"
+#include "sampling/sampler.h"
+#include "util/vec.h"
+
+typedef struct camera_ray {
+    vec3 o, d;               /* world origin, unit direction */
+    float tmin, tmax;        /* clipping along d */
+} camera_ray;
+
+/* Ray through film position (fx, fy) in [0,1]² of the full frame (0,0 =
+ * bottom-left corner), lens sample in [0,1)². */
+camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, float2 lens);
+
+#endif /* PHOS_CAMERA_H */

@@ -1,0 +1,39 @@
+/*
+ * embree.h — the ray-tracing kernel behind one small interface. All Embree
+ * calls live in embree.c, which builds against Embree 3 or Embree 4.
+ */
+#ifndef PHOS_EMBREE_H
+#define PHOS_EMBREE_H
+
+#include <stddef.h>
+
+#include "phos.h"
+#include "scene/geometry.h"
+#include "util/vec.h"
+
+typedef struct ray_hit {
+    float t;
+    uint32_t instance, prim;
+    float b1, b2;           /* barycentric weights of corners 1 and 2 */
+} ray_hit;
+
+struct embree_bvh;
+
+/* One BVH per mesh, shared by its instances, under a top-level BVH of
+ * instances. *out is set before anything can fail, so that the caller frees
+ * a partial build with embree_bvh_destroy; the message of a failure is
+ * written to error (error_size bytes). */
+phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const instance *instances,
+                             uint32_t instance_count, struct embree_bvh **out, char *error, size_t error_size);
+void embree_bvh_destroy(struct embree_bvh *bvh);
+
+/* Closest hit with t in (tmin, tmax); coherent marks camera rays. */
+int embree_intersect(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, float tmax, int coherent,
+                     ray_hit *hit);
+/* Whether anything lies on the segment t in (tmin, tmax). */
+int embree_occluded(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, float tmax);
+
+/* The version of the Embree library in use, e.g. "3.13.5". */
+const char *embree_version(void);
+
+#endif /* PHOS_EMBREE_H */

@@ -1,0 +1,33 @@
+/*
+ * geometry.h — triangle meshes and their placements, as the scene holds
+ * them: what the ray-tracing kernel (embree.c) builds its BVHs from.
+ */
+#ifndef PHOS_GEOMETRY_H
+#define PHOS_GEOMETRY_H
+
+#include <stdint.h>
+
+typedef struct mesh {
+    uint32_t vertex_count, triangle_count;
+    float *positions;           /* vertex_count*3, object space */
+    uint32_t *indices;          /* triangle_count*3 */
+    float *normals;             /* triangle_count*9 per-corner, or NULL */
+    float *uvs;                 /* triangle_count*6, or NULL */
+    uint32_t *slots;            /* triangle_count, or NULL */
+} mesh;
+
+typedef struct instance {
+    uint32_t mesh_id;
+    float transform[12];        /* object → world */
+    float normal_matrix[9];     /* inverse transpose of the 3x3 part, row-major */
+    uint32_t material_count;
+    uint32_t *materials;
+    int32_t *emitter_of_triangle; /* light index per triangle, or NULL if nothing emits */
+} instance;
+
+static inline uint32_t mesh_triangle_slot(const mesh *m, uint32_t prim)
+{
+    return m->slots ? m->slots[prim] : 0;
+}
+
+#endif /* PHOS_GEOMETRY_H */

@@ -1,0 +1,80 @@
+/*
+ * scene.h — the scene as the core holds it: copies of the caller's meshes,
+ * instances, materials, images, lights, world and camera, and what
+ * phos_scene_commit derives from them (the ray-tracing BVH and the light
+ * table). After commit the scene is read-only and shared by renders.
+ */
+#ifndef PHOS_SCENE_H
+#define PHOS_SCENE_H
+
+#include <stdatomic.h>
+#include <stddef.h>
+
+#include "lights/light_table.h"
+#include "phos.h"
+#include "scene/geometry.h"
+#include "util/vec.h"
+
+typedef struct material {
+    uint32_t closure_count;
+    phos_closure_desc closures[PHOS_MAX_CLOSURES];
+    int emissive;               /* has an EMISSION closure */
+    int transparent;            /* has a TRANSPARENT closure */
+} material;
+
+typedef struct image {
+    uint32_t width, height;
+    float *pixels;              /* width*height*4, linear RGBA, rows bottom-up */
+    uint32_t interpolation, extension;
+    vec3 average;               /* mean RGB, for light power estimates */
+} image;
+
+struct embree_bvh;
+
+struct phos_scene {
+    char error[512];
+    atomic_int refcount;        /* the caller's reference plus one per render */
+    int committed;
+
+    mesh *meshes;         uint32_t mesh_count, mesh_capacity;
+    instance *instances;  uint32_t instance_count, instance_capacity;
+    material *materials;  uint32_t material_count, material_capacity;
+    image *images;        uint32_t image_count, image_capacity;
+    phos_light_desc *light_descs; uint32_t light_desc_count, light_desc_capacity;
+    phos_world_desc world;
+    phos_camera_desc camera;
+    int has_camera;
+
+    /* Built by commit. */
+    struct embree_bvh *bvh;
+    vec3 bounds_min, bounds_max;   /* world bounds of all geometry, scene units */
+    light_table lights;
+    int has_transparency;          /* some material lets shadow rays through */
+};
+
+typedef struct phos_scene scene;
+
+/* The material used where an instance has no material for a slot. */
+extern const material scene_default_material;
+
+static inline const material *scene_instance_material(const scene *s, const instance *inst,
+                                                      uint32_t slot)
+{
+    if (slot < inst->material_count)
+        return &s->materials[inst->materials[slot]];
+    return &scene_default_material;
+}
+
+/* World-space triangle corners of (instance, primitive). */
+void scene_triangle_vertices(const scene *s, const instance *inst, uint32_t prim, vec3 out[3]);
+
+/* The part of commit that needs only the scene's own data: material flags
+ * and world bounds. phos_scene_commit (api.c) then builds the BVH and the
+ * light table from them. */
+void scene_prepare(scene *s);
+
+void scene_release(scene *s);
+
+void scene_set_error(scene *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+#endif /* PHOS_SCENE_H */

@@ -1,0 +1,606 @@
+/*
+ * bsdf.c — the closures of a surface and their weighted mixture, with the
+ * semantics of Cycles 3.4 (kernel/closure/bsdf_*.h, kernel/svm/closure.h)
+ * so that Phos and Cycles agree on brightness:
+ *
+ *   DIFFUSE             Lambert, f = 1/π, cosine sampling.
+ *   PRINCIPLED_DIFFUSE  Burley 2012 diffuse with the retro-reflection of
+ *                       Burley 2015 §2.3 ("full" component), cosine sampling.
+ *   REFLECTION          GGX reflection, F = 1; mirror when α is tiny.
+ *   REFLECTION_FRESNEL  GGX reflection with the Principled (v1) Fresnel:
+ *                       f0 blended to white by the normalised dielectric
+ *                       Fresnel of eta.
+ *   REFRACTION          GGX refraction without Fresnel; sharp when α tiny.
+ *   GLASS               MACRO: Fresnel at the shading normal splits a GGX
+ *                       reflection and a GGX refraction lobe (Cycles < 4).
+ *                       MICROFACET: Walter et al. 2007 dielectric with the
+ *                       Fresnel of each sampled microfacet (Cycles 4).
+ *   TRANSPARENT         straight pass-through.
+ *
+ * Cycles up to 3.4 uses the separable Smith G1(wo)·G1(wi) for GGX; the
+ * Cycles 4 glass uses the height-correlated G (Heitz 2014 eq. 99), and so
+ * does the MICROFACET glass here. Microfacet lobes sample the visible
+ * normals (Heitz 2018), see microfacet.c.
+ *
+ * Mixture: a closure is picked with probability sample_weight / sum; a
+ * non-delta pick is weighted by the whole non-delta mixture (one-sample
+ * MIS, balance heuristic over closures, as Cycles does), a delta pick by
+ * its own value over the probability of having picked it.
+ *
+ * Robustness: a reflected wi must lie above both the shading and the
+ * geometric normal, a transmitted wi below both; otherwise the closure has
+ * no value and no density there, so eval and sample stay consistent.
+ */
+#include "shading/bsdf.h"
+
+#include "shading/microfacet.h"
+#include "sampling/warp.h"
+
+/* |η − 1| below this: the interface does not bend light, refraction is a
+ * straight pass-through whatever the roughness (as Cycles 3.4). */
+#define BSDF_INDEX_MATCHED 1e-4f
+
+/* One evaluation query in the shading frame. */
+typedef struct query {
+    vec3 wo, wi;  /* unit, local shading frame */
+    float ng_wi;  /* dot(ng, wi): which side of the real surface wi is on */
+} query;
+
+/* What a closure's sampler produces. */
+typedef struct lobe_sample {
+    vec3 wi;        /* local shading frame */
+    uint32_t flags; /* enum bsdf_flags */
+    vec3 value;     /* delta lobes: the lobe's total f·|cos|/δ, weight applied */
+    float prob;     /* delta lobes: probability of this lobe within the closure */
+} lobe_sample;
+
+/* ------------------------------------------------------------ helpers */
+
+/* Exact unpolarised Fresnel reflectance of a dielectric interface in the
+ * form with g = √(η² − 1 + c²) (Walter 2007 eq. 22; Cycles'
+ * fresnel_dielectric_cos): F = ½ ((g−c)/(g+c))² (1 + ((c(g+c)−1)/(c(g−c)+1))²). */
+float fresnel_dielectric(float cos_theta_i, float eta)
+{
+    float c = fabsf(cos_theta_i);
+    float g2 = eta * eta - 1.0f + c * c;
+    if (!(g2 > 0.0f))
+        return 1.0f; /* total internal reflection */
+    float g = sqrtf(g2);
+    float a = (g - c) / (g + c);
+    float b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
+    return clampf(0.5f * a * a * (1.0f + b * b), 0.0f, 1.0f);
+}
+
+/* 1 − F without the cancellation of subtracting F ≈ 1 at grazing angles:
+ * with g = η cos θt, T_s = 4cg / (c + g)² and T_p = 4η²cg / (η²c + g)²
+ * (Hecht, Optics §4.6.2), T = (T_s + T_p) / 2. */
+static float fresnel_dielectric_transmittance(float cos_theta_i, float eta)
+{
+    float c = fabsf(cos_theta_i);
+    float g2 = eta * eta - 1.0f + c * c;
+    if (!(g2 > 0.0f))
+        return 0.0f;
+    float g = sqrtf(g2), e2c = eta * eta * c;
+    float ts = 4.0f * c * g / sqr(c + g);
+    float tp = 4.0f * e2c * g / sqr(e2c + g);
+    return clampf(0.5f * (ts + tp), 0.0f, 1.0f);
+}
+
+/* Schlick's weight (1 − cos)⁵ with cos clamped to [0,1] (Burley 2012). */
+static float schlick_weight(float cos_theta)
+{
+    float m = clampf(1.0f - cos_theta, 0.0f, 1.0f);
+    float m2 = m * m;
+    return m2 * m2 * m;
+}
+
+/* Principled (v1) specular colour: the dielectric Fresnel of eta remapped
+ * from [F(0°), 1] to [f0, 1] (Cycles' interpolate_fresnel_color), so that
+ * f0 sets normal incidence and every colour goes white at grazing. */
+static vec3 fresnel_blend_f0(vec3 f0, float eta, float cos_theta)
+{
+    float F0 = fresnel_dielectric(1.0f, eta);
+    float F = fresnel_dielectric(cos_theta, eta);
+    float t = F0 < 1.0f - 1e-6f ? (F - F0) / (1.0f - F0) : 1.0f;
+    return v3_add(v3_scale(f0, 1.0f - t), v3s(t));
+}
+
+/* Mirror of wo about the unit normal m. */
+static vec3 reflect_about(vec3 wo, vec3 m)
+{
+    return v3_sub(v3_scale(m, 2.0f * v3_dot(wo, m)), wo);
+}
+
+/* Snell refraction of wo (on m's side) through the unit normal m, eta =
+ * η_other / η_wo-side. Returns 0 under total internal reflection. */
+static int refract_about(vec3 wo, vec3 m, float eta, vec3 *wi)
+{
+    float cos_o = v3_dot(wo, m);
+    float sin2_t = (1.0f - cos_o * cos_o) / (eta * eta);
+    if (!(cos_o > 0.0f) || sin2_t >= 1.0f)
+        return 0;
+    float cos_t = sqrtf(1.0f - sin2_t);
+    *wi = v3_normalize(v3_add(v3_scale(wo, -1.0f / eta), v3_scale(m, cos_o / eta - cos_t)));
+    return 1;
+}
+
+static int reflection_side(const query *q) { return q->wi.z > 0.0f && q->ng_wi > 0.0f; }
+static int transmission_side(const query *q) { return q->wi.z < 0.0f && q->ng_wi < 0.0f; }
+
+static int closure_is_sharp(const closure *c) { return c->alpha < BSDF_SHARP_ALPHA; }
+/* The refraction lobe of a MACRO glass has its own roughness (Cycles 3.4
+ * Principled: 1 − (1 − roughness)(1 − transmission roughness)). */
+static int refraction_is_sharp(const closure *c) { return c->alpha_t < BSDF_SHARP_ALPHA; }
+static int closure_index_matched(const closure *c) { return fabsf(c->eta - 1.0f) < BSDF_INDEX_MATCHED; }
+
+/* GLASS splits by Fresnel at the shading normal (MACRO) or per microfacet.
+ * An index-matched glass always uses MACRO: its refraction is a delta. */
+static int glass_per_microfacet(const closure *c)
+{
+    return c->glass_fresnel == PHOS_GLASS_FRESNEL_MICROFACET && !closure_index_matched(c);
+}
+
+/* ---------------------------------------------------- microfacet lobes */
+
+/* GGX reflection without Fresnel: returns f·cos θi = D G / (4 cos θo)
+ * (Walter 2007 eq. 20 times cos θi) and the solid-angle pdf of sampling wi
+ * through the visible normals, D_wo(h) / (4 wo·h) (Heitz 2018 eq. 17). */
+static float ggx_reflection(const query *q, float alpha, int correlated, vec3 *h, float *pdf)
+{
+    *pdf = 0.0f;
+    if (q->wo.z <= 0.0f || !reflection_side(q) || !microfacet_reflect_half_vector(q->wo, q->wi, h))
+        return 0.0f;
+    float D = ggx_D(*h, alpha);
+    if (!(D > 0.0f))
+        return 0.0f;
+    float G = correlated ? ggx_G_correlated(q->wo, q->wi, alpha) : ggx_G_separable(q->wo, q->wi, alpha);
+    *pdf = ggx_visible_normal_pdf(q->wo, *h, alpha) * microfacet_reflect_jacobian(q->wo, *h);
+    return D * G / (4.0f * q->wo.z);
+}
+
+/* GGX refraction without Fresnel: f·|cos θi| =
+ * |wo·h| |wi·h| η² D G / (cos θo (wo·h + η wi·h)²) (Walter 2007 eq. 21 times
+ * |cos θi|, without the 1/η² radiance scaling, as Cycles), and the pdf
+ * D_wo(h) |dω_h/dω_i|. */
+static float ggx_refraction(const query *q, float alpha, float eta, int correlated, vec3 *h,
+                            float *pdf)
+{
+    *pdf = 0.0f;
+    if (q->wo.z <= 0.0f || !transmission_side(q) ||
+        !microfacet_refract_half_vector(q->wo, q->wi, eta, h))
+        return 0.0f;
+    float D = ggx_D(*h, alpha);
+    if (!(D > 0.0f))
+        return 0.0f;
+    float G = correlated ? ggx_G_correlated(q->wo, q->wi, alpha) : ggx_G_separable(q->wo, q->wi, alpha);
+    float jacobian = microfacet_refract_jacobian(q->wo, q->wi, *h, eta);
+    *pdf = ggx_visible_normal_pdf(q->wo, *h, alpha) * jacobian;
+    return v3_dot(q->wo, *h) * D * G / q->wo.z * jacobian;
+}
+
+/* -------------------------------------------------------- evaluation */
+
+static vec3 eval_diffuse(const closure *c, const query *q, float *pdf)
+{
+    if (!reflection_side(q))
+        return v3s(0.0f);
+    *pdf = q->wi.z * PHOS_INV_PI;
+    return v3_scale(c->weight, q->wi.z * PHOS_INV_PI);
+}
+
+/* Burley 2012 diffuse, f = (1/π)[(1 − ½F_L)(1 − ½F_V) + R_R (F_L + F_V + F_L F_V (R_R − 1))]
+ * with F = (1 − cos)⁵ and R_R = roughness·(1 + wo·wi) = 2 roughness cos²θd
+ * (Burley 2015 §2.3, as Cycles 3.4's PRINCIPLED_DIFFUSE_FULL). */
+static vec3 eval_principled_diffuse(const closure *c, const query *q, float *pdf)
+{
+    if (!reflection_side(q))
+        return v3s(0.0f);
+    float fl = schlick_weight(q->wi.z);
+    float fv = schlick_weight(q->wo.z);
+    float f = (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv);
+    float rr = c->roughness * (1.0f + v3_dot(q->wo, q->wi));
+    f += rr * (fl + fv + fl * fv * (rr - 1.0f));
+    *pdf = q->wi.z * PHOS_INV_PI;
+    return v3_scale(c->weight, f * q->wi.z * PHOS_INV_PI);
+}
+
+static vec3 eval_glossy(const closure *c, const query *q, float *pdf)
+{
+    if (closure_is_sharp(c))
+        return v3s(0.0f);
+    vec3 h;
+    float v = ggx_reflection(q, c->alpha, 0, &h, pdf);
+    if (v == 0.0f)
+        return v3s(0.0f);
+    vec3 colour = c->weight;
+    if (c->type == PHOS_CLOSURE_REFLECTION_FRESNEL)
+        colour = v3_mul(colour, fresnel_blend_f0(c->f0, c->eta, v3_dot(q->wi, h)));
+    return v3_scale(colour, v);
+}
+
+static vec3 eval_refraction(const closure *c, const query *q, float *pdf)
+{
+    if (closure_is_sharp(c) || closure_index_matched(c))
+        return v3s(0.0f);
+    vec3 h;
+    return v3_scale(c->weight, ggx_refraction(q, c->alpha, c->eta, 0, &h, pdf));
+}
+
+static vec3 eval_glass(const closure *c, const query *q, float *pdf)
+{
+    vec3 h;
+    float v, lobe;
+    if (glass_per_microfacet(c)) {
+        if (closure_is_sharp(c))
+            return v3s(0.0f);
+        /* Walter 2007 eq. 20/21 with F(wo·h); sampling picks the lobe with F(wo·h). */
+        if (q->wi.z > 0.0f)
+            v = ggx_reflection(q, c->alpha, 1, &h, pdf);
+        else
+            v = ggx_refraction(q, c->alpha, c->eta, 1, &h, pdf);
+        if (v == 0.0f)
+            return v3s(0.0f);
+        float cos_oh = v3_dot(q->wo, h);
+        lobe = q->wi.z > 0.0f ? fresnel_dielectric(cos_oh, c->eta)
+                              : fresnel_dielectric_transmittance(cos_oh, c->eta);
+    } else {
+        /* Cycles 3.4: two closures weighted F and 1 − F, F at the shading normal. */
+        if (q->wi.z > 0.0f) {
+            v = closure_is_sharp(c) ? 0.0f : ggx_reflection(q, c->alpha, 0, &h, pdf);
+            lobe = fresnel_dielectric(q->wo.z, c->eta);
+        } else {
+            v = (closure_index_matched(c) || refraction_is_sharp(c))
+                    ? 0.0f
+                    : ggx_refraction(q, c->alpha_t, c->eta, 0, &h, pdf);
+            lobe = fresnel_dielectric_transmittance(q->wo.z, c->eta);
+        }
+    }
+    if (v == 0.0f) {
+        *pdf = 0.0f;
+        return v3s(0.0f);
+    }
+    *pdf *= lobe;
+    vec3 colour = q->wi.z > 0.0f ? c->weight : v3_mul(c->weight, c->transmission_tint);
+    return v3_scale(colour, v * lobe);
+}
+
+/* f·|cos θi| of one closure (weight applied) and its own sampling density;
+ * zero for delta closures, which only exist through sampling. */
+static vec3 closure_eval(const closure *c, const query *q, float *pdf)
+{
+    *pdf = 0.0f;
+    switch (c->type) {
+    case PHOS_CLOSURE_DIFFUSE: return eval_diffuse(c, q, pdf);
+    case PHOS_CLOSURE_PRINCIPLED_DIFFUSE: return eval_principled_diffuse(c, q, pdf);
+    case PHOS_CLOSURE_REFLECTION:
+    case PHOS_CLOSURE_REFLECTION_FRESNEL: return eval_glossy(c, q, pdf);
+    case PHOS_CLOSURE_REFRACTION: return eval_refraction(c, q, pdf);
+    case PHOS_CLOSURE_GLASS: return eval_glass(c, q, pdf);
+    default: return v3s(0.0f);
+    }
+}
+
+/* ---------------------------------------------------------- sampling */
+
+static int sample_delta(lobe_sample *s, vec3 wi, uint32_t flags, vec3 value, float prob)
+{
+    s->wi = wi;
+    s->flags = BSDF_DELTA | flags;
+    s->value = value;
+    s->prob = prob;
+    return prob > 0.0f;
+}
+
+static int sample_glossy(const closure *c, vec3 wo, float2 u, lobe_sample *s)
+{
+    if (closure_is_sharp(c)) {
+        vec3 value = c->weight;
+        if (c->type == PHOS_CLOSURE_REFLECTION_FRESNEL)
+            value = v3_mul(value, fresnel_blend_f0(c->f0, c->eta, wo.z));
+        return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, value, 1.0f);
+    }
+    vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+    if (v3_dot(wo, h) <= 0.0f)
+        return 0;
+    s->wi = reflect_about(wo, h);
+    s->flags = BSDF_GLOSSY;
+    return 1;
+}
+
+static int sample_refraction(const closure *c, vec3 wo, float2 u, lobe_sample *s)
+{
+    vec3 wi;
+    if (closure_is_sharp(c) || closure_index_matched(c)) {
+        if (!refract_about(wo, v3(0.0f, 0.0f, 1.0f), c->eta, &wi))
+            return 0;
+        return sample_delta(s, wi, BSDF_TRANSMISSION, c->weight, 1.0f);
+    }
+    vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+    if (!refract_about(wo, h, c->eta, &wi))
+        return 0; /* total internal reflection at this microfacet: no light */
+    s->wi = wi;
+    s->flags = BSDF_GLOSSY | BSDF_TRANSMISSION;
+    return 1;
+}
+
+static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_sample *s)
+{
+    const vec3 n = v3(0.0f, 0.0f, 1.0f);
+    vec3 wi;
+    if (glass_per_microfacet(c) && !closure_is_sharp(c)) {
+        /* Walter 2007 §5.3 with visible normals: pick h, then reflect with
+         * probability F(wo·h), otherwise refract through h. */
+        vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+        float cos_oh = v3_dot(wo, h);
+        if (cos_oh <= 0.0f)
+            return 0;
+        if (u_lobe < fresnel_dielectric(cos_oh, c->eta)) {
+            s->wi = reflect_about(wo, h);
+            s->flags = BSDF_GLOSSY;
+            return 1;
+        }
+        if (!refract_about(wo, h, c->eta, &wi))
+            return 0;
+        s->wi = wi;
+        s->flags = BSDF_GLOSSY | BSDF_TRANSMISSION;
+        return 1;
+    }
+
+    /* Fresnel at the shading normal (MACRO, or any sharp glass). */
+    float F = fresnel_dielectric(wo.z, c->eta);
+    if (u_lobe < F) {
+        if (closure_is_sharp(c))
+            return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_scale(c->weight, F), F);
+        vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+        if (v3_dot(wo, h) <= 0.0f)
+            return 0;
+        s->wi = reflect_about(wo, h);
+        s->flags = BSDF_GLOSSY;
+        return 1;
+    }
+    vec3 tinted = v3_mul(c->weight, c->transmission_tint);
+    int sharp_refraction = glass_per_microfacet(c) ? closure_is_sharp(c) : refraction_is_sharp(c);
+    if (sharp_refraction || closure_index_matched(c)) {
+        if (!refract_about(wo, n, c->eta, &wi))
+            return 0;
+        float T = fresnel_dielectric_transmittance(wo.z, c->eta);
+        return sample_delta(s, wi, BSDF_TRANSMISSION, v3_scale(tinted, T), T);
+    }
+    vec3 h = ggx_sample_visible_normal(wo, c->alpha_t, u);
+    if (!refract_about(wo, h, c->eta, &wi))
+        return 0;
+    s->wi = wi;
+    s->flags = BSDF_GLOSSY | BSDF_TRANSMISSION;
+    return 1;
+}
+
+/* Samples wi from one closure; u_lobe in [0,1) chooses a lobe inside it. */
+static int closure_sample(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_sample *s)
+{
+    switch (c->type) {
+    case PHOS_CLOSURE_DIFFUSE:
+    case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
+        s->wi = warp_cosine_hemisphere(u);
+        s->flags = BSDF_DIFFUSE;
+        return s->wi.z > 0.0f;
+    case PHOS_CLOSURE_TRANSPARENT:
+        return sample_delta(s, v3_neg(wo), BSDF_TRANSPARENT | BSDF_TRANSMISSION, c->weight, 1.0f);
+    default:
+        break;
+    }
+    /* Microfacet closures see only the front of the shading normal (as Cycles). */
+    if (wo.z <= 0.0f)
+        return 0;
+    switch (c->type) {
+    case PHOS_CLOSURE_REFLECTION:
+    case PHOS_CLOSURE_REFLECTION_FRESNEL: return sample_glossy(c, wo, u, s);
+    case PHOS_CLOSURE_REFRACTION: return sample_refraction(c, wo, u, s);
+    case PHOS_CLOSURE_GLASS: return sample_glass(c, wo, u_lobe, u, s);
+    default: return 0;
+    }
+}
+
+/* ----------------------------------------------------------- mixture */
+
+static query make_query(const bsdf *b, vec3 wo, vec3 wi)
+{
+    query q;
+    q.wo = frame_to_local(&b->shading, wo);
+    q.wi = frame_to_local(&b->shading, wi);
+    q.ng_wi = v3_dot(b->ng, wi);
+    return q;
+}
+
+/* Σ f·|cos θi| over the closures and Σ (sample_weight_k / sum) pdf_k. */
+static vec3 eval_mixture(const bsdf *b, const query *q, float *pdf)
+{
+    vec3 value = v3s(0.0f);
+    float p = 0.0f;
+    for (uint32_t k = 0; k < b->count; k++) {
+        float pk;
+        value = v3_add(value, closure_eval(&b->closures[k], q, &pk));
+        p += b->closures[k].sample_weight * pk;
+    }
+    *pdf = b->sample_weight_sum > 0.0f ? p / b->sample_weight_sum : 0.0f;
+    if (!v3_is_finite(value) || !isfinite(*pdf)) {
+        *pdf = 0.0f;
+        return v3s(0.0f);
+    }
+    return value;
+}
+
+void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric)
+{
+    b->shading = frame_from_normal(n_shading);
+    b->ng = n_geometric;
+    b->count = 0;
+    b->sample_weight_sum = 0.0f;
+}
+
+void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other)
+{
+    diffuse->shading = other->shading = b->shading;
+    diffuse->ng = other->ng = b->ng;
+    diffuse->count = other->count = 0;
+    diffuse->sample_weight_sum = other->sample_weight_sum = 0.0f;
+    for (uint32_t i = 0; i < b->count; i++) {
+        const closure *c = &b->closures[i];
+        int is_diffuse = c->type == PHOS_CLOSURE_DIFFUSE || c->type == PHOS_CLOSURE_PRINCIPLED_DIFFUSE;
+        bsdf *dst = is_diffuse ? diffuse : other;
+        dst->closures[dst->count++] = *c;
+        dst->sample_weight_sum += c->sample_weight;
+    }
+}
+
+int bsdf_has_non_delta(const bsdf *b)
+{
+    for (uint32_t i = 0; i < b->count; i++) {
+        const closure *c = &b->closures[i];
+        switch (c->type) {
+        case PHOS_CLOSURE_DIFFUSE:
+        case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
+            return 1;
+        case PHOS_CLOSURE_TRANSPARENT:
+            break;
+        case PHOS_CLOSURE_GLASS:
+            if (!closure_is_sharp(c) || (!glass_per_microfacet(c) && !refraction_is_sharp(c)))
+                return 1;
+            break;
+        default:
+            if (!closure_is_sharp(c))
+                return 1;
+        }
+    }
+    return 0;
+}
+
+int bsdf_add_closure(bsdf *b, const closure *c)
+{
+    if (c->type == PHOS_CLOSURE_EMISSION || c->type >= PHOS_CLOSURE_TYPE_COUNT)
+        return 1;
+    closure k = *c;
+    if (!v3_is_finite(k.weight))
+        return 1;
+    /* Clamp parameters into their domains as Cycles' setup functions do. */
+    k.alpha = k.alpha > 0.0f ? fminf(k.alpha, 1.0f) : 0.0f;
+    k.alpha_t = k.alpha_t > 0.0f ? fminf(k.alpha_t, 1.0f) : 0.0f;
+    k.transmission_tint = v3_max(k.transmission_tint, v3s(0.0f));
+    k.roughness = k.roughness > 0.0f ? fminf(k.roughness, 1.0f) : 0.0f;
+    k.eta = (k.eta > 0.0f && isfinite(k.eta)) ? fmaxf(k.eta, 1e-5f) : 1.0f;
+    k.f0 = v3_min(v3_max(k.f0, v3s(0.0f)), v3s(1.0f));
+    /* Cycles: sample weight = average |weight| over the channels. */
+    k.sample_weight = (fabsf(k.weight.x) + fabsf(k.weight.y) + fabsf(k.weight.z)) * (1.0f / 3.0f);
+    if (!(k.sample_weight > 0.0f))
+        return 1;
+    if (b->count >= PHOS_MAX_CLOSURES)
+        return 0;
+    b->closures[b->count++] = k;
+    b->sample_weight_sum += k.sample_weight;
+    return 1;
+}
+
+vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
+{
+    float p = 0.0f;
+    vec3 value = v3s(0.0f);
+    if (b->count > 0) {
+        query q = make_query(b, wo, wi);
+        value = eval_mixture(b, &q, &p);
+    }
+    if (pdf)
+        *pdf = p;
+    return value;
+}
+
+/* Chooses closure k with probability sample_weight_k / sum and rescales
+ * u_pick to a fresh uniform number for the choice inside the closure. */
+static int pick_closure(const bsdf *b, float u_pick, float *u_lobe)
+{
+    float target = u_pick * b->sample_weight_sum;
+    float start = 0.0f;
+    int last = -1;
+    for (uint32_t k = 0; k < b->count; k++) {
+        float w = b->closures[k].sample_weight;
+        if (!(w > 0.0f))
+            continue;
+        last = (int)k;
+        if (target < start + w || k + 1 == b->count) {
+            *u_lobe = clampf((target - start) / w, 0.0f, 0x1.fffffep-1f);
+            return (int)k;
+        }
+        start += w;
+    }
+    *u_lobe = 0.5f;
+    return last;
+}
+
+int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_sample *out)
+{
+    if (b->count == 0 || !(b->sample_weight_sum > 0.0f))
+        return 0;
+    float u_lobe;
+    int k = pick_closure(b, u_pick, &u_lobe);
+    if (k < 0)
+        return 0;
+    const closure *c = &b->closures[k];
+    float pick = c->sample_weight / b->sample_weight_sum;
+
+    lobe_sample s;
+    s.value = v3s(0.0f);
+    s.prob = 0.0f;
+    vec3 wo_local = frame_to_local(&b->shading, wo);
+    if (!closure_sample(c, wo_local, u_lobe, u, &s))
+        return 0;
+    vec3 wi = v3_normalize(frame_to_world(&b->shading, s.wi));
+    if (!v3_is_finite(wi) || v3_length2(wi) == 0.0f)
+        return 0;
+
+    if (s.flags & BSDF_DELTA) {
+        /* Light-leak test against the geometric normal (pass-through is exempt). */
+        float ng_wi = v3_dot(b->ng, wi);
+        if (!(s.flags & BSDF_TRANSPARENT) &&
+            ((s.flags & BSDF_TRANSMISSION) ? ng_wi >= 0.0f : ng_wi <= 0.0f))
+            return 0;
+        float p = pick * s.prob;
+        vec3 weight = v3_scale(s.value, 1.0f / p);
+        if (!(p > 0.0f) || !v3_is_finite(weight))
+            return 0;
+        out->wi = wi;
+        out->weight = weight;
+        out->pdf = p;
+        out->flags = s.flags;
+        return 1;
+    }
+
+    /* Non-delta: the direction only counts where the lobe that produced it
+     * has density — on that lobe's side of both normals (a reflection that
+     * dips below the horizon is lost, not mistaken for a transmission) and
+     * where its closure's eval is nonzero — then the mixture weights it. */
+    query q = make_query(b, wo, wi);
+    if (!((s.flags & BSDF_TRANSMISSION) ? transmission_side(&q) : reflection_side(&q)))
+        return 0;
+    float pdf_own, pdf;
+    closure_eval(c, &q, &pdf_own);
+    if (!(pdf_own > 0.0f))
+        return 0;
+    vec3 value = eval_mixture(b, &q, &pdf);
+    if (!(pdf > 0.0f))
+        return 0;
+    vec3 weight = v3_scale(value, 1.0f / pdf);
+    if (!v3_is_finite(weight))
+        return 0;
+    out->wi = wi;
+    out->weight = weight;
+    out->pdf = pdf;
+    out->flags = s.flags;
+    return 1;
+}
+
+vec3 bsdf_transparency(const bsdf *b)
+{
+    vec3 t = v3s(0.0f);
+    for (uint32_t k = 0; k < b->count; k++)
+        if (b->closures[k].type == PHOS_CLOSURE_TRANSPARENT)
+            t = v3_add(t, b->closures[k].weight);
+    return t;
+}

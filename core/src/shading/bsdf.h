@@ -1,0 +1,94 @@
+/*
+ * bsdf.h — the scattering function at a surface point: a weighted sum of
+ * closures, as Cycles builds from a shader node tree.
+ *
+ * Conventions (pbrt's): wo points toward the viewer (−ray direction), wi
+ * toward where light comes from; both unit length, in world space. The
+ * shading normal is flipped to the side of wo when the ray hits a back face,
+ * and eta is then 1/ior (Cycles' convention), so a closure never needs to
+ * know which side it was hit from.
+ *
+ * Values include the cosine: eval returns f(wo, wi)·|cos θi| (1/sr), and a
+ * sample's weight is f·|cos θi| / pdf. No 1/η² radiance scaling is applied
+ * across refraction (as Cycles): radiance re-enters the medium it left.
+ */
+#ifndef PHOS_BSDF_H
+#define PHOS_BSDF_H
+
+#include "phos.h"
+#include "sampling/sampler.h"
+#include "util/vec.h"
+
+enum bsdf_flags {
+    BSDF_DELTA = 1 << 0,        /* a Dirac lobe: pdf is not a density, MIS does not apply */
+    BSDF_TRANSMISSION = 1 << 1, /* wi is on the other side of the surface */
+    BSDF_TRANSPARENT = 1 << 2,  /* straight pass-through (does not count as a bounce) */
+    BSDF_DIFFUSE = 1 << 3,
+    BSDF_GLOSSY = 1 << 4
+};
+
+/* Below this GGX alpha a microfacet lobe is treated as perfectly sharp. */
+#define BSDF_SHARP_ALPHA 1e-4f
+
+typedef struct closure {
+    uint32_t type;          /* enum phos_closure_type */
+    vec3 weight;            /* linear RGB, textures already applied */
+    float roughness;        /* Blender roughness in [0,1] */
+    float alpha;            /* GGX alpha = roughness² */
+    float alpha_t;          /* GLASS (MACRO): GGX alpha of the refraction lobe */
+    vec3 transmission_tint; /* GLASS: colour applied to refracted light only */
+    float eta;              /* relative IOR across the surface as seen from wo's side */
+    vec3 f0;                /* REFLECTION_FRESNEL: reflectance at normal incidence */
+    uint32_t glass_fresnel; /* enum phos_glass_fresnel */
+    float sample_weight;    /* probability mass for picking this closure when sampling */
+} closure;
+
+typedef struct bsdf {
+    frame shading;          /* shading normal frame, normal on the side of wo */
+    vec3 ng;                /* geometric normal, on the side of wo */
+    uint32_t count;
+    closure closures[PHOS_MAX_CLOSURES];
+    float sample_weight_sum;
+} bsdf;
+
+typedef struct bsdf_sample {
+    vec3 wi;                /* sampled direction (world) */
+    vec3 weight;            /* f·|cos θi| / pdf, the throughput factor */
+    float pdf;              /* solid-angle pdf of the whole mixture; for a delta lobe the
+                               probability of having picked it */
+    uint32_t flags;         /* enum bsdf_flags of the sampled lobe */
+} bsdf_sample;
+
+/* n_shading and n_geometric must be unit length and already face wo. */
+void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric);
+
+/* Adds a closure (weight and parameters set; sample_weight is computed
+ * here). Closures with zero weight are dropped; returns 0 when full. */
+int bsdf_add_closure(bsdf *b, const closure *c);
+
+/* Σ over non-delta closures of f·|cos θi| (1/sr), and the mixture pdf of
+ * sampling wi (solid angle), where pdf may be NULL. */
+vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi, float *pdf);
+
+/* Samples a direction: u_pick chooses the closure, u the direction within
+ * it. Returns 0 when no direction could be sampled (absorbed). */
+int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_sample *out);
+
+/* Splits b into its diffuse closures (Lambert, Principled diffuse) and all
+ * others (glossy, specular, glass, transparent): the split of Jensen's
+ * rendering equation into f_r,d and f_r,s (course notes 2002). */
+void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other);
+
+/* Whether some closure has a non-delta lobe (next-event estimation helps). */
+int bsdf_has_non_delta(const bsdf *b);
+
+/* Sum of transparent closure weights: how much light passes straight
+ * through (used by shadow rays). */
+vec3 bsdf_transparency(const bsdf *b);
+
+/* Dielectric Fresnel reflectance for cos θ of the incident direction to the
+ * normal and relative IOR eta (transmitted side over incident side); 1 under
+ * total internal reflection. */
+float fresnel_dielectric(float cos_theta_i, float eta);
+
+#endif /* PHOS_BSDF_H */

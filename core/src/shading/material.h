@@ -1,0 +1,41 @@
+/*
+ * material.h — from a ray hit to what the integrators need: the surface
+ * geometry (position, normals, texture coordinates) and the material's
+ * BSDF, emission and transparency there.
+ */
+#ifndef PHOS_MATERIAL_H
+#define PHOS_MATERIAL_H
+
+#include "shading/bsdf.h"
+#include "scene/scene.h"
+
+typedef struct surface {
+    vec3 p;                 /* world position */
+    vec3 ng;                /* geometric normal, facing the ray origin */
+    vec3 ns;                /* shading normal, facing the ray origin */
+    vec3 wo;                /* toward the ray origin */
+    float u, v;             /* texture coordinates */
+    int backfacing;         /* the ray arrived from behind the triangle's winding normal */
+    uint32_t instance, prim;
+    const material *mat;
+} surface;
+
+/* Fills the surface at barycentrics (b1, b2) of a triangle hit by a ray of
+ * direction d (unit). */
+void surface_from_hit(const scene *s, uint32_t instance, uint32_t prim, float b1, float b2, vec3 d,
+                      surface *out);
+
+/* The BSDF at the surface, textures applied; wo = −d. */
+void material_bsdf(const scene *s, const surface *sf, bsdf *out);
+
+/* Emitted radiance W/(m²·sr) (both faces emit, as in Cycles). */
+vec3 material_emission(const scene *s, const surface *sf);
+vec3 material_emission_at(const scene *s, uint32_t instance, uint32_t prim, float b1, float b2);
+
+/* Mean emitted radiance of a material, for light power estimates. */
+vec3 material_emission_estimate(const scene *s, const material *m);
+
+/* How much light passes straight through (transparent closures). */
+vec3 material_transparency(const scene *s, const surface *sf);
+
+#endif /* PHOS_MATERIAL_H */

@@ -1,0 +1,65 @@
+/*
+ * microfacet.h — the isotropic GGX (Trowbridge-Reitz) microfacet model:
+ * normal distribution, Smith masking, visible-normal sampling and the
+ * change of variables from half vectors to scattered directions.
+ *
+ * Everything here works in the local shading frame (z = macro normal) on
+ * unit vectors; the caller (bsdf.c) decides which lobes exist and applies
+ * Fresnel and colour. wo is the direction toward the viewer with wo.z > 0.
+ *
+ * References:
+ *   Walter, Marschner, Li, Torrance 2007, "Microfacet Models for Refraction
+ *     through Rough Surfaces" (EGSR): D, G, the refraction half vector and
+ *     the Jacobians (eq. 14, 16, 17, 33, 34).
+ *   Heitz 2014, "Understanding the Masking-Shadowing Function in
+ *     Microfacet-Based BRDFs" (JCGT 3(2)): Λ (eq. 72), separable and
+ *     height-correlated G (eq. 98, 99), visible normals D_wo (eq. 16).
+ *   Heitz 2018, "Sampling the GGX Distribution of Visible Normals"
+ *     (JCGT 7(4)): the exact sampler of D_wo.
+ */
+#ifndef PHOS_MICROFACET_H
+#define PHOS_MICROFACET_H
+
+#include "sampling/sampler.h"
+#include "util/vec.h"
+
+/* GGX distribution of normals D(h) (1/sr, projected so ∫ D(h) h.z dω = 1)
+ * for a unit half vector h with h.z > 0; 0 otherwise. */
+float ggx_D(vec3 h, float alpha);
+
+/* Smith Λ(w) for GGX (dimensionless); uses |w.z| so it also serves
+ * directions below the surface (transmission). */
+float ggx_lambda(vec3 w, float alpha);
+
+/* Smith masking G1(w) = 1 / (1 + Λ(w)). */
+float ggx_G1(vec3 w, float alpha);
+
+/* Separable masking-shadowing G1(wo)·G1(wi): what Cycles up to 3.4 uses. */
+float ggx_G_separable(vec3 wo, vec3 wi, float alpha);
+
+/* Height-correlated masking-shadowing 1 / (1 + Λ(wo) + Λ(wi)): Cycles 3.5+. */
+float ggx_G_correlated(vec3 wo, vec3 wi, float alpha);
+
+/* Samples a half vector h from the distribution of normals visible from wo
+ * (wo.z > 0), D_wo(h) = G1(wo)·max(0, wo·h)·D(h) / wo.z. */
+vec3 ggx_sample_visible_normal(vec3 wo, float alpha, float2 u);
+
+/* The density D_wo(h) of ggx_sample_visible_normal (1/sr of h). */
+float ggx_visible_normal_pdf(vec3 wo, vec3 h, float alpha);
+
+/* Half vector of a reflection pair, normalize(wo + wi); 0 if degenerate. */
+int microfacet_reflect_half_vector(vec3 wo, vec3 wi, vec3 *h);
+
+/* Generalized half vector of a refraction pair (Walter 2007 eq. 16) with
+ * eta = η_wi-side / η_wo-side, oriented to h.z > 0. Returns 0 when no
+ * microfacet refracts wo into wi (needs wo·h > 0 > wi·h). */
+int microfacet_refract_half_vector(vec3 wo, vec3 wi, float eta, vec3 *h);
+
+/* |dω_h / dω_i| for reflection: 1 / (4 |wo·h|) (Walter 2007 eq. 14). */
+float microfacet_reflect_jacobian(vec3 wo, vec3 h);
+
+/* |dω_h / dω_i| for refraction: η² |wi·h| / (wo·h + η wi·h)²
+ * (Walter 2007 eq. 17, with wo the viewer side). */
+float microfacet_refract_jacobian(vec3 wo, vec3 wi, vec3 h, float eta);
+
+#endif /* PHOS_MICROFACET_H */
