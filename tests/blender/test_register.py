@@ -56,7 +56,7 @@ def test_engine_registered_and_selectable(scene):
     engine_cls = next(c for c in bpy.types.RenderEngine.__subclasses__()
                       if getattr(c, "bl_idname", None) == "PHOS" and c.is_registered)
     assert engine_cls.bl_label
-    # BLENDER.md: the standard shader nodes must stay visible, previews on.
+    # docs/blender.md §2: the standard shader nodes must stay visible, previews on.
     assert engine_cls.bl_use_shading_nodes_custom is False
     assert engine_cls.bl_use_preview is True
 

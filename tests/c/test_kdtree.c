@@ -1,6 +1,6 @@
 /*
  * test_kdtree.c — the left-balanced kd-tree against brute force
- * (ALGORITHMS.md §2 and §10 test 3).
+ * (docs/algorithms.md §2 and §9, check 3).
  *
  * Point sets of every size 1…300 and 10k/100k, in shapes that break naive
  * trees: duplicates, all points equal, coplanar, collinear, sorted input,

@@ -1,7 +1,7 @@
 /*
  * test_photon.c — the 20-byte photon record: RGBE power (Ward 1991), the
  * direction bytes and their lookup tables, the flag word, and the photon
- * map's lifecycle and memory (ALGORITHMS.md §1, §10 tests 1-2).
+ * map's lifecycle and memory (docs/algorithms.md §1, §9 checks 1-2).
  */
 #include <float.h>
 #include <string.h>

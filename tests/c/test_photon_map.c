@@ -11,8 +11,11 @@
  *    stored power (all bounces) is Φ/(1 − ρ) in expectation (Russian
  *    roulette keeps it unbiased).
  *  - Determinism: the maps are identical for 1 and 3 threads.
- *  - PHOTON vs PATH: each light component pass agrees, and Combined is the
- *    sum of the components.
+ *  - PHOTON vs PATH: each light component pass agrees on the glass-sphere
+ *    scene, where the two integrators split the light alike (README, "What
+ *    the passes mean"), and Combined is the sum of the components.
+ *  - PHOTON with the path-traced gather vs PATH: Direct, Specular and
+ *    Indirect agree within the noise alone, also in a closed room.
  */
 #include <stdio.h>
 #include <string.h>

@@ -3,7 +3,7 @@
 
 Blender's light units changed between versions; Phos matches the Cycles of
 the Blender it runs in (measured against Cycles 3.4 renders, and read in the
-Cycles sources for later versions; see shared/BLENDER.md). With
+Cycles sources for later versions; see docs/blender.md §1). With
 S = colour × power:
 
   point/spot  intensity I = S/(4π) W/sr in every version. Before 4.0 a

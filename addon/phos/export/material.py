@@ -511,9 +511,9 @@ def principled(walker, node):
     Transmission Roughness), as in Cycles 3.4 (which also tints the glass's
     reflection by mix(white, base, specular_tint): that tint is left out).
     With an image base colour the image tints the whole glass. On 4.x the sockets are found by their new
-    names and mapped onto the same closures (an approximation of the 4.x
-    layered model: the diffuse is not reduced by the specular layer's
-    albedo, and Multiscatter GGX is rendered as GGX); the 4.x glass tints
+    names and mapped onto the same closures, the diffuse base layered under
+    the specular (`layered`: scaled by 1 − the specular layer's directional
+    albedo, docs/algorithms.md §8; Multiscatter GGX is rendered as GGX); the 4.x glass tints
     each refraction by √(base colour) and uses the microfacet Fresnel.
     """
     w = walker

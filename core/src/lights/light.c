@@ -5,7 +5,7 @@
  * solid angle (pdf_ω = d² / (A·|cos θ_l|)), uniform cone sampling for suns
  * with an angle and for spheres, and the light picked in proportion to its
  * power. What a light emits is defined by the add-on in Cycles' units (see
- * BLENDER.md); here everything is already radiometric.
+ * docs/blender.md §1); here everything is already radiometric.
  */
 #include "lights/light.h"
 

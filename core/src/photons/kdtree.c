@@ -1,17 +1,18 @@
 /*
  * kdtree.c — building the left-balanced kd-tree and searching it.
  *
- * Build (ALGORITHMS.md §2.3; Jensen 2001 §6.3 balance_segment): the photons
- * are copied to a work array; each segment is split at its left-balanced
- * median by selection along the longest axis of its cell, the median photon
- * is written to its heap slot in the caller's array, and both halves recurse.
+ * Build (docs/algorithms.md §2.3; Jensen 2001 §6.3 balance_segment): the
+ * photons are copied to a work array; each segment is split at its
+ * left-balanced median by selection along the longest axis of its cell, the
+ * median photon is written to its heap slot in the caller's array, and both
+ * halves recurse.
  * Writing straight into the heap slots needs no index arrays and no
  * permutation pass, at the price of one 20·n-byte copy during the build.
  *
- * Search (§2.4; Jensen's locate_photons, made iterative as Mitsuba's
- * nnSearch): descend to the near child, push the far child with its squared
- * plane distance, and re-test that distance against the radius at pop time,
- * when the radius may have shrunk. Found photons go into a max-heap of k
+ * Search (docs/algorithms.md §2.4; Jensen's locate_photons, made iterative
+ * as Mitsuba's nnSearch): descend to the near child, push the far child
+ * with its squared plane distance, and re-test that distance against the
+ * radius at pop time, when the radius may have shrunk. Found photons go into a max-heap of k
  * entries once k are held, so the radius shrinks to the k-th distance.
  */
 #include "photons/kdtree.h"

@@ -7,7 +7,7 @@
  * The tree is the photon array itself, reordered as a 1-based heap: node i
  * is photons[i-1], its children are nodes 2i and 2i+1, node i is internal
  * iff 2i ≤ n, and its split axis lives in the photon's flag bits. No
- * pointers, child indices or bounds are stored (ALGORITHMS.md §2).
+ * pointers, child indices or bounds are stored (docs/algorithms.md §2.1).
  *
  * After the build the tree is read-only, so any number of threads may query
  * it at once; each brings its own kdtree_query (results and heap).
@@ -26,7 +26,7 @@ extern "C" {
 
 /* Number of nodes in the left subtree of a left-balanced (complete, last
  * level filled from the left) binary tree of n ≥ 1 nodes: the median index
- * of a segment of n photons, 0-based (ALGORITHMS.md §2.2). L(1) = 0. */
+ * of a segment of n photons, 0-based (docs/algorithms.md §2.2). L(1) = 0. */
 uint32_t kdtree_left_size(uint32_t n);
 
 /* Reorders photons[0..n) into the left-balanced heap and writes each node's
@@ -47,7 +47,7 @@ typedef struct kdtree_query {
     uint32_t k;        /* at most k photons are returned */
     uint32_t found;    /* photons found, ≤ k */
     float radius2;     /* search radius² at the end: the k-th distance² if k were
-                        * found, otherwise the max radius² (ALGORITHMS.md §2.4 ⚠) */
+                        * found, otherwise the max radius² (docs/algorithms.md §2.4) */
     uint32_t *index;   /* k entries: 0-based positions in the photon array */
     float *dist2;      /* k entries: squared distances (in the query's metric) */
 } kdtree_query;
@@ -62,8 +62,9 @@ void kdtree_query_free(kdtree_query *q);
  * distance are broken arbitrarily (but deterministically). */
 uint32_t kdtree_knn(const photon *tree, uint32_t n, vec3 x, float max_radius2, kdtree_query *q);
 
-/* As kdtree_knn with the "disc" metric of ALGORITHMS.md §4: the sphere
- * squashed along the unit normal by `flatten` (c ≥ 1, typically 5-10),
+/* As kdtree_knn with the "disc" metric of docs/algorithms.md §4.3: the
+ * sphere squashed along the unit normal by `flatten` (c ≥ 1; the radiance
+ * estimates use ESTIMATE_DISC_FLATTEN = 4),
  *     d_eff² = |v|² + (c² − 1)·(n·v)²,   v = photon − x,
  * so that photons off the surface's plane (other side of a thin wall, the
  * adjacent wall in a corner) rank as far away. d_eff ≥ |v|, so pruning with

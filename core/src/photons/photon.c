@@ -3,8 +3,8 @@
  *
  * RGBE follows Ward 1991 ("Real Pixels", Graphics Gems II) as Radiance's
  * setcolr/colr_color implement it; the direction bytes follow Jensen 2001
- * §6 with bin-centre tables (ALGORITHMS.md §1.3). The map is a flat array
- * balanced into a left-balanced kd-tree by kdtree.c.
+ * §6 with bin-centre tables (docs/algorithms.md §1.3). The map is a flat
+ * array balanced into a left-balanced kd-tree by kdtree.c.
  */
 #include "photons/photon.h"
 

@@ -31,7 +31,7 @@ typedef struct photon {
     uint16_t flags;     /* PHOTON_AXIS_MASK | PHOTON_CAUSTIC | PHOTON_DIRECT | depth << 8 */
 } photon;
 
-/* 12 + 4 + 2 + 2 bytes, alignment 4: no padding (ALGORITHMS.md §1.1). */
+/* 12 + 4 + 2 + 2 bytes, alignment 4: no padding (docs/algorithms.md §1.1). */
 #ifdef __cplusplus
 static_assert(sizeof(photon) == 20, "the photon record is 20 bytes");
 #else
@@ -61,9 +61,9 @@ void rgbe_encode(vec3 power, uint8_t rgbe[4]);
  * per mille. Only E = 0 decodes to exact zero. Never negative. */
 vec3 rgbe_decode(const uint8_t rgbe[4]);
 
-/* Direction bytes (Jensen 2001 §6; ALGORITHMS.md §1.3): theta = polar angle
- * from +z in 256 bins over [0, π], phi = azimuth from +x toward +y in 256
- * bins over [−π, π) wrapped to [0, 2π). Decoding returns the bin centre,
+/* Direction bytes (Jensen 2001 §6; docs/algorithms.md §1.3): theta = polar
+ * angle from +z in 256 bins over [0, π], phi = azimuth from +x toward +y in
+ * 256 bins over [−π, π) wrapped to [0, 2π). Decoding returns the bin centre,
  * (i + 0.5) of a bin, so the angular error is at most about 0.79°.
  * `d` should be unit length; a slightly longer z is clamped, not NaN. */
 void direction_encode(vec3 d, uint8_t *theta, uint8_t *phi);

@@ -7,9 +7,10 @@
  * the photon is stored before it scatters (global map: every such hit;
  * caustic map: the first one after one or more specular bounces, L S+ D).
  * Scattering samples the BSDF and continues by Russian roulette with
- * probability P = max(Φ·ρ)/max(Φ) (Jensen's max form, ALGORITHMS.md §3.2),
- * so a grey surface of albedo ρ keeps the photon's power and ends a
- * fraction 1 − ρ of the paths: powers stay similar.
+ * probability P = max(Φ·w)/max(Φ), w = f·cos/pdf the sample's weight
+ * (Jensen's max form P = max(Φ·ρ)/max(Φ) for a Lambertian surface;
+ * docs/algorithms.md §3.3), so a grey surface of albedo ρ keeps the
+ * photon's power and ends a fraction 1 − ρ of the paths: powers stay similar.
  *
  * Determinism: paths are traced in batches on any number of threads, each
  * batch into its own buffer; buffers are merged in path order, and a map

@@ -3,10 +3,11 @@
  *
  * Radius: with k photons found, r is the distance of the k-th and only the
  * k − 1 inside it are summed; counting the k-th as well would overestimate
- * by k/(k − 1) (Garcia et al. 2012, "Fast and Accurate ... Unreported
- * Intrinsic Bias"; ALGORITHMS.md §4). With fewer than k inside the maximum
- * radius, r is the maximum radius: a fixed-radius estimate, unbiased for
- * smooth illumination. The search is a disc (the sphere flattened along
+ * by k/(k − 1) (García et al. 2012, "Description and Solution of an
+ * Unreported Intrinsic Bias in Photon Mapping Density Estimation with
+ * Constant Kernel"; docs/algorithms.md §4.2). With fewer than k inside
+ * the maximum radius, r is the maximum radius: a fixed-radius estimate,
+ * unbiased for smooth illumination. The search is a disc (the sphere flattened along
  * the normal) so light from an adjacent wall does not leak into corners.
  */
 #include "photons/radiance_estimate.h"

@@ -25,8 +25,9 @@ typedef struct estimate_params {
     uint16_t exclude_flags;  /* skip photons with any of these flags (PHOTON_DIRECT, PHOTON_CAUSTIC) */
 } estimate_params;
 
-/* Flattening of the search sphere along the normal (ALGORITHMS.md §4): keeps
- * photons of an adjacent wall or the far side of a thin wall out. */
+/* Flattening of the search sphere along the normal (docs/algorithms.md
+ * §4.3): keeps photons of an adjacent wall or the far side of a thin wall
+ * out. */
 #define ESTIMATE_DISC_FLATTEN 4.0f
 
 /* Irradiance E (W/m²) at x on the side of unit normal n: photons whose

@@ -50,7 +50,7 @@ static inline float u64_to_unit_float(uint64_t x) { return (float)(x >> 40) * (1
 
 /*
  * Owen-scrambled Sobol points with per-dimension padding (Burley 2020,
- * "Practical Hash-based Owen Scrambling", JCGT 9(4); ALGORITHMS.md §8):
+ * "Practical Hash-based Owen Scrambling", JCGT 9(4); docs/algorithms.md §6):
  * every 1-D or 2-D request ("dimension set") shuffles the sample index and
  * scrambles the first two Sobol dimensions with seeds hashed from the
  * pixel and the dimension, so each set is stratified over a pixel's
