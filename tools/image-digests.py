@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Digest of every pass of every test scene, for each integrator.
 
-    make image-digests [DIGESTS=out/image-digests.txt]
+    make image-digests [DIGESTS=out/image-digests.txt] [DIGEST_SCENES=out/image-digest-scenes]
 
 runs this inside Blender: each scene the tests render (the parity light and
 material scenes, the photon-test scenes, the scenes/ scripts) is rendered at
@@ -11,8 +11,10 @@ all passes is printed, one line per scene and integrator.
 
 A refactoring that must not change any image (docs/architecture.md,
 "Changing the code without changing the images") is checked by running it
-before and after and diffing the two files; PHOS_DIGEST_SCENES=regex limits
-it to the scenes whose names match. It is not a test: the digests
+before and after and diffing the two files. The first run saves every
+scene it builds into DIGEST_SCENES and later runs load them, so all runs
+render the same data; PHOS_DIGEST_SCENES=regex limits a run to the scenes
+whose names match. It is not a test: the digests
 depend on the compiler, Embree's version and the CPU, so they are compared
 on one machine, never stored.
 """
@@ -67,16 +69,33 @@ def scenes():
     return out
 
 
-def digest(build, integrator, view, tmp_dir):
+def load_scene(name, build, blend_dir):
+    """The scene as saved in blend_dir by the first run, built (and saved)
+    if it is not there: two runs then render the same data. Building the
+    parity scenes' UV spheres twice can order their faces differently, and
+    with an emissive mesh that changes which triangle a light sample picks."""
+    path = os.path.join(blend_dir, name.replace("/", "__") + ".blend")
+    if os.path.isfile(path):
+        bpy.ops.wm.open_mainfile(filepath=path)
+        pt.enable_addon()
+        return bpy.context.scene
     pt.reset_file()
     scene = bpy.context.scene
     build(scene)
     # Blender 3.4 sums smooth vertex normals in parallel, so two evaluations
-    # of one smooth mesh can differ in the last bit and the digests with
-    # them: flat shading keeps them a function of the code alone.
+    # of one smooth mesh can differ in the last bit: flat shading keeps the
+    # digests a function of Phos' code alone.
     for mesh in bpy.data.meshes:
         for poly in mesh.polygons:
             poly.use_smooth = False
+    scene.render.engine = "PHOS"
+    bpy.ops.file.pack_all()  # the image-texture scene's checker lives in a temp folder
+    bpy.ops.wm.save_as_mainfile(filepath=path, check_existing=False)
+    return scene
+
+
+def digest(name, build, integrator, view, tmp_dir, blend_dir):
+    scene = load_scene(name, build, blend_dir)
     scene.render.engine = "PHOS"
     pt.configure_output(scene, WIDTH, HEIGHT)
     pt.configure_phos(scene, SAMPLES, max_bounces=8)
@@ -109,7 +128,9 @@ def digest(build, integrator, view, tmp_dir):
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     out_path = argv[0] if argv else os.path.join(REPO_DIR, "out", "image-digests.txt")
+    blend_dir = argv[1] if len(argv) > 1 else os.path.join(REPO_DIR, "out", "image-digest-scenes")
     os.makedirs(os.path.dirname(os.path.abspath(out_path)), exist_ok=True)
+    os.makedirs(blend_dir, exist_ok=True)
     tmp_dir = bpy.app.tempdir
     lines = []
     only = re.compile(os.environ.get("PHOS_DIGEST_SCENES", ""))
@@ -118,7 +139,7 @@ def main():
             continue
         for integrator, view in INTEGRATORS:
             label = integrator + ("/" + view if view else "")
-            lines.append("%-40s %-20s %s" % (name, label, digest(build, integrator, view, tmp_dir)))
+            lines.append("%-40s %-20s %s" % (name, label, digest(name, build, integrator, view, tmp_dir, blend_dir)))
             print(lines[-1], flush=True)
     with open(out_path, "w") as f:
         f.write("\n".join(lines) + "\n")
