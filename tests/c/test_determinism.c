@@ -26,18 +26,7 @@ static phos_scene *box_with_spheres(void)
     wall.materials = &red;
     phos_scene_add_instance(s, &wall, NULL);
 
-    phos_closure_desc glass;
-    phos_closure_desc_init(&glass);
-    glass.type = PHOS_CLOSURE_GLASS;
-    glass.weight[0] = glass.weight[1] = glass.weight[2] = 1.0f;
-    glass.roughness = 0.0f;
-    glass.ior = 1.5f;
-    phos_material_desc gm;
-    phos_material_desc_init(&gm);
-    gm.closure_count = 1;
-    gm.closures = &glass;
-    uint32_t glass_id;
-    phos_scene_add_material(s, &gm, &glass_id);
+    uint32_t glass_id = test_add_glass(s, 1.5f);
     uint32_t sphere = test_add_sphere_mesh(s, 0.3f, 32, 16, 0);
     test_add_instance(s, sphere, glass_id, 0.3f, 0.0f, 0.3f);
     test_add_instance(s, sphere, white, -0.4f, 0.2f, 0.3f);

@@ -84,6 +84,30 @@ static uint32_t test_add_quad_mesh(phos_scene *s, float half)
     return id;
 }
 
+/* A material of one closure; returns its id. */
+static uint32_t test_add_closure_material(phos_scene *s, const phos_closure_desc *c)
+{
+    phos_material_desc m;
+    phos_material_desc_init(&m);
+    m.closure_count = 1;
+    m.closures = c;
+    uint32_t id = 0;
+    phos_scene_add_material(s, &m, &id);
+    return id;
+}
+
+/* Clear sharp glass of index ior. */
+static uint32_t test_add_glass(phos_scene *s, float ior)
+{
+    phos_closure_desc c;
+    phos_closure_desc_init(&c);
+    c.type = PHOS_CLOSURE_GLASS;
+    c.weight[0] = c.weight[1] = c.weight[2] = 1.0f;
+    c.roughness = 0.0f;
+    c.ior = ior;
+    return test_add_closure_material(s, &c);
+}
+
 static uint32_t test_add_diffuse(phos_scene *s, float r, float g, float b)
 {
     phos_closure_desc c;
@@ -92,13 +116,7 @@ static uint32_t test_add_diffuse(phos_scene *s, float r, float g, float b)
     c.weight[0] = r;
     c.weight[1] = g;
     c.weight[2] = b;
-    phos_material_desc m;
-    phos_material_desc_init(&m);
-    m.closure_count = 1;
-    m.closures = &c;
-    uint32_t id = 0;
-    phos_scene_add_material(s, &m, &id);
-    return id;
+    return test_add_closure_material(s, &c);
 }
 
 static uint32_t test_add_instance(phos_scene *s, uint32_t mesh, uint32_t material, float tx, float ty, float tz)
