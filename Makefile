@@ -2,7 +2,8 @@
 #
 #   make render [SCENE=name] [SAMPLES=n]  render scenes/<name>.py to out/<name>.png/.exr
 #               [ARGS="--engine CYCLES"]  (more options of the scene script)
-#   make test                             C unit tests + Blender test suite
+#   make test                             binding up to date, C unit tests, Blender test suite
+#   make binding                          regenerate addon/phos/phos_h.py from phos.h
 #   make test-blender4                    the same under Blender 4.3 / Embree 4 in a
 #               [PHOS_CHROOT_DIR=dir]     Debian 13 chroot (root; default /var/tmp/...)
 #   make install | uninstall              add-on into the user's Blender
@@ -40,10 +41,10 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
-.PHONY: deps build test test-blender4 bench render image-digests install uninstall package clean help
+.PHONY: deps build binding check-binding test test-blender4 bench render image-digests install uninstall package clean help
 
 help:
-	@sed -n '3,16p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,17p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -53,7 +54,22 @@ build: deps
 	  -DPHOS_ADDON_LIB_DIR=$(ADDON_LIB_DIR)
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-test: build
+# The add-on's ctypes binding is generated from phos.h and committed, so the
+# add-on works without the generator (tools/gen_binding.py).
+BINDING := addon/phos/phos_h.py
+binding:
+	python3 tools/gen_binding.py --output $(BINDING)
+
+check-binding: deps
+	@tmp=$$(mktemp) && trap 'rm -f "$$tmp"' EXIT && \
+	python3 tools/gen_binding.py --output "$$tmp" && \
+	if ! diff -u $(BINDING) "$$tmp"; then \
+	  echo "check-binding: $(BINDING) is out of date with core/include/phos.h: run 'make binding'" >&2; \
+	  exit 1; \
+	fi; \
+	echo "check-binding: $(BINDING) matches core/include/phos.h"
+
+test: check-binding build
 	tools/check-exports.sh $(ADDON_LIB_DIR)/libphos.so
 	@echo "version: $$(python3 tools/version.py) (CMake, phos.h, bl_info and manifest agree)"
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
@@ -78,8 +94,9 @@ bench:
 # Not a test: digests depend on the compiler, Embree and the CPU, so two runs
 # are compared on one machine (tools/image-digests.py).
 DIGESTS ?= out/image-digests.txt
+DIGEST_SCENES ?= out/image-digest-scenes
 image-digests: build
-	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python tools/image-digests.py -- $(DIGESTS)
+	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python tools/image-digests.py -- $(DIGESTS) $(DIGEST_SCENES)
 
 render: build
 	@test -f scenes/$(SCENE).py || { echo "render: no scene scenes/$(SCENE).py; scenes:" \

@@ -1,15 +1,19 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""ctypes binding of libphos: a 1:1 mirror of core/include/phos.h.
+"""ctypes binding of libphos, core/include/phos.h.
 
 This is the lowest module of the add-on; it imports nothing from bpy, so it
-can be tested in a plain Python with numpy.
+can be tested in a plain Python with numpy. The header's constants, structs,
+function signatures and render settings table come from phos_h.py, which
+tools/gen_binding.py generates from phos.h (`make binding`); this module
+adds loading, checking and the handle owners.
 
 The library is found beside this file (``lib/libphos.so``) or at the path in
 the environment variable ``PHOS_LIBRARY``. Loading checks the library's
-version and the size of every public struct against the mirrors below, so a
-stale or mismatched build is refused with a readable message instead of
-corrupting memory. A failed load never raises at import: the message is kept
-(``load_error()``) for the preferences panel and the render report.
+version, the size of every public struct and the offset and size of every
+field against phos_h.py, so a stale or mismatched build is refused with a
+readable message naming the struct and field instead of corrupting memory.
+A failed load never raises at import: the message is kept (``load_error()``)
+for the preferences panel and the render report.
 
 On top of the raw functions sit two small owners, :class:`Scene` and
 :class:`Render`, that raise :class:`PhosError` with the core's own message on
@@ -24,320 +28,19 @@ import threading
 
 import numpy as np
 
-# ---------------------------------------------------------------- constants
-# Mirrors of the #defines and enums of phos.h, same names and values.
-
-PHOS_VERSION_MAJOR = 0
-PHOS_VERSION_MINOR = 1
-PHOS_VERSION_PATCH = 0
-PHOS_VERSION = (PHOS_VERSION_MAJOR << 16) | (PHOS_VERSION_MINOR << 8) | PHOS_VERSION_PATCH
-
-# enum phos_status
-PHOS_OK = 0
-PHOS_ERROR_INVALID_ARGUMENT = 1
-PHOS_ERROR_INVALID_STATE = 2
-PHOS_ERROR_OUT_OF_MEMORY = 3
-PHOS_ERROR_EMBREE = 4
-PHOS_ERROR_CANCELLED = 5
-PHOS_ERROR_TIMEOUT = 6
-PHOS_ERROR_INTERNAL = 7
-
-# enum phos_image_interpolation
-PHOS_INTERP_LINEAR = 0
-PHOS_INTERP_CLOSEST = 1
-
-# enum phos_image_extension
-PHOS_EXTEND_REPEAT = 0
-PHOS_EXTEND_EXTEND = 1
-PHOS_EXTEND_CLIP = 2
-
-# enum phos_closure_type
-PHOS_CLOSURE_DIFFUSE = 0
-PHOS_CLOSURE_PRINCIPLED_DIFFUSE = 1
-PHOS_CLOSURE_REFLECTION = 2
-PHOS_CLOSURE_REFLECTION_FRESNEL = 3
-PHOS_CLOSURE_REFRACTION = 4
-PHOS_CLOSURE_GLASS = 5
-PHOS_CLOSURE_TRANSPARENT = 6
-PHOS_CLOSURE_EMISSION = 7
-PHOS_CLOSURE_TYPE_COUNT = 8
-
-# enum phos_glass_fresnel
-PHOS_GLASS_FRESNEL_MACRO = 0
-PHOS_GLASS_FRESNEL_MICROFACET = 1
-
-PHOS_MAX_CLOSURES = 16
-
-# enum phos_light_type
-PHOS_LIGHT_POINT = 0
-PHOS_LIGHT_SPOT = 1
-PHOS_LIGHT_AREA = 2
-PHOS_LIGHT_SUN = 3
-
-# enum phos_area_shape
-PHOS_AREA_RECTANGLE = 0
-PHOS_AREA_ELLIPSE = 1
-
-# enum phos_point_shape
-PHOS_POINT_DISK = 0
-PHOS_POINT_SPHERE = 1
-
-# enum phos_camera_type
-PHOS_CAMERA_PERSPECTIVE = 0
-PHOS_CAMERA_ORTHOGRAPHIC = 1
-
-# enum phos_integrator
-PHOS_INTEGRATOR_PATH = 0
-PHOS_INTEGRATOR_PHOTON = 1
-
-# enum phos_photon_view
-PHOS_PHOTON_VIEW_FINAL_GATHER = 0
-PHOS_PHOTON_VIEW_FAST = 1
-
-# enum phos_pass
-PHOS_PASS_COMBINED = 0
-PHOS_PASS_EMISSION = 1
-PHOS_PASS_DIRECT = 2
-PHOS_PASS_SPECULAR = 3
-PHOS_PASS_CAUSTICS = 4
-PHOS_PASS_INDIRECT = 5
-PHOS_PASS_PHOTON_MAP = 6
-PHOS_PASS_CAUSTIC_MAP = 7
-PHOS_PASS_PHOTONS = 8
-PHOS_PASS_COUNT = 9
-
-# enum phos_stage
-PHOS_STAGE_WAITING = 0
-PHOS_STAGE_TRACING_PHOTONS = 1
-PHOS_STAGE_BUILDING_KDTREES = 2
-PHOS_STAGE_PRECOMPUTING_RADIANCE = 3
-PHOS_STAGE_RENDERING = 4
-PHOS_STAGE_FINISHED = 5
-
-# enum phos_render_state
-PHOS_STATE_IDLE = 0
-PHOS_STATE_RUNNING = 1
-PHOS_STATE_DONE = 2
-PHOS_STATE_CANCELLED = 3
-PHOS_STATE_FAILED = 4
+# The constants, enums and structs of phos.h (core.PHOS_*, core.phos_*),
+# the functions' signatures (FUNCTIONS) and the render settings table
+# (RENDER_SETTINGS), generated from the header by tools/gen_binding.py.
+from .phos_h import *  # noqa: F401,F403
+from .phos_h import FUNCTIONS, STRUCTS
 
 # The library version this add-on was written against: major and minor must
 # match exactly (phos.h: "The add-on refuses a library whose major or minor
 # differs from its own").
 EXPECTED_VERSION = (PHOS_VERSION_MAJOR, PHOS_VERSION_MINOR)
 
-# ------------------------------------------------------------------ structs
-
-_f = ctypes.c_float
 _u32 = ctypes.c_uint32
-_i32 = ctypes.c_int32
-_pf = ctypes.POINTER(ctypes.c_float)
-_pu32 = ctypes.POINTER(ctypes.c_uint32)
-
-
-class phos_image_desc(ctypes.Structure):
-    _fields_ = [
-        ("width", _u32),
-        ("height", _u32),
-        ("pixels", _pf),            # width*height*4 floats, linear RGBA
-        ("interpolation", _u32),    # enum phos_image_interpolation
-        ("extension", _u32),        # enum phos_image_extension
-    ]
-
-
-class phos_closure_desc(ctypes.Structure):
-    _fields_ = [
-        ("type", _u32),             # enum phos_closure_type
-        ("weight", _f * 3),         # linear RGB; radiance W/(m²·sr) for EMISSION
-        ("weight_image", _i32),     # image id multiplied into weight, -1 for none
-        ("roughness", _f),          # Blender roughness, GGX alpha = roughness²
-        ("ior", _f),
-        ("specular_color", _f * 3), # REFLECTION_FRESNEL: reflectance at normal incidence
-        ("glass_fresnel", _u32),    # enum phos_glass_fresnel
-        ("transmission_tint", _f * 3),   # GLASS: colour of the refracted light only
-        ("transmission_roughness", _f),  # GLASS (MACRO): refraction roughness, < 0 = roughness
-        ("layered", _u32),               # 1: under the first REFLECTION_FRESNEL (Principled v2)
-    ]
-
-
-class phos_material_desc(ctypes.Structure):
-    _fields_ = [
-        ("closure_count", _u32),
-        ("closures", ctypes.POINTER(phos_closure_desc)),
-    ]
-
-
-class phos_mesh_desc(ctypes.Structure):
-    _fields_ = [
-        ("vertex_count", _u32),
-        ("positions", _pf),         # vertex_count*3
-        ("triangle_count", _u32),
-        ("indices", _pu32),         # triangle_count*3
-        ("normals", _pf),           # triangle_count*9 or NULL
-        ("uvs", _pf),               # triangle_count*6 or NULL
-        ("material_slots", _pu32),  # triangle_count or NULL
-    ]
-
-
-class phos_instance_desc(ctypes.Structure):
-    _fields_ = [
-        ("mesh_id", _u32),
-        ("transform", _f * 12),     # object → world, row-major 3x4
-        ("material_count", _u32),
-        ("materials", _pu32),
-    ]
-
-
-class phos_light_desc(ctypes.Structure):
-    _fields_ = [
-        ("type", _u32),             # enum phos_light_type
-        ("color", _f * 3),          # W/sr (point/spot), W/(m²·sr) (area), W/m² (sun)
-        ("position", _f * 3),
-        ("direction", _f * 3),
-        ("axis_u", _f * 3),
-        ("axis_v", _f * 3),
-        ("area_shape", _u32),       # enum phos_area_shape
-        ("radius", _f),
-        ("point_shape", _u32),      # enum phos_point_shape
-        ("spot_angle", _f),         # full cone angle, radians
-        ("spot_blend", _f),
-        ("spot_cosine", _u32),
-        ("sun_angle", _f),          # angular diameter, radians
-        ("camera_visible", _u32),   # 1: camera rays see the light's shape
-    ]
-
-
-class phos_world_desc(ctypes.Structure):
-    _fields_ = [
-        ("color", _f * 3),          # background radiance W/(m²·sr)
-    ]
-
-
-class phos_camera_desc(ctypes.Structure):
-    _fields_ = [
-        ("type", _u32),             # enum phos_camera_type
-        ("transform", _f * 12),     # camera → world, row-major 3x4
-        ("frame_min", _f * 2),
-        ("frame_max", _f * 2),
-        ("aperture_radius", _f),
-        ("focus_distance", _f),
-        ("clip_start", _f),
-        ("clip_end", _f),
-    ]
-
-
-class phos_render_settings(ctypes.Structure):
-    _fields_ = [
-        ("integrator", _u32),
-        ("width", _u32),
-        ("height", _u32),
-        ("region_x", _u32),
-        ("region_y", _u32),
-        ("region_width", _u32),
-        ("region_height", _u32),
-        ("samples", _u32),
-        ("seed", _u32),
-        ("max_bounces", _u32),
-        ("threads", _u32),
-        ("tile_size", _u32),
-        ("filter_width", _f),
-        ("transparent_background", _u32),
-        ("pass_mask", _u32),
-        ("global_photons", _u32),
-        ("caustic_photons", _u32),
-        ("global_estimate_photons", _u32),
-        ("caustic_estimate_photons", _u32),
-        ("max_radius", _f),                 # scene units, 0 = automatic
-        ("final_gather_rays", _u32),
-        ("photon_view", _u32),              # enum phos_photon_view
-        ("max_photons_emitted_millions", _u32),
-    ]
-
-
-class phos_progress(ctypes.Structure):
-    _fields_ = [
-        ("state", _u32),            # enum phos_render_state
-        ("fraction", _f),
-        ("tiles_done", _u32),
-        ("tiles_total", _u32),
-        ("samples", _u32),
-        ("stage", ctypes.c_char * 64),
-        ("stage_id", _u32),                 # enum phos_stage
-        ("photons_stored", _u32),
-        ("photons_emitted", ctypes.c_uint64),
-        ("global_photons", _u32),
-        ("caustic_photons", _u32),
-    ]
-
-
-class phos_tile(ctypes.Structure):
-    _fields_ = [
-        ("x", _u32),
-        ("y", _u32),
-        ("width", _u32),
-        ("height", _u32),
-    ]
-
-
-# Every public struct, checked against phos_struct_size() at load.
-STRUCTS = (
-    phos_image_desc,
-    phos_closure_desc,
-    phos_material_desc,
-    phos_mesh_desc,
-    phos_instance_desc,
-    phos_light_desc,
-    phos_world_desc,
-    phos_camera_desc,
-    phos_render_settings,
-    phos_progress,
-    phos_tile,
-)
-
-# ---------------------------------------------------------------- functions
-# name: (restype, argtypes). Handles are opaque pointers (c_void_p).
-
 _vp = ctypes.c_void_p
-_status = ctypes.c_int  # enum phos_status
-
-_FUNCTIONS = {
-    "phos_version": (_u32, []),
-    "phos_struct_size": (_u32, [ctypes.c_char_p]),
-    "phos_status_string": (ctypes.c_char_p, [_status]),
-    # scene
-    "phos_scene_create": (_vp, []),
-    "phos_scene_destroy": (None, [_vp]),
-    "phos_scene_error": (ctypes.c_char_p, [_vp]),
-    "phos_image_desc_init": (None, [ctypes.POINTER(phos_image_desc)]),
-    "phos_scene_add_image": (_status, [_vp, ctypes.POINTER(phos_image_desc), _pu32]),
-    "phos_closure_desc_init": (None, [ctypes.POINTER(phos_closure_desc)]),
-    "phos_material_desc_init": (None, [ctypes.POINTER(phos_material_desc)]),
-    "phos_scene_add_material": (_status, [_vp, ctypes.POINTER(phos_material_desc), _pu32]),
-    "phos_mesh_desc_init": (None, [ctypes.POINTER(phos_mesh_desc)]),
-    "phos_scene_add_mesh": (_status, [_vp, ctypes.POINTER(phos_mesh_desc), _pu32]),
-    "phos_instance_desc_init": (None, [ctypes.POINTER(phos_instance_desc)]),
-    "phos_scene_add_instance": (_status, [_vp, ctypes.POINTER(phos_instance_desc), _pu32]),
-    "phos_light_desc_init": (None, [ctypes.POINTER(phos_light_desc)]),
-    "phos_scene_add_light": (_status, [_vp, ctypes.POINTER(phos_light_desc), _pu32]),
-    "phos_world_desc_init": (None, [ctypes.POINTER(phos_world_desc)]),
-    "phos_scene_set_world": (_status, [_vp, ctypes.POINTER(phos_world_desc)]),
-    "phos_camera_desc_init": (None, [ctypes.POINTER(phos_camera_desc)]),
-    "phos_scene_set_camera": (_status, [_vp, ctypes.POINTER(phos_camera_desc)]),
-    "phos_scene_commit": (_status, [_vp]),
-    # render
-    "phos_pass_channels": (_u32, [_u32]),
-    "phos_render_settings_init": (None, [ctypes.POINTER(phos_render_settings)]),
-    "phos_render_create": (_status, [_vp, ctypes.POINTER(phos_render_settings),
-                                     ctypes.POINTER(_vp)]),
-    "phos_render_destroy": (None, [_vp]),
-    "phos_render_error": (ctypes.c_char_p, [_vp]),
-    "phos_render_start": (_status, [_vp]),
-    "phos_render_progress": (_status, [_vp, ctypes.POINTER(phos_progress)]),
-    "phos_render_next_tile": (_status, [_vp, ctypes.POINTER(phos_tile), _pu32]),
-    "phos_render_read": (_status, [_vp, _u32, _u32, _u32, _u32, _u32, _pf, ctypes.c_size_t]),
-    "phos_render_cancel": (None, [_vp]),
-    "phos_render_wait": (_status, [_vp, ctypes.c_double]),
-}
 
 # ------------------------------------------------------------------ loading
 
@@ -368,7 +71,7 @@ def library_path():
 
 def _bind(lib):
     """Declare argtypes/restype of every function; a missing symbol is an error."""
-    for name, (restype, argtypes) in _FUNCTIONS.items():
+    for name, (restype, argtypes) in FUNCTIONS.items():
         try:
             fn = getattr(lib, name)
         except AttributeError:
@@ -378,19 +81,30 @@ def _bind(lib):
 
 
 def _check(lib):
-    """Refuse a library whose version or struct layouts differ from this binding."""
+    """Refuse a library whose version or struct layouts differ from this binding:
+    the size of every struct, and the offset and size of every field."""
     v = lib.phos_version()
     major, minor, patch = (v >> 16) & 0xFFFF, (v >> 8) & 0xFF, v & 0xFF
     if (major, minor) != EXPECTED_VERSION:
         raise PhosError("library version %d.%d.%d, but this add-on needs %d.%d.x"
                         % (major, minor, patch, EXPECTED_VERSION[0], EXPECTED_VERSION[1]))
+    stale = "the library was built from a different phos.h"
     for struct in STRUCTS:
         name = struct.__name__
         size = lib.phos_struct_size(name.encode("ascii"))
         if size != ctypes.sizeof(struct):
-            raise PhosError("struct %s is %d bytes in the library but %d in the add-on: "
-                            "the library was built from a different phos.h"
-                            % (name, size, ctypes.sizeof(struct)))
+            raise PhosError("struct %s is %d bytes in the library but %d in the add-on: %s"
+                            % (name, size, ctypes.sizeof(struct), stale))
+        for field, _type in struct._fields_:
+            offset, fsize = _u32(), _u32()
+            if lib.phos_struct_field(name.encode("ascii"), field.encode("ascii"),
+                                     ctypes.byref(offset), ctypes.byref(fsize)) != PHOS_OK:
+                raise PhosError("struct %s has no field %s in the library: %s" % (name, field, stale))
+            mine = getattr(struct, field)
+            if (offset.value, fsize.value) != (mine.offset, mine.size):
+                raise PhosError("field %s.%s is at offset %d (%d bytes) in the library but at %d "
+                                "(%d bytes) in the add-on: %s" % (name, field, offset.value, fsize.value,
+                                                                  mine.offset, mine.size, stale))
 
 
 def load():
@@ -700,6 +414,15 @@ class Render(_Handle):
 
     def start(self):
         self._raise_on(self._lib.phos_render_start(self.handle), "starting the render")
+
+    def stages(self):
+        """The plan of this render, fixed at create: (enum phos_stage, name) per
+        stage in running order, WAITING first and FINISHED last."""
+        infos = (phos_stage_info * PHOS_STAGE_COUNT)()
+        n = _u32()
+        self._raise_on(self._lib.phos_render_stages(self.handle, infos, PHOS_STAGE_COUNT, ctypes.byref(n)),
+                       "reading the stages")
+        return [(info.id, _decode(info.name)) for info in infos[:min(n.value, PHOS_STAGE_COUNT)]]
 
     def progress(self):
         p = phos_progress()

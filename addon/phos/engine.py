@@ -5,6 +5,8 @@ The engine is deliberately thin. render() exports the evaluated depsgraph
 into a core scene (export/), starts the core's asynchronous render and then
 polls it from this thread: finished tiles are copied into Blender's render
 result, progress and stats are updated, and test_break() is honoured. The
+settings are copied by the core's settings table (properties.USER_SETTINGS);
+the stats line names the stages of the core's plan (Render.stages()). The
 core's worker threads never call into Python; every bpy call happens on the
 thread running render(), and ctypes releases the GIL during C calls.
 
@@ -25,7 +27,7 @@ import bpy
 import numpy as np
 
 from . import core, export
-from .properties import INTEGRATORS, PASSES, PHOTON_VIEWS, enabled_passes
+from .properties import PASSES, USER_SETTINGS, enabled_passes, setting_value
 
 POLL_SECONDS = 0.03
 STATS_SECONDS_BACKGROUND = 2.0
@@ -57,45 +59,21 @@ PASS_IDS = {"Combined": core.PHOS_PASS_COMBINED}
 PASS_IDS.update((label, pass_id) for _prop, label, pass_id, _d in PASSES)
 
 
-_DEBUG_PASS_MASK = ((1 << core.PHOS_PASS_PHOTON_MAP) | (1 << core.PHOS_PASS_CAUSTIC_MAP)
-                    | (1 << core.PHOS_PASS_PHOTONS))
-
-
-def _stages_of(rs):
-    """The stages a render with these settings goes through, in order (as
-    render.c runs them: the photon stages for PHOTON or a photon debug pass,
-    the radiance precomputation for final gathering only)."""
-    stages = [core.PHOS_STAGE_WAITING]
-    if rs.integrator == core.PHOS_INTEGRATOR_PHOTON or rs.pass_mask & _DEBUG_PASS_MASK:
-        stages += [core.PHOS_STAGE_TRACING_PHOTONS, core.PHOS_STAGE_BUILDING_KDTREES]
-        if rs.integrator == core.PHOS_INTEGRATOR_PHOTON and \
-                rs.photon_view == core.PHOS_PHOTON_VIEW_FINAL_GATHER:
-            stages.append(core.PHOS_STAGE_PRECOMPUTING_RADIANCE)
-    stages += [core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED]
-    return stages
-
-
-def _stage_text(progress, rs, stage=None):
-    """The status line's stage part, e.g. "Tracing photons | 123,456 stored"."""
-    stage = progress.stage_id if stage is None else stage
-    if stage == core.PHOS_STAGE_TRACING_PHOTONS:
-        return "Tracing photons | {:,} stored | {:,} emitted".format(
-            progress.photons_stored, progress.photons_emitted)
-    if stage == core.PHOS_STAGE_BUILDING_KDTREES:
-        return "Building kd-trees | {:,} photons".format(progress.photons_stored)
-    if stage == core.PHOS_STAGE_PRECOMPUTING_RADIANCE:
-        return "Precomputing radiance"
-    if stage in (core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED):
-        name = "Rendering" if stage == core.PHOS_STAGE_RENDERING else "Finished"
-        if rs.integrator == core.PHOS_INTEGRATOR_PATH and stage == core.PHOS_STAGE_RENDERING:
-            name = "Path tracing"
+def _stage_text(progress, stage_id, name, samples):
+    """The status line's stage part: the core's name of the stage and what it
+    has counted so far, e.g. "Tracing photons | 123,456 stored"."""
+    if stage_id == core.PHOS_STAGE_TRACING_PHOTONS:
+        return "{} | {:,} stored | {:,} emitted".format(name, progress.photons_stored, progress.photons_emitted)
+    if stage_id == core.PHOS_STAGE_BUILDING_KDTREES:
+        return "{} | {:,} photons".format(name, progress.photons_stored)
+    if stage_id in (core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED):
         text = "%s | Tile %d/%d | %d samples" % (
-            name, progress.tiles_done, progress.tiles_total, progress.samples or rs.samples)
+            name, progress.tiles_done, progress.tiles_total, progress.samples or samples)
         if progress.global_photons or progress.caustic_photons:
             text += " | photons {:,} global, {:,} caustic".format(
                 progress.global_photons, progress.caustic_photons)
         return text
-    return progress.stage.decode("utf-8", "replace") or "Waiting"
+    return name
 
 
 class PhosRenderEngine(bpy.types.RenderEngine):
@@ -149,7 +127,7 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         self._layer_name = depsgraph.view_layer.name
         self._stats_text, self._stats_time = "", 0.0
         self._region_origin = region[:2]
-        self._last_stage = None
+        self._plan, self._last_stage = [], None  # the core's stages, the index of the one shown
         try:
             self._render(depsgraph, scene, width, height, region)
         except core.PhosError as ex:
@@ -195,31 +173,24 @@ class PhosRenderEngine(bpy.types.RenderEngine):
                          s["materials"], s["images"], time.perf_counter() - t0))
 
             rs = core.new_render_settings()
-            rs.integrator = INTEGRATORS.get(settings.integrator, core.PHOS_INTEGRATOR_PATH)
+            # The user's settings, by the core's table; then those Blender
+            # decides (the "host" rows of the table).
+            for setting in USER_SETTINGS:
+                setattr(rs, setting.name, setting_value(settings, setting))
+            if self.is_preview:
+                rs.samples = settings.preview_samples
             rs.width, rs.height = width, height
             rs.region_x, rs.region_y, rs.region_width, rs.region_height = region
-            rs.samples = settings.preview_samples if self.is_preview else settings.samples
-            rs.seed = settings.seed
-            rs.max_bounces = settings.max_bounces
             # The effective thread count, whether threads_mode is AUTO or FIXED.
             rs.threads = scene.render.threads
-            rs.tile_size = settings.tile_size
-            rs.filter_width = settings.filter_width
             rs.transparent_background = 1 if scene.render.film_transparent else 0
             rs.pass_mask = 1 << core.PHOS_PASS_COMBINED
             if not self.is_preview:
                 for _label, pass_id in enabled_passes(depsgraph.view_layer):
                     rs.pass_mask |= 1 << pass_id
-            rs.global_photons = settings.global_photons
-            rs.caustic_photons = settings.caustic_photons
-            rs.global_estimate_photons = settings.global_estimate_photons
-            rs.caustic_estimate_photons = settings.caustic_estimate_photons
-            rs.max_radius = settings.max_radius
-            rs.final_gather_rays = settings.final_gather_rays
-            rs.photon_view = PHOTON_VIEWS.get(settings.photon_view, core.PHOS_PHOTON_VIEW_FINAL_GATHER)
-            rs.max_photons_emitted_millions = settings.max_photons_emitted
 
             with core.Render(core_scene, rs) as render:
+                self._plan = render.stages()
                 render.start()
                 self._poll(render, rs)
 
@@ -261,18 +232,18 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         are otherwise rate-limited), so `blender -b` prints each of them.
         """
         self.update_progress(min(max(progress.fraction, 0.0), 1.0))
-        stage = progress.stage_id
-        new_stage = stage != self._last_stage
+        index = progress.stage_index
+        new_stage = index != self._last_stage
         if new_stage and self._last_stage is not None:
             # Stages that began and ended between two polls (a small photon
             # map is traced and built in milliseconds) are still logged, in
-            # order, so the stats line and `blender -b` show every stage.
-            stages = _stages_of(rs)
-            if self._last_stage in stages and stage in stages:
-                for skipped in stages[stages.index(self._last_stage) + 1:stages.index(stage)]:
-                    self._stats("Phos | " + _stage_text(progress, rs, skipped), force=True)
-        self._last_stage = stage
-        self._stats("Phos | " + _stage_text(progress, rs), force=final or new_stage)
+            # the plan's order, so the stats line and `blender -b` show every
+            # stage.
+            for stage_id, name in self._plan[self._last_stage + 1:index]:
+                self._stats("Phos | " + _stage_text(progress, stage_id, name, rs.samples), force=True)
+        self._last_stage = index
+        stage_id, name = self._plan[index]
+        self._stats("Phos | " + _stage_text(progress, stage_id, name, rs.samples), force=final or new_stage)
 
     def _stats(self, text, force=False):
         """update_stats with changed text only, and sparingly in background mode.

@@ -6,6 +6,12 @@ One PropertyGroup per datablock: `scene.phos` (render settings) and
 and a PropertyGroup on ViewLayer is stored with the scene). Enum items carry
 explicit indices: Blender stores the index, so reordering or inserting items
 later must not silently change saved files.
+
+`scene.phos` is declared from the core's settings table (phos.h,
+PHOS_RENDER_SETTINGS, mirrored in core.RENDER_SETTINGS): each user setting's
+property name, label, description, default, range and kind come from its
+row, so the add-on cannot offer a value the core refuses. Only the enum
+items' texts and preview_samples are written here.
 """
 
 import os
@@ -16,31 +22,90 @@ from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, Po
 
 from . import core
 
+# Items of the settings that choose a value of a core enum, by the enum's
+# name in the settings table: (identifier, name, description, core value).
+# The core value is the item's index, which .blend files store.
 INTEGRATOR_ITEMS = (
-    ('PATH', "Path Tracing", "Unbiased path tracer with next-event estimation and MIS", 0),
+    ('PATH', "Path Tracing", "Unbiased path tracer with next-event estimation and MIS",
+     core.PHOS_INTEGRATOR_PATH),
     ('PHOTON', "Photon Mapping",
      "Photon mapping (Jensen): direct light and mirror/glass by ray tracing, caustics from a "
-     "caustic photon map, indirect light by final gathering on a global photon map", 1),
+     "caustic photon map, indirect light by final gathering on a global photon map",
+     core.PHOS_INTEGRATOR_PHOTON),
 )
-
-# Property value → core enum value.
-INTEGRATORS = {
-    'PATH': core.PHOS_INTEGRATOR_PATH,
-    'PHOTON': core.PHOS_INTEGRATOR_PHOTON,
-}
 
 PHOTON_VIEW_ITEMS = (
     ('FINAL_GATHER', "Final Gathering",
-     "Indirect diffuse light by gather rays that read the global photon map where they land", 0),
+     "Indirect diffuse light by gather rays that read the global photon map where they land",
+     core.PHOS_PHOTON_VIEW_FINAL_GATHER),
     ('FAST', "Fast Estimate",
      "The global photon map's radiance estimate read directly at the first diffuse surface: "
-     "fast, shows the photon map's blotches", 1),
+     "fast, shows the photon map's blotches", core.PHOS_PHOTON_VIEW_FAST),
+    ('PATH_TRACED', "Path-Traced Gather",
+     "The same gather rays, each continued as an unbiased path instead of reading a photon map "
+     "(no global map is traced): the reference final gathering converges to, and slow",
+     core.PHOS_PHOTON_VIEW_PATH_TRACED),
 )
 
-PHOTON_VIEWS = {
-    'FINAL_GATHER': core.PHOS_PHOTON_VIEW_FINAL_GATHER,
-    'FAST': core.PHOS_PHOTON_VIEW_FAST,
+ENUM_ITEMS = {
+    "phos_integrator": INTEGRATOR_ITEMS,
+    "phos_photon_view": PHOTON_VIEW_ITEMS,
 }
+
+# The settings the user chooses (`scene.phos`), in the core's table order;
+# the others (resolution, border, threads, passes...) the engine takes from
+# Blender's own settings.
+USER_SETTINGS = tuple(s for s in core.RENDER_SETTINGS if s.user)
+
+# Blender's IntProperty holds a signed 32-bit int.
+_INT_MAX = 2 ** 31 - 1
+# Setting kind → Blender subtype and unit.
+_KIND_OPTIONS = {
+    "NUMBER": {},
+    "PIXELS": {"subtype": 'PIXEL'},
+    "LENGTH": {"subtype": 'DISTANCE', "unit": 'LENGTH'},
+}
+
+
+def _property(setting, **override):
+    """The Blender property of a row of the core's settings table."""
+    s = setting._replace(**override)
+    common = {"name": s.label, "description": s.description}
+    if s.kind == "ENUM":
+        items = ENUM_ITEMS[s.enum]
+        default = next(item[0] for item in items if item[3] == s.default)
+        return EnumProperty(items=items, default=default, **common)
+    options = dict(_KIND_OPTIONS[s.kind], **common)
+    if s.ctype == "float":
+        if s.soft_max:
+            options["soft_max"] = s.soft_max
+        return FloatProperty(default=s.default, min=s.min, max=s.max, **options)
+    if s.soft_max:
+        options["soft_max"] = min(s.soft_max, _INT_MAX)
+    return IntProperty(default=s.default, min=s.min, max=min(s.max, _INT_MAX), **options)
+
+
+def _scene_settings():
+    """The annotations of PhosSceneSettings: one property per user setting,
+    and preview_samples beside samples (previews are Blender's; the engine
+    puts one or the other into the core's samples)."""
+    props = {}
+    for s in USER_SETTINGS:
+        props[s.prop] = _property(s)
+        if s.name == "samples":
+            props["preview_samples"] = _property(
+                s, label="Preview Samples", description="Samples per pixel of material and light previews",
+                default=16, soft_max=1024)
+    return props
+
+
+def setting_value(settings, setting):
+    """The core's value of a user setting in `scene.phos` (an enum item → its index)."""
+    value = getattr(settings, setting.prop)
+    if setting.kind == "ENUM":
+        return next((item[3] for item in ENUM_ITEMS[setting.enum] if item[0] == value), setting.default)
+    return value
+
 
 # View layer pass toggles: (property, render pass name, core pass, description).
 # Order = the order the passes are registered and listed in.
@@ -67,90 +132,10 @@ DEBUG_PASSES = PASSES[5:]
 
 
 class PhosSceneSettings(bpy.types.PropertyGroup):
-    """Render settings of a scene, `scene.phos`."""
+    """Render settings of a scene, `scene.phos`, declared from the core's
+    settings table (phos.h, PHOS_RENDER_SETTINGS)."""
 
-    integrator: EnumProperty(
-        name="Integrator",
-        description="Method used to compute the light transport",
-        items=INTEGRATOR_ITEMS,
-        default='PATH',
-    )
-    samples: IntProperty(
-        name="Samples",
-        description="Samples per pixel of a final render",
-        default=128, min=1, soft_max=4096,
-    )
-    preview_samples: IntProperty(
-        name="Preview Samples",
-        description="Samples per pixel of material and light previews",
-        default=16, min=1, soft_max=1024,
-    )
-    seed: IntProperty(
-        name="Seed",
-        description="Seed of the random numbers: the same seed renders the same image, "
-                    "whatever the thread count, tile order or border",
-        default=0, min=0,
-    )
-    max_bounces: IntProperty(
-        name="Max Bounces",
-        description="Scattering events a path may have after the camera ray",
-        default=12, min=0, max=1024,
-    )
-    filter_width: FloatProperty(
-        name="Filter Width",
-        description="Width of the Blackman-Harris pixel filter (0 is a box of one pixel)",
-        default=1.5, min=0.0, max=10.0, subtype='PIXEL',
-    )
-    tile_size: IntProperty(
-        name="Tile Size",
-        description="Edge of the square tiles the image is rendered and delivered in",
-        default=64, min=8, max=1024, subtype='PIXEL',
-    )
-    # Photon mapping (the PHOTON integrator, and the photon debug passes).
-    global_photons: IntProperty(
-        name="Global Photons",
-        description="Photons stored in the global photon map (indirect light); "
-                    "photons are emitted until this many are stored",
-        default=200000, min=0, soft_max=10000000,
-    )
-    caustic_photons: IntProperty(
-        name="Caustic Photons",
-        description="Photons stored in the caustic photon map (light focused by mirrors and glass)",
-        default=50000, min=0, soft_max=10000000,
-    )
-    global_estimate_photons: IntProperty(
-        name="Global Estimate",
-        description="Nearest photons used in a radiance estimate of the global map",
-        default=50, min=1, soft_max=1000,
-    )
-    caustic_estimate_photons: IntProperty(
-        name="Caustic Estimate",
-        description="Nearest photons used in a (cone-filtered) radiance estimate of the caustic map",
-        default=80, min=1, soft_max=1000,
-    )
-    max_radius: FloatProperty(
-        name="Max Radius",
-        description="Largest search radius of a radiance estimate; 0 chooses it from the "
-                    "scene's size (its diagonal / 40)",
-        default=0.0, min=0.0, soft_max=10.0, subtype='DISTANCE', unit='LENGTH',
-    )
-    final_gather_rays: IntProperty(
-        name="Final Gather Rays",
-        description="Gather rays per camera sample at the first diffuse surface",
-        default=32, min=1, soft_max=1024,
-    )
-    photon_view: EnumProperty(
-        name="Indirect Light",
-        description="How the global photon map gives indirect diffuse light",
-        items=PHOTON_VIEW_ITEMS,
-        default='FINAL_GATHER',
-    )
-    max_photons_emitted: IntProperty(
-        name="Max Emitted (Millions)",
-        description="Stop filling the photon maps after this many million emitted photon paths "
-                    "(for scenes where most photons escape)",
-        default=50, min=1, soft_max=1000,
-    )
+    __annotations__ = _scene_settings()
 
 
 def _update_render_passes(self, context):

@@ -83,7 +83,7 @@ class PHOS_RENDER_PT_photon_mapping(PhosButtonsPanel, bpy.types.Panel):
         layout.prop(phos, "max_radius")
         layout.prop(phos, "photon_view")
         sub = layout.column()
-        sub.active = phos.photon_view == 'FINAL_GATHER'
+        sub.active = phos.photon_view in {'FINAL_GATHER', 'PATH_TRACED'}
         sub.prop(phos, "final_gather_rays")
         layout.prop(phos, "max_photons_emitted")
 

@@ -23,6 +23,7 @@
 #ifndef PHOS_H
 #define PHOS_H
 
+#include <float.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -64,6 +65,13 @@ typedef enum phos_status {
 
 /* One line describing a status code ("invalid argument"). Never NULL. */
 PHOS_API const char *phos_status_string(phos_status status);
+
+/* Byte offset and size of a field of a public struct, by names
+ * ("phos_light_desc", "radius"); PHOS_ERROR_INVALID_ARGUMENT for an unknown
+ * struct or field. With phos_struct_size it lets a binding check every
+ * field of its mirror against the library it loaded. */
+PHOS_API phos_status phos_struct_field(const char *struct_name, const char *field_name, uint32_t *out_offset,
+                                       uint32_t *out_size);
 
 typedef struct phos_scene phos_scene;
 typedef struct phos_render phos_render;
@@ -269,30 +277,85 @@ enum phos_pass {
 /* Channels of a pass (4 for COMBINED, 3 for the others), 0 for an unknown pass. */
 PHOS_API uint32_t phos_pass_channels(uint32_t pass);
 
+/*
+ * The render settings: one table, from which the struct below is declared,
+ * phos_render_settings_init fills the defaults, phos_render_create checks
+ * the ranges, and tools/gen_binding.py writes the add-on's mirror and its
+ * Blender properties (docs/architecture.md, "One table of render
+ * settings"). One row per field, in struct order:
+ *
+ *   USER(type, name, default, min, max, property, kind, soft max, label, description)
+ *     chosen by the user: in Blender the scene.phos.<property> labelled and
+ *     described as given; kind is NUMBER, PIXELS (pixels), LENGTH (scene
+ *     units) or `enum phos_...` (a value of that enum); soft max is the end
+ *     of Blender's slider, 0 for max.
+ *   HOST(type, name, default, min, max, description)
+ *     set by the host application from its own settings (Blender's
+ *     resolution, border, thread count, passes, film transparency).
+ *
+ * min and max are inclusive; a float must also be finite.
+ */
+#define PHOS_RENDER_SETTINGS(USER, HOST)                                                          \
+    USER(uint32_t, integrator, PHOS_INTEGRATOR_PATH, 0, PHOS_INTEGRATOR_PHOTON, integrator,       \
+         enum phos_integrator, 0, "Integrator", "Method used to compute the light transport")     \
+    HOST(uint32_t, width, 640, 1, 65536, "Full frame width in pixels")                            \
+    HOST(uint32_t, height, 480, 1, 65536, "Full frame height in pixels")                          \
+    /* The rendered region (Blender's border), full-frame pixel coordinates;                      \
+     * width or height 0 means the full frame. */                                                 \
+    HOST(uint32_t, region_x, 0, 0, 65535, "Left column of the rendered region")                   \
+    HOST(uint32_t, region_y, 0, 0, 65535, "Bottom row of the rendered region")                    \
+    HOST(uint32_t, region_width, 0, 0, 65536, "Width of the rendered region, 0: the full frame")  \
+    HOST(uint32_t, region_height, 0, 0, 65536, "Height of the rendered region, 0: the full frame") \
+    USER(uint32_t, samples, 128, 1, 1u << 24, samples, NUMBER, 4096, "Samples",                   \
+         "Samples per pixel of a final render")                                                   \
+    USER(uint32_t, seed, 0, 0, UINT32_MAX, seed, NUMBER, 0, "Seed",                               \
+         "Seed of the random numbers: the same seed renders the same image, "                     \
+         "whatever the thread count, tile order or border")                                       \
+    USER(uint32_t, max_bounces, 12, 0, 1024, max_bounces, NUMBER, 0, "Max Bounces",               \
+         "Scattering events a path may have after the camera ray")                                \
+    HOST(uint32_t, threads, 0, 0, 1024, "Render threads, 0: one per core")                        \
+    USER(uint32_t, tile_size, 64, 8, 8192, tile_size, PIXELS, 1024, "Tile Size",                  \
+         "Edge of the square tiles the image is rendered and delivered in")                       \
+    /* Blackman-Harris, as Cycles' default filter (width 1.5). */                                 \
+    USER(float, filter_width, 1.5f, 0.0f, 10.0f, filter_width, PIXELS, 0, "Filter Width",         \
+         "Width of the Blackman-Harris pixel filter (0 is a box of one pixel)")                   \
+    HOST(uint32_t, transparent_background, 0, 0, 1,                                               \
+         "1: the world is not seen by camera rays, alpha = coverage")                             \
+    HOST(uint32_t, pass_mask, 1u << PHOS_PASS_COMBINED, 0, (1u << PHOS_PASS_COUNT) - 1u,          \
+         "Bit (1 << pass) per enabled pass; COMBINED is always on")                               \
+    /* Photon mapping (PHOTON integrator, and the photon debug passes). */                        \
+    USER(uint32_t, global_photons, 200000, 0, 1u << 28, global_photons, NUMBER, 10000000,         \
+         "Global Photons",                                                                        \
+         "Photons stored in the global photon map (indirect light); "                             \
+         "photons are emitted until this many are stored")                                        \
+    USER(uint32_t, caustic_photons, 50000, 0, 1u << 28, caustic_photons, NUMBER, 10000000,        \
+         "Caustic Photons",                                                                       \
+         "Photons stored in the caustic photon map (light focused by mirrors and glass)")         \
+    USER(uint32_t, global_estimate_photons, 50, 1, 10000, global_estimate_photons, NUMBER, 1000,  \
+         "Global Estimate", "Nearest photons used in a radiance estimate of the global map")      \
+    USER(uint32_t, caustic_estimate_photons, 80, 1, 10000, caustic_estimate_photons, NUMBER,      \
+         1000, "Caustic Estimate",                                                                \
+         "Nearest photons used in a (cone-filtered) radiance estimate of the caustic map")        \
+    USER(float, max_radius, 0.0f, 0.0f, FLT_MAX, max_radius, LENGTH, 10.0f, "Max Radius",         \
+         "Largest search radius of a radiance estimate; 0 chooses it from the "                   \
+         "scene's size (its diagonal / 40)")                                                      \
+    USER(uint32_t, final_gather_rays, 32, 1, 65536, final_gather_rays, NUMBER, 1024,              \
+         "Final Gather Rays", "Gather rays per camera sample at the first diffuse surface "       \
+         "(final gathering and the path-traced gather)")                                          \
+    USER(uint32_t, photon_view, PHOS_PHOTON_VIEW_FINAL_GATHER, 0, PHOS_PHOTON_VIEW_PATH_TRACED,   \
+         photon_view, enum phos_photon_view, 0, "Indirect Light",                                 \
+         "Where the indirect light of diffuse surfaces comes from")                               \
+    USER(uint32_t, max_photons_emitted_millions, 50, 1, 100000, max_photons_emitted, NUMBER,      \
+         1000, "Max Emitted (Millions)",                                                          \
+         "Stop filling the photon maps after this many million emitted photon paths "             \
+         "(for scenes where most photons escape)")
+
+#define PHOS_SETTING_FIELD_(type, name, ...) type name;
 typedef struct phos_render_settings {
-    uint32_t integrator;       /* enum phos_integrator */
-    uint32_t width, height;    /* full frame in pixels */
-    /* The rendered region (Blender's border), full-frame pixel coordinates;
-     * width or height 0 means the full frame. */
-    uint32_t region_x, region_y, region_width, region_height;
-    uint32_t samples;          /* per pixel, >= 1 */
-    uint32_t seed;
-    uint32_t max_bounces;      /* scattering events after the camera ray */
-    uint32_t threads;          /* 0: one per core */
-    uint32_t tile_size;        /* pixels, >= 8 */
-    float filter_width;        /* Blackman-Harris pixel filter width in pixels (Cycles: 1.5); 0 = box */
-    uint32_t transparent_background; /* 1: the world is not seen by camera rays, alpha = coverage */
-    uint32_t pass_mask;        /* bit (1 << pass) per enabled pass; COMBINED is always on */
-    /* Photon mapping (PHOTON integrator, and the photon debug passes). */
-    uint32_t global_photons;   /* photons stored in the global map */
-    uint32_t caustic_photons;  /* photons stored in the caustic map */
-    uint32_t global_estimate_photons;  /* k of the global map's radiance estimate */
-    uint32_t caustic_estimate_photons; /* k of the caustic map's (cone-filtered) estimate */
-    float max_radius;          /* search radius cap in scene units; 0 = automatic (scene size / 40) */
-    uint32_t final_gather_rays;/* per camera sample at the first diffuse surface */
-    uint32_t photon_view;      /* enum phos_photon_view */
-    uint32_t max_photons_emitted_millions; /* give up filling a map after this many emitted paths (×10⁶) */
+    PHOS_RENDER_SETTINGS(PHOS_SETTING_FIELD_, PHOS_SETTING_FIELD_)
 } phos_render_settings;
+#undef PHOS_SETTING_FIELD_
+/* Fills every field with its default from the table. */
 PHOS_API void phos_render_settings_init(phos_render_settings *settings);
 
 /* Validates the settings against the committed scene and allocates the
@@ -311,14 +374,30 @@ enum phos_render_state {
     PHOS_STATE_CANCELLED = 3, PHOS_STATE_FAILED = 4
 };
 
+/* The stages a render goes through. Which of them it runs, in which order,
+ * is its plan, fixed at create (phos_render_stages): WAITING, then the
+ * photon stages if it uses photon maps (the PHOTON integrator or a photon
+ * debug pass; PRECOMPUTING_RADIANCE for final gathering only), RENDERING,
+ * FINISHED. */
 enum phos_stage {
     PHOS_STAGE_WAITING = 0,
     PHOS_STAGE_TRACING_PHOTONS = 1,
     PHOS_STAGE_BUILDING_KDTREES = 2,
     PHOS_STAGE_PRECOMPUTING_RADIANCE = 3,
     PHOS_STAGE_RENDERING = 4,
-    PHOS_STAGE_FINISHED = 5
+    PHOS_STAGE_FINISHED = 5,
+    PHOS_STAGE_COUNT = 6
 };
+
+typedef struct phos_stage_info {
+    uint32_t id;               /* enum phos_stage */
+    char name[64];             /* as a status line shows it: "Tracing photons", "Path tracing" */
+} phos_stage_info;
+/* The plan of a render: *out_count is its number of stages (at most
+ * PHOS_STAGE_COUNT), the first min(max, count) of which are written to out
+ * in running order. */
+PHOS_API phos_status phos_render_stages(const phos_render *render, phos_stage_info *out, uint32_t max,
+                                        uint32_t *out_count);
 
 typedef struct phos_progress {
     uint32_t state;            /* enum phos_render_state */
@@ -327,6 +406,7 @@ typedef struct phos_progress {
     uint32_t samples;          /* samples per pixel of this render */
     char stage[64];            /* what is running now, e.g. "Tracing photons" */
     uint32_t stage_id;         /* enum phos_stage */
+    uint32_t stage_index;      /* position of stage_id in the plan (phos_render_stages) */
     uint32_t photons_stored;   /* global + caustic so far */
     uint64_t photons_emitted;  /* photon paths so far */
     uint32_t global_photons, caustic_photons; /* in the maps, once built */

@@ -144,6 +144,7 @@ def test_photon_settings_and_defaults(scene):
     assert integrators["PATH"].value == 0 and integrators["PHOTON"].value == 1
     views = props["photon_view"].enum_items
     assert views["FINAL_GATHER"].value == 0 and views["FAST"].value == 1
+    assert views["PATH_TRACED"].value == 2
     assert p.integrator == "PATH", "PATH stays the default integrator"
 
 

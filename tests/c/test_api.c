@@ -28,6 +28,7 @@ static void test_version_and_layout(void)
     CHECK(phos_struct_size("phos_tile") == sizeof(phos_tile));
     CHECK(phos_struct_size("no_such_struct") == 0);
     CHECK(phos_struct_size(NULL) == 0);
+    CHECK(phos_struct_size("phos_stage_info") == sizeof(phos_stage_info));
     CHECK(strcmp(phos_status_string(PHOS_ERROR_INVALID_ARGUMENT), "invalid argument") == 0);
     CHECK(phos_pass_channels(PHOS_PASS_COMBINED) == 4);
     CHECK(phos_pass_channels(12345) == 0);
@@ -248,6 +249,137 @@ static void test_lifecycle_errors(void)
     phos_render_destroy(r);
 }
 
+/* Every field of the settings table at its offsetof and sizeof; a few of
+ * the other structs; unknown names refused. */
+static int field_is(const char *s, const char *f, size_t offset, size_t size)
+{
+    uint32_t o = 12345, n = 12345;
+    return phos_struct_field(s, f, &o, &n) == PHOS_OK && o == offset && n == size;
+}
+
+static void test_field_layout(void)
+{
+#define CHECK_SETTING_FIELD(type, name, ...)                                                     \
+    CHECK_MSG(field_is("phos_render_settings", #name, offsetof(phos_render_settings, name),    \
+                       sizeof(((phos_render_settings *)0)->name)),                               \
+              "phos_render_settings.%s", #name);
+    PHOS_RENDER_SETTINGS(CHECK_SETTING_FIELD, CHECK_SETTING_FIELD)
+#undef CHECK_SETTING_FIELD
+    CHECK(field_is("phos_light_desc", "axis_v", offsetof(phos_light_desc, axis_v), 3 * sizeof(float)));
+    CHECK(field_is("phos_mesh_desc", "material_slots", offsetof(phos_mesh_desc, material_slots), sizeof(void *)));
+    CHECK(field_is("phos_progress", "photons_emitted", offsetof(phos_progress, photons_emitted), 8));
+    CHECK(field_is("phos_progress", "stage", offsetof(phos_progress, stage), 64));
+    CHECK(field_is("phos_stage_info", "name", offsetof(phos_stage_info, name), 64));
+    uint32_t o;
+    CHECK(phos_struct_field("phos_light_desc", "no_such_field", &o, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_struct_field("no_such_struct", "type", &o, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_struct_field("phos_tile", "y", NULL, NULL) == PHOS_OK);
+    CHECK(phos_struct_field(NULL, "x", &o, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+}
+
+/* Each row of the settings table is checked at create: a value just
+ * outside its range is refused with a message naming the field. */
+static void test_settings_ranges(void)
+{
+    phos_scene *s = small_scene();
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    phos_render_settings rs;
+    phos_render *r = NULL;
+#define CHECK_SETTING_RANGE(type, name, def, lo, hi, ...)                                              \
+    if ((double)(lo) > 0.0) {                                                                         \
+        phos_render_settings_init(&rs);                                                               \
+        rs.name = (type)(lo) - (type)1;                                                               \
+        CHECK_MSG(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT &&                     \
+                      contains(phos_scene_error(s), #name),                                           \
+                  "%s below its min: %s", #name, phos_scene_error(s));                                \
+    }                                                                                                 \
+    if ((double)(hi) < 4294967295.0) {                                                                \
+        phos_render_settings_init(&rs);                                                               \
+        rs.name = (type)(hi) + (type)1;                                                               \
+        CHECK_MSG(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT &&                     \
+                      contains(phos_scene_error(s), #name),                                           \
+                  "%s above its max: %s", #name, phos_scene_error(s));                                \
+    }
+    PHOS_RENDER_SETTINGS(CHECK_SETTING_RANGE, CHECK_SETTING_RANGE)
+#undef CHECK_SETTING_RANGE
+    phos_render_settings_init(&rs);
+    rs.max_radius = -1.0f;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "max_radius -1 must be finite and >= 0"), "%s", phos_scene_error(s));
+    rs.max_radius = INFINITY;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT);
+    /* The defaults are valid. */
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 16;
+    CHECK_MSG(phos_render_create(s, &rs, &r) == PHOS_OK, "%s", phos_scene_error(s));
+    phos_render_destroy(r);
+    phos_scene_destroy(s);
+}
+
+/* The plan of a render (phos_render_stages), and progress through it. */
+static void check_plan(phos_scene *s, uint32_t integrator, uint32_t view, uint32_t pass_mask, const uint32_t *want,
+                       uint32_t want_count, const char *render_name)
+{
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 16;
+    rs.samples = 1;
+    rs.integrator = integrator;
+    rs.photon_view = view;
+    rs.pass_mask = pass_mask;
+    rs.global_photons = rs.caustic_photons = 200;
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+    phos_stage_info plan[PHOS_STAGE_COUNT + 1];
+    uint32_t n = 0;
+    CHECK(phos_render_stages(r, plan, PHOS_STAGE_COUNT + 1, &n) == PHOS_OK);
+    int same = n == want_count;
+    for (uint32_t i = 0; same && i < n; i++)
+        same = plan[i].id == want[i];
+    CHECK_MSG(same, "integrator %u view %u passes 0x%x: %u stages", integrator, view, pass_mask, n);
+    for (uint32_t i = 0; same && i < n; i++)
+        if (plan[i].id == PHOS_STAGE_RENDERING)
+            CHECK_MSG(strcmp(plan[i].name, render_name) == 0, "%s", plan[i].name);
+    phos_progress p;
+    CHECK(phos_render_progress(r, &p) == PHOS_OK && p.stage_index == 0 && p.stage_id == PHOS_STAGE_WAITING &&
+          strcmp(p.stage, "Waiting") == 0);
+    CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
+    CHECK(phos_render_progress(r, &p) == PHOS_OK && p.stage_index == n - 1 && p.stage_id == PHOS_STAGE_FINISHED &&
+          strcmp(p.stage, plan[n - 1].name) == 0);
+    /* A short buffer gets the first stages and the full count. */
+    phos_stage_info first;
+    CHECK(phos_render_stages(r, &first, 1, &n) == PHOS_OK && n == want_count && first.id == PHOS_STAGE_WAITING);
+    CHECK(phos_render_stages(r, NULL, 0, &n) == PHOS_OK && n == want_count);
+    CHECK(phos_render_stages(r, NULL, 1, &n) == PHOS_ERROR_INVALID_ARGUMENT);
+    phos_render_destroy(r);
+}
+
+static void test_stage_plans(void)
+{
+    phos_scene *s = small_scene();
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.position[2] = 3.0f;
+    CHECK(phos_scene_add_light(s, &l, NULL) == PHOS_OK);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    const uint32_t W = PHOS_STAGE_WAITING, T = PHOS_STAGE_TRACING_PHOTONS, B = PHOS_STAGE_BUILDING_KDTREES,
+                   P = PHOS_STAGE_PRECOMPUTING_RADIANCE, R = PHOS_STAGE_RENDERING, F = PHOS_STAGE_FINISHED;
+    uint32_t combined = 1u << PHOS_PASS_COMBINED;
+    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FINAL_GATHER, combined, (uint32_t[]){W, R, F}, 3,
+               "Path tracing");
+    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FINAL_GATHER, combined | (1u << PHOS_PASS_PHOTON_MAP),
+               (uint32_t[]){W, T, B, R, F}, 5, "Path tracing");
+    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FAST, combined | (1u << PHOS_PASS_PHOTONS),
+               (uint32_t[]){W, T, B, R, F}, 5, "Path tracing");
+    check_plan(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, combined, (uint32_t[]){W, T, B, P, R, F}, 6,
+               "Rendering with photon maps");
+    check_plan(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FAST, combined, (uint32_t[]){W, T, B, R, F}, 5,
+               "Rendering with photon maps");
+    uint32_t n;
+    CHECK(phos_render_stages(NULL, NULL, 0, &n) == PHOS_ERROR_INVALID_ARGUMENT);
+    phos_scene_destroy(s);
+}
+
 typedef struct cancel_args {
     phos_render *r;
     double delay;
@@ -327,6 +459,9 @@ int main(void)
     test_bad_meshes();
     test_bad_materials_lights_camera();
     test_lifecycle_errors();
+    test_field_layout();
+    test_settings_ranges();
+    test_stage_plans();
     test_cancel();
     test_empty_scene_renders_world();
     return test_summary("test_api");

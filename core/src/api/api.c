@@ -16,37 +16,12 @@
 #include "render/film.h"
 #include "phos.h"
 #include "render/render.h"
+#include "render/stages.h"
 #include "scene/scene.h"
 
 /* ------------------------------------------------------------- general */
 
 uint32_t phos_version(void) { return PHOS_VERSION; }
-
-uint32_t phos_struct_size(const char *name)
-{
-    static const struct {
-        const char *name;
-        uint32_t size;
-    } table[] = {
-        {"phos_image_desc", sizeof(phos_image_desc)},
-        {"phos_closure_desc", sizeof(phos_closure_desc)},
-        {"phos_material_desc", sizeof(phos_material_desc)},
-        {"phos_mesh_desc", sizeof(phos_mesh_desc)},
-        {"phos_instance_desc", sizeof(phos_instance_desc)},
-        {"phos_light_desc", sizeof(phos_light_desc)},
-        {"phos_world_desc", sizeof(phos_world_desc)},
-        {"phos_camera_desc", sizeof(phos_camera_desc)},
-        {"phos_render_settings", sizeof(phos_render_settings)},
-        {"phos_progress", sizeof(phos_progress)},
-        {"phos_tile", sizeof(phos_tile)},
-    };
-    if (!name)
-        return 0;
-    for (size_t i = 0; i < sizeof(table) / sizeof(table[0]); i++)
-        if (strcmp(table[i].name, name) == 0)
-            return table[i].size;
-    return 0;
-}
 
 const char *phos_status_string(phos_status status)
 {
@@ -212,22 +187,9 @@ void phos_render_settings_init(phos_render_settings *s)
     if (!s)
         return;
     memset(s, 0, sizeof(*s));
-    s->integrator = PHOS_INTEGRATOR_PATH;
-    s->width = 640;
-    s->height = 480;
-    s->samples = 64;
-    s->max_bounces = 12;
-    s->tile_size = 64;
-    s->filter_width = 1.5f;
-    s->pass_mask = 1u << PHOS_PASS_COMBINED;
-    s->global_photons = 200000;
-    s->caustic_photons = 50000;
-    s->global_estimate_photons = 50;
-    s->caustic_estimate_photons = 80;
-    s->max_radius = 0.0f;
-    s->final_gather_rays = 32;
-    s->photon_view = PHOS_PHOTON_VIEW_FINAL_GATHER;
-    s->max_photons_emitted_millions = 50;
+#define SETTING_DEFAULT(type, name, def, ...) s->name = (def);
+    PHOS_RENDER_SETTINGS(SETTING_DEFAULT, SETTING_DEFAULT)
+#undef SETTING_DEFAULT
 }
 
 /* --------------------------------------------------------------- scene */
@@ -544,29 +506,31 @@ static void render_set_error(render *r, phos_status st, const char *msg)
     pthread_mutex_unlock(&r->lock);
 }
 
+/* One setting against the range of its row in PHOS_RENDER_SETTINGS (every
+ * uint32_t and float is exact as a double). */
+static phos_status check_setting(scene *s, const char *name, double v, double lo, double hi, int is_float)
+{
+    if (isfinite(v) && v >= lo && v <= hi)
+        return PHOS_OK;
+    const char *finite = is_float ? "finite and " : "";
+    if (hi >= (is_float ? (double)FLT_MAX : (double)UINT32_MAX))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: %s %.10g must be %s>= %.10g", name, v, finite, lo);
+    FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: %s %.10g must be %sbetween %.10g and %.10g", name, v, finite, lo,
+         hi);
+}
+
 static phos_status validate_settings(scene *s, const phos_render_settings *rs)
 {
-    if (rs->integrator > PHOS_INTEGRATOR_PHOTON)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: unknown integrator %u", rs->integrator);
-    if (rs->global_photons > (1u << 28) || rs->caustic_photons > (1u << 28))
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: %u global / %u caustic photons exceed 2^28", rs->global_photons,
-             rs->caustic_photons);
-    if (rs->global_estimate_photons < 1 || rs->global_estimate_photons > 10000 || rs->caustic_estimate_photons < 1 ||
-        rs->caustic_estimate_photons > 10000)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: photons per estimate must be between 1 and 10000");
-    if (!isfinite(rs->max_radius) || rs->max_radius < 0.0f)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: max radius %g must be finite and >= 0 (0 = automatic)",
-             (double)rs->max_radius);
-    if (rs->final_gather_rays < 1 || rs->final_gather_rays > 65536)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: final gather rays %u must be between 1 and 65536",
-             rs->final_gather_rays);
-    if (rs->photon_view > PHOS_PHOTON_VIEW_PATH_TRACED)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: unknown photon view %u", rs->photon_view);
-    if (rs->max_photons_emitted_millions < 1 || rs->max_photons_emitted_millions > 100000)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: the emitted-photon cap must be between 1 and 100000 million");
-    if (rs->width == 0 || rs->height == 0 || rs->width > 65536 || rs->height > 65536)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: resolution %ux%u must be between 1 and 65536 per side",
-             rs->width, rs->height);
+    phos_status st = PHOS_OK;
+#define CHECK_SETTING(type, name, def, lo, hi, ...)                                                          \
+    if (st == PHOS_OK)                                                                                      \
+        st = check_setting(s, #name, (double)rs->name, (double)(lo), (double)(hi),                          \
+                           _Generic(rs->name, float: 1, default: 0));
+    PHOS_RENDER_SETTINGS(CHECK_SETTING, CHECK_SETTING)
+#undef CHECK_SETTING
+    if (st != PHOS_OK)
+        return st;
+    /* What one row cannot say. */
     if (rs->region_width || rs->region_height) {
         if (rs->region_width == 0 || rs->region_height == 0 || rs->region_x >= rs->width ||
             rs->region_y >= rs->height || rs->region_width > rs->width - rs->region_x ||
@@ -574,19 +538,6 @@ static phos_status validate_settings(scene *s, const phos_render_settings *rs)
             FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: region %u,%u %ux%u does not lie inside the %ux%u frame",
                  rs->region_x, rs->region_y, rs->region_width, rs->region_height, rs->width, rs->height);
     }
-    if (rs->samples == 0 || rs->samples > (1u << 24))
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: samples %u must be between 1 and 2^24", rs->samples);
-    if (rs->max_bounces > 1024)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: max bounces %u exceeds 1024", rs->max_bounces);
-    if (rs->threads > 1024)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: %u threads exceeds 1024", rs->threads);
-    if (rs->tile_size < 8 || rs->tile_size > 8192)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: tile size %u must be between 8 and 8192", rs->tile_size);
-    if (!isfinite(rs->filter_width) || rs->filter_width < 0.0f || rs->filter_width > 10.0f)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: filter width %g must be in [0, 10] pixels",
-             (double)rs->filter_width);
-    if (rs->pass_mask & ~((1u << PHOS_PASS_COUNT) - 1u))
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: pass mask 0x%x names unknown passes", rs->pass_mask);
     return PHOS_OK;
 }
 
@@ -621,7 +572,7 @@ phos_status phos_render_create(phos_scene *s, const phos_render_settings *rs, ph
     pthread_cond_init(&r->finished_cond, NULL);
     atomic_init(&r->cancel, 0);
     atomic_init(&r->tiles_done, 0u);
-    atomic_init(&r->stage, PHOS_STAGE_WAITING);
+    atomic_init(&r->stage_index, 0u);
     atomic_init(&r->photon_progress.emitted, 0u);
     atomic_init(&r->photon_progress.stored, 0u);
     r->state = PHOS_STATE_IDLE;
@@ -681,7 +632,8 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     out->tiles_total = r->tile_count;
     out->tiles_done = atomic_load(&r->tiles_done);
     out->samples = r->settings.samples;
-    out->stage_id = atomic_load(&r->stage);
+    out->stage_index = atomic_load(&r->stage_index);
+    out->stage_id = r->plan.stages[out->stage_index];
     out->photons_stored = atomic_load(&r->photon_progress.stored);
     out->photons_emitted = atomic_load(&r->photon_progress.emitted);
     if (out->stage_id >= PHOS_STAGE_RENDERING) {
@@ -700,21 +652,25 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     case PHOS_STAGE_WAITING: out->fraction = 0.0f; break;
     default: out->fraction = before + (1.0f - before) * tiles; break;
     }
-    const char *stage = "Waiting";
-    int photon_render = r->settings.integrator == PHOS_INTEGRATOR_PHOTON;
-    switch (out->stage_id) {
-    case PHOS_STAGE_TRACING_PHOTONS: stage = "Tracing photons"; break;
-    case PHOS_STAGE_BUILDING_KDTREES: stage = "Building kd-trees"; break;
-    case PHOS_STAGE_PRECOMPUTING_RADIANCE: stage = "Precomputing radiance"; break;
-    case PHOS_STAGE_RENDERING: stage = photon_render ? "Rendering with photon maps" : "Path tracing"; break;
-    case PHOS_STAGE_FINISHED: stage = "Finished"; break;
-    default: break;
-    }
+    const char *stage = stage_name(out->stage_id, r->settings.integrator);
     if (out->state == PHOS_STATE_CANCELLED)
         stage = "Cancelled";
     else if (out->state == PHOS_STATE_FAILED)
         stage = "Failed";
     snprintf(out->stage, sizeof(out->stage), "%s", stage);
+    return PHOS_OK;
+}
+
+phos_status phos_render_stages(const phos_render *r, phos_stage_info *out, uint32_t max, uint32_t *out_count)
+{
+    if (!r || !out_count || (max && !out))
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    *out_count = r->plan.count;
+    for (uint32_t i = 0; i < r->plan.count && i < max; i++) {
+        memset(&out[i], 0, sizeof(out[i]));
+        out[i].id = r->plan.stages[i];
+        snprintf(out[i].name, sizeof(out[i].name), "%s", stage_name(r->plan.stages[i], r->settings.integrator));
+    }
     return PHOS_OK;
 }
 

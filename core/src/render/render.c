@@ -228,46 +228,52 @@ static void fail(render *r, phos_status st, const char *msg)
     pthread_mutex_unlock(&r->lock);
 }
 
-static phos_status photon_stages(render *r)
+/* Runs one stage of the plan (stages.h). */
+static phos_status run_stage(render *r, uint32_t stage)
 {
-    atomic_store(&r->stage, PHOS_STAGE_TRACING_PHOTONS);
-    phos_status st = photon_maps_trace(r->scene, &r->photon_settings, &r->maps, &r->cancel, &r->photon_progress);
-    if (st != PHOS_OK)
-        return st;
-    atomic_store(&r->stage, PHOS_STAGE_BUILDING_KDTREES);
-    st = photon_maps_build(&r->maps);
-    if (st != PHOS_OK)
-        return st;
-    if (r->settings.integrator == PHOS_INTEGRATOR_PHOTON && r->settings.photon_view == PHOS_PHOTON_VIEW_FINAL_GATHER) {
-        atomic_store(&r->stage, PHOS_STAGE_PRECOMPUTING_RADIANCE);
-        st = photon_maps_precompute_radiance(r->scene, &r->photon_settings, &r->maps, &r->cancel);
-        if (st != PHOS_OK)
-            return st;
+    switch (stage) {
+    case PHOS_STAGE_TRACING_PHOTONS:
+        return photon_maps_trace(r->scene, &r->photon_settings, &r->maps, &r->cancel, &r->photon_progress);
+    case PHOS_STAGE_BUILDING_KDTREES:
+        return photon_maps_build(&r->maps);
+    case PHOS_STAGE_PRECOMPUTING_RADIANCE:
+        return photon_maps_precompute_radiance(r->scene, &r->photon_settings, &r->maps, &r->cancel);
+    case PHOS_STAGE_RENDERING:
+        /* The maps are complete: draw them, hand them to the integrators. */
+        if (r->use_maps) {
+            if (pass_on(r, PHOS_PASS_PHOTONS)) {
+                draw_photons(r, &r->maps.global);
+                draw_photons(r, &r->maps.caustic);
+            }
+            r->integrator.maps = &r->maps;
+        }
+        if (!parallel_for(r->tile_count, r->threads, render_tile, r, &r->cancel))
+            return atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_INTERNAL;
+        return PHOS_OK;
+    default: /* WAITING and FINISHED only mark the ends of the plan */
+        return PHOS_OK;
     }
-    if (pass_on(r, PHOS_PASS_PHOTONS)) {
-        draw_photons(r, &r->maps.global);
-        draw_photons(r, &r->maps.caustic);
-    }
-    r->integrator.maps = &r->maps;
-    return atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_OK;
 }
 
 static void *controller_main(void *arg)
 {
     render *r = arg;
     phos_status st = PHOS_OK;
-    if (r->use_maps)
-        st = photon_stages(r);
-    if (st == PHOS_OK) {
-        atomic_store(&r->stage, PHOS_STAGE_RENDERING);
-        if (!parallel_for(r->tile_count, r->threads, render_tile, r, &r->cancel))
-            st = atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_INTERNAL;
+    /* The stages between WAITING and FINISHED, in plan order; a cancel is
+     * seen before each (and inside the long ones). */
+    for (uint32_t i = 1; i + 1 < r->plan.count && st == PHOS_OK; i++) {
+        if (atomic_load(&r->cancel)) {
+            st = PHOS_ERROR_CANCELLED;
+            break;
+        }
+        atomic_store(&r->stage_index, i);
+        st = run_stage(r, r->plan.stages[i]);
     }
     if (st == PHOS_ERROR_OUT_OF_MEMORY)
         fail(r, st, "out of memory while rendering (try fewer photons or a smaller image)");
     else if (st == PHOS_ERROR_INTERNAL)
         fail(r, st, "the render threads could not be started");
-    atomic_store(&r->stage, PHOS_STAGE_FINISHED);
+    atomic_store(&r->stage_index, r->plan.count - 1);
     pthread_mutex_lock(&r->lock);
     if (st == PHOS_OK)
         r->state = PHOS_STATE_DONE;
@@ -294,8 +300,8 @@ int render_prepare(render *r)
     if (!film_create(&r->film, rs->region_x, rs->region_y, rs->region_width, rs->region_height, rs->pass_mask) ||
         !make_tiles(r))
         return 0;
-    uint32_t debug_mask = (1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_CAUSTIC_MAP) | (1u << PHOS_PASS_PHOTONS);
-    r->use_maps = rs->integrator == PHOS_INTEGRATOR_PHOTON || (rs->pass_mask & debug_mask);
+    stage_plan_make(rs, &r->plan);
+    r->use_maps = stage_plan_has(&r->plan, PHOS_STAGE_TRACING_PHOTONS);
     photon_maps_init(&r->maps);
     float radius = rs->max_radius > 0.0f ? rs->max_radius : scene_size(r->scene) / 40.0f;
     integrator_settings *is = &r->integrator;

@@ -10,6 +10,7 @@
 #include <stdatomic.h>
 
 #include "render/film.h"
+#include "render/stages.h"
 #include "integrators/integrator.h"
 #include "photons/photon_trace.h"
 #include "scene/scene.h"
@@ -31,7 +32,8 @@ struct phos_render {
     phos_tile *tiles;
     uint32_t tile_count;
     atomic_uint tiles_done;
-    atomic_uint stage;             /* enum phos_stage */
+    stage_plan plan;               /* the stages it runs, fixed at create */
+    atomic_uint stage_index;       /* the one running now, an index into plan */
 
     pthread_mutex_t lock;          /* guards everything below */
     pthread_cond_t finished_cond;

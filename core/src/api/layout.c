@@ -1,0 +1,108 @@
+/*
+ * layout.c — the layout of the public structs as this library was compiled:
+ * each struct's size and each field's offset and size, so that a binding
+ * (the add-on's, generated from phos.h) can refuse a library built from
+ * another phos.h instead of corrupting memory (docs/architecture.md,
+ * "Layout checks").
+ */
+#include <string.h>
+
+#include "phos.h"
+
+typedef struct layout_field {
+    const char *struct_name, *field_name;
+    uint32_t offset, size;
+} layout_field;
+
+#define FIELD(T, f) {#T, #f, (uint32_t)offsetof(T, f), (uint32_t)sizeof(((T *)0)->f)},
+#define SETTING_FIELD(type, name, ...) FIELD(phos_render_settings, name)
+
+/* Every field of every struct of phos.h, struct by struct in header order. */
+static const layout_field fields[] = {
+    FIELD(phos_image_desc, width) FIELD(phos_image_desc, height) FIELD(phos_image_desc, pixels)
+    FIELD(phos_image_desc, interpolation) FIELD(phos_image_desc, extension)
+
+    FIELD(phos_closure_desc, type) FIELD(phos_closure_desc, weight) FIELD(phos_closure_desc, weight_image)
+    FIELD(phos_closure_desc, roughness) FIELD(phos_closure_desc, ior) FIELD(phos_closure_desc, specular_color)
+    FIELD(phos_closure_desc, glass_fresnel) FIELD(phos_closure_desc, transmission_tint)
+    FIELD(phos_closure_desc, transmission_roughness) FIELD(phos_closure_desc, layered)
+
+    FIELD(phos_material_desc, closure_count) FIELD(phos_material_desc, closures)
+
+    FIELD(phos_mesh_desc, vertex_count) FIELD(phos_mesh_desc, positions) FIELD(phos_mesh_desc, triangle_count)
+    FIELD(phos_mesh_desc, indices) FIELD(phos_mesh_desc, normals) FIELD(phos_mesh_desc, uvs)
+    FIELD(phos_mesh_desc, material_slots)
+
+    FIELD(phos_instance_desc, mesh_id) FIELD(phos_instance_desc, transform)
+    FIELD(phos_instance_desc, material_count) FIELD(phos_instance_desc, materials)
+
+    FIELD(phos_light_desc, type) FIELD(phos_light_desc, color) FIELD(phos_light_desc, position)
+    FIELD(phos_light_desc, direction) FIELD(phos_light_desc, axis_u) FIELD(phos_light_desc, axis_v)
+    FIELD(phos_light_desc, area_shape) FIELD(phos_light_desc, radius) FIELD(phos_light_desc, point_shape)
+    FIELD(phos_light_desc, spot_angle) FIELD(phos_light_desc, spot_blend) FIELD(phos_light_desc, spot_cosine)
+    FIELD(phos_light_desc, sun_angle) FIELD(phos_light_desc, camera_visible)
+
+    FIELD(phos_world_desc, color)
+
+    FIELD(phos_camera_desc, type) FIELD(phos_camera_desc, transform) FIELD(phos_camera_desc, frame_min)
+    FIELD(phos_camera_desc, frame_max) FIELD(phos_camera_desc, aperture_radius)
+    FIELD(phos_camera_desc, focus_distance) FIELD(phos_camera_desc, clip_start) FIELD(phos_camera_desc, clip_end)
+
+    PHOS_RENDER_SETTINGS(SETTING_FIELD, SETTING_FIELD)
+
+    FIELD(phos_stage_info, id) FIELD(phos_stage_info, name)
+
+    FIELD(phos_progress, state) FIELD(phos_progress, fraction) FIELD(phos_progress, tiles_done)
+    FIELD(phos_progress, tiles_total) FIELD(phos_progress, samples) FIELD(phos_progress, stage)
+    FIELD(phos_progress, stage_id) FIELD(phos_progress, stage_index) FIELD(phos_progress, photons_stored)
+    FIELD(phos_progress, photons_emitted) FIELD(phos_progress, global_photons)
+    FIELD(phos_progress, caustic_photons)
+
+    FIELD(phos_tile, x) FIELD(phos_tile, y) FIELD(phos_tile, width) FIELD(phos_tile, height)
+};
+
+static const struct {
+    const char *name;
+    uint32_t size;
+} structs[] = {
+    {"phos_image_desc", sizeof(phos_image_desc)},
+    {"phos_closure_desc", sizeof(phos_closure_desc)},
+    {"phos_material_desc", sizeof(phos_material_desc)},
+    {"phos_mesh_desc", sizeof(phos_mesh_desc)},
+    {"phos_instance_desc", sizeof(phos_instance_desc)},
+    {"phos_light_desc", sizeof(phos_light_desc)},
+    {"phos_world_desc", sizeof(phos_world_desc)},
+    {"phos_camera_desc", sizeof(phos_camera_desc)},
+    {"phos_render_settings", sizeof(phos_render_settings)},
+    {"phos_stage_info", sizeof(phos_stage_info)},
+    {"phos_progress", sizeof(phos_progress)},
+    {"phos_tile", sizeof(phos_tile)},
+};
+
+uint32_t phos_struct_size(const char *name)
+{
+    if (!name)
+        return 0;
+    for (size_t i = 0; i < sizeof(structs) / sizeof(structs[0]); i++)
+        if (strcmp(structs[i].name, name) == 0)
+            return structs[i].size;
+    return 0;
+}
+
+phos_status phos_struct_field(const char *struct_name, const char *field_name, uint32_t *out_offset,
+                              uint32_t *out_size)
+{
+    if (!struct_name || !field_name)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    for (size_t i = 0; i < sizeof(fields) / sizeof(fields[0]); i++) {
+        const layout_field *f = &fields[i];
+        if (strcmp(f->struct_name, struct_name) == 0 && strcmp(f->field_name, field_name) == 0) {
+            if (out_offset)
+                *out_offset = f->offset;
+            if (out_size)
+                *out_size = f->size;
+            return PHOS_OK;
+        }
+    }
+    return PHOS_ERROR_INVALID_ARGUMENT;
+}

@@ -1,0 +1,47 @@
+/*
+ * stages.c — the stage names and a render's plan (stages.h).
+ */
+#include "render/stages.h"
+
+/* The passes that need the photon maps whatever the integrator. */
+#define PHOTON_DEBUG_PASSES ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_CAUSTIC_MAP) | (1u << PHOS_PASS_PHOTONS))
+
+void stage_plan_make(const phos_render_settings *rs, stage_plan *plan)
+{
+    int photon = rs->integrator == PHOS_INTEGRATOR_PHOTON;
+    uint32_t n = 0;
+    plan->stages[n++] = PHOS_STAGE_WAITING;
+    if (photon || (rs->pass_mask & PHOTON_DEBUG_PASSES)) {
+        plan->stages[n++] = PHOS_STAGE_TRACING_PHOTONS;
+        plan->stages[n++] = PHOS_STAGE_BUILDING_KDTREES;
+        /* Final gathering reads radiance precomputed at the photons
+         * (Christensen 1999, "Faster photon map global illumination"). */
+        if (photon && rs->photon_view == PHOS_PHOTON_VIEW_FINAL_GATHER)
+            plan->stages[n++] = PHOS_STAGE_PRECOMPUTING_RADIANCE;
+    }
+    plan->stages[n++] = PHOS_STAGE_RENDERING;
+    plan->stages[n++] = PHOS_STAGE_FINISHED;
+    plan->count = n;
+}
+
+int stage_plan_has(const stage_plan *plan, uint32_t stage)
+{
+    for (uint32_t i = 0; i < plan->count; i++)
+        if (plan->stages[i] == stage)
+            return 1;
+    return 0;
+}
+
+const char *stage_name(uint32_t stage, uint32_t integrator)
+{
+    switch (stage) {
+    case PHOS_STAGE_WAITING: return "Waiting";
+    case PHOS_STAGE_TRACING_PHOTONS: return "Tracing photons";
+    case PHOS_STAGE_BUILDING_KDTREES: return "Building kd-trees";
+    case PHOS_STAGE_PRECOMPUTING_RADIANCE: return "Precomputing radiance";
+    case PHOS_STAGE_RENDERING:
+        return integrator == PHOS_INTEGRATOR_PHOTON ? "Rendering with photon maps" : "Path tracing";
+    case PHOS_STAGE_FINISHED: return "Finished";
+    }
+    return "Unknown stage";
+}

@@ -1,0 +1,30 @@
+/*
+ * stages.h — the stages of a render, written once: their names, and which
+ * of them a render with given settings runs, in order (its plan). The
+ * controller (render.c) runs the plan; phos_render_stages and
+ * phos_render_progress report it.
+ */
+#ifndef PHOS_STAGES_H
+#define PHOS_STAGES_H
+
+#include "phos.h"
+
+typedef struct stage_plan {
+    uint32_t count;
+    uint32_t stages[PHOS_STAGE_COUNT]; /* enum phos_stage, in running order: WAITING first, FINISHED last */
+} stage_plan;
+
+/* The plan of a render with these (validated) settings: WAITING; the photon
+ * stages if it uses photon maps (the PHOTON integrator, or a photon debug
+ * pass with either integrator), with the radiance precomputation only for
+ * final gathering; RENDERING; FINISHED. */
+void stage_plan_make(const phos_render_settings *rs, stage_plan *plan);
+
+/* 1 if the plan runs the stage. */
+int stage_plan_has(const stage_plan *plan, uint32_t stage);
+
+/* The name of a stage as a status line shows it ("Tracing photons"); the
+ * rendering stage is named after the integrator. Never NULL. */
+const char *stage_name(uint32_t stage, uint32_t integrator);
+
+#endif /* PHOS_STAGES_H */
