@@ -63,7 +63,9 @@ def _stage_text(progress, stage_id, name, samples):
     """The status line's stage part: the core's name of the stage and what it
     has counted so far, e.g. "Tracing photons | 123,456 stored"."""
     if stage_id == core.PHOS_STAGE_TRACING_PHOTONS:
-        return "{} | {:,} stored | {:,} emitted".format(name, progress.photons_stored, progress.photons_emitted)
+        which = "caustic map" if progress.photon_map == core.PHOS_MAP_CAUSTIC else "global map"
+        return "{} | {} | {:,} stored | {:,} emitted".format(
+            name, which, progress.photons_stored, progress.photons_emitted)
     if stage_id == core.PHOS_STAGE_BUILDING_KDTREES:
         return "{} | {:,} photons".format(name, progress.photons_stored)
     if stage_id in (core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED):

@@ -104,6 +104,10 @@ PHOS_STAGE_RENDERING = 4
 PHOS_STAGE_FINISHED = 5
 PHOS_STAGE_COUNT = 6
 
+# enum phos_photon_map
+PHOS_MAP_GLOBAL = 0
+PHOS_MAP_CAUSTIC = 1
+
 ENUMS = {
     'phos_status': {'PHOS_OK': 0, 'PHOS_ERROR_INVALID_ARGUMENT': 1, 'PHOS_ERROR_INVALID_STATE': 2, 'PHOS_ERROR_OUT_OF_MEMORY': 3, 'PHOS_ERROR_EMBREE': 4, 'PHOS_ERROR_CANCELLED': 5, 'PHOS_ERROR_TIMEOUT': 6, 'PHOS_ERROR_INTERNAL': 7},
     'phos_image_interpolation': {'PHOS_INTERP_LINEAR': 0, 'PHOS_INTERP_CLOSEST': 1},
@@ -119,6 +123,7 @@ ENUMS = {
     'phos_pass': {'PHOS_PASS_COMBINED': 0, 'PHOS_PASS_EMISSION': 1, 'PHOS_PASS_DIRECT': 2, 'PHOS_PASS_SPECULAR': 3, 'PHOS_PASS_CAUSTICS': 4, 'PHOS_PASS_INDIRECT': 5, 'PHOS_PASS_PHOTON_MAP': 6, 'PHOS_PASS_CAUSTIC_MAP': 7, 'PHOS_PASS_PHOTONS': 8, 'PHOS_PASS_COUNT': 9},
     'phos_render_state': {'PHOS_STATE_IDLE': 0, 'PHOS_STATE_RUNNING': 1, 'PHOS_STATE_DONE': 2, 'PHOS_STATE_CANCELLED': 3, 'PHOS_STATE_FAILED': 4},
     'phos_stage': {'PHOS_STAGE_WAITING': 0, 'PHOS_STAGE_TRACING_PHOTONS': 1, 'PHOS_STAGE_BUILDING_KDTREES': 2, 'PHOS_STAGE_PRECOMPUTING_RADIANCE': 3, 'PHOS_STAGE_RENDERING': 4, 'PHOS_STAGE_FINISHED': 5, 'PHOS_STAGE_COUNT': 6},
+    'phos_photon_map': {'PHOS_MAP_GLOBAL': 0, 'PHOS_MAP_CAUSTIC': 1},
 }
 
 # Opaque handles, passed as c_void_p.
@@ -265,6 +270,7 @@ class phos_progress(ctypes.Structure):
         ("photons_emitted", ctypes.c_uint64),
         ("global_photons", ctypes.c_uint32),
         ("caustic_photons", ctypes.c_uint32),
+        ("photon_map", ctypes.c_uint32),
     ]
 
 
@@ -518,6 +524,8 @@ __all__ = (
     'PHOS_STAGE_RENDERING',
     'PHOS_STAGE_FINISHED',
     'PHOS_STAGE_COUNT',
+    'PHOS_MAP_GLOBAL',
+    'PHOS_MAP_CAUSTIC',
     'phos_image_desc',
     'phos_closure_desc',
     'phos_material_desc',

@@ -399,6 +399,9 @@ typedef struct phos_stage_info {
 PHOS_API phos_status phos_render_stages(const phos_render *render, phos_stage_info *out, uint32_t max,
                                         uint32_t *out_count);
 
+/* The photon maps, as phos_progress names the one being traced. */
+enum phos_photon_map { PHOS_MAP_GLOBAL = 0, PHOS_MAP_CAUSTIC = 1 };
+
 typedef struct phos_progress {
     uint32_t state;            /* enum phos_render_state */
     float fraction;            /* of the whole render, 0..1 */
@@ -410,6 +413,7 @@ typedef struct phos_progress {
     uint32_t photons_stored;   /* global + caustic so far */
     uint64_t photons_emitted;  /* photon paths so far */
     uint32_t global_photons, caustic_photons; /* in the maps, once built */
+    uint32_t photon_map;       /* TRACING_PHOTONS: the map being traced (enum phos_photon_map) */
 } phos_progress;
 PHOS_API phos_status phos_render_progress(phos_render *render, phos_progress *out);
 

@@ -23,6 +23,7 @@
 #include "photons/kdtree.h"
 #include "photons/photon_trace.h"
 #include "photons/radiance_estimate.h"
+#include "shading/material.h"
 #include "scene/scene.h"
 #include "test_scenes.h"
 #include "test_util.h"
@@ -100,6 +101,161 @@ static void test_point_light_irradiance(void)
     kdtree_query_free(&q);
     photon_maps_free(&maps);
     phos_scene_destroy(s);
+}
+
+/* Christensen's radiance photons against the closed form: a point light of
+ * intensity I at height h over a Lambertian plane of albedo ρ gives
+ * L = ρ/π · I cos θ / d² at each site. Sites within 0.6 m of the foot of
+ * the light (where the density is high and the k = 50 disc is small) are
+ * averaged. The ratio's standard error is measured from the sites
+ * themselves (neighbouring estimates share photons: the spread is
+ * computed over blocks of 64 sites in map order, which are spatially
+ * scattered). A site sitting on a stored photon must not count it: that
+ * alone would make the estimate (k−1)/(k−2) = +2.1 % too bright. */
+static void test_radiance_photons_unbiased(void)
+{
+    const float I = 2.0f, h = 1.0f, rho = 0.5f;
+    phos_scene *s = plane_under_point_light(I, h, rho);
+    photon_trace_settings ps = trace_settings(400000, 0, 0);
+    ps.max_radius = 0.5f;
+    photon_maps maps;
+    photon_maps_init(&maps);
+    atomic_int cancel = 0;
+    CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
+    CHECK(photon_maps_build(&maps) == PHOS_OK);
+    CHECK(photon_maps_precompute_radiance(s, &ps, &maps, &cancel) == PHOS_OK);
+    double sum = 0.0, block_sum = 0.0, sum_blocks2 = 0.0;
+    uint32_t n = 0, blocks = 0, in_block = 0;
+    for (uint32_t i = 0; i < maps.radiance.count; i++) {
+        const photon *p = &maps.radiance.photons[i];
+        vec3 x = photon_position(p);
+        float r2 = x.x * x.x + x.y * x.y;
+        if (r2 > 0.36f)
+            continue;
+        float d2 = r2 + h * h;
+        double expected = rho / M_PI * I * (h / sqrt(d2)) / d2;
+        double ratio = photon_power(p).x / expected;
+        sum += ratio;
+        n++;
+        block_sum += ratio;
+        if (++in_block == 64) {
+            sum_blocks2 += (block_sum / 64.0) * (block_sum / 64.0);
+            blocks++;
+            block_sum = 0.0;
+            in_block = 0;
+        }
+    }
+    double mean = sum / n;
+    double block_var = sum_blocks2 / blocks - mean * mean;
+    double stderr_mean = sqrt(fmax(block_var, 0.0) / blocks);
+    printf("  radiance photons over a plane: mean estimate / exact = %.4f ± %.4f over %u sites\n", mean,
+           stderr_mean, n);
+    CHECK(n > 1000);
+    CHECK_MSG(fabs(mean - 1.0) < 4.0 * stderr_mean, "radiance photons: mean ratio %.4f (± %.4f)", mean,
+              stderr_mean);
+    photon_maps_free(&maps);
+    phos_scene_destroy(s);
+}
+
+/* Radiance-photon lookups in a corner: a floor (normal +z, L = 1) with a
+ * record every 5 cm meets a wall (normal +y, L = 2) with a record every
+ * 5 mm. Just in front of the wall the 8 records nearest to a floor point
+ * are all wall records, which face the other way; the lookup must still
+ * find a floor record, and only floor records. */
+static void test_radiance_lookup_in_a_corner(void)
+{
+    photon_map m;
+    photon_map_init(&m);
+    int ok = 1;
+    for (int i = -20; i <= 20; i++)
+        for (int j = 1; j <= 20; j++) {
+            photon p = photon_make(v3(0.05f * i, 0.05f * j, 0.0f), v3s(1.0f), v3(0, 0, 1), 0, 0);
+            ok &= photon_map_append(&m, &p, 1);
+        }
+    for (int i = -200; i <= 200; i++)
+        for (int j = 0; j <= 100; j++) {
+            photon p = photon_make(v3(0.005f * i, 0.0f, 0.005f * j), v3s(2.0f), v3(0, 1, 0), 0, 0);
+            ok &= photon_map_append(&m, &p, 1);
+        }
+    CHECK(ok && photon_map_build(&m));
+    kdtree_query q, q8;
+    CHECK(kdtree_query_init(&q, RADIANCE_LOOKUP_WIDE) && kdtree_query_init(&q8, 8));
+    int crowded = 0, wrong = 0;
+    for (int i = 0; i < 20; i++) {
+        vec3 x = v3(-0.5f + 0.05f * i + 0.013f, 0.004f, 0.0f);
+        /* The situation: all 8 Euclidean nearest records are on the wall. */
+        photon_map_knn(&m, x, 1.0f, &q8);
+        int floor_records = 0;
+        for (uint32_t j = 0; j < q8.found; j++)
+            floor_records += photon_direction(kdtree_result(m.photons, &q8, j)).z > 0.5f;
+        crowded += floor_records == 0;
+        vec3 L;
+        int found = radiance_photon_lookup(&m, x, v3(0, 0, 1), 0.5f, &q, &L);
+        wrong += !found || fabsf(L.x - 1.0f) > 0.01f;
+    }
+    CHECK_MSG(crowded == 20, "only %d of 20 corner points have no floor record among the 8 nearest", crowded);
+    CHECK_MSG(wrong == 0, "%d of 20 corner lookups did not return the floor's radiance", wrong);
+    /* Nothing facing the query's way within the radius: not found. */
+    vec3 L;
+    CHECK(!radiance_photon_lookup(&m, v3(0.0f, 0.01f, 0.3f), v3(0, -1, 0), 0.1f, &q, &L));
+    kdtree_query_free(&q);
+    kdtree_query_free(&q8);
+    photon_map_free(&m);
+}
+
+/* The caustic pass traces nothing where no surface has a delta lobe (it
+ * could never store a photon), and does where one has. */
+static void test_caustic_pass_needs_a_delta_lobe(void)
+{
+    struct {
+        uint32_t type;
+        float roughness, ior;
+        int delta;
+    } cases[] = {
+        {PHOS_CLOSURE_DIFFUSE, 0.0f, 1.5f, 0},
+        {PHOS_CLOSURE_REFLECTION, 0.3f, 1.5f, 0},          /* rough metal */
+        {PHOS_CLOSURE_REFLECTION, 0.0f, 1.5f, 1},          /* mirror */
+        {PHOS_CLOSURE_REFLECTION_FRESNEL, 0.005f, 1.5f, 1}, /* sharp coat: α = 2.5e-5 */
+        {PHOS_CLOSURE_GLASS, 0.2f, 1.5f, 0},               /* frosted glass */
+        {PHOS_CLOSURE_GLASS, 0.2f, 1.0f, 1},               /* index-matched: a straight pass */
+        {PHOS_CLOSURE_REFRACTION, 0.0f, 1.45f, 1},
+        {PHOS_CLOSURE_TRANSPARENT, 0.0f, 1.5f, 0},         /* pass-through is no scattering */
+    };
+    for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+        phos_scene *s = phos_scene_create();
+        phos_closure_desc c;
+        phos_closure_desc_init(&c);
+        c.type = cases[i].type;
+        c.roughness = cases[i].roughness;
+        c.ior = cases[i].ior;
+        uint32_t floor_mesh = test_add_quad_mesh(s, 3.0f);
+        test_add_instance(s, floor_mesh, test_add_diffuse(s, 0.5f, 0.5f, 0.5f), 0, 0, 0);
+        /* The material under test on a small panel above the floor. */
+        test_add_instance(s, test_add_quad_mesh(s, 0.5f), test_add_closure_material(s, &c), 0, 0, 0.5f);
+        phos_light_desc l;
+        phos_light_desc_init(&l);
+        l.position[2] = 2.0f;
+        l.color[0] = l.color[1] = l.color[2] = 2.0f;
+        phos_scene_add_light(s, &l, NULL);
+        test_set_camera(s, 0, 0, 5, 0.5f);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        CHECK_MSG(scene_can_scatter_delta(s) == cases[i].delta, "case %zu: closure %u, roughness %.3f, ior %.2f",
+                  i, cases[i].type, cases[i].roughness, cases[i].ior);
+        photon_trace_settings ps = trace_settings(2000, 2000, 0);
+        ps.max_emitted = 2000000;
+        photon_maps maps;
+        photon_maps_init(&maps);
+        atomic_int cancel = 0;
+        CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
+        if (cases[i].delta)
+            CHECK_MSG(maps.caustic_emitted > 0, "case %zu: no caustic paths traced", i);
+        else
+            CHECK_MSG(maps.caustic_emitted == 0 && maps.caustic.count == 0,
+                      "case %zu: %llu caustic paths traced where none can be stored", i,
+                      (unsigned long long)maps.caustic_emitted);
+        photon_maps_free(&maps);
+        phos_scene_destroy(s);
+    }
 }
 
 static void test_power_in_closed_sphere(void)
@@ -388,6 +544,9 @@ static void test_path_traced_gather_vs_path(void)
 int main(void)
 {
     test_point_light_irradiance();
+    test_radiance_photons_unbiased();
+    test_caustic_pass_needs_a_delta_lobe();
+    test_radiance_lookup_in_a_corner();
     test_power_in_closed_sphere();
     test_maps_deterministic();
     test_photon_vs_path();

@@ -575,6 +575,7 @@ phos_status phos_render_create(phos_scene *s, const phos_render_settings *rs, ph
     atomic_init(&r->stage_index, 0u);
     atomic_init(&r->photon_progress.emitted, 0u);
     atomic_init(&r->photon_progress.stored, 0u);
+    atomic_init(&r->photon_progress.map, PHOS_MAP_GLOBAL);
     r->state = PHOS_STATE_IDLE;
     r->status = PHOS_OK;
     r->scene = s;
@@ -636,6 +637,7 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     out->stage_id = r->plan.stages[out->stage_index];
     out->photons_stored = atomic_load(&r->photon_progress.stored);
     out->photons_emitted = atomic_load(&r->photon_progress.emitted);
+    out->photon_map = atomic_load(&r->photon_progress.map);
     if (out->stage_id >= PHOS_STAGE_RENDERING) {
         out->global_photons = r->maps.global.count;
         out->caustic_photons = r->maps.caustic.count;

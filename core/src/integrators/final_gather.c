@@ -18,17 +18,25 @@
 static vec3 gather_ray(const indirect_query *q, vec3 o, vec3 d, const sampler *g, uint32_t ray_index)
 {
     const integrator_settings *is = q->is;
-    specular_chain c = {STOP_AT_NON_DELTA, GATHER_SPECULAR_BOUNCES + 1, 0, g, 2u * 4096u + ray_index * 8u};
+    /* Each ray's chain draws from a stream of its own (hemisphere.h's
+     * dimension plan), so no two rays or steps share a dimension. */
+    sampler chain_smp = sampler_split(g, HEMISPHERE_RAY_STREAM + ray_index);
+    specular_chain c = {STOP_AT_NON_DELTA, GATHER_SPECULAR_BOUNCES + 1, 0, &chain_smp, 0};
     specular_chain_end end;
     if (!specular_chain_follow(q->s, &c, o, d, 0.0f, INFINITY, &end))
         return v3s(0.0f); /* the world is direct light, counted already */
     vec3 L;
-    if (is->maps->radiance.count)
-        L = radiance_photon_lookup(&is->maps->radiance, end.sf.p, end.sf.ns, is->radiance_lookup_radius,
-                                   &q->scratch->radiance);
-    else
-        L = photon_radiance(&is->maps->global, &end.b, end.wo, end.sf.p, end.sf.ns, &is->global_estimate,
-                            &q->scratch->global);
+    if (is->maps->radiance.count &&
+        radiance_photon_lookup(&is->maps->radiance, end.sf.p, end.sf.ns, is->radiance_lookup_radius,
+                               &q->scratch->radiance, &L))
+        return v3_mul(end.beta, L);
+    /* No radiance photon faces this way nearby (sparse photons, or no
+     * precomputation): the global map's estimate on the fly, through the
+     * diffuse part as a radiance photon would have it. */
+    bsdf diffuse, rest;
+    bsdf_split(&end.b, &diffuse, &rest);
+    L = photon_radiance(&is->maps->global, &diffuse, end.wo, end.sf.p, end.sf.ns, &is->global_estimate,
+                        &q->scratch->global);
     return v3_mul(end.beta, L);
 }
 

@@ -10,6 +10,15 @@
 
 #include "integrators/indirect_diffuse.h"
 
+/* The dimension plan of a gather. The gather's sampler g is split off the
+ * camera sample's by the vertex; in g, ray i's direction takes dimensions
+ * 2i and 2i + 1 and nothing else. Whatever a ray does after it leaves (a
+ * specular chain, a path) draws from its own stream,
+ * sampler_split(g, HEMISPHERE_RAY_STREAM + i), from dimension 0 on, so no
+ * two rays and no two steps of one ray share a dimension, whatever the
+ * number of rays or steps. */
+#define HEMISPHERE_RAY_STREAM 0x4a7b0000u
+
 /* Radiance W/(m²·sr) arriving at the query's point along wi from a ray
  * leaving o; g is the gather's sampler and ray_index the ray's number. */
 typedef vec3 (*hemisphere_incoming)(const indirect_query *q, vec3 o, vec3 wi, const sampler *g,

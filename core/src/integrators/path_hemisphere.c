@@ -13,7 +13,7 @@
  * caustic map count at the gather's point. */
 static vec3 path_traced_ray(const indirect_query *q, vec3 o, vec3 wi, const sampler *g, uint32_t ray_index)
 {
-    sampler ray_smp = sampler_split(g, 0x4a7b0000u + ray_index);
+    sampler ray_smp = sampler_split(g, HEMISPHERE_RAY_STREAM + ray_index); /* hemisphere.h */
     sample_result r = camera_path_walk_indirect(q->s, q->is, o, wi, q->depth + 1, &ray_smp, q->scratch,
                                                 path_vertex_policy);
     vec3 L = v3s(0.0f);

@@ -20,7 +20,8 @@ typedef struct specular_chain {
     uint32_t max_steps;    /* surfaces the ray may pass before it gives up */
     int coherent;          /* camera rays (a hint to the ray-tracing kernel) */
     const sampler *smp;    /* the lobe choice at step k: dimensions dim + 3k (1D pick) and dim + 3k + 1 (2D); */
-    uint32_t dim;          /* smp NULL: always the lobe and direction at u = 0.5 */
+    uint32_t dim;          /* smp NULL: always the lobe and direction at u = 0.5. The caller owns
+                              dimensions dim ... dim + 3·max_steps − 1 of smp. */
 } specular_chain;
 
 typedef struct specular_chain_end {

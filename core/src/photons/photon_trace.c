@@ -270,6 +270,8 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
                               photon_trace_progress *progress)
 {
     batch kept;
+    if (progress)
+        atomic_store(&progress->map, PHOS_MAP_GLOBAL);
     phos_status st = trace_map(s, ps, MAP_GLOBAL, ps->global_photons, &kept, &out->global_emitted, cancel, progress, 0);
     if (st == PHOS_OK)
         st = fill_map(&out->global, &kept, out->global_emitted);
@@ -292,7 +294,13 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     free(kept.items);
     if (st != PHOS_OK)
         return st;
-    st = trace_map(s, ps, MAP_CAUSTIC, ps->caustic_photons, &kept, &out->caustic_emitted, cancel, progress,
+    /* A caustic photon needs a delta scattering on its way (L S+ D): in a
+     * scene where no surface has a delta lobe the map can never fill, and
+     * every path traced for it would be wasted. */
+    uint32_t caustic_target = scene_can_scatter_delta(s) ? ps->caustic_photons : 0;
+    if (progress)
+        atomic_store(&progress->map, PHOS_MAP_CAUSTIC);
+    st = trace_map(s, ps, MAP_CAUSTIC, caustic_target, &kept, &out->caustic_emitted, cancel, progress,
                    out->global.count);
     if (st == PHOS_OK)
         st = fill_map(&out->caustic, &kept, out->caustic_emitted);
@@ -320,7 +328,8 @@ static void precompute_sites(void *ctx, uint32_t item, uint32_t thread)
 {
     precompute *pc = ctx;
     const photon_maps *m = pc->maps;
-    estimate_params ep = {pc->ps->radiance_k, pc->ps->max_radius, ESTIMATE_BOX, 0};
+    /* Each site lies on a global photon (at_photon: not counted). */
+    estimate_params ep = {pc->ps->radiance_k, pc->ps->max_radius, ESTIMATE_BOX, 0, 1};
     uint32_t begin = item * SITES_PER_ITEM, end = begin + SITES_PER_ITEM;
     if (end > m->radiance_site_count)
         end = m->radiance_site_count;

@@ -41,6 +41,7 @@ typedef struct photon_trace_settings {
 typedef struct photon_trace_progress {
     atomic_uint_fast64_t emitted;  /* paths emitted so far, both maps */
     atomic_uint stored;            /* photons kept so far, both maps */
+    atomic_uint map;               /* the map being traced: enum phos_photon_map */
 } photon_trace_progress;
 
 void photon_maps_init(photon_maps *m);

@@ -17,22 +17,36 @@ typedef struct weighted_photon_sum {
     float norm;      /* the kernel's integral over the disc, in units of πr² */
 } weighted_photon_sum;
 
-/* Searches and returns the index (in q) of the photon to leave out, or
- * UINT32_MAX, and the radius to use. */
-static uint32_t gather(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q,
-                       weighted_photon_sum *w)
+/* Searches, and marks in skip[] the photons (indices in q) to leave out:
+ * the k-th, which only sets the radius (k−1 rule), and with at_photon the
+ * photon lying at x itself. Then k−1 photons in all are left out of the k
+ * found: with the one at x excluded, the others are k−1 samples of the
+ * density and their k−1-th sets the radius, so k−2 are summed, as the
+ * k−1 rule asks for k−1 found (docs/algorithms.md §5.3). */
+typedef struct skipped {
+    uint32_t far, self;
+} skipped;
+
+static skipped gather(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q,
+                      weighted_photon_sum *w)
 {
     float max_r2 = ep->max_radius * ep->max_radius;
     photon_map_knn_disc(m, x, n, ESTIMATE_DISC_FLATTEN, max_r2, q);
-    uint32_t skip = UINT32_MAX;
+    skipped skip = {UINT32_MAX, UINT32_MAX};
     w->r2 = max_r2;
+    if (ep->at_photon)
+        for (uint32_t j = 0; j < q->found; j++)
+            if (q->dist2[j] == 0.0f) {
+                skip.self = j;
+                break;
+            }
     if (q->found == q->k && q->k > 1) {
         w->r2 = q->radius2;
         float far = -1.0f;
         for (uint32_t j = 0; j < q->found; j++)
-            if (q->dist2[j] > far) {
+            if (j != skip.self && q->dist2[j] > far) {
                 far = q->dist2[j];
-                skip = j;
+                skip.far = j;
             }
     }
     w->norm = ep->filter == ESTIMATE_CONE ? 1.0f / 3.0f : 1.0f;
@@ -52,9 +66,9 @@ vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_param
     if (m->count == 0 || !(ep->max_radius > 0.0f))
         return sum;
     weighted_photon_sum w;
-    uint32_t skip = gather(m, x, n, ep, q, &w);
+    skipped skip = gather(m, x, n, ep, q, &w);
     for (uint32_t j = 0; j < q->found; j++) {
-        if (j == skip)
+        if (j == skip.far || j == skip.self)
             continue;
         const photon *p = kdtree_result(m->photons, q, j);
         if (p->flags & ep->exclude_flags)
@@ -73,9 +87,9 @@ vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
     if (m->count == 0 || !(ep->max_radius > 0.0f) || b->count == 0)
         return sum;
     weighted_photon_sum w;
-    uint32_t skip = gather(m, x, n, ep, q, &w);
+    skipped skip = gather(m, x, n, ep, q, &w);
     for (uint32_t j = 0; j < q->found; j++) {
-        if (j == skip)
+        if (j == skip.far || j == skip.self)
             continue;
         const photon *p = kdtree_result(m->photons, q, j);
         if (p->flags & ep->exclude_flags)
@@ -91,22 +105,32 @@ vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
     return v3_scale(sum, 1.0f / (PHOS_PI * w.r2 * w.norm));
 }
 
-vec3 radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q)
+/* The nearest of the k nearest records whose normal agrees with n. */
+static int nearest_facing(const photon_map *m, vec3 x, vec3 n, float max_r2, uint32_t k, kdtree_query *q, vec3 *L)
 {
-    if (m->count == 0)
-        return v3s(0.0f);
-    photon_map_knn(m, x, max_radius * max_radius, q);
+    uint32_t capacity = q->k;
+    q->k = k < capacity ? k : capacity;
+    photon_map_knn_disc(m, x, n, ESTIMATE_DISC_FLATTEN, max_r2, q);
+    q->k = capacity;
     float best = INFINITY;
-    vec3 L = v3s(0.0f);
     for (uint32_t j = 0; j < q->found; j++) {
         const photon *p = kdtree_result(m->photons, q, j);
-        /* Normal of the record on the same side as the query's (PB2). */
-        if (v3_dot(photon_direction(p), n) <= 0.5f)
+        if (v3_dot(photon_direction(p), n) <= 0.5f) /* the record's normal is in the direction bytes */
             continue;
         if (q->dist2[j] < best) {
             best = q->dist2[j];
-            L = photon_power(p);
+            *L = photon_power(p);
         }
     }
-    return L;
+    return best < INFINITY;
+}
+
+int radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q, vec3 *L)
+{
+    *L = v3s(0.0f);
+    if (m->count == 0)
+        return 0;
+    float max_r2 = max_radius * max_radius;
+    return nearest_facing(m, x, n, max_r2, RADIANCE_LOOKUP_FIRST, q, L) ||
+           nearest_facing(m, x, n, max_r2, RADIANCE_LOOKUP_WIDE, q, L);
 }

@@ -23,6 +23,8 @@ typedef struct estimate_params {
     float max_radius;        /* scene units */
     uint32_t filter;         /* enum estimate_filter */
     uint16_t exclude_flags;  /* skip photons with any of these flags (PHOTON_DIRECT, PHOTON_CAUSTIC) */
+    uint16_t at_photon;      /* x is a stored photon's position (a radiance-photon site): that photon is
+                                not a sample of the density around x and is left out */
 } estimate_params;
 
 /* Flattening of the search sphere along the normal (docs/algorithms.md
@@ -39,8 +41,17 @@ vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_param
 vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, const estimate_params *ep,
                      kdtree_query *q);
 
-/* The precomputed radiance photon nearest to x whose normal agrees with n;
- * zero if none lies within max_radius. */
-vec3 radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q);
+/* Radiance-photon lookups search the RADIANCE_LOOKUP_FIRST nearest records
+ * (disc metric, §4.3), then, if none of them faces the query's way, the
+ * RADIANCE_LOOKUP_WIDE nearest: in a corner the records of the other wall
+ * can crowd out all of the few on this one. q must hold WIDE. */
+#define RADIANCE_LOOKUP_FIRST 8u
+#define RADIANCE_LOOKUP_WIDE 64u
+
+/* The precomputed radiance photon nearest to x whose normal agrees with n
+ * (n·n_p > 0.5), within max_radius: returns 1 and its radiance
+ * (W/(m²·sr)) in *L, or 0 if there is none (the caller then estimates on
+ * the fly from the global map). docs/algorithms.md §5.3. */
+int radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q, vec3 *L);
 
 #endif /* PHOS_RADIANCE_ESTIMATE_H */

@@ -36,10 +36,6 @@
 #include "shading/microfacet.h"
 #include "sampling/warp.h"
 
-/* |η − 1| below this: the interface does not bend light, refraction is a
- * straight pass-through whatever the roughness (as Cycles 3.4). */
-#define BSDF_INDEX_MATCHED 1e-4f
-
 /* One evaluation query in the shading frame. */
 typedef struct query {
     vec3 wo, wi;  /* unit, local shading frame */

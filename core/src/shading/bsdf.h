@@ -29,6 +29,9 @@ enum bsdf_flags {
 
 /* Below this GGX alpha a microfacet lobe is treated as perfectly sharp. */
 #define BSDF_SHARP_ALPHA 1e-4f
+/* |η − 1| below this: the interface does not bend light, refraction is a
+ * straight pass-through whatever the roughness (as Cycles 3.4). */
+#define BSDF_INDEX_MATCHED 1e-4f
 
 typedef struct closure {
     uint32_t type;          /* enum phos_closure_type */

@@ -176,3 +176,42 @@ vec3 material_transparency(const scene *s, const surface *sf)
             sum = v3_add(sum, closure_weight(s, &m->closures[i], sf->u, sf->v));
     return sum;
 }
+
+int material_can_scatter_delta(const material *m)
+{
+    for (uint32_t i = 0; i < m->closure_count; i++) {
+        const phos_closure_desc *d = &m->closures[i];
+        float r = clampf(d->roughness, 0.0f, 1.0f);
+        float rt = d->transmission_roughness < 0.0f ? r : d->transmission_roughness;
+        int sharp = r * r < BSDF_SHARP_ALPHA, sharp_refraction = rt * rt < BSDF_SHARP_ALPHA;
+        int index_matched = fabsf(d->ior - 1.0f) < BSDF_INDEX_MATCHED;
+        switch (d->type) {
+        case PHOS_CLOSURE_REFLECTION:
+        case PHOS_CLOSURE_REFLECTION_FRESNEL:
+            if (sharp)
+                return 1;
+            break;
+        case PHOS_CLOSURE_REFRACTION:
+            if (sharp || index_matched)
+                return 1;
+            break;
+        case PHOS_CLOSURE_GLASS:
+            if (sharp || sharp_refraction || index_matched)
+                return 1;
+            break;
+        default:
+            break;
+        }
+    }
+    return 0;
+}
+
+int scene_can_scatter_delta(const scene *s)
+{
+    if (material_can_scatter_delta(&scene_default_material))
+        return 1;
+    for (uint32_t i = 0; i < s->material_count; i++)
+        if (material_can_scatter_delta(&s->materials[i]))
+            return 1;
+    return 0;
+}

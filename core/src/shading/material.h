@@ -35,6 +35,15 @@ vec3 material_emission_at(const scene *s, uint32_t instance, uint32_t prim, floa
 /* Mean emitted radiance of a material, for light power estimates. */
 vec3 material_emission_estimate(const scene *s, const material *m);
 
+/* Whether some closure of the material can scatter into a delta lobe
+ * (sharp mirror or glass, index-matched refraction): only such a surface
+ * can start a caustic path (L S+ D). Transparent pass-through is not a
+ * scattering event and does not count. */
+int material_can_scatter_delta(const material *m);
+
+/* Whether any material of the scene can (the caustic map can fill). */
+int scene_can_scatter_delta(const scene *s);
+
 /* How much light passes straight through (transparent closures). */
 vec3 material_transparency(const scene *s, const surface *sf);
 
