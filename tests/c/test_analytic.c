@@ -85,6 +85,47 @@ static void test_white_furnace(void)
     phos_scene_destroy(s);
 }
 
+/* A camera-visible area lamp in front of a fully transparent plane, black
+ * world: every pixel sees the lamp's radiance once. A ray that passes the
+ * plane keeps its origin, and the lamp before the plane must not be found
+ * again on the way on (it was, and the image read 2 L). Both integrators. */
+static void test_lamp_before_transparent_plane(void)
+{
+    phos_scene *s = phos_scene_create();
+    phos_closure_desc c;
+    phos_closure_desc_init(&c);
+    c.type = PHOS_CLOSURE_TRANSPARENT;
+    c.weight[0] = c.weight[1] = c.weight[2] = 1.0f;
+    test_add_instance(s, test_add_quad_mesh(s, 5.0f), test_add_closure_material(s, &c), 0, 0, 0);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_AREA;
+    l.position[2] = 1.0f;
+    l.direction[2] = 1.0f; /* emits toward the camera */
+    l.axis_u[0] = l.axis_v[1] = 4.0f;
+    l.color[0] = l.color[1] = l.color[2] = 0.5f;
+    l.camera_visible = 1;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera(s, 0, 0, 3, 0.1f); /* sees only the lamp */
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    for (uint32_t integrator = PHOS_INTEGRATOR_PATH; integrator <= PHOS_INTEGRATOR_PHOTON; integrator++) {
+        phos_render_settings rs;
+        phos_render_settings_init(&rs);
+        rs.width = rs.height = 8;
+        rs.samples = 4;
+        rs.integrator = integrator;
+        rs.global_photons = rs.caustic_photons = 1000;
+        float *img = test_render(s, &rs);
+        CHECK(img != NULL);
+        if (img)
+            check_mean(integrator == PHOS_INTEGRATOR_PATH ? "PATH: lamp before a transparent plane"
+                                                          : "PHOTON: lamp before a transparent plane",
+                       img, 8 * 8, 0.5);
+        free(img);
+    }
+    phos_scene_destroy(s);
+}
+
 /* Irradiance at a point below the corner of a w×l rectangle at height h,
  * per unit radiance (the form factor times π). */
 static double rect_corner_irradiance(double w, double l, double h)
@@ -216,6 +257,7 @@ static void test_lights_over_plane(void)
 
 int main(void)
 {
+    test_lamp_before_transparent_plane();
     test_sphere_around_point_light();
     test_white_furnace();
     test_lights_over_plane();

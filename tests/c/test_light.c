@@ -37,7 +37,7 @@ static double pdf_toward(const light_query *q, vec3 w)
     if (hit)
         tmax = h.t;
     light_hit lh;
-    if (lights_intersect(s, q->p, w, tmax, 0, &lh))
+    if (lights_intersect(s, q->p, w, 0.0f, tmax, 0, &lh))
         return lh.pdf;
     if (hit) {
         const instance *inst = &s->instances[h.instance];

@@ -258,6 +258,147 @@ static void test_caustic_pass_needs_a_delta_lobe(void)
     }
 }
 
+/* Flux of the direct photons a light leaves on an almost black receiver
+ * (albedo 10⁻³, so photons are stored at their first hit and then die),
+ * against the light's power in closed form. Inside a closed sphere every
+ * photon lands and the sum is exact up to RGBE rounding of each photon's
+ * power (< 1/256, mostly cancelling: 0.5 % is allowed for it); on a plane
+ * under a distant light the number that lands is binomial, and 4 of its
+ * standard errors are added. */
+static double direct_flux(phos_scene *s, uint32_t photons, int from_above_only, double *hit_fraction)
+{
+    photon_trace_settings ps = trace_settings(photons, 0, 0);
+    photon_maps maps;
+    photon_maps_init(&maps);
+    atomic_int cancel = 0;
+    CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
+    double flux = 0.0;
+    for (uint32_t i = 0; i < maps.global.count; i++) {
+        const photon *p = &maps.global.photons[i];
+        if (photon_is_direct(p) && (!from_above_only || photon_direction(p).z < 0.0f))
+            flux += photon_power(p).x;
+    }
+    *hit_fraction = maps.global_emitted ? (double)maps.global.count / (double)maps.global_emitted : 0.0;
+    photon_maps_free(&maps);
+    return flux;
+}
+
+static phos_scene *light_in_black_sphere(const phos_light_desc *l)
+{
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_sphere_mesh(s, 3.0f, 48, 24, 1), test_add_diffuse(s, 1e-3f, 1e-3f, 1e-3f), 0, 0,
+                      0);
+    phos_scene_add_light(s, l, NULL);
+    test_set_camera(s, 0, 0, 0, 1.0f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    return s;
+}
+
+static void test_emitted_flux_per_light_type(void)
+{
+    const double L = 1.5;
+    /* Lamps and an emissive mesh inside a closed sphere. */
+    struct {
+        const char *name;
+        phos_light_desc d;
+        double flux;
+    } lamps[4];
+    for (int i = 0; i < 4; i++)
+        phos_light_desc_init(&lamps[i].d);
+    lamps[0].name = "area rectangle";
+    lamps[0].d.type = PHOS_LIGHT_AREA;
+    lamps[0].d.axis_u[0] = 0.5f;
+    lamps[0].d.axis_v[1] = 0.3f;
+    lamps[0].flux = M_PI * 0.15 * L; /* πAL */
+    lamps[1].name = "area ellipse";
+    lamps[1].d = lamps[0].d;
+    lamps[1].d.area_shape = PHOS_AREA_ELLIPSE;
+    lamps[1].flux = M_PI * (M_PI * 0.25 * 0.15) * L;
+    const float cos_half = cosf(0.5f * 0.9f);
+    lamps[2].name = "spot, hard edge";
+    lamps[2].d.type = PHOS_LIGHT_SPOT;
+    lamps[2].d.spot_angle = 0.9f;
+    lamps[2].d.spot_blend = 0.0f;
+    lamps[2].flux = 2.0 * M_PI * L * (1.0 - cos_half); /* ∫ I dω over the cone */
+    lamps[3].name = "spot, blend 0.4";
+    lamps[3].d = lamps[2].d;
+    lamps[3].d.spot_blend = 0.4f;
+    /* smoothstep over the outer w = (1 − cos_half)·blend of cos θ integrates to w/2 */
+    lamps[3].flux = 2.0 * M_PI * L * (1.0 - cos_half - 0.5 * (1.0 - cos_half) * 0.4);
+    for (int i = 0; i < 4; i++) {
+        lamps[i].d.direction[2] = 1.0f;
+        lamps[i].d.color[0] = lamps[i].d.color[1] = lamps[i].d.color[2] = (float)L;
+        phos_scene *s = light_in_black_sphere(&lamps[i].d);
+        double hit;
+        double flux = direct_flux(s, 200000, 0, &hit);
+        printf("  emitted flux, %-16s %.5f W, closed form %.5f W\n", lamps[i].name, flux, lamps[i].flux);
+        CHECK_MSG(fabs(flux / lamps[i].flux - 1.0) < 0.005, "%s: flux %.5f W, expected %.5f W", lamps[i].name, flux,
+                  lamps[i].flux);
+        phos_scene_destroy(s);
+    }
+    /* An emissive quad (two triangles, both faces emit): 2πAL. */
+    {
+        phos_scene *s = phos_scene_create();
+        test_add_instance(s, test_add_sphere_mesh(s, 3.0f, 48, 24, 1), test_add_diffuse(s, 1e-3f, 1e-3f, 1e-3f), 0,
+                          0, 0);
+        phos_closure_desc e;
+        phos_closure_desc_init(&e);
+        e.type = PHOS_CLOSURE_EMISSION;
+        e.weight[0] = e.weight[1] = e.weight[2] = (float)L;
+        test_add_instance(s, test_add_quad_mesh(s, 0.3f), test_add_closure_material(s, &e), 0, 0, 0);
+        test_set_camera(s, 0, 0, -1.0f, 1.0f);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        double hit, expected = 2.0 * M_PI * 0.36 * L;
+        double flux = direct_flux(s, 200000, 0, &hit);
+        printf("  emitted flux, %-16s %.5f W, closed form %.5f W\n", "emissive mesh", flux, expected);
+        CHECK_MSG(fabs(flux / expected - 1.0) < 0.005, "emissive mesh: flux %.5f W, expected %.5f W", flux, expected);
+        phos_scene_destroy(s);
+    }
+    /* Distant lights over a 4 m × 4 m absorbing plane: the sun's irradiance
+     * at normal incidence E (its whole disc, angle or not), the world's πL
+     * on the side facing up. */
+    struct {
+        const char *name;
+        int world;
+        float angle;
+        double flux;
+    } distant[] = {
+        {"sun, angle 0", 0, 0.0f, 16.0 * L},
+        {"sun, angle 30°", 0, (float)(M_PI / 6.0), 16.0 * L},
+        {"world", 1, 0.0f, 16.0 * M_PI * L},
+    };
+    for (size_t i = 0; i < sizeof(distant) / sizeof(distant[0]); i++) {
+        phos_scene *s = phos_scene_create();
+        test_add_instance(s, test_add_quad_mesh(s, 2.0f), test_add_diffuse(s, 1e-3f, 1e-3f, 1e-3f), 0, 0, 0);
+        if (distant[i].world) {
+            phos_world_desc w;
+            phos_world_desc_init(&w);
+            w.color[0] = w.color[1] = w.color[2] = (float)L;
+            phos_scene_set_world(s, &w);
+        } else {
+            phos_light_desc l;
+            phos_light_desc_init(&l);
+            l.type = PHOS_LIGHT_SUN;
+            l.direction[2] = -1.0f;
+            l.sun_angle = distant[i].angle;
+            l.color[0] = l.color[1] = l.color[2] = (float)L;
+            phos_scene_add_light(s, &l, NULL);
+        }
+        test_set_camera(s, 0, 0, 5, 0.5f);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        double p;
+        double flux = direct_flux(s, 200000, 1, &p);
+        /* Landed photons: binomial out of ~200000/p emitted. */
+        double rel_se = sqrt((1.0 - p) / 200000.0);
+        double tol = 4.0 * rel_se + 0.005;
+        printf("  emitted flux, %-16s %.5f W, closed form %.5f W (±%.2f %%)\n", distant[i].name, flux,
+               distant[i].flux, 100.0 * tol);
+        CHECK_MSG(fabs(flux / distant[i].flux - 1.0) < tol, "%s: flux %.5f W, expected %.5f W", distant[i].name, flux,
+                  distant[i].flux);
+        phos_scene_destroy(s);
+    }
+}
+
 static void test_power_in_closed_sphere(void)
 {
     const float I = 1.5f, rho = 0.6f;
@@ -389,6 +530,18 @@ static float *render_passes(phos_scene *s, uint32_t integrator, uint32_t samples
     return render_view(s, integrator, PHOS_PHOTON_VIEW_FINAL_GATHER, 0, samples, seed, passes, w, NULL);
 }
 
+/* Frees four renders' passes (render_view). */
+static void free_pass_sets(float *a[PHOS_PASS_COUNT], float *b[PHOS_PASS_COUNT], float *c[PHOS_PASS_COUNT],
+                           float *d[PHOS_PASS_COUNT])
+{
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        free(a[p]);
+        free(b[p]);
+        free(c[p]);
+        free(d[p]);
+    }
+}
+
 static double pass_mean(const float *p, uint32_t channels, uint32_t n)
 {
     double m = 0.0;
@@ -462,12 +615,7 @@ static void test_photon_vs_path(void)
     CHECK_MSG(fabs(photon_map - combined) < 0.1 * combined, "photon map pass %.4f vs combined %.4f", photon_map, combined);
     CHECK(pass_mean(pm[PHOS_PASS_PHOTONS], 3, n) > 0.0);
     CHECK(pass_mean(pm[PHOS_PASS_CAUSTIC_MAP], 3, n) > 0.0);
-    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
-        free(path[p]);
-        free(path2[p]);
-        free(pm[p]);
-        free(pm2[p]);
-    }
+    free_pass_sets(path, path2, pm, pm2);
     phos_scene_destroy(s);
 }
 
@@ -526,12 +674,7 @@ static void path_traced_gather_vs_path(const char *name, phos_scene *s)
         printf("    %-9s PATH %.5f  PHOTON, path-traced gather %.5f  (limit ±%.5f)\n", names[p], a, b, limit);
         CHECK_MSG(fabs(b - a) <= limit, "%s: path-traced gather %.5f vs PATH %.5f", names[p], b, a);
     }
-    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
-        free(path[p]);
-        free(path2[p]);
-        free(pt[p]);
-        free(pt2[p]);
-    }
+    free_pass_sets(path, path2, pt, pt2);
     phos_scene_destroy(s);
 }
 
@@ -541,15 +684,81 @@ static void test_path_traced_gather_vs_path(void)
     path_traced_gather_vs_path("closed room", closed_room_scene());
 }
 
+/* Blender's default scene in small: a diffuse ball on a floor, a strong
+ * point lamp and a dim uniform world. Where the lamp does not reach, the
+ * world lights the ball; a light sample seldom picks the world there, so
+ * the gather rays that escape must count it (under MIS) or the face is
+ * covered in speckles. PHOTON's noise per pixel at equal samples must stay
+ * within a small factor of PATH's, and the means agree. Noise is measured
+ * from two seeds of each: Var = mean (a − b)² / 2. */
+static phos_scene *default_cube_scene(void)
+{
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quad_mesh(s, 4.0f), test_add_diffuse(s, 0.8f, 0.8f, 0.8f), 0, 0, 0);
+    test_add_instance(s, test_add_sphere_mesh(s, 0.8f, 32, 16, 0), test_add_diffuse(s, 0.8f, 0.8f, 0.8f), 0, 0,
+                      0.8f);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.position[0] = 4.0f;
+    l.position[1] = 1.0f;
+    l.position[2] = 5.0f;
+    l.color[0] = l.color[1] = l.color[2] = 1000.0f / (4.0f * (float)M_PI); /* 1000 W */
+    phos_scene_add_light(s, &l, NULL);
+    phos_world_desc w;
+    phos_world_desc_init(&w);
+    w.color[0] = w.color[1] = w.color[2] = 0.05f;
+    phos_scene_set_world(s, &w);
+    /* From the side the lamp does not reach. */
+    test_set_camera_pitched(s, -1.0f, -4.5f, 1.6f, 0.15f, 0.35f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    return s;
+}
+
+static double pair_variance(const float *a, const float *b, uint32_t channels, uint32_t n)
+{
+    double v = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) {
+            double d = a[i * channels + c] - b[i * channels + c];
+            v += d * d / 2.0;
+        }
+    return v / (3.0 * n);
+}
+
+static void test_world_light_noise(void)
+{
+    phos_scene *s = default_cube_scene();
+    const uint32_t w = 32, n = w * w;
+    const uint32_t combined = 1u << PHOS_PASS_COMBINED;
+    float *path[PHOS_PASS_COUNT], *path2[PHOS_PASS_COUNT], *pm[PHOS_PASS_COUNT], *pm2[PHOS_PASS_COUNT];
+    CHECK(render_view(s, PHOS_INTEGRATOR_PATH, 0, combined, 16, 5, path, w, NULL) != NULL);
+    CHECK(render_view(s, PHOS_INTEGRATOR_PATH, 0, combined, 16, 6, path2, w, NULL) != NULL);
+    CHECK(render_view(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, combined, 16, 5, pm, w, NULL) != NULL);
+    CHECK(render_view(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, combined, 16, 6, pm2, w, NULL) !=
+          NULL);
+    double v_path = pair_variance(path[0], path2[0], 4, n), v_pm = pair_variance(pm[0], pm2[0], 4, n);
+    double a = 0.5 * (pass_mean(path[0], 4, n) + pass_mean(path2[0], 4, n));
+    double b = 0.5 * (pass_mean(pm[0], 4, n) + pass_mean(pm2[0], 4, n));
+    double se = sqrt(pow(pair_stderr(path[0], path2[0], 4, n), 2) + pow(pair_stderr(pm[0], pm2[0], 4, n), 2));
+    printf("  world-lit ball: mean PATH %.5f PHOTON %.5f (±%.5f); pixel variance PATH %.3g PHOTON %.3g (%.2fx)\n", a,
+           b, 4.0 * se, v_path, v_pm, v_pm / v_path);
+    CHECK_MSG(v_pm <= 2.0 * v_path, "PHOTON's pixel variance %.3g is %.1fx PATH's %.3g", v_pm, v_pm / v_path, v_path);
+    CHECK_MSG(fabs(b - a) <= 4.0 * se, "world-lit ball: PHOTON mean %.5f vs PATH %.5f", b, a);
+    free_pass_sets(path, path2, pm, pm2);
+    phos_scene_destroy(s);
+}
+
 int main(void)
 {
     test_point_light_irradiance();
     test_radiance_photons_unbiased();
+    test_emitted_flux_per_light_type();
     test_caustic_pass_needs_a_delta_lobe();
     test_radiance_lookup_in_a_corner();
     test_power_in_closed_sphere();
     test_maps_deterministic();
     test_photon_vs_path();
     test_path_traced_gather_vs_path();
+    test_world_light_noise();
     return test_summary("test_photon_map");
 }

@@ -56,7 +56,9 @@ typedef struct walk_start {
     camera_ray ray;
     int from_camera;
     uint32_t depth;         /* scattering events before the ray */
-    int indirect_only;      /* leave out emission found before the first non-delta event */
+    int indirect_only;      /* leave out emission found after delta events only */
+    float first_pdf;        /* MIS pdf of the first segment's emission; 0: the camera's rule, or
+                               (indirect_only) left out too */
 } walk_start;
 
 static sample_result walk(const scene *s, const integrator_settings *is, const walk_start *start, const sampler *smp,
@@ -70,8 +72,8 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
     int camera_segment = start->from_camera;  /* still on the camera ray (through transparency) */
     int emission_only = p.depth > is->max_bounces; /* past max_bounces: collect emission, then stop */
     int only_delta = 1;                        /* no non-delta event since the start */
-    float prev_pdf = 0.0f;
-    int prev_delta = 1;                        /* the camera ray takes emission unweighted */
+    float prev_pdf = start->first_pdf;
+    int prev_delta = !(start->first_pdf > 0.0f); /* the camera ray takes emission unweighted */
     int transparent_steps = 0;
     uint32_t vertex = 0;                       /* surface interactions, for sample dimensions */
 
@@ -80,11 +82,13 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         int hit = embree_intersect(s->bvh, o, d, tmin, tmax, camera_segment, &h);
         float t_hit = hit ? h.t : tmax;
         int emission_component = classify(p.depth, p.first_diffuse, p.later_delta);
-        if (start->indirect_only && only_delta)
+        if (start->indirect_only && only_delta && (p.depth > start->depth || !(start->first_pdf > 0.0f)))
             emission_component = -1;
+        else if (!start->from_camera && p.depth == start->depth)
+            emission_component = COMPONENT_EMISSION; /* seen by the walk's first segment */
 
         light_hit lh;
-        if (lights_intersect(s, o, d, t_hit, camera_segment, &lh))
+        if (lights_intersect(s, o, d, tmin, t_hit, camera_segment, &lh))
             add_to(&res, emission_component, p.beta, lh.radiance, emission_weight(prev_delta, prev_pdf, lh.pdf));
         if (!hit) {
             if (!(camera_segment && is->transparent_background))
@@ -171,14 +175,14 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
 sample_result camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
                                integrator_scratch *scratch, vertex_policy policy)
 {
-    walk_start start = {ray, 1, 0, 0};
+    walk_start start = {ray, 1, 0, 0, 0.0f};
     return walk(s, is, &start, smp, scratch, policy);
 }
 
 sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, vec3 o, vec3 d,
-                                        uint32_t depth, const sampler *smp, integrator_scratch *scratch,
-                                        vertex_policy policy)
+                                        uint32_t depth, float first_pdf, const sampler *smp,
+                                        integrator_scratch *scratch, vertex_policy policy)
 {
-    walk_start start = {{o, d, 0.0f, INFINITY}, 0, depth, 1};
+    walk_start start = {{o, d, 0.0f, INFINITY}, 0, depth, 1, first_pdf};
     return walk(s, is, &start, smp, scratch, policy);
 }

@@ -61,15 +61,17 @@ const bsdf *path_vertex_policy(camera_path *p, const path_vertex *v, bsdf *stora
 sample_result camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
                                integrator_scratch *scratch, vertex_policy policy);
 
-/* Walks a ray that leaves a camera-path vertex after `depth` scattering
- * events (the one there included), collecting only indirect light: emission
- * the walk finds before its first non-delta scattering is left out, since
- * it is direct light or a caustic at the vertex the ray left
- * (indirect_diffuse.h). The sum of the result's components is the radiance
+/* Walks a gather ray that leaves a camera-path vertex after `depth`
+ * scattering events (the one there included). Emission found on the first
+ * segment is weighted for MIS as a sample of pdf first_pdf against the
+ * vertex's light sample (first_pdf = 0: left out); emission found after
+ * delta scatterings only is left out, since it is a caustic at the vertex
+ * the ray left (indirect_diffuse.h). The result's Emission holds what the
+ * first segment saw, its other components the rest of the radiance
  * arriving along the ray. */
 sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, vec3 o, vec3 d,
-                                        uint32_t depth, const sampler *smp, integrator_scratch *scratch,
-                                        vertex_policy policy);
+                                        uint32_t depth, float first_pdf, const sampler *smp,
+                                        integrator_scratch *scratch, vertex_policy policy);
 
 /* Light estimated at the vertex that arrived straight from an emitter and
  * scattered there once more (next-event estimation): f·L·T/pdf. */

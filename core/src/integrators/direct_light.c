@@ -31,8 +31,16 @@ vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist
     return v3s(0.0f);
 }
 
-vec3 direct_light(const scene *s, const surface *sf, const bsdf *sampled, const bsdf *unsampled, vec3 wo,
-                  const sampler *smp, uint32_t vertex)
+float gather_rays_pdf(const surface *sf, vec3 wi, uint32_t gather_rays)
+{
+    float c = v3_dot(wi, sf->ns);
+    if (c <= 0.0f || v3_dot(wi, sf->ng) <= 0.0f) /* the gather never sends such a ray */
+        return 0.0f;
+    return (float)gather_rays * c * PHOS_INV_PI;
+}
+
+vec3 direct_light(const scene *s, const surface *sf, const bsdf *sampled, const bsdf *unsampled, uint32_t gather_rays,
+                  vec3 wo, const sampler *smp, uint32_t vertex)
 {
     light_sample ls;
     float2 u = sampler_2d(smp, dim_bounce(vertex, DIM_LIGHT_POINT));
@@ -50,8 +58,10 @@ vec3 direct_light(const scene *s, const surface *sf, const bsdf *sampled, const 
             return T;
         return v3_scale(v3_mul(v3_mul(f_sampled, ls.radiance), T), w / ls.pdf);
     }
-    /* (f_u + w·f_s)·L·T/pdf */
+    /* (w_u·f_u + w·f_s)·L·T/pdf */
     vec3 f_unsampled = unsampled->count ? bsdf_eval(unsampled, wo, ls.wi, NULL) : v3s(0.0f);
+    if (gather_rays && !ls.delta)
+        f_unsampled = v3_scale(f_unsampled, mis_power_heuristic(ls.pdf, gather_rays_pdf(sf, ls.wi, gather_rays)));
     vec3 f = v3_madd(f_unsampled, f_sampled, w);
     if (v3_is_zero(f))
         return f;

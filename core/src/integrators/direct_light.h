@@ -19,10 +19,18 @@ vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist
  *
  * `sampled` is the part of the BSDF the path continues through: its light
  * is MIS-weighted, since the ray that leaves through it can also find the
- * emitter. `unsampled` (NULL: none) is a part no ray leaves through (the
- * diffuse part under photon mapping), so the light sample is its only
- * estimate and stays unweighted. */
-vec3 direct_light(const scene *s, const surface *sf, const bsdf *sampled, const bsdf *unsampled, vec3 wo,
-                  const sampler *smp, uint32_t vertex);
+ * emitter. `unsampled` (NULL: none) is a part the path does not continue
+ * through (the diffuse part under photon mapping): with gather_rays = 0
+ * the light sample is its only estimate and stays unweighted; otherwise
+ * gather_rays cosine-distributed rays about the shading normal also count
+ * the emitters they reach, and the light sample is weighted against them
+ * (indirect_diffuse.h). */
+vec3 direct_light(const scene *s, const surface *sf, const bsdf *sampled, const bsdf *unsampled, uint32_t gather_rays,
+                  vec3 wo, const sampler *smp, uint32_t vertex);
+
+/* Solid-angle pdf of a gather ray of a stratified cosine hemisphere about
+ * sf's shading normal, times the number of rays: the MIS weight's
+ * denominator for emitters that gather rays reach (hemisphere.c). */
+float gather_rays_pdf(const surface *sf, vec3 wi, uint32_t gather_rays);
 
 #endif /* PHOS_DIRECT_LIGHT_H */

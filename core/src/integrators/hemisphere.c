@@ -5,7 +5,7 @@
 
 #include "scene/ray.h"
 
-vec3 hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming)
+gather_estimate hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming)
 {
     const surface *sf = q->sf;
     uint32_t M = (uint32_t)(sqrtf((float)rays / PHOS_PI) + 0.5f);
@@ -17,7 +17,7 @@ vec3 hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incomi
     sampler g = sampler_split(q->smp, 0x9a7e0000u + q->vertex);
     frame f = frame_from_normal(sf->ns);
     vec3 o_up = offset_ray_origin(sf->p, sf->ng);
-    vec3 sum = v3s(0.0f);
+    gather_estimate sum = {v3s(0.0f), v3s(0.0f)};
     uint32_t index = 0;
     for (uint32_t j = 0; j < M; j++) {
         for (uint32_t k = 0; k < N; k++, index++) {
@@ -31,10 +31,13 @@ vec3 hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incomi
             vec3 fcos = bsdf_eval(q->diffuse, q->wo, wi, NULL);
             if (v3_is_zero(fcos))
                 continue;
-            vec3 Li = incoming(q, o_up, wi, &g, index);
+            gather_estimate Li = incoming(q, o_up, wi, &g, index, (float)(M * N) * cos_t * PHOS_INV_PI);
             /* f·cos / (cos/π) = π·f */
-            sum = v3_add(sum, v3_scale(v3_mul(fcos, Li), PHOS_PI / cos_t));
+            vec3 weight = v3_scale(fcos, PHOS_PI / cos_t);
+            sum.indirect = v3_add(sum.indirect, v3_mul(weight, Li.indirect));
+            sum.direct = v3_add(sum.direct, v3_mul(weight, Li.direct));
         }
     }
-    return v3_scale(sum, 1.0f / (float)(M * N));
+    float inv = 1.0f / (float)(M * N);
+    return (gather_estimate){v3_scale(sum.indirect, inv), v3_scale(sum.direct, inv)};
 }

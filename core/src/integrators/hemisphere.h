@@ -20,13 +20,16 @@
 #define HEMISPHERE_RAY_STREAM 0x4a7b0000u
 
 /* Radiance W/(m²·sr) arriving at the query's point along wi from a ray
- * leaving o; g is the gather's sampler and ray_index the ray's number. */
-typedef vec3 (*hemisphere_incoming)(const indirect_query *q, vec3 o, vec3 wi, const sampler *g,
-                                    uint32_t ray_index);
+ * leaving o; g is the gather's sampler and ray_index the ray's number.
+ * Emitters the ray reaches on its first segment count with the MIS weight
+ * of a sample of pdf ray_pdf (all the gather's rays together,
+ * gather_rays_pdf) against the light sample of the diffuse part. */
+typedef gather_estimate (*hemisphere_incoming)(const indirect_query *q, vec3 o, vec3 wi, const sampler *g,
+                                               uint32_t ray_index, float ray_pdf);
 
 /* ∫ f_d L_i cos dω over the query's hemisphere with `rays` cosine-stratified
  * rays, each weighted by f_d·π (the cosine pdf's cos θ/π cancels the cosine
  * of the integrand). */
-vec3 hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming);
+gather_estimate hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming);
 
 #endif /* PHOS_HEMISPHERE_H */

@@ -36,10 +36,29 @@ typedef struct indirect_query {
     integrator_scratch *scratch;
 } indirect_query;
 
+/* Reflected radiance W/(m²·sr) toward q->wo from the diffuse part: from
+ * light that scattered before (indirect), and, for providers whose rays
+ * count emitters, from the emitters those rays reach directly, already
+ * MIS-weighted (direct: it adds to the Direct component). */
+typedef struct gather_estimate {
+    vec3 indirect, direct;
+} gather_estimate;
+
+static inline gather_estimate gather_estimate_add(gather_estimate a, gather_estimate b)
+{
+    return (gather_estimate){v3_add(a.indirect, b.indirect), v3_add(a.direct, b.direct)};
+}
+
 typedef struct indirect_diffuse_provider {
     const char *name;
-    /* Radiance W/(m²·sr) toward q->wo. */
-    vec3 (*estimate)(const indirect_query *q);
+    /* 1: the provider sends is->final_gather_rays cosine-distributed rays
+     * (stratified, pdf cos θ/π each) that also count the emitters they
+     * reach on their first segment, MIS-weighted against the light sample
+     * of the diffuse part (Veach 1997 §9.2, multi-sample power heuristic):
+     * direct_light weights that sample with the same rule. 0: emitters
+     * reach the diffuse part only through the light sample. */
+    int gathers_emitters;
+    gather_estimate (*estimate)(const indirect_query *q);
 } indirect_diffuse_provider;
 
 extern const indirect_diffuse_provider indirect_final_gather;   /* final_gather.c */

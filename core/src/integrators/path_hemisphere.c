@@ -9,25 +9,28 @@
 #include "integrators/hemisphere.h"
 
 /* Radiance arriving along a gather ray: the sum of the components of an
- * indirect-only walk, which leaves out what next-event estimation and the
- * caustic map count at the gather's point. */
-static vec3 path_traced_ray(const indirect_query *q, vec3 o, vec3 wi, const sampler *g, uint32_t ray_index)
+ * indirect-only walk, which leaves out the caustics the caustic map counts
+ * at the gather's point and weights the emitters of its first segment
+ * against the light sample there. */
+static gather_estimate path_traced_ray(const indirect_query *q, vec3 o, vec3 wi, const sampler *g, uint32_t ray_index,
+                                       float ray_pdf)
 {
     sampler ray_smp = sampler_split(g, HEMISPHERE_RAY_STREAM + ray_index); /* hemisphere.h */
-    sample_result r = camera_path_walk_indirect(q->s, q->is, o, wi, q->depth + 1, &ray_smp, q->scratch,
+    sample_result r = camera_path_walk_indirect(q->s, q->is, o, wi, q->depth + 1, ray_pdf, &ray_smp, q->scratch,
                                                 path_vertex_policy);
+    /* The walk files what its first segment sees as its Emission. */
     vec3 L = v3s(0.0f);
-    for (int c = 0; c < COMPONENT_COUNT; c++)
+    for (int c = COMPONENT_EMISSION + 1; c < COMPONENT_COUNT; c++)
         L = v3_add(L, r.component[c]);
-    return L;
+    return (gather_estimate){L, r.component[COMPONENT_EMISSION]};
 }
 
-static vec3 path_hemisphere(const indirect_query *q)
+static gather_estimate path_hemisphere(const indirect_query *q)
 {
     return hemisphere_gather(q, q->is->final_gather_rays, path_traced_ray);
 }
 
-const indirect_diffuse_provider indirect_path_hemisphere = {"path-traced hemisphere", path_hemisphere};
+const indirect_diffuse_provider indirect_path_hemisphere = {"path-traced hemisphere", 1, path_hemisphere};
 
 const indirect_diffuse_provider *indirect_provider_for(uint32_t photon_view)
 {

@@ -4,8 +4,30 @@
  */
 #include "integrators/specular_chain.h"
 
+#include "lights/light.h"
 #include "scene/embree.h"
 #include "scene/ray.h"
+
+/* Emitters on the first segment of a ray from o (hit: the surface at t_hit,
+ * or the ray escaped), each weighted by the power heuristic between the
+ * ray's pdf and the light sample's (Veach 1997 §9.2). */
+static vec3 first_segment_emission(const scene *s, float ray_pdf, vec3 o, vec3 d, float tmin, const ray_hit *hit,
+                                   const surface *sf)
+{
+    vec3 E = v3s(0.0f);
+    light_hit lh;
+    if (lights_intersect(s, o, d, tmin, hit ? hit->t : INFINITY, 0, &lh))
+        E = v3_madd(E, lh.radiance, mis_power_heuristic(ray_pdf, lh.pdf));
+    if (!hit)
+        return v3_add(E, lights_escape(s, d, ray_pdf, 0, 0));
+    if (sf->mat->emissive) {
+        const instance *inst = &s->instances[sf->instance];
+        int32_t li = inst->emitter_of_triangle ? inst->emitter_of_triangle[sf->prim] : -1;
+        float w = mis_power_heuristic(ray_pdf, light_pdf_triangle(s, li, o, sf->p, sf->ng));
+        E = v3_madd(E, material_emission(s, sf), w);
+    }
+    return E;
+}
 
 static int stops_here(const specular_chain *c, const bsdf *b, bsdf *diffuse, bsdf *rest)
 {
@@ -19,11 +41,21 @@ int specular_chain_follow(const scene *s, const specular_chain *c, vec3 o, vec3 
                           specular_chain_end *out)
 {
     vec3 beta = v3s(1.0f);
+    out->emission = v3s(0.0f);
+    int first = c->first_pdf > 0.0f; /* still on the first segment: nothing but transparent surfaces passed */
     for (uint32_t step = 0; step < c->max_steps; step++) {
         ray_hit h;
-        if (!embree_intersect(s->bvh, o, d, tmin, tmax, c->coherent, &h))
+        int hit = embree_intersect(s->bvh, o, d, tmin, tmax, c->coherent, &h);
+        if (!hit) {
+            if (first)
+                out->emission = v3_add(out->emission, v3_mul(beta, first_segment_emission(s, c->first_pdf, o, d,
+                                                                                          tmin, NULL, NULL)));
             return 0;
+        }
         surface_from_hit(s, h.instance, h.prim, h.b1, h.b2, d, &out->sf);
+        if (first)
+            out->emission = v3_add(out->emission, v3_mul(beta, first_segment_emission(s, c->first_pdf, o, d, tmin,
+                                                                                      &h, &out->sf)));
         material_bsdf(s, &out->sf, &out->b);
         if (out->b.count == 0)
             return 0;
@@ -50,6 +82,7 @@ int specular_chain_follow(const scene *s, const specular_chain *c, vec3 o, vec3 
             tmin = t_after_hit(h.t);
             continue;
         }
+        first = 0;
         o = ray_leave_surface(out->sf.p, out->sf.ng, bs.wi);
         d = bs.wi;
         tmin = 0.0f;

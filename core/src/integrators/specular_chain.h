@@ -22,6 +22,9 @@ typedef struct specular_chain {
     const sampler *smp;    /* the lobe choice at step k: dimensions dim + 3k (1D pick) and dim + 3k + 1 (2D); */
     uint32_t dim;          /* smp NULL: always the lobe and direction at u = 0.5. The caller owns
                               dimensions dim ... dim + 3·max_steps − 1 of smp. */
+    float first_pdf;       /* > 0: collect the emitters the first segment reaches (lamps, distant
+                              lights, emissive surfaces), MIS-weighted as a sample of this pdf
+                              against a light sample at the ray's origin; 0: none */
 } specular_chain;
 
 typedef struct specular_chain_end {
@@ -29,6 +32,8 @@ typedef struct specular_chain_end {
     bsdf b;                /* the whole BSDF there */
     vec3 beta;             /* throughput of the surfaces passed */
     vec3 wo;               /* toward the previous surface */
+    vec3 emission;         /* first_pdf > 0: the first segment's emitters, weighted (set also
+                              when the ray escapes) */
 } specular_chain_end;
 
 /* Follows the ray (o, d) over t in (tmin, tmax); returns 1 with the surface

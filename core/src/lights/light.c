@@ -45,8 +45,10 @@ float light_power(const light *l, float scene_radius)
         return 2.0f * PHOS_PI * (1.0f - l->spot_cos_half) * c;
     case LIGHT_AREA:
         return PHOS_PI * l->area * c;                    /* Φ = πAL, one-sided */
-    case LIGHT_SUN:
-        return disk * c;                                 /* Φ = E·πR² */
+    case LIGHT_SUN: /* Φ = E·πR², or L·Ω·πR² with an angle (light_sample_emission) */
+        return l->sun_cos_half < 1.0f
+                   ? disk * fmaxf(v3_average(l->sun_radiance), 0.0f) * 2.0f * PHOS_PI * (1.0f - l->sun_cos_half)
+                   : disk * c;
     case LIGHT_TRIANGLE:
         return 2.0f * PHOS_PI * l->area * c;             /* both faces emit */
     case LIGHT_WORLD:
@@ -489,7 +491,12 @@ int light_sample_emission(const scene *s, const float u[5], vec3 *origin, vec3 *
         vec3 d = l->sun_cos_half < 1.0f ? warp_cone(l->direction, l->sun_cos_half, ub) : l->direction;
         float area = distant_origin(t, d, ua, origin);
         *direction = d;
-        phi = v3_scale(l->color, area); /* E · πR² */
+        /* A photon per direction of the cone carries L·Ω·πR² (Ω the cone's
+         * solid angle), not E·πR²: E = ∫ L cos θ dω = L·π sin²α is less
+         * than L·Ω by (1 + cos α)/2 (α the half angle). */
+        phi = l->sun_cos_half < 1.0f
+                  ? v3_scale(l->sun_radiance, 2.0f * PHOS_PI * (1.0f - l->sun_cos_half) * area)
+                  : v3_scale(l->color, area); /* E · πR² */
         break;
     }
     case LIGHT_WORLD: {
@@ -575,7 +582,7 @@ static int intersect_area(const light *l, vec3 o, vec3 d, float tmax, light_hit 
     return 1;
 }
 
-int lights_intersect(const scene *s, vec3 o, vec3 d, float tmax, int camera_ray, light_hit *out)
+int lights_intersect(const scene *s, vec3 o, vec3 d, float tmin, float tmax, int camera_ray, light_hit *out)
 {
     const light_table *tab = &s->lights;
     int found = 0;
@@ -590,7 +597,7 @@ int lights_intersect(const scene *s, vec3 o, vec3 d, float tmax, int camera_ray,
             hit = intersect_point(l, o, d, tmax, &h);
         else if (l->kind == LIGHT_AREA)
             hit = intersect_area(l, o, d, tmax, &h);
-        if (hit) {
+        if (hit && h.t > tmin) {
             h.pdf *= distribution_pdf(&tab->pick, i);
             *out = h;
             tmax = h.t;

@@ -47,9 +47,11 @@ int light_sample_pick(const scene *s, vec3 p, float u_pick, float2 u, light_samp
  * geometric normal ng. */
 float light_pdf_triangle(const scene *s, int32_t index, vec3 p, vec3 x, vec3 ng);
 
-/* Nearest lamp (point, spot, area) along the ray within (0, tmax);
- * camera rays skip lamps hidden from the camera. */
-int lights_intersect(const scene *s, vec3 o, vec3 d, float tmax, int camera_ray, light_hit *out);
+/* Nearest lamp (point, spot, area) along the ray within (tmin, tmax);
+ * camera rays skip lamps hidden from the camera. A ray that passed
+ * through transparent surfaces keeps its origin and moves tmin past each
+ * of them, so lamps before them are not found again. */
+int lights_intersect(const scene *s, vec3 o, vec3 d, float tmin, float tmax, int camera_ray, light_hit *out);
 
 /* Radiance of the distant lights (world, suns with an angle) seen along an
  * escaping ray, each weighted for MIS against a BSDF sample of pdf
