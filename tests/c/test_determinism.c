@@ -1,7 +1,8 @@
 /*
  * test_determinism.c — the same scene and seed give the same image, bit
  * for bit, whatever the thread count, tile size or render region; another
- * seed gives another image.
+ * seed gives another image. For PATH and for PHOTON with each photon view
+ * (the photon maps are traced in batches on any number of threads).
  */
 #include <stdio.h>
 #include <string.h>
@@ -43,11 +44,19 @@ static phos_scene *box_with_spheres(void)
     return s;
 }
 
+/* The integrator and photon view of the renders below. */
+static uint32_t g_integrator, g_view;
+
 static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32_t seed, uint32_t rx, uint32_t ry,
                           uint32_t rw, uint32_t rh)
 {
     phos_render_settings rs;
     phos_render_settings_init(&rs);
+    rs.integrator = g_integrator;
+    rs.photon_view = g_view;
+    rs.global_photons = 20000;
+    rs.caustic_photons = 5000;
+    rs.final_gather_rays = 8;
     rs.width = 48;
     rs.height = 40;
     rs.samples = 8;
@@ -61,10 +70,10 @@ static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32
     return test_render(s, &rs);
 }
 
-int main(void)
+/* Same scene and seed, same image: for 1 and 2 threads, any tile size, and
+ * a border region against the same pixels of the full frame. */
+static void check_deterministic(phos_scene *s, const char *name)
 {
-    phos_scene *s = box_with_spheres();
-    CHECK_MSG(phos_scene_commit(s) == PHOS_OK, "%s", phos_scene_error(s));
     const size_t n = 4 * 48 * 40;
     float *a = render_with(s, 1, 16, 7, 0, 0, 0, 0);
     float *b = render_with(s, 2, 8, 7, 0, 0, 0, 0);
@@ -72,13 +81,14 @@ int main(void)
     float *d = render_with(s, 2, 16, 8, 0, 0, 0, 0);
     CHECK(a && b && c && d);
     if (a && b && c && d) {
-        CHECK_MSG(memcmp(a, b, n * sizeof(float)) == 0, "1 thread/16px tiles differs from 2 threads/8px tiles");
-        CHECK_MSG(memcmp(a, c, n * sizeof(float)) == 0, "tile size changes the image");
-        CHECK_MSG(memcmp(a, d, n * sizeof(float)) != 0, "a different seed gives the same image");
+        CHECK_MSG(memcmp(a, b, n * sizeof(float)) == 0, "%s: 1 thread/16px tiles differs from 2 threads/8px tiles",
+                  name);
+        CHECK_MSG(memcmp(a, c, n * sizeof(float)) == 0, "%s: tile size changes the image", name);
+        CHECK_MSG(memcmp(a, d, n * sizeof(float)) != 0, "%s: a different seed gives the same image", name);
         double sum = 0.0;
         for (size_t i = 0; i < n; i++)
             sum += a[i];
-        CHECK_MSG(sum > 0.0, "the image is black");
+        CHECK_MSG(sum > 0.0, "%s: the image is black", name);
     }
     /* A border region reproduces the same pixels of the full frame. */
     const uint32_t rx = 13, ry = 7, rw = 20, rh = 17;
@@ -88,13 +98,33 @@ int main(void)
         int same = 1;
         for (uint32_t y = 0; y < rh; y++)
             same &= memcmp(r + 4 * (size_t)y * rw, a + 4 * ((size_t)(y + ry) * 48 + rx), 4 * rw * sizeof(float)) == 0;
-        CHECK_MSG(same, "region pixels differ from the full frame's");
+        CHECK_MSG(same, "%s: region pixels differ from the full frame's", name);
     }
     free(a);
     free(b);
     free(c);
     free(d);
     free(r);
+}
+
+int main(void)
+{
+    phos_scene *s = box_with_spheres();
+    CHECK_MSG(phos_scene_commit(s) == PHOS_OK, "%s", phos_scene_error(s));
+    static const struct {
+        uint32_t integrator, view;
+        const char *name;
+    } configs[] = {
+        {PHOS_INTEGRATOR_PATH, 0, "PATH"},
+        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, "PHOTON, final gathering"},
+        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FAST, "PHOTON, fast estimate"},
+        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_PATH_TRACED, "PHOTON, path-traced gather"},
+    };
+    for (size_t i = 0; i < sizeof(configs) / sizeof(configs[0]); i++) {
+        g_integrator = configs[i].integrator;
+        g_view = configs[i].view;
+        check_deterministic(s, configs[i].name);
+    }
     phos_scene_destroy(s);
     return test_summary("test_determinism");
 }

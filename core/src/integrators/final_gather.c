@@ -27,18 +27,24 @@ static gather_estimate gather_ray(const indirect_query *q, vec3 o, vec3 d, const
     specular_chain_end end;
     if (!specular_chain_follow(q->s, &c, o, d, 0.0f, INFINITY, &end))
         return (gather_estimate){v3s(0.0f), end.emission}; /* escaped: the world and lamps it saw */
-    vec3 L;
-    if (is->maps->radiance.count &&
-        radiance_photon_lookup(&is->maps->radiance, end.sf.p, end.sf.ns, is->radiance_lookup_radius,
-                               &q->scratch->radiance, &L))
-        return (gather_estimate){v3_mul(end.beta, L), end.emission};
-    /* No radiance photon faces this way nearby (sparse photons, or no
-     * precomputation): the global map's estimate on the fly, through the
-     * diffuse part as a radiance photon would have it. */
     bsdf diffuse, rest;
     bsdf_split(&end.b, &diffuse, &rest);
-    L = photon_radiance(&is->maps->global, &diffuse, end.wo, end.sf.p, end.sf.ns, &is->global_estimate,
-                        &q->scratch->global);
+    vec3 L = v3s(0.0f);
+    if (diffuse.count &&
+        !(is->maps->radiance.count && radiance_photon_lookup(&is->maps->radiance, end.sf.p, end.sf.ns,
+                                                             is->radiance_lookup_radius, &q->scratch->radiance, &L)))
+        /* No radiance photon faces this way nearby (sparse photons, or no
+         * precomputation): the global map's estimate on the fly, through
+         * the diffuse part as a radiance photon would have it. */
+        L = photon_radiance(&is->maps->global, &diffuse, end.wo, end.sf.p, end.sf.ns, &is->global_estimate,
+                            &q->scratch->global);
+    /* A radiance photon holds only diffuse reflection. What the glossy lobes
+     * reflect toward the gather ray (a lamp seen in rough metal) comes from
+     * the global map's estimate through them (Jensen 2001 §9.3: the photon
+     * map's estimate is consistent for glossy BSDFs too). */
+    if (bsdf_has_non_delta(&rest))
+        L = v3_add(L, photon_radiance(&is->maps->global, &rest, end.wo, end.sf.p, end.sf.ns, &is->global_estimate,
+                                      &q->scratch->global));
     return (gather_estimate){v3_mul(end.beta, L), end.emission};
 }
 
