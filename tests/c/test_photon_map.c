@@ -490,24 +490,14 @@ static void test_maps_deterministic(void)
     phos_scene_destroy(s);
 }
 
-/* Renders every pass; view is the photon view, mask the passes (0: all). */
-static float *render_view(phos_scene *s, uint32_t integrator, uint32_t view, uint32_t mask, uint32_t samples,
-                          uint32_t seed, float *passes[PHOS_PASS_COUNT], uint32_t w, phos_progress *progress)
+/* Renders with rs and reads the passes of rs.pass_mask (the others stay
+ * zero); progress (may be NULL) gets the final progress. */
+static float *render_settings_passes(phos_scene *s, const phos_render_settings *rs, float *passes[PHOS_PASS_COUNT],
+                                     phos_progress *progress)
 {
-    phos_render_settings rs;
-    phos_render_settings_init(&rs);
-    rs.seed = seed;
-    rs.width = rs.height = w;
-    rs.samples = samples;
-    rs.integrator = integrator;
-    rs.max_bounces = 8;
-    rs.pass_mask = mask ? mask : (1u << PHOS_PASS_COUNT) - 1u;
-    rs.photon_view = view;
-    rs.global_photons = 100000;
-    rs.caustic_photons = 100000;
-    rs.final_gather_rays = 16;
+    uint32_t w = rs->width;
     phos_render *r = NULL;
-    CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+    CHECK(phos_render_create(s, rs, &r) == PHOS_OK);
     if (!r)
         return NULL;
     CHECK(phos_render_start(r) == PHOS_OK);
@@ -517,11 +507,38 @@ static float *render_view(phos_scene *s, uint32_t integrator, uint32_t view, uin
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
         uint32_t ch = phos_pass_channels(p);
         passes[p] = calloc((size_t)ch * w * w, sizeof(float));
-        if (rs.pass_mask & (1u << p))
+        if (rs->pass_mask & (1u << p))
             CHECK(phos_render_read(r, p, 0, 0, w, w, passes[p], (size_t)ch * w * w) == PHOS_OK);
     }
     phos_render_destroy(r);
     return passes[0];
+}
+
+/* Square test renders of w² pixels, 8 bounces, 16 gather rays. */
+static phos_render_settings test_settings(uint32_t integrator, uint32_t mask, uint32_t samples, uint32_t seed,
+                                          uint32_t w)
+{
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.seed = seed;
+    rs.width = rs.height = w;
+    rs.samples = samples;
+    rs.integrator = integrator;
+    rs.max_bounces = 8;
+    rs.pass_mask = mask ? mask : (1u << PHOS_PASS_COUNT) - 1u;
+    rs.final_gather_rays = 16;
+    return rs;
+}
+
+/* Every pass of mask (0: all); view is the photon view, 100 k photons in
+ * each map. */
+static float *render_view(phos_scene *s, uint32_t integrator, uint32_t view, uint32_t mask, uint32_t samples,
+                          uint32_t seed, float *passes[PHOS_PASS_COUNT], uint32_t w, phos_progress *progress)
+{
+    phos_render_settings rs = test_settings(integrator, mask, samples, seed, w);
+    rs.photon_view = view;
+    rs.global_photons = rs.caustic_photons = 100000;
+    return render_settings_passes(s, &rs, passes, progress);
 }
 
 /* PHOTON with final gathering and `photons` in the global map (a quarter as
@@ -529,31 +546,10 @@ static float *render_view(phos_scene *s, uint32_t integrator, uint32_t view, uin
 static float *render_photons(phos_scene *s, uint32_t photons, uint32_t mask, uint32_t samples, uint32_t seed,
                              float *passes[PHOS_PASS_COUNT], uint32_t w)
 {
-    phos_render_settings rs;
-    phos_render_settings_init(&rs);
-    rs.seed = seed;
-    rs.width = rs.height = w;
-    rs.samples = samples;
-    rs.integrator = PHOS_INTEGRATOR_PHOTON;
-    rs.max_bounces = 8;
-    rs.pass_mask = mask;
+    phos_render_settings rs = test_settings(PHOS_INTEGRATOR_PHOTON, mask, samples, seed, w);
     rs.global_photons = photons;
     rs.caustic_photons = photons / 4;
-    rs.final_gather_rays = 16;
-    phos_render *r = NULL;
-    CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
-    if (!r)
-        return NULL;
-    CHECK(phos_render_start(r) == PHOS_OK);
-    CHECK(phos_render_wait(r, -1.0) == PHOS_OK);
-    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
-        uint32_t ch = phos_pass_channels(p);
-        passes[p] = calloc((size_t)ch * w * w, sizeof(float));
-        if (mask & (1u << p))
-            CHECK(phos_render_read(r, p, 0, 0, w, w, passes[p], (size_t)ch * w * w) == PHOS_OK);
-    }
-    phos_render_destroy(r);
-    return passes[0];
+    return render_settings_passes(s, &rs, passes, NULL);
 }
 
 static float *render_passes(phos_scene *s, uint32_t integrator, uint32_t samples, uint32_t seed,
