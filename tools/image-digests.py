@@ -34,7 +34,6 @@ for d in (TESTS_DIR, SCENES_DIR):
     if d not in sys.path:
         sys.path.insert(0, d)
 
-import exrread  # noqa: E402
 import parity_scenes  # noqa: E402
 import phostest as pt  # noqa: E402
 
@@ -51,12 +50,20 @@ def _module(name):
     return module
 
 
-def _photon_test_scenes():
+def _test_photon():
     spec = importlib.util.spec_from_file_location("digest_test_photon", os.path.join(TESTS_DIR, "test_photon.py"))
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    return {"components": module.components_scene, "components_flat": lambda s: module.components_scene(s, True),
-            "diffuse_room": module.diffuse_scene}
+    return module
+
+
+TEST_PHOTON = _test_photon()  # its scenes, and its render_passes (multilayer EXR, every pass)
+
+
+def _photon_test_scenes():
+    m = TEST_PHOTON
+    return {"components": m.components_scene, "components_flat": lambda s: m.components_scene(s, True),
+            "diffuse_room": m.diffuse_scene}
 
 
 def scenes():
@@ -109,15 +116,7 @@ def digest(name, build, integrator, view, tmp_dir, blend_dir):
         p.photon_view = view
     for prop in PASS_PROPS:
         setattr(scene.view_layers[0].phos, prop, True)
-    path = os.path.join(tmp_dir, "digest.exr")
-    if os.path.exists(path):
-        os.remove(path)
-    r = scene.render
-    r.filepath, r.use_file_extension = path, False
-    img = r.image_settings
-    img.file_format, img.color_depth, img.exr_codec = "OPEN_EXR_MULTILAYER", "32", "ZIP"
-    bpy.ops.render.render(write_still=True, scene=scene.name)
-    passes = exrread.read_passes(path)
+    passes = TEST_PHOTON.render_passes(scene, tmp_dir, "digest")
     h = hashlib.sha256()
     for name in sorted(passes):
         h.update(name.encode())
