@@ -761,9 +761,14 @@ static void test_world_light_noise(void)
     float *path[PHOS_PASS_COUNT], *path2[PHOS_PASS_COUNT], *pm[PHOS_PASS_COUNT], *pm2[PHOS_PASS_COUNT];
     CHECK(render_view(s, PHOS_INTEGRATOR_PATH, 0, combined, 16, 5, path, w, NULL) != NULL);
     CHECK(render_view(s, PHOS_INTEGRATOR_PATH, 0, combined, 16, 6, path2, w, NULL) != NULL);
-    CHECK(render_view(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, combined, 16, 5, pm, w, NULL) != NULL);
-    CHECK(render_view(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, combined, 16, 6, pm2, w, NULL) !=
-          NULL);
+    /* 32 gather rays, the default: the gather makes 3 × 10 = 30 strata of
+     * them, and the MIS weights must count those 30. */
+    for (int k = 0; k < 2; k++) {
+        phos_render_settings rs = test_settings(PHOS_INTEGRATOR_PHOTON, combined, 16, 5 + (uint32_t)k, w);
+        rs.global_photons = rs.caustic_photons = 100000;
+        rs.final_gather_rays = 32;
+        CHECK(render_settings_passes(s, &rs, k ? pm2 : pm, NULL) != NULL);
+    }
     double v_path = pair_variance(path[0], path2[0], 4, n), v_pm = pair_variance(pm[0], pm2[0], 4, n);
     double a = 0.5 * (pass_mean(path[0], 4, n) + pass_mean(path2[0], 4, n));
     double b = 0.5 * (pass_mean(pm[0], 4, n) + pass_mean(pm2[0], 4, n));

@@ -5,15 +5,21 @@
 
 #include "scene/ray.h"
 
+void hemisphere_strata(uint32_t rays, uint32_t *M, uint32_t *N)
+{
+    *M = (uint32_t)(sqrtf((float)rays / PHOS_PI) + 0.5f);
+    if (*M < 1)
+        *M = 1;
+    *N = rays / *M;
+    if (*N < 1)
+        *N = 1;
+}
+
 gather_estimate hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming)
 {
     const surface *sf = q->sf;
-    uint32_t M = (uint32_t)(sqrtf((float)rays / PHOS_PI) + 0.5f);
-    if (M < 1)
-        M = 1;
-    uint32_t N = rays / M;
-    if (N < 1)
-        N = 1;
+    uint32_t M, N;
+    hemisphere_strata(rays, &M, &N);
     sampler g = sampler_split(q->smp, 0x9a7e0000u + q->vertex);
     frame f = frame_from_normal(sf->ns);
     vec3 o_up = offset_ray_origin(sf->p, sf->ng);

@@ -27,6 +27,17 @@
 typedef gather_estimate (*hemisphere_incoming)(const indirect_query *q, vec3 o, vec3 wi, const sampler *g,
                                                uint32_t ray_index, float ray_pdf);
 
+/* The M×N strata the gather makes of `rays` requested: M = round(√(rays/π)),
+ * N = ⌊rays/M⌋, so M·N may be a little less than rays. MIS weights against
+ * the gather must count these, not the request. */
+void hemisphere_strata(uint32_t rays, uint32_t *M, uint32_t *N);
+static inline uint32_t hemisphere_ray_count(uint32_t rays)
+{
+    uint32_t M, N;
+    hemisphere_strata(rays, &M, &N);
+    return M * N;
+}
+
 /* ∫ f_d L_i cos dω over the query's hemisphere with `rays` cosine-stratified
  * rays, each weighted by f_d·π (the cosine pdf's cos θ/π cancels the cosine
  * of the integrand). */

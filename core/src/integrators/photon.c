@@ -18,6 +18,7 @@
  */
 #include "integrators/camera_path.h"
 #include "integrators/direct_light.h"
+#include "integrators/hemisphere.h"
 #include "integrators/indirect_diffuse.h"
 #include "integrators/specular_chain.h"
 #include "photons/radiance_estimate.h"
@@ -30,7 +31,8 @@ static const bsdf *photon_vertex_policy(camera_path *p, const path_vertex *v, bs
     const integrator_settings *is = p->is;
     bsdf diffuse;
     bsdf_split(v->b, &diffuse, rest);
-    uint32_t gather_rays = is->indirect->gathers_emitters ? is->final_gather_rays : 0;
+    /* The rays the gather really sends (its M×N strata), for the MIS weights. */
+    uint32_t gather_rays = is->indirect->gathers_emitters ? hemisphere_ray_count(is->final_gather_rays) : 0;
     if (bsdf_has_non_delta(v->b) && s->lights.count > 0)
         camera_path_add_direct(p, direct_light(s, v->sf, rest, &diffuse, gather_rays, v->wo, p->smp, v->index));
     if (diffuse.count) {
