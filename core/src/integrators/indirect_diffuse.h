@@ -5,9 +5,11 @@
  *   L_indirect(x → wo) = ∫ f_d(x, wi, wo) L_i,indirect(x ← wi) cos θi dωi,
  *
  * where L_i,indirect leaves out light that reaches x from an emitter
- * through specular surfaces only or directly (next-event estimation and
- * the caustic map count those; Jensen 1996, course notes 2002 "Rendering
- * Equation Solution"; docs/algorithms.md §5).
+ * through specular surfaces only (the caustic map counts it) or directly
+ * (next-event estimation counts it; Jensen 1996, course notes 2002
+ * "Rendering Equation Solution"; docs/algorithms.md §5). A provider whose
+ * rays also see emitters returns their light separately, as its share of
+ * the direct term under MIS (gather_estimate, gathers_emitters).
  *
  * Providers:
  *  - final gathering on the photon maps (PHOTON; final_gather.c);
