@@ -78,9 +78,13 @@ static photon *make_set(int kind, uint32_t n, uint32_t seed)
     uint32_t s = seed;
     for (uint32_t i = 0; i < n; i++) {
         vec3 pos = point_of(kind, i, n, &s);
-        /* Power and depth vary per photon so that the multiset check below
-         * tells photons at the same place apart. */
-        p[i] = photon_make(pos, v3(rnd(&s), 1.0f, 0.5f), v3(0, 0, 1), 0, i & 255);
+        /* Power, direction, normal and flags vary per photon so that the
+         * multiset check below tells photons at the same place apart and
+         * the filtered search has something to filter. */
+        vec3 d = v3_normalize(v3(rnd(&s) - 0.5f, rnd(&s) - 0.5f, rnd(&s) - 0.5f));
+        vec3 nrm = v3_normalize(v3(rnd(&s) - 0.5f, rnd(&s) - 0.5f, rnd(&s) - 0.5f));
+        p[i] = photon_make(pos, v3(rnd(&s), 1.0f, 0.5f), d, nrm,
+                           (i % 3 == 0 ? PHOTON_CAUSTIC : 0) | (i % 5 < 2 ? PHOTON_DIRECT : 0));
     }
     return p;
 }
@@ -175,18 +179,25 @@ typedef struct metric {
     int disc;
     vec3 normal;
     float flatten;
+    const kdtree_filter *filter; /* disc only: kdtree_knn_surface */
 } metric;
 
+/* The metric's distance, infinite for photons the filter rejects (they are
+ * never found, whatever the radius). */
 static float metric_dist2(const metric *m, const photon *p, vec3 x)
 {
     if (!m->disc)
         return kdtree_dist2(p, x);
+    if (m->filter && !kdtree_filter_accepts(m->filter, p))
+        return INFINITY;
     float c = m->flatten > 1.0f ? m->flatten : 1.0f;
     return kdtree_disc_dist2(p, x, m->normal, c * c - 1.0f);
 }
 
 static uint32_t metric_knn(const metric *m, const photon *tree, uint32_t n, vec3 x, float r2, kdtree_query *q)
 {
+    if (m->filter)
+        return kdtree_knn_surface(tree, n, x, m->flatten, m->filter, r2, q);
     return m->disc ? kdtree_knn_disc(tree, n, x, m->normal, m->flatten, r2, q) : kdtree_knn(tree, n, x, r2, q);
 }
 
@@ -273,14 +284,19 @@ static vec3 query_point(const photon *tree, uint32_t n, uint32_t j, uint32_t *s)
 static const uint32_t ks[] = {1, 5, 50};
 static const float radii2[] = {0.003f * 0.003f, 0.05f * 0.05f, 0.3f * 0.3f, INFINITY};
 
-/* k-NN against brute force at `queries` points, both metrics, all k and radii. */
+/* k-NN against brute force at `queries` points, every metric (Euclidean,
+ * disc, disc with a surface filter), all k and radii. */
 static void check_queries(const photon *tree, uint32_t n, int queries, uint32_t seed, kdtree_query qk[3],
                           brute *b, set_stats *st)
 {
     uint32_t s = seed;
     for (int j = 0; j < queries; j++) {
         vec3 x = query_point(tree, n, (uint32_t)j, &s);
-        metric m = {j & 1, v3_normalize(v3(rnd(&s) - 0.5f, rnd(&s) - 0.5f, 1.0f)), 6.0f};
+        int mode = (j >> 1) % 3;
+        metric m = {mode > 0, v3_normalize(v3(rnd(&s) - 0.5f, rnd(&s) - 0.5f, 1.0f)), 6.0f, NULL};
+        kdtree_filter f = {m.normal, 0.2f, PHOTON_CAUSTIC, (uint16_t)(j & 1)};
+        if (mode == 2)
+            m.filter = &f;
         brute_compute(b, &m, tree, n, x);
         for (int ki = 0; ki < 3; ki++)
             for (int ri = 0; ri < 4; ri++) {
@@ -412,6 +428,59 @@ static void test_large_sets(kdtree_query qk[3])
     brute_free(&b);
 }
 
+/* A map keeps its photons in classes (facing, flags), each a tree of its own; its
+ * searches must find what one search over all the photons finds, and the
+ * surface search may skip only classes none of whose photons pass the
+ * filter. Brute force over the map's photons, for every metric, random
+ * query normals (axis-aligned ones too, whose 45° cones touch the class
+ * boundaries) and normal thresholds down to −1. */
+static void test_map_classes(kdtree_query qk[3])
+{
+    const uint32_t n = 20000;
+    photon *in = make_set(SET_UNIFORM, n, 11);
+    photon_map m;
+    photon_map_init(&m);
+    CHECK(photon_map_append(&m, in, n) && photon_map_build(&m));
+    int ordered = 1, classed = 1;
+    for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
+        uint32_t start = m.class_start[c], count = m.class_start[c + 1] - start;
+        ordered &= heap_ordered(m.photons + start, count);
+        for (uint32_t i = start; i < start + count; i++)
+            classed &= photon_class(&m.photons[i]) == c;
+    }
+    CHECK_MSG(ordered && classed, "classes: kd order %d, class membership %d", ordered, classed);
+    CHECK(m.class_start[PHOTON_CLASSES] == n);
+    brute b;
+    brute_init(&b, n);
+    uint32_t s = 99, bad = 0, queries = 0;
+    static const float min_cos[] = {0.7f, 0.5f, 0.0f, -1.0f, 0.99f};
+    for (int j = 0; j < 300; j++) {
+        vec3 x = v3(rnd(&s), rnd(&s), rnd(&s));
+        vec3 nrm = j % 6 < 3 ? v3(j % 3 == 0 ? 1.0f : 0.0f, j % 3 == 1 ? -1.0f : 0.0f, j % 3 == 2 ? 1.0f : 0.0f)
+                             : v3_normalize(v3(rnd(&s) - 0.5f, rnd(&s) - 0.5f, rnd(&s) - 0.5f));
+        static const uint16_t excluded[] = {0, PHOTON_CAUSTIC, PHOTON_DIRECT, PHOTON_CAUSTIC | PHOTON_DIRECT};
+        kdtree_filter f = {nrm, min_cos[j % 5], excluded[(j >> 3) & 3], (uint16_t)(j & 1)};
+        int mode = j % 3;
+        metric mt = {mode > 0, nrm, 4.0f, mode == 2 ? &f : NULL};
+        brute_compute(&b, &mt, m.photons, n, x);
+        for (int ki = 0; ki < 3; ki++)
+            for (int ri = 0; ri < 4; ri++) {
+                if (mode == 0)
+                    photon_map_knn(&m, x, radii2[ri], &qk[ki]);
+                else if (mode == 1)
+                    photon_map_knn_disc(&m, x, nrm, 4.0f, radii2[ri], &qk[ki]);
+                else
+                    photon_map_knn_surface(&m, x, 4.0f, &f, radii2[ri], &qk[ki]);
+                queries++;
+                bad += !knn_matches(&b, &qk[ki], ks[ki], radii2[ri]);
+            }
+    }
+    CHECK_MSG(bad == 0, "map searches over facing classes: %u of %u differ from brute force", bad, queries);
+    brute_free(&b);
+    photon_map_free(&m);
+    free(in);
+}
+
 /* The map's photon order is irrelevant to the search results' distances,
  * and k = 0 or an empty tree find nothing. */
 static void test_edge_cases(void)
@@ -501,6 +570,7 @@ int main(void)
     test_left_size();
     test_small_sets(qk);
     test_large_sets(qk);
+    test_map_classes(qk);
     test_edge_cases();
     test_threads();
     for (int i = 0; i < 3; i++)

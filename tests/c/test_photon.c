@@ -241,17 +241,49 @@ static void test_direction_bins(void)
 static void test_record(void)
 {
     CHECK(sizeof(photon) == 20);
-    photon p = photon_make(v3(1, 2, 3), v3(0.5f, 0.25f, 0.125f), v3(0, 0, -1), PHOTON_CAUSTIC, 200);
+    photon p = photon_make(v3(1, 2, 3), v3(0.5f, 0.25f, 0.125f), v3(0, 0, -1), v3(0, 0, 1), PHOTON_CAUSTIC);
     CHECK(p.position[0] == 1.0f && p.position[1] == 2.0f && p.position[2] == 3.0f);
     CHECK(photon_is_caustic(&p) && !photon_is_direct(&p));
-    CHECK(photon_depth(&p) == 200);
     CHECK(photon_axis(&p) == 0);
     CHECK(photon_direction(&p).z < -0.9999f);
+    CHECK(photon_normal(&p).z > 0.9999f);
     CHECK_REL(photon_power(&p).x, 0.5, 1.0 / 256.0);
-    p = photon_make(v3s(0), v3s(1), v3(1, 0, 0), PHOTON_DIRECT | PHOTON_AXIS_MASK, 1000);
+    p = photon_make(v3s(0), v3s(1), v3(1, 0, 0), v3(-1, 0, 0), PHOTON_DIRECT | PHOTON_AXIS_MASK);
     CHECK(photon_is_direct(&p) && !photon_is_caustic(&p));
-    CHECK(photon_depth(&p) == 255);
+    CHECK(photon_normal(&p).x < -0.9999f);
     CHECK(photon_axis(&p) == 0); /* the axis belongs to the kd-tree, not to the caller */
+}
+
+/* The 12-bit normal: over directions spread on the whole sphere (both
+ * hemispheres, the octahedron's folds and its corners), the decoded normal
+ * is unit length and within 3° of the encoded one, and it shares the flag
+ * word without touching the other bits. */
+static void test_normal_encoding(void)
+{
+    double worst = 0.0;
+    int not_unit = 0, flags_changed = 0;
+    for (int i = 0; i < 20000; i++) {
+        /* A Fibonacci spiral, plus the six axes and the folds' edges. */
+        double z = 1.0 - 2.0 * (i + 0.5) / 20000.0, phi = i * 2.399963229728653;
+        vec3 n = v3((float)(sqrt(1.0 - z * z) * cos(phi)), (float)(sqrt(1.0 - z * z) * sin(phi)), (float)z);
+        if (i < 6)
+            n = v3(i == 0 ? 1.0f : i == 1 ? -1.0f : 0.0f, i == 2 ? 1.0f : i == 3 ? -1.0f : 0.0f,
+                   i == 4 ? 1.0f : i == 5 ? -1.0f : 0.0f);
+        photon p = photon_make(v3s(0), v3s(1), v3(0, 0, -1), n, PHOTON_CAUSTIC);
+        flags_changed += !photon_is_caustic(&p) || photon_is_direct(&p) || photon_axis(&p) != 0;
+        vec3 m = photon_normal(&p);
+        not_unit += fabsf(v3_length(m) - 1.0f) > 1e-5f;
+        double angle = acos(fmin(1.0, v3_dot(m, n))) * 180.0 / M_PI;
+        worst = fmax(worst, angle);
+    }
+    printf("  normals: worst angular error %.2f degrees\n", worst);
+    CHECK_MSG(worst < 2.6, "a 12-bit normal is %.2f degrees off", worst);
+    CHECK(not_unit == 0);
+    CHECK(flags_changed == 0);
+    /* Zero and NaN normals encode as +z, never as NaN. */
+    photon z = photon_make(v3s(0), v3s(1), v3(0, 0, -1), v3s(0.0f), 0);
+    photon nan_n = photon_make(v3s(0), v3s(1), v3(0, 0, -1), v3(NAN, 0, 0), 0);
+    CHECK(photon_normal(&z).z > 0.999f && photon_normal(&nan_n).z > 0.999f);
 }
 
 /* ---- photon map ---------------------------------------------------------- */
@@ -259,7 +291,7 @@ static void test_record(void)
 static photon random_photon(uint32_t *s)
 {
     vec3 pos = v3(rnd(s), rnd(s), rnd(s));
-    return photon_make(pos, v3(rnd(s), rnd(s), rnd(s)), random_direction(s), 0, (unsigned)(rnd(s) * 8));
+    return photon_make(pos, v3(rnd(s), rnd(s), rnd(s)), random_direction(s), random_direction(s), 0);
 }
 
 static void test_map_lifecycle(void)
@@ -345,6 +377,7 @@ int main(void)
     test_direction_special();
     test_direction_bins();
     test_record();
+    test_normal_encoding();
     test_map_lifecycle();
     return test_summary("test_photon");
 }

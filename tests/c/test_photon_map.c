@@ -103,38 +103,81 @@ static void test_point_light_irradiance(void)
     phos_scene_destroy(s);
 }
 
-/* Christensen's radiance photons against the closed form: a point light of
- * intensity I at height h over a Lambertian plane of albedo ρ gives
- * L = ρ/π · I cos θ / d² at each site. Sites within 0.6 m of the foot of
- * the light (where the density is high and the k = 50 disc is small) are
- * averaged. The ratio's standard error is measured from the sites
+/* Area of test_add_sphere_mesh's polyhedron (m²). */
+static double sphere_mesh_area(double radius, int segments, int rings)
+{
+    double area = 0.0;
+    for (int r = 0; r < rings; r++)
+        for (int sg = 0; sg < segments; sg++) {
+            double v[4][3];
+            for (int k = 0; k < 4; k++) {
+                double th = M_PI * (r + (k >> 1)) / rings, ph = 2.0 * M_PI * (sg + (k & 1)) / segments;
+                v[k][0] = radius * sin(th) * cos(ph);
+                v[k][1] = radius * sin(th) * sin(ph);
+                v[k][2] = radius * cos(th);
+            }
+            static const int tri[2][3] = {{0, 2, 1}, {1, 2, 3}};
+            for (int t = 0; t < 2; t++) {
+                const double *p0 = v[tri[t][0]], *p1 = v[tri[t][1]], *p2 = v[tri[t][2]];
+                double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+                double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+                double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                               e1[0] * e2[1] - e1[1] * e2[0]};
+                area += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+            }
+        }
+    return area;
+}
+
+/* Christensen's radiance photons against the closed form. They hold the
+ * exitance of light that scattered at least once before (final gathering
+ * takes direct light at its hits from a light sample). Inside a closed
+ * diffuse sphere of albedo ρ with a point light of intensity I at its
+ * centre, every bounce spreads its flux uniformly, so the indirect
+ * irradiance is E = ρ/(1 − ρ) · 4πI / A everywhere, and every site holds
+ * L = ρ/π · E. The ratio's standard error is measured from the sites
  * themselves (neighbouring estimates share photons: the spread is
  * computed over blocks of 64 sites in map order, which are spatially
- * scattered). A site sitting on a stored photon must not count it: that
- * alone would make the estimate (k−1)/(k−2) = +2.1 % too bright. */
+ * scattered). The sites come from photon paths of their own: taken from
+ * the global map's photons, they would sit where its photons cluster, and
+ * the lookups below read dark (docs/algorithms.md §5.3). */
 static void test_radiance_photons_unbiased(void)
 {
-    const float I = 2.0f, h = 1.0f, rho = 0.5f;
-    phos_scene *s = plane_under_point_light(I, h, rho);
-    photon_trace_settings ps = trace_settings(400000, 0, 0);
+    const float I = 2.0f, rho = 0.5f;
+    const int segments = 96, rings = 48;
+    phos_scene *s = phos_scene_create();
+    /* Flat normals: under smooth ones, photons arriving within a few degrees
+     * of grazing count as arriving from behind the shading normal (§4.5),
+     * 0.3 % of the flux on this mesh. */
+    test_add_instance(s, test_add_sphere_mesh_shaded(s, 1.0f, segments, rings, 1, 0),
+                      test_add_diffuse(s, rho, rho, rho), 0, 0, 0);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.color[0] = l.color[1] = l.color[2] = I;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera(s, 0, 0, 0, 1.0f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    /* Few photons an estimate (k = 5) and many photons: on a curved surface
+     * the estimate reads dark in proportion to r², so to k/N (measured
+     * here at 800 k photons: −0.24 % at k = 5, −0.43 % at k = 20, −0.89 %
+     * at k = 80; docs/algorithms.md §5.3). The k − 1 rule, which k = 5
+     * tests hardest (counting the k-th photon would read 25 % bright),
+     * holds within the noise. */
+    photon_trace_settings ps = trace_settings(800000, 0, 0);
     ps.max_radius = 0.5f;
+    ps.max_bounces = 64;
+    ps.radiance_k = 5;
     photon_maps maps;
     photon_maps_init(&maps);
     atomic_int cancel = 0;
     CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
     CHECK(photon_maps_build(&maps) == PHOS_OK);
     CHECK(photon_maps_precompute_radiance(s, &ps, &maps, &cancel) == PHOS_OK);
+    double expected = rho / M_PI * rho / (1.0 - rho) * 4.0 * M_PI * I / sphere_mesh_area(1.0, segments, rings);
     double sum = 0.0, block_sum = 0.0, sum_blocks2 = 0.0;
     uint32_t n = 0, blocks = 0, in_block = 0;
     for (uint32_t i = 0; i < maps.radiance.count; i++) {
-        const photon *p = &maps.radiance.photons[i];
-        vec3 x = photon_position(p);
-        float r2 = x.x * x.x + x.y * x.y;
-        if (r2 > 0.36f)
-            continue;
-        float d2 = r2 + h * h;
-        double expected = rho / M_PI * I * (h / sqrt(d2)) / d2;
-        double ratio = photon_power(p).x / expected;
+        double ratio = photon_power(&maps.radiance.photons[i]).x / expected;
         sum += ratio;
         n++;
         block_sum += ratio;
@@ -148,9 +191,9 @@ static void test_radiance_photons_unbiased(void)
     double mean = sum / n;
     double block_var = sum_blocks2 / blocks - mean * mean;
     double stderr_mean = sqrt(fmax(block_var, 0.0) / blocks);
-    printf("  radiance photons over a plane: mean estimate / exact = %.4f ± %.4f over %u sites\n", mean,
+    printf("  radiance photons in a closed sphere: mean estimate / exact = %.4f ± %.4f over %u sites\n", mean,
            stderr_mean, n);
-    CHECK(n > 1000);
+    CHECK(n > 100000);
     CHECK_MSG(fabs(mean - 1.0) < 4.0 * stderr_mean, "radiance photons: mean ratio %.4f (± %.4f)", mean,
               stderr_mean);
     photon_maps_free(&maps);
@@ -169,17 +212,17 @@ static void test_radiance_lookup_in_a_corner(void)
     int ok = 1;
     for (int i = -20; i <= 20; i++)
         for (int j = 1; j <= 20; j++) {
-            photon p = photon_make(v3(0.05f * i, 0.05f * j, 0.0f), v3s(1.0f), v3(0, 0, 1), 0, 0);
+            photon p = photon_make(v3(0.05f * i, 0.05f * j, 0.0f), v3s(1.0f), v3(0, 0, 1), v3(0, 0, 1), 0);
             ok &= photon_map_append(&m, &p, 1);
         }
     for (int i = -200; i <= 200; i++)
         for (int j = 0; j <= 100; j++) {
-            photon p = photon_make(v3(0.005f * i, 0.0f, 0.005f * j), v3s(2.0f), v3(0, 1, 0), 0, 0);
+            photon p = photon_make(v3(0.005f * i, 0.0f, 0.005f * j), v3s(2.0f), v3(0, 1, 0), v3(0, 1, 0), 0);
             ok &= photon_map_append(&m, &p, 1);
         }
     CHECK(ok && photon_map_build(&m));
     kdtree_query q, q8;
-    CHECK(kdtree_query_init(&q, RADIANCE_LOOKUP_WIDE) && kdtree_query_init(&q8, 8));
+    CHECK(kdtree_query_init(&q, 1) && kdtree_query_init(&q8, 8));
     int crowded = 0, wrong = 0;
     for (int i = 0; i < 20; i++) {
         vec3 x = v3(-0.5f + 0.05f * i + 0.013f, 0.004f, 0.0f);
@@ -473,14 +516,15 @@ static void test_maps_deterministic(void)
     CHECK(a.global_emitted == b.global_emitted && a.caustic_emitted == b.caustic_emitted);
     CHECK(a.global.count && memcmp(a.global.photons, b.global.photons, sizeof(photon) * a.global.count) == 0);
     CHECK(a.caustic.count && memcmp(a.caustic.photons, b.caustic.photons, sizeof(photon) * a.caustic.count) == 0);
-    /* Caustic photons are flagged, came through at least one bounce, and
+    /* Caustic photons are flagged, came through at least one bounce (are not
+     * direct), and
      * most lie in the focus under the sphere (the rest are reflections off
      * its surface, which land anywhere). */
     uint32_t unflagged = 0, focused = 0;
     for (uint32_t i = 0; i < a.caustic.count; i++) {
         const photon *p = &a.caustic.photons[i];
         vec3 x = photon_position(p);
-        unflagged += !photon_is_caustic(p) || photon_depth(p) < 1;
+        unflagged += !photon_is_caustic(p) || photon_is_direct(p);
         focused += x.x * x.x + x.y * x.y < 0.5f * 0.5f;
     }
     CHECK_MSG(unflagged == 0, "%u caustic photons unflagged or without a bounce", unflagged);
@@ -610,18 +654,18 @@ static void test_photon_vs_path(void)
     /* Tolerance: 4 standard errors of the difference of the two means (each
      * from a pair of renders with different seeds; the caustic focus is a
      * small part of a pixel, so camera sampling is the main noise of both),
-     * plus 2 % for Direct and Specular (the same estimators in both), and
-     * 10 % for Caustics and Indirect, the photon map's bias. */
-    static const double tol[] = {0.03, 1.0, 0.02, 0.02, 0.10, 0.10};
+     * and nothing else: no allowance for the photon maps' bias, which at
+     * 100 k photons is below the noise of every pass (it once had 10 % for
+     * Caustics and Indirect, and 2–3 % for the rest). Emission too: the
+     * camera sees no emitter here, so both must read exactly 0. */
     for (uint32_t p = 0; p <= PHOS_PASS_INDIRECT; p++) {
         uint32_t ch = phos_pass_channels(p);
         double a = 0.5 * (pass_mean(path[p], ch, n) + pass_mean(path2[p], ch, n));
         double b = 0.5 * (pass_mean(pm[p], ch, n) + pass_mean(pm2[p], ch, n));
         double se_a = pair_stderr(path[p], path2[p], ch, n), se_b = pair_stderr(pm[p], pm2[p], ch, n);
-        double limit = 4.0 * sqrt(se_a * se_a + se_b * se_b) + tol[p] * a;
+        double limit = 4.0 * sqrt(se_a * se_a + se_b * se_b);
         printf("  %-9s PATH %.5f  PHOTON %.5f  (limit ±%.5f)\n", names[p], a, b, limit);
-        if (p != PHOS_PASS_EMISSION)
-            CHECK_MSG(fabs(b - a) <= limit, "%s: PHOTON %.5f vs PATH %.5f", names[p], b, a);
+        CHECK_MSG(fabs(b - a) <= limit, "%s: PHOTON %.5f vs PATH %.5f", names[p], b, a);
     }
     /* Combined is the sum of the light components, pixel by pixel. */
     int mismatches = 0;
@@ -784,9 +828,12 @@ static void test_world_light_noise(void)
 /* A diffuse floor lit only by a lamp's reflection in a rough metal ceiling
  * (a spot pointing up): the light reaches the floor along E D G L, which
  * final gathering reads where its rays land on the metal. Against a PATH
- * render of the same scene, PHOTON's Indirect must converge as photons
- * grow: its error falls (measured 1.56 % at 25 k, 0.62 % at 400 k), and at
- * 400 k it is within 4 standard errors of the two renders' noise. */
+ * render of the same scene, PHOTON's Indirect must agree within 4 standard
+ * errors of the two renders' noise at 25 k photons and at 400 k. The
+ * error fell from 1.56 % to 0.62 % while gather hits read direct light
+ * from the global map; since they take it from a light sample it is
+ * 0.55 % and 0.58 %, at the noise floor (1.6 %) at both counts, so a fall
+ * cannot be measured here (the sunlit room shows one). */
 static phos_scene *metal_ceiling_scene(void)
 {
     phos_scene *s = phos_scene_create();
@@ -834,7 +881,7 @@ static void test_glossy_gather_hits(void)
     printf("  metal ceiling: PATH indirect %.5f (± %.5f)\n", ref, se_ref);
     CHECK(ref > 0.01);
     const uint32_t photons[] = {25000, 400000};
-    double err[2], limit = 0.0;
+    double err[2], limit[2];
     for (int i = 0; i < 2; i++) {
         float *pm[PHOS_PASS_COUNT], *pm2[PHOS_PASS_COUNT];
         CHECK(render_photons(s, photons[i], light_passes, 16, 7, pm, w) != NULL);
@@ -842,17 +889,303 @@ static void test_glossy_gather_hits(void)
         double m = 0.5 * (pass_mean(pm[PHOS_PASS_INDIRECT], 3, n) + pass_mean(pm2[PHOS_PASS_INDIRECT], 3, n));
         double se = pair_stderr(pm[PHOS_PASS_INDIRECT], pm2[PHOS_PASS_INDIRECT], 3, n);
         err[i] = fabs(m / ref - 1.0);
-        limit = 4.0 * sqrt(se * se + se_ref * se_ref) / ref; /* the last one's: noise only */
+        limit[i] = 4.0 * sqrt(se * se + se_ref * se_ref) / ref;
         printf("    PHOTON, %6u photons: indirect %.5f (± %.5f), error %.2f %% (noise limit %.2f %%)\n", photons[i], m,
-               se, 100.0 * err[i], 100.0 * limit);
+               se, 100.0 * err[i], 100.0 * limit[i]);
         for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
             free(pm[p]);
             free(pm2[p]);
         }
     }
-    CHECK_MSG(err[1] < err[0], "the error does not fall as photons grow: %.4f then %.4f", err[0], err[1]);
-    CHECK_MSG(err[1] < limit, "PHOTON misses light a rough metal ceiling reflects onto the floor: error %.2f %% > %.2f %%",
-              100.0 * err[1], 100.0 * limit);
+    for (int i = 0; i < 2; i++)
+        CHECK_MSG(err[i] < limit[i], "PHOTON misses light a rough metal ceiling reflects onto the floor: error %.2f %% > %.2f %%",
+                  100.0 * err[i], 100.0 * limit[i]);
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        free(path[p]);
+        free(path2[p]);
+    }
+    phos_scene_destroy(s);
+}
+
+/* PHOTON's passes against PATH's on one scene (those in `asserted`), each
+ * within 4 standard errors of the two pairs of renders' noise (no
+ * allowance), at `photons` global and caustic photons. */
+static void photon_vs_path_passes(const char *name, phos_scene *s, uint32_t photons, uint32_t path_samples,
+                                  uint32_t photon_samples, uint32_t w, uint32_t asserted)
+{
+    static const char *names[] = {"combined", "emission", "direct", "specular", "caustics", "indirect"};
+    const uint32_t n = w * w, light_passes = (1u << (PHOS_PASS_INDIRECT + 1)) - 1u;
+    float *path[PHOS_PASS_COUNT], *path2[PHOS_PASS_COUNT], *pm[PHOS_PASS_COUNT], *pm2[PHOS_PASS_COUNT];
+    CHECK(render_view(s, PHOS_INTEGRATOR_PATH, 0, light_passes, path_samples, 11, path, w, NULL) != NULL);
+    CHECK(render_view(s, PHOS_INTEGRATOR_PATH, 0, light_passes, path_samples, 12, path2, w, NULL) != NULL);
+    for (int k = 0; k < 2; k++) {
+        phos_render_settings rs = test_settings(PHOS_INTEGRATOR_PHOTON, light_passes, photon_samples, 11 + (uint32_t)k, w);
+        rs.global_photons = rs.caustic_photons = photons;
+        CHECK(render_settings_passes(s, &rs, k ? pm2 : pm, NULL) != NULL);
+    }
+    printf("  %s:\n", name);
+    for (uint32_t p = 0; p <= PHOS_PASS_INDIRECT; p++) {
+        if (!(asserted & (1u << p)))
+            continue;
+        uint32_t ch = phos_pass_channels(p);
+        double a = 0.5 * (pass_mean(path[p], ch, n) + pass_mean(path2[p], ch, n));
+        double b = 0.5 * (pass_mean(pm[p], ch, n) + pass_mean(pm2[p], ch, n));
+        double se = sqrt(pow(pair_stderr(path[p], path2[p], ch, n), 2) + pow(pair_stderr(pm[p], pm2[p], ch, n), 2));
+        printf("    %-9s PATH %.5f PHOTON %.5f (error %+.2f %%, noise limit %.2f %%)\n", names[p], a, b,
+               100.0 * (b / a - 1.0), 400.0 * se / a);
+        CHECK(a > 0.0);
+        CHECK_MSG(fabs(b - a) <= 4.0 * se, "%s, %s: PHOTON %.5f vs PATH %.5f (limit %.5f)", name, names[p], b, a,
+                  4.0 * se);
+    }
+    free_pass_sets(path, path2, pm, pm2);
+}
+
+/* A square area light facing up at a panel 1 m above it that is half sharp
+ * mirror, half diffuse (a mix shader): the mirror half throws the light's
+ * image onto the floor around it, a caustic (L S D) that leaves the panel
+ * by its delta lobe. Caustic paths used to stop at the panel's diffuse
+ * half and the image was missing. */
+static phos_scene *mirror_mix_scene(void)
+{
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quad_mesh(s, 3.0f), test_add_diffuse(s, 0.7f, 0.7f, 0.7f), 0, 0, 0);
+    phos_closure_desc c[2];
+    phos_closure_desc_init(&c[0]);
+    phos_closure_desc_init(&c[1]);
+    c[0].type = PHOS_CLOSURE_REFLECTION;
+    c[0].roughness = 0.0f;
+    c[1].type = PHOS_CLOSURE_DIFFUSE;
+    for (int k = 0; k < 3; k++)
+        c[0].weight[k] = c[1].weight[k] = 0.45f;
+    phos_material_desc m;
+    phos_material_desc_init(&m);
+    m.closure_count = 2;
+    m.closures = c;
+    uint32_t mat = 0;
+    phos_scene_add_material(s, &m, &mat);
+    phos_instance_desc inst;
+    phos_instance_desc_init(&inst);
+    inst.mesh_id = test_add_quad_mesh(s, 1.0f);
+    float t[12] = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, 1.5f}; /* facing down at z = 1.5 */
+    memcpy(inst.transform, t, sizeof(t));
+    inst.material_count = 1;
+    inst.materials = &mat;
+    phos_scene_add_instance(s, &inst, NULL);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_AREA;
+    l.position[0] = 0.8f;
+    l.position[2] = 0.5f;
+    l.direction[2] = 1.0f;
+    l.axis_u[0] = 0.3f;
+    l.axis_v[1] = 0.3f;
+    l.color[0] = l.color[1] = l.color[2] = 40.0f;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera_pitched(s, 0.0f, -2.2f, 0.6f, 1.1f, 0.4f); /* the floor under the panel */
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    return s;
+}
+
+/* A mirror mixed with a diffuse coat: the caustic pass stores its photons
+ * past the panel (before, none: it ran to its cap of emitted paths), and
+ * PHOTON's Caustics and Indirect match PATH's. */
+static void test_mirror_mix_caustic(void)
+{
+    phos_scene *s = mirror_mix_scene();
+    phos_render_settings rs = test_settings(PHOS_INTEGRATOR_PHOTON, 1u << PHOS_PASS_CAUSTICS, 1, 1, 8);
+    rs.global_photons = rs.caustic_photons = 20000;
+    float *passes[PHOS_PASS_COUNT];
+    phos_progress progress;
+    CHECK(render_settings_passes(s, &rs, passes, &progress) != NULL);
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++)
+        free(passes[p]);
+    printf("  mirror mix: %u caustic photons stored\n", progress.caustic_photons);
+    CHECK_MSG(progress.caustic_photons == 20000, "mirror mix: %u caustic photons stored of 20000",
+              progress.caustic_photons);
+    photon_vs_path_passes("mirror mix", s, 200000, 2048, 64, 16,
+                          (1u << PHOS_PASS_CAUSTICS) | (1u << PHOS_PASS_INDIRECT));
+    phos_scene_destroy(s);
+}
+
+/* A closed diffuse room (4 × 4 × 2.5 m, ρ = 0.6) lit only by the sun
+ * through a small window (0.8 × 0.8 m) in its +y wall, with a diffuse ball
+ * on the floor: almost all the light the camera sees is indirect, and it
+ * sees every kind of edge and corner. The camera stands inside, looking
+ * at the window wall. */
+#define ROOM_HALF 2.0f
+#define ROOM_HEIGHT 2.5f
+#define ROOM_CAMERA_PITCH 1.42f
+#define ROOM_TAN_HALF 0.8f
+static const float room_camera[3] = {0.0f, -1.8f, 1.3f};
+static const float room_ball[4] = {-1.0f, 0.6f, 0.5f, 0.5f}; /* centre, radius */
+
+/* The rectangle x ∈ [x0, x1], z ∈ [z0, z1] of the wall y = ROOM_HALF,
+ * facing −y (into the room). */
+static void window_wall_quad(float q[4][3], float x0, float x1, float z0, float z1)
+{
+    const float y = ROOM_HALF;
+    float c[4][3] = {{x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}};
+    memcpy(q, c, sizeof(c));
+}
+
+static phos_scene *sunlit_room_scene(void)
+{
+    const float a = ROOM_HALF, h = ROOM_HEIGHT;
+    const float wx = 0.4f, wz0 = 1.0f, wz1 = 1.8f; /* the window */
+    float quads[9][4][3] = {
+        {{-a, -a, 0}, {a, -a, 0}, {a, a, 0}, {-a, a, 0}},  /* floor, +z */
+        {{-a, -a, h}, {-a, a, h}, {a, a, h}, {a, -a, h}},  /* ceiling, −z */
+        {{-a, -a, 0}, {-a, a, 0}, {-a, a, h}, {-a, -a, h}}, /* x = −a, +x */
+        {{a, -a, 0}, {a, -a, h}, {a, a, h}, {a, a, 0}},    /* x = +a, −x */
+        {{-a, -a, 0}, {-a, -a, h}, {a, -a, h}, {a, -a, 0}}, /* y = −a, +y */
+    };
+    window_wall_quad(quads[5], -a, a, 0.0f, wz0);
+    window_wall_quad(quads[6], -a, a, wz1, h);
+    window_wall_quad(quads[7], -a, -wx, wz0, wz1);
+    window_wall_quad(quads[8], wx, a, wz0, wz1);
+    phos_scene *s = phos_scene_create();
+    uint32_t walls = test_add_diffuse(s, 0.6f, 0.6f, 0.6f);
+    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])quads, 9), walls, 0, 0, 0);
+    test_add_instance(s, test_add_sphere_mesh(s, room_ball[3], 48, 24, 0), walls, room_ball[0], room_ball[1],
+                      room_ball[2]);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_SUN;
+    float d[3] = {0.35f, -1.0f, -0.9f}, len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int k = 0; k < 3; k++)
+        l.direction[k] = d[k] / len;
+    l.color[0] = l.color[1] = l.color[2] = 30.0f; /* W/m² */
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera_pitched(s, room_camera[0], room_camera[1], room_camera[2], ROOM_CAMERA_PITCH, ROOM_TAN_HALF);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    return s;
+}
+
+/* Distance (m) from where pixel (i, j)'s central ray meets the room's walls
+ * to the nearest edge between two of them, or −1 where the ray meets the
+ * ball or leaves through the window. Rows count from the bottom. */
+static double room_pixel_edge_distance(uint32_t i, uint32_t j, uint32_t w)
+{
+    double x = ROOM_TAN_HALF * (2.0 * (i + 0.5) / w - 1.0), y = ROOM_TAN_HALF * (2.0 * (j + 0.5) / w - 1.0);
+    double cp = cos(ROOM_CAMERA_PITCH), sp = sin(ROOM_CAMERA_PITCH);
+    double d[3] = {x, cp * y + sp, sp * y - cp}; /* R·(x, y, −1) */
+    double o[3] = {room_camera[0], room_camera[1], room_camera[2]};
+    /* The ball. */
+    double oc[3] = {o[0] - room_ball[0], o[1] - room_ball[1], o[2] - room_ball[2]};
+    double A = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], B = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    double C = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - room_ball[3] * room_ball[3];
+    if (B * B - A * C > 0.0 && -B - sqrt(B * B - A * C) > 0.0)
+        return -1.0;
+    double lo[3] = {-ROOM_HALF, -ROOM_HALF, 0.0}, hi[3] = {ROOM_HALF, ROOM_HALF, ROOM_HEIGHT};
+    double t = INFINITY;
+    for (int k = 0; k < 3; k++)
+        if (d[k] != 0.0)
+            t = fmin(t, ((d[k] > 0.0 ? hi[k] : lo[k]) - o[k]) / d[k]);
+    double p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
+    if (fabs(p[1] - ROOM_HALF) < 1e-6 && fabs(p[0]) < 0.4 && p[2] > 1.0 && p[2] < 1.8)
+        return -1.0; /* through the window */
+    double e = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        double dk = fmin(p[k] - lo[k], hi[k] - p[k]);
+        if (dk > 1e-6) /* not the face the point lies on */
+            e = fmin(e, dk);
+    }
+    return e;
+}
+
+/* Mean of a 3-channel pass over the pixels where mask[i] is set, and the
+ * standard error of the mean of two renders' (pair_stderr over the mask). */
+static double masked_mean(const float *p, const unsigned char *mask, uint32_t n)
+{
+    double m = 0.0;
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (mask[i]) {
+            m += p[3 * i] + p[3 * i + 1] + p[3 * i + 2];
+            count++;
+        }
+    return m / (3.0 * count);
+}
+
+static double masked_pair_stderr(const float *a, const float *b, const unsigned char *mask, uint32_t n)
+{
+    double m = 0.0, v = 0.0;
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (mask[i]) {
+            m += (a[3 * i] + a[3 * i + 1] + a[3 * i + 2] - b[3 * i] - b[3 * i + 1] - b[3 * i + 2]) / 3.0;
+            count++;
+        }
+    m /= count;
+    for (uint32_t i = 0; i < n; i++)
+        if (mask[i]) {
+            double d = (a[3 * i] + a[3 * i + 1] + a[3 * i + 2] - b[3 * i] - b[3 * i + 1] - b[3 * i + 2]) / 3.0;
+            v += (d - m) * (d - m);
+        }
+    return sqrt(v / (count - 1) / (4.0 * count));
+}
+
+/* Indirect light in the sunlit room, PHOTON (final gathering) against
+ * PATH: over the whole image and over the strip of pixels that see a wall
+ * within 0.3 m of an edge or corner, where the density estimates' bias
+ * lives. Measured on this scene before issue 8's fixes: +11 % over the
+ * image and +25 % in the strip at 400 k photons, growing with photons
+ * (light from the sunlit outside walls counted inside, radiance photons
+ * 30 % dark). Now the error over the image falls as photons grow, and at
+ * 1.6 M photons both are within 4 standard errors of the two renders'
+ * noise (measured: −1.25 % / −1.86 % at 100 k, −0.84 % / −1.74 % at
+ * 1.6 M; the noise limits are about 1.0 % and 2.1 %). */
+static void test_sunlit_room(void)
+{
+    phos_scene *s = sunlit_room_scene();
+    const uint32_t w = 32, n = w * w;
+    unsigned char strip[32 * 32], all[32 * 32];
+    uint32_t strip_pixels = 0;
+    for (uint32_t j = 0; j < w; j++)
+        for (uint32_t i = 0; i < w; i++) {
+            double e = room_pixel_edge_distance(i, j, w);
+            all[j * w + i] = 1;
+            strip[j * w + i] = e >= 0.0 && e < 0.3;
+            strip_pixels += strip[j * w + i];
+        }
+    CHECK(strip_pixels > 100);
+    const uint32_t light_passes = (1u << (PHOS_PASS_INDIRECT + 1)) - 1u;
+    float *path[PHOS_PASS_COUNT], *path2[PHOS_PASS_COUNT];
+    CHECK(render_view(s, PHOS_INTEGRATOR_PATH, 0, light_passes, 4096, 9, path, w, NULL) != NULL);
+    CHECK(render_view(s, PHOS_INTEGRATOR_PATH, 0, light_passes, 4096, 10, path2, w, NULL) != NULL);
+    const float *ref_a = path[PHOS_PASS_INDIRECT], *ref_b = path2[PHOS_PASS_INDIRECT];
+    double ref = 0.5 * (masked_mean(ref_a, all, n) + masked_mean(ref_b, all, n));
+    double ref_strip = 0.5 * (masked_mean(ref_a, strip, n) + masked_mean(ref_b, strip, n));
+    double se_ref = masked_pair_stderr(ref_a, ref_b, all, n), se_ref_strip = masked_pair_stderr(ref_a, ref_b, strip, n);
+    printf("  sunlit room: PATH indirect %.5f (± %.5f), in the strip (%u px) %.5f (± %.5f)\n", ref, se_ref,
+           strip_pixels, ref_strip, se_ref_strip);
+    const uint32_t photons[] = {100000, 1600000};
+    double err[2], err_strip[2], limit = 0.0, limit_strip = 0.0;
+    for (int i = 0; i < 2; i++) {
+        float *pm[PHOS_PASS_COUNT], *pm2[PHOS_PASS_COUNT];
+        CHECK(render_photons(s, photons[i], light_passes, 64, 9, pm, w) != NULL);
+        CHECK(render_photons(s, photons[i], light_passes, 64, 10, pm2, w) != NULL);
+        const float *a = pm[PHOS_PASS_INDIRECT], *b = pm2[PHOS_PASS_INDIRECT];
+        double m = 0.5 * (masked_mean(a, all, n) + masked_mean(b, all, n));
+        double ms = 0.5 * (masked_mean(a, strip, n) + masked_mean(b, strip, n));
+        double se = masked_pair_stderr(a, b, all, n), se_strip = masked_pair_stderr(a, b, strip, n);
+        err[i] = m / ref - 1.0;
+        err_strip[i] = ms / ref_strip - 1.0;
+        limit = 4.0 * sqrt(se * se + se_ref * se_ref) / ref;
+        limit_strip = 4.0 * sqrt(se_strip * se_strip + se_ref_strip * se_ref_strip) / ref_strip;
+        printf("    PHOTON %7u photons: indirect error %+.2f %% (noise limit %.2f %%), in the strip %+.2f %% (%.2f %%)\n",
+               photons[i], 100.0 * err[i], 100.0 * limit, 100.0 * err_strip[i], 100.0 * limit_strip);
+        for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+            free(pm[p]);
+            free(pm2[p]);
+        }
+    }
+    CHECK_MSG(fabs(err[1]) < fabs(err[0]), "sunlit room: the error does not fall as photons grow: %+.4f then %+.4f",
+              err[0], err[1]);
+    CHECK_MSG(fabs(err[1]) < limit, "sunlit room: indirect %+.2f %% off PATH (noise limit %.2f %%)", 100.0 * err[1],
+              100.0 * limit);
+    CHECK_MSG(fabs(err_strip[1]) < limit_strip, "sunlit room, edges and corners: indirect %+.2f %% off PATH (%.2f %%)",
+              100.0 * err_strip[1], 100.0 * limit_strip);
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
         free(path[p]);
         free(path2[p]);
@@ -873,5 +1206,7 @@ int main(void)
     test_path_traced_gather_vs_path();
     test_world_light_noise();
     test_glossy_gather_hits();
+    test_mirror_mix_caustic();
+    test_sunlit_room();
     return test_summary("test_photon_map");
 }

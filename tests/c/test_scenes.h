@@ -11,9 +11,11 @@
 
 #include "phos.h"
 
-/* A UV sphere of `radius` at `center`, normals pointing outward (or inward
- * if `inward`), with smooth per-corner normals. Returns the mesh id. */
-static uint32_t test_add_sphere_mesh(phos_scene *s, float radius, int segments, int rings, int inward)
+/* A UV sphere of `radius` at the origin, normals pointing outward (or
+ * inward if `inward`), with smooth per-corner normals if `smooth`, else the
+ * faces' own. Returns the mesh id. */
+static uint32_t test_add_sphere_mesh_shaded(phos_scene *s, float radius, int segments, int rings, int inward,
+                                            int smooth)
 {
     uint32_t nv = (uint32_t)((rings + 1) * (segments + 1));
     uint32_t nt = (uint32_t)(2 * rings * segments);
@@ -59,13 +61,18 @@ static uint32_t test_add_sphere_mesh(phos_scene *s, float radius, int segments, 
     md.positions = pos;
     md.triangle_count = t;
     md.indices = idx;
-    md.normals = nrm;
+    md.normals = smooth ? nrm : NULL;
     uint32_t id = 0;
     phos_scene_add_mesh(s, &md, &id);
     free(pos);
     free(idx);
     free(nrm);
     return id;
+}
+
+static uint32_t test_add_sphere_mesh(phos_scene *s, float radius, int segments, int rings, int inward)
+{
+    return test_add_sphere_mesh_shaded(s, radius, segments, rings, inward, 1);
 }
 
 /* A square of side 2·half in the z = 0 plane, normal +Z. */
@@ -81,6 +88,31 @@ static uint32_t test_add_quad_mesh(phos_scene *s, float half)
     md.indices = idx;
     uint32_t id = 0;
     phos_scene_add_mesh(s, &md, &id);
+    return id;
+}
+
+/* A mesh of `count` flat quads, each given by its four corners in order
+ * (the normal follows the right-hand rule). Returns the mesh id. */
+static uint32_t test_add_quads(phos_scene *s, const float (*quads)[4][3], uint32_t count)
+{
+    float *pos = malloc(sizeof(float) * 12 * count);
+    uint32_t *idx = malloc(sizeof(uint32_t) * 6 * count);
+    for (uint32_t q = 0; q < count; q++) {
+        memcpy(pos + 12 * q, quads[q], sizeof(float) * 12);
+        uint32_t tri[6] = {0, 1, 2, 0, 2, 3};
+        for (int j = 0; j < 6; j++)
+            idx[6 * q + j] = 4 * q + tri[j];
+    }
+    phos_mesh_desc md;
+    phos_mesh_desc_init(&md);
+    md.vertex_count = 4 * count;
+    md.positions = pos;
+    md.triangle_count = 2 * count;
+    md.indices = idx;
+    uint32_t id = 0;
+    phos_scene_add_mesh(s, &md, &id);
+    free(pos);
+    free(idx);
     return id;
 }
 

@@ -29,12 +29,36 @@ static vec3 first_segment_emission(const scene *s, float ray_pdf, vec3 o, vec3 d
     return E;
 }
 
-static int stops_here(const specular_chain *c, const bsdf *b, bsdf *diffuse, bsdf *rest)
+/* Whether the chain stops at b; if not, *next is the part it goes on
+ * through and *weight the factor of that choice. u_pick (in [0, 1)) is the
+ * step's lobe choice: where b mixes delta and non-delta closures
+ * (STOP_AT_NON_DELTA), u_pick < P_delta goes on through the delta ones,
+ * rescaled to pick among them, else the chain stops with weight
+ * 1/(1 − P_delta) (end->read: the non-delta closures). */
+static int stops_here(const specular_chain *c, specular_chain_end *end, float *u_pick, bsdf *next, vec3 *weight)
 {
-    if (c->stop == STOP_AT_NON_DELTA)
-        return bsdf_has_non_delta(b);
-    bsdf_split(b, diffuse, rest);
-    return diffuse->count > 0;
+    const bsdf *b = &end->b;
+    *weight = v3s(1.0f);
+    if (c->stop == STOP_AT_DIFFUSE) {
+        bsdf diffuse;
+        bsdf_split(b, &diffuse, next);
+        end->read = *b;
+        return diffuse.count > 0;
+    }
+    if (!bsdf_has_non_delta(b)) {
+        *next = *b;
+        return 0;
+    }
+    float p_delta = bsdf_split_delta(b, next, &end->read);
+    if (!(p_delta > 0.0f))
+        return 1;
+    if (*u_pick < p_delta) {
+        *u_pick = fminf(*u_pick / p_delta, 0x1.fffffep-1f);
+        *weight = v3s(1.0f / p_delta);
+        return 0;
+    }
+    *weight = v3s(1.0f / (1.0f - p_delta));
+    return 1;
 }
 
 int specular_chain_follow(const scene *s, const specular_chain *c, vec3 o, vec3 d, float tmin, float tmax,
@@ -59,25 +83,25 @@ int specular_chain_follow(const scene *s, const specular_chain *c, vec3 o, vec3 
         material_bsdf(s, &out->sf, &out->b);
         if (out->b.count == 0)
             return 0;
-        bsdf diffuse, rest;
         vec3 wo = v3_neg(d);
-        if (stops_here(c, &out->b, &diffuse, &rest)) {
-            out->beta = beta;
-            out->wo = wo;
-            return 1;
-        }
-        /* Go on through the part that is not read here. */
-        const bsdf *next = c->stop == STOP_AT_NON_DELTA ? &out->b : &rest;
-        bsdf_sample bs;
         float u_pick = 0.5f;
         float2 u = {0.5f, 0.5f};
         if (c->smp) {
             u_pick = sampler_1d(c->smp, c->dim + 3u * step);
             u = sampler_2d(c->smp, c->dim + 3u * step + 1u);
         }
-        if (next->count == 0 || !bsdf_sample_direction(next, wo, u_pick, u, &bs))
+        bsdf next;
+        vec3 choice;
+        if (stops_here(c, out, &u_pick, &next, &choice)) {
+            out->beta = v3_mul(beta, choice);
+            out->wo = wo;
+            return 1;
+        }
+        /* Go on through the part that is not read here. */
+        bsdf_sample bs;
+        if (next.count == 0 || !bsdf_sample_direction(&next, wo, u_pick, u, &bs))
             return 0;
-        beta = v3_mul(beta, bs.weight);
+        beta = v3_mul(v3_mul(beta, choice), bs.weight);
         if (bs.flags & BSDF_TRANSPARENT) {
             tmin = t_after_hit(h.t);
             continue;

@@ -11,7 +11,9 @@
 #include "shading/material.h"
 
 enum specular_chain_stop {
-    STOP_AT_NON_DELTA = 0, /* the first surface with a non-delta lobe (gather rays) */
+    STOP_AT_NON_DELTA = 0, /* the first surface with a non-delta lobe (gather rays); where it
+                              also has delta closures, the ray goes on through them with their
+                              share of the sampling weight, and stops with the rest */
     STOP_AT_DIFFUSE = 1    /* the first surface with a diffuse closure; glossy lobes are followed too */
 };
 
@@ -30,6 +32,9 @@ typedef struct specular_chain {
 typedef struct specular_chain_end {
     surface sf;
     bsdf b;                /* the whole BSDF there */
+    bsdf read;             /* the part to estimate there: STOP_AT_NON_DELTA, its non-delta closures
+                              (the delta ones were followed or not, by chance: beta holds the
+                              weight of the choice); STOP_AT_DIFFUSE, the whole BSDF */
     vec3 beta;             /* throughput of the surfaces passed */
     vec3 wo;               /* toward the previous surface */
     vec3 emission;         /* first_pdf > 0: the first segment's emitters, weighted (set also

@@ -224,30 +224,32 @@ static inline float knn_add(kdtree_query *q, float d2, uint32_t i, float r2)
     return q->dist2[0];
 }
 
-/* One search for both metrics; `disc` is a constant at each call site, so
- * the compiler specialises the inlined copy. */
-static inline __attribute__((always_inline)) uint32_t knn_search(const photon *tree, uint32_t n, vec3 x,
-                                                                 int disc, vec3 normal, float c2m1,
+/* One search for every metric and filter; `disc` and whether `filter` is
+ * NULL are constants at each call site, so the compiler specialises the
+ * inlined copy. */
+static inline __attribute__((always_inline)) uint32_t knn_search(const photon *tree, uint32_t n, uint32_t base,
+                                                                 vec3 x, int disc, vec3 normal, float c2m1,
+                                                                 const kdtree_filter *filter,
                                                                  float max_radius2, kdtree_query *q)
 {
-    q->found = 0;
-    q->radius2 = max_radius2;
+    /* base > 0 or q->found > 0: a further tree of the same search (a map's
+     * facing classes): the results so far stay, and so does their radius. */
     if (n == 0 || q->k == 0 || !(max_radius2 > 0.0f))
-        return 0;
+        return q->found;
 
     const float xq[3] = {x.x, x.y, x.z};
     uint32_t stack_node[KDTREE_STACK_SIZE];
     float stack_plane2[KDTREE_STACK_SIZE];
     int top = 0;
-    float r2 = max_radius2;
+    float r2 = q->found == q->k ? q->dist2[0] : max_radius2; /* dist2[0]: the heap's farthest */
     uint32_t i = 1;
     for (;;) {
         /* Descend toward x, leaving the far children on the stack. */
         for (;;) {
             const photon *p = &tree[i - 1];
             float d2 = disc ? kdtree_disc_dist2(p, x, normal, c2m1) : kdtree_dist2(p, x);
-            if (d2 < r2)
-                r2 = knn_add(q, d2, i - 1, r2);
+            if (d2 < r2 && (!filter || kdtree_filter_accepts(filter, p)))
+                r2 = knn_add(q, d2, base + i - 1, r2);
             if (2 * i > n) /* a leaf: 2i ≤ n is the internal test (not Jensen's n/2 − 1) */
                 break;
             int axis = p->flags & PHOTON_AXIS_MASK;
@@ -275,14 +277,112 @@ static inline __attribute__((always_inline)) uint32_t knn_search(const photon *t
     }
 }
 
+static void query_start(kdtree_query *q, float max_radius2)
+{
+    q->found = 0;
+    q->radius2 = max_radius2;
+}
+
 uint32_t kdtree_knn(const photon *tree, uint32_t n, vec3 x, float max_radius2, kdtree_query *q)
 {
-    return knn_search(tree, n, x, 0, v3s(0.0f), 0.0f, max_radius2, q);
+    query_start(q, max_radius2);
+    return knn_search(tree, n, 0, x, 0, v3s(0.0f), 0.0f, NULL, max_radius2, q);
 }
 
 uint32_t kdtree_knn_disc(const photon *tree, uint32_t n, vec3 x, vec3 normal, float flatten,
                          float max_radius2, kdtree_query *q)
 {
     float c = flatten > 1.0f ? flatten : 1.0f;
-    return knn_search(tree, n, x, 1, normal, c * c - 1.0f, max_radius2, q);
+    query_start(q, max_radius2);
+    return knn_search(tree, n, 0, x, 1, normal, c * c - 1.0f, NULL, max_radius2, q);
+}
+
+uint32_t kdtree_knn_surface(const photon *tree, uint32_t n, vec3 x, float flatten, const kdtree_filter *f,
+                            float max_radius2, kdtree_query *q)
+{
+    float c = flatten > 1.0f ? flatten : 1.0f;
+    query_start(q, max_radius2);
+    return knn_search(tree, n, 0, x, 1, f->normal, c * c - 1.0f, f, max_radius2, q);
+}
+
+/* ---- maps: one search over the classes ---------------------------------- */
+
+/* The largest n·m over the unit normals m of facing class c (dominant axis
+ * a, sign s: s·m_a ≥ |m_b| for both other axes b). Inside the class it is
+ * 1; otherwise the maximum lies on one of the four great-circle arcs that
+ * bound it (s·m_a = ±m_b) or at one of its four corners. */
+static float facing_class_max_dot(unsigned c, vec3 n)
+{
+    int a = (int)(c / 2);
+    float s = (c & 1) ? -1.0f : 1.0f;
+    float nv[3] = {n.x, n.y, n.z};
+    int b0 = (a + 1) % 3, b1 = (a + 2) % 3;
+    if (s * nv[a] >= fabsf(nv[b0]) && s * nv[a] >= fabsf(nv[b1]))
+        return 1.0f;
+    float best = -1.0f;
+    for (int corner = 0; corner < 4; corner++) {
+        float m[3];
+        m[a] = s;
+        m[b0] = (corner & 1) ? -1.0f : 1.0f;
+        m[b1] = (corner & 2) ? -1.0f : 1.0f;
+        best = fmaxf(best, (m[0] * nv[0] + m[1] * nv[1] + m[2] * nv[2]) * 0.57735027f);
+    }
+    for (int arc = 0; arc < 4; arc++) {
+        int b = arc < 2 ? b0 : b1, other = arc < 2 ? b1 : b0;
+        float sb = (arc & 1) ? -1.0f : 1.0f;
+        /* The circle m_b = sb·s·m_a: n without its part along the circle's
+         * pole u = (s e_a − sb e_b)/√2, normalised, if it lies on the arc. */
+        float u[3] = {0.0f, 0.0f, 0.0f};
+        u[a] = s * 0.70710678f;
+        u[b] = -sb * 0.70710678f;
+        float nu = nv[0] * u[0] + nv[1] * u[1] + nv[2] * u[2];
+        float m[3] = {nv[0] - nu * u[0], nv[1] - nu * u[1], nv[2] - nu * u[2]};
+        float len = sqrtf(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+        if (!(len > 1e-6f))
+            continue;
+        if (s * m[a] >= 0.0f && s * m[a] >= fabsf(m[other]))
+            best = fmaxf(best, len); /* n·m/|m| = |m| for the projection */
+    }
+    return best;
+}
+
+/* Searches the classes of m in order, skipping those no photon of which a
+ * surface filter f (NULL: none) can accept. */
+static uint32_t map_search(const photon_map *m, vec3 x, int disc, vec3 normal, float c2m1, const kdtree_filter *f,
+                           float max_radius2, kdtree_query *q)
+{
+    query_start(q, max_radius2);
+    if (!m->built)
+        return 0;
+    for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
+        uint32_t start = m->class_start[c], n = m->class_start[c + 1] - start;
+        if (n == 0 || (f && ((photon_class_flags(c) & f->exclude_flags) ||
+                             facing_class_max_dot(c / 4u, f->normal) < f->min_normal_cos)))
+            continue;
+        if (disc)
+            knn_search(m->photons + start, n, start, x, 1, normal, c2m1, f, max_radius2, q);
+        else
+            knn_search(m->photons + start, n, start, x, 0, normal, 0.0f, NULL, max_radius2, q);
+    }
+    q->radius2 = q->found == q->k ? q->dist2[0] : max_radius2;
+    return q->found;
+}
+
+uint32_t photon_map_knn(const photon_map *m, vec3 x, float max_radius2, kdtree_query *q)
+{
+    return map_search(m, x, 0, v3s(0.0f), 0.0f, NULL, max_radius2, q);
+}
+
+uint32_t photon_map_knn_disc(const photon_map *m, vec3 x, vec3 normal, float flatten, float max_radius2,
+                             kdtree_query *q)
+{
+    float c = flatten > 1.0f ? flatten : 1.0f;
+    return map_search(m, x, 1, normal, c * c - 1.0f, NULL, max_radius2, q);
+}
+
+uint32_t photon_map_knn_surface(const photon_map *m, vec3 x, float flatten, const kdtree_filter *f,
+                                float max_radius2, kdtree_query *q)
+{
+    float c = flatten > 1.0f ? flatten : 1.0f;
+    return map_search(m, x, 1, f->normal, c * c - 1.0f, f, max_radius2, q);
 }

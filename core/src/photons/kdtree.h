@@ -73,6 +73,28 @@ uint32_t kdtree_knn(const photon *tree, uint32_t n, vec3 x, float max_radius2, k
 uint32_t kdtree_knn_disc(const photon *tree, uint32_t n, vec3 x, vec3 normal, float flatten,
                          float max_radius2, kdtree_query *q);
 
+/* The photons a surface search takes (docs/algorithms.md §4.3): only they
+ * are ranked, so the k found are k the estimate can use. Filtering after
+ * the search instead would let photons that do not count (on the sunlit
+ * outside of a thin wall, say, 50 times denser than inside) set the
+ * radius, and the estimate would be made of the one or two that do. */
+typedef struct kdtree_filter {
+    vec3 normal;            /* unit: the surface's, where the search is made */
+    float min_normal_cos;   /* photon_normal(p) · normal ≥ this */
+    uint16_t exclude_flags; /* photons with any of these flags are skipped */
+    uint16_t from_above;    /* 1: only photons that travelled into the surface (d · normal < 0) */
+} kdtree_filter;
+
+static inline int kdtree_filter_accepts(const kdtree_filter *f, const photon *p)
+{
+    return !(p->flags & f->exclude_flags) && !(f->from_above && v3_dot(photon_direction(p), f->normal) >= 0.0f) &&
+           v3_dot(photon_normal(p), f->normal) >= f->min_normal_cos;
+}
+
+/* kdtree_knn_disc about f->normal, among the photons f accepts. */
+uint32_t kdtree_knn_surface(const photon *tree, uint32_t n, vec3 x, float flatten, const kdtree_filter *f,
+                            float max_radius2, kdtree_query *q);
+
 /* The metrics, exactly as the searches compute them (tests compare against
  * brute force with these, so ties agree bit for bit). */
 static inline float kdtree_dist2(const photon *p, vec3 x)
@@ -88,16 +110,17 @@ static inline float kdtree_disc_dist2(const photon *p, vec3 x, vec3 normal, floa
     return dx * dx + dy * dy + dz * dz + c2m1 * (dn * dn);
 }
 
-/* The same searches on a photon map; a map not yet built finds nothing. */
-static inline uint32_t photon_map_knn(const photon_map *m, vec3 x, float max_radius2, kdtree_query *q)
-{
-    return kdtree_knn(m->photons, m->built ? m->count : 0, x, max_radius2, q);
-}
-static inline uint32_t photon_map_knn_disc(const photon_map *m, vec3 x, vec3 normal, float flatten,
-                                           float max_radius2, kdtree_query *q)
-{
-    return kdtree_knn_disc(m->photons, m->built ? m->count : 0, x, normal, flatten, max_radius2, q);
-}
+/* The same searches on a photon map, over its classes (photon.h):
+ * one search whose radius carries from each class's tree to the next, so
+ * the result is that of one tree over all the photons. The surface search
+ * skips the classes whose photons the filter cannot accept (excluded flags,
+ * or normals that cannot pass its normal test). A
+ * map not yet built finds nothing. Indices are into m->photons. */
+uint32_t photon_map_knn(const photon_map *m, vec3 x, float max_radius2, kdtree_query *q);
+uint32_t photon_map_knn_disc(const photon_map *m, vec3 x, vec3 normal, float flatten, float max_radius2,
+                             kdtree_query *q);
+uint32_t photon_map_knn_surface(const photon_map *m, vec3 x, float flatten, const kdtree_filter *f,
+                                float max_radius2, kdtree_query *q);
 /* The j-th result (j < q->found) as a photon of the tree. */
 static inline const photon *kdtree_result(const photon *tree, const kdtree_query *q, uint32_t j)
 {

@@ -273,7 +273,58 @@ vec3 direction_decode(uint8_t theta, uint8_t phi)
     return v3(s * photon_cos_phi[phi], s * photon_sin_phi[phi], photon_cos_theta[theta]);
 }
 
-photon photon_make(vec3 position, vec3 power, vec3 direction, unsigned flags, unsigned depth)
+/* Octahedral map: n/|n|₁ on the octahedron, its lower half folded over the
+ * upper; each coordinate in [−1, 1] quantised to 6 bits, the levels 0..62
+ * so that 0 (and with it the six axes) is exact. */
+#define NORMAL_LEVELS 62.0f
+
+static float sign_not_zero(float v) { return v < 0.0f ? -1.0f : 1.0f; }
+
+uint16_t normal_encode(vec3 n)
+{
+    float l1 = fabsf(n.x) + fabsf(n.y) + fabsf(n.z);
+    if (!(l1 > 0.0f))
+        return normal_encode(v3(0.0f, 0.0f, 1.0f)); /* zero or NaN: +z */
+    vec3 unit = v3_scale(n, 1.0f / sqrtf(v3_dot(n, n)));
+    float u = n.x / l1, v = n.y / l1;
+    if (n.z < 0.0f) {
+        float fu = (1.0f - fabsf(v)) * sign_not_zero(u), fv = (1.0f - fabsf(u)) * sign_not_zero(v);
+        u = fu;
+        v = fv;
+    }
+    /* Of the four grid points around (u, v), the one that decodes nearest
+     * to n (Cigolle et al. 2014, "precise" octahedral encoding): rounding
+     * each coordinate alone can be 1.5 times as far off. */
+    float gu = clampf(0.5f * (u + 1.0f), 0.0f, 1.0f) * NORMAL_LEVELS;
+    float gv = clampf(0.5f * (v + 1.0f), 0.0f, 1.0f) * NORMAL_LEVELS;
+    uint16_t best = 0;
+    float best_dot = -2.0f;
+    for (int k = 0; k < 4; k++) {
+        float cu = (k & 1) ? ceilf(gu) : floorf(gu), cv = (k & 2) ? ceilf(gv) : floorf(gv);
+        uint16_t code = (uint16_t)((unsigned)cu | ((unsigned)cv << 6));
+        float d = v3_dot(normal_decode(code), unit);
+        if (d > best_dot) {
+            best_dot = d;
+            best = code;
+        }
+    }
+    return best;
+}
+
+vec3 normal_decode(uint16_t code)
+{
+    float u = (float)(code & 63u) * (2.0f / NORMAL_LEVELS) - 1.0f;
+    float v = (float)((code >> 6) & 63u) * (2.0f / NORMAL_LEVELS) - 1.0f;
+    float z = 1.0f - fabsf(u) - fabsf(v);
+    if (z < 0.0f) {
+        float fu = (1.0f - fabsf(v)) * sign_not_zero(u), fv = (1.0f - fabsf(u)) * sign_not_zero(v);
+        u = fu;
+        v = fv;
+    }
+    return v3_normalize(v3(u, v, z));
+}
+
+photon photon_make(vec3 position, vec3 power, vec3 direction, vec3 normal, unsigned flags)
 {
     photon p;
     p.position[0] = position.x;
@@ -281,9 +332,7 @@ photon photon_make(vec3 position, vec3 power, vec3 direction, unsigned flags, un
     p.position[2] = position.z;
     rgbe_encode(power, p.power);
     direction_encode(direction, &p.theta, &p.phi);
-    if (depth > PHOTON_DEPTH_MAX)
-        depth = PHOTON_DEPTH_MAX;
-    p.flags = (uint16_t)((flags & (PHOTON_CAUSTIC | PHOTON_DIRECT)) | (depth << PHOTON_DEPTH_SHIFT));
+    p.flags = (uint16_t)((flags & (PHOTON_CAUSTIC | PHOTON_DIRECT)) | (normal_encode(normal) << PHOTON_NORMAL_SHIFT));
     return p;
 }
 
@@ -295,6 +344,7 @@ void photon_map_init(photon_map *m)
     m->count = 0;
     m->capacity = 0;
     m->built = 0;
+    memset(m->class_start, 0, sizeof(m->class_start));
 }
 
 void photon_map_free(photon_map *m)
@@ -362,12 +412,55 @@ int photon_map_append(photon_map *m, const photon *photons, uint32_t count)
     return 1;
 }
 
+unsigned photon_facing(vec3 n)
+{
+    float ax = fabsf(n.x), ay = fabsf(n.y), az = fabsf(n.z);
+    if (ax >= ay && ax >= az)
+        return n.x >= 0.0f ? 0u : 1u;
+    if (ay >= az)
+        return n.y >= 0.0f ? 2u : 3u;
+    return n.z >= 0.0f ? 4u : 5u;
+}
+
+unsigned photon_class(const photon *p)
+{
+    /* The decoded normal: the one the searches test. */
+    return photon_facing(photon_normal(p)) * 4u + (photon_is_direct(p) ? 1u : 0u) +
+           (photon_is_caustic(p) ? 2u : 0u);
+}
+
+/* Counting sort by class, stable. */
+static int sort_by_class(photon_map *m)
+{
+    uint32_t count[PHOTON_CLASSES] = {0};
+    for (uint32_t i = 0; i < m->count; i++)
+        count[photon_class(&m->photons[i])]++;
+    m->class_start[0] = 0;
+    for (unsigned c = 0; c < PHOTON_CLASSES; c++)
+        m->class_start[c + 1] = m->class_start[c] + count[c];
+    if (m->count == 0)
+        return 1;
+    photon *sorted = malloc(sizeof(photon) * (size_t)m->count);
+    if (!sorted)
+        return 0;
+    uint32_t next[PHOTON_CLASSES];
+    memcpy(next, m->class_start, sizeof(next));
+    for (uint32_t i = 0; i < m->count; i++)
+        sorted[next[photon_class(&m->photons[i])]++] = m->photons[i];
+    memcpy(m->photons, sorted, sizeof(photon) * (size_t)m->count);
+    free(sorted);
+    return 1;
+}
+
 int photon_map_build(photon_map *m)
 {
     if (m->built)
         return 1;
-    if (!kdtree_build(m->photons, m->count))
+    if (!sort_by_class(m))
         return 0;
+    for (unsigned c = 0; c < PHOTON_CLASSES; c++)
+        if (!kdtree_build(m->photons + m->class_start[c], m->class_start[c + 1] - m->class_start[c]))
+            return 0;
     /* Give back the growth slack: a shrinking realloc keeps the data even if
      * it fails, so failure here only means the slack stays. */
     photon_map_resize(m, m->count);

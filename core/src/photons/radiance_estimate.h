@@ -23,8 +23,6 @@ typedef struct estimate_params {
     float max_radius;        /* scene units */
     uint32_t filter;         /* enum estimate_filter */
     uint16_t exclude_flags;  /* skip photons with any of these flags (PHOTON_DIRECT, PHOTON_CAUSTIC) */
-    uint16_t at_photon;      /* x is a stored photon's position (a radiance-photon site): that photon is
-                                not a sample of the density around x and is left out */
 } estimate_params;
 
 /* Flattening of the search sphere along the normal (docs/algorithms.md
@@ -32,8 +30,17 @@ typedef struct estimate_params {
  * out. */
 #define ESTIMATE_DISC_FLATTEN 4.0f
 
-/* Irradiance E (W/m²) at x on the side of unit normal n: photons whose
- * travel direction points out of that side are ignored. q must hold k. */
+/* A photon counts in an estimate only if the normal of the surface it
+ * landed on is within about 45° of the normal where the estimate is read
+ * (photon_normal): a corner's other wall (90°) and the far side of a thin
+ * wall (180°) are left out, while the facets of a smoothly curved mesh,
+ * which the flattened disc already limits to a few tens of degrees across
+ * a search, still count. */
+#define ESTIMATE_NORMAL_MIN_COS 0.7f
+
+/* Irradiance E (W/m²) at x on the side of unit normal n, from the photons
+ * that arrived on that side onto a surface facing about the same way
+ * (kdtree_filter). q must hold k. */
 vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q);
 
 /* Reflected radiance W/(m²·sr) toward wo through the BSDF b at x, n on the
@@ -41,15 +48,12 @@ vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_param
 vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, const estimate_params *ep,
                      kdtree_query *q);
 
-/* Radiance-photon lookups search the RADIANCE_LOOKUP_FIRST nearest records
- * (disc metric, §4.3), then, if none of them faces the query's way, the
- * RADIANCE_LOOKUP_WIDE nearest: in a corner the records of the other wall
- * can crowd out all of the few on this one. q must hold WIDE. */
-#define RADIANCE_LOOKUP_FIRST 8u
-#define RADIANCE_LOOKUP_WIDE 64u
+/* A radiance photon answers a lookup whose normal is within 60° of its
+ * own (Christensen 1999). */
+#define RADIANCE_LOOKUP_MIN_COS 0.5f
 
-/* The precomputed radiance photon nearest to x whose normal agrees with n
- * (n·n_p > 0.5), within max_radius: returns 1 and its radiance
+/* The precomputed radiance photon nearest to x (disc metric, §4.3) whose
+ * normal agrees with n (RADIANCE_LOOKUP_MIN_COS), within max_radius: returns 1 and its radiance
  * (W/(m²·sr)) in *L, or 0 if there is none (the caller then estimates on
  * the fly from the global map). docs/algorithms.md §5.3. */
 int radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q, vec3 *L);

@@ -308,8 +308,8 @@ int render_prepare(render *r)
     is->max_bounces = rs->max_bounces;
     is->transparent_background = rs->transparent_background != 0;
     is->maps = NULL;
-    is->global_estimate = (estimate_params){rs->global_estimate_photons, radius, ESTIMATE_BOX, 0, 0};
-    is->caustic_estimate = (estimate_params){rs->caustic_estimate_photons, radius, ESTIMATE_CONE, 0, 0};
+    is->global_estimate = (estimate_params){rs->global_estimate_photons, radius, ESTIMATE_BOX, 0};
+    is->caustic_estimate = (estimate_params){rs->caustic_estimate_photons, radius, ESTIMATE_CONE, 0};
     is->final_gather_rays = rs->final_gather_rays;
     is->radiance_lookup_radius = radius;
     is->indirect = indirect_provider_for(rs->photon_view);
@@ -329,7 +329,7 @@ int render_prepare(render *r)
     r->scratch = calloc(r->threads, sizeof(integrator_scratch));
     if (!r->scratch)
         return 0;
-    uint32_t k_radiance = RADIANCE_LOOKUP_WIDE;
+    uint32_t k_radiance = 1; /* radiance_photon_lookup: the nearest facing record */
     for (uint32_t t = 0; t < r->threads; t++) {
         integrator_scratch *sc = &r->scratch[t];
         if (!kdtree_query_init(&sc->global, rs->global_estimate_photons ? rs->global_estimate_photons : 1) ||

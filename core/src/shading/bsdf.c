@@ -448,26 +448,52 @@ void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other)
     }
 }
 
+/* Whether closure c has a lobe that is not a Dirac delta (transparent
+ * pass-through counts as delta). */
+static int closure_has_non_delta(const closure *c)
+{
+    switch (c->type) {
+    case PHOS_CLOSURE_DIFFUSE:
+    case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
+        return 1;
+    case PHOS_CLOSURE_TRANSPARENT:
+        return 0;
+    case PHOS_CLOSURE_GLASS:
+        return !closure_is_sharp(c) || (!glass_per_microfacet(c) && !refraction_is_sharp(c));
+    default:
+        return !closure_is_sharp(c);
+    }
+}
+
 int bsdf_has_non_delta(const bsdf *b)
 {
+    for (uint32_t i = 0; i < b->count; i++)
+        if (closure_has_non_delta(&b->closures[i]))
+            return 1;
+    return 0;
+}
+
+int bsdf_transmits(const bsdf *b)
+{
+    for (uint32_t i = 0; i < b->count; i++)
+        if (b->closures[i].type == PHOS_CLOSURE_REFRACTION || b->closures[i].type == PHOS_CLOSURE_GLASS)
+            return 1;
+    return 0;
+}
+
+float bsdf_split_delta(const bsdf *b, bsdf *delta, bsdf *rest)
+{
+    delta->shading = rest->shading = b->shading;
+    delta->ng = rest->ng = b->ng;
+    delta->count = rest->count = 0;
+    delta->sample_weight_sum = rest->sample_weight_sum = 0.0f;
     for (uint32_t i = 0; i < b->count; i++) {
         const closure *c = &b->closures[i];
-        switch (c->type) {
-        case PHOS_CLOSURE_DIFFUSE:
-        case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
-            return 1;
-        case PHOS_CLOSURE_TRANSPARENT:
-            break;
-        case PHOS_CLOSURE_GLASS:
-            if (!closure_is_sharp(c) || (!glass_per_microfacet(c) && !refraction_is_sharp(c)))
-                return 1;
-            break;
-        default:
-            if (!closure_is_sharp(c))
-                return 1;
-        }
+        bsdf *dst = closure_has_non_delta(c) ? rest : delta;
+        dst->closures[dst->count++] = *c;
+        dst->sample_weight_sum += c->sample_weight;
     }
-    return 0;
+    return b->sample_weight_sum > 0.0f ? delta->sample_weight_sum / b->sample_weight_sum : 0.0f;
 }
 
 int bsdf_add_closure(bsdf *b, const closure *c)

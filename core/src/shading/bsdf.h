@@ -85,6 +85,16 @@ void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other);
 /* Whether some closure has a non-delta lobe (next-event estimation helps). */
 int bsdf_has_non_delta(const bsdf *b);
 
+/* Splits b into the closures that are entirely delta (sharp mirrors and
+ * glass, transparent pass-through) and the others, and returns the share
+ * of the delta ones in b's sampling weights: the probability that a
+ * sample of b picks one (0 if b cannot be sampled). */
+float bsdf_split_delta(const bsdf *b, bsdf *delta, bsdf *rest);
+
+/* Whether some closure refracts (REFRACTION, GLASS): light can reach wo
+ * from the far side of the surface. */
+int bsdf_transmits(const bsdf *b);
+
 /* Sum of transparent closure weights: how much light passes straight
  * through (used by shadow rays). */
 vec3 bsdf_transparency(const bsdf *b);
