@@ -103,6 +103,22 @@ static void test_point_light_irradiance(void)
     phos_scene_destroy(s);
 }
 
+/* A point light of intensity I (W/sr) at the centre of a closed diffuse
+ * sphere of radius 1 m and albedo rho, seen from the centre. */
+static phos_scene *light_in_closed_sphere(float I, float rho, int segments, int rings, int smooth)
+{
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_sphere_mesh_shaded(s, 1.0f, segments, rings, 1, smooth),
+                      test_add_diffuse(s, rho, rho, rho), 0, 0, 0);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.color[0] = l.color[1] = l.color[2] = I;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera(s, 0, 0, 0, 1.0f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    return s;
+}
+
 /* Area of test_add_sphere_mesh's polyhedron (m²). */
 static double sphere_mesh_area(double radius, int segments, int rings)
 {
@@ -145,18 +161,8 @@ static void test_radiance_photons_unbiased(void)
 {
     const float I = 2.0f, rho = 0.5f;
     const int segments = 96, rings = 48;
-    phos_scene *s = phos_scene_create();
-    /* Flat normals: under smooth ones, photons arriving within a few degrees
-     * of grazing count as arriving from behind the shading normal (§4.5),
-     * 0.3 % of the flux on this mesh. */
-    test_add_instance(s, test_add_sphere_mesh_shaded(s, 1.0f, segments, rings, 1, 0),
-                      test_add_diffuse(s, rho, rho, rho), 0, 0, 0);
-    phos_light_desc l;
-    phos_light_desc_init(&l);
-    l.color[0] = l.color[1] = l.color[2] = I;
-    phos_scene_add_light(s, &l, NULL);
-    test_set_camera(s, 0, 0, 0, 1.0f);
-    CHECK(phos_scene_commit(s) == PHOS_OK);
+    /* Flat normals: the faces' own. */
+    phos_scene *s = light_in_closed_sphere(I, rho, segments, rings, 0);
     /* Few photons an estimate (k = 5) and many photons: on a curved surface
      * the estimate reads dark in proportion to r², so to k/N (measured
      * here at 800 k photons: −0.24 % at k = 5, −0.43 % at k = 20, −0.89 %
@@ -197,6 +203,44 @@ static void test_radiance_photons_unbiased(void)
     CHECK_MSG(fabs(mean - 1.0) < 4.0 * stderr_mean, "radiance photons: mean ratio %.4f (± %.4f)", mean,
               stderr_mean);
     photon_maps_free(&maps);
+    phos_scene_destroy(s);
+}
+
+/* A glass bead of 1 cm radius 3 m from a point light: a caustic path hits
+ * it about 3 times in a million, so 50 000 caustic photons would take 17
+ * billion paths. The caustic pass gives up at the first checkpoint (1 M
+ * paths) instead of running to its cap of 50 M, keeps the photons it has,
+ * and does so at the same path whatever the thread count. */
+static void test_caustic_pass_gives_up_on_hopeless_yield(void)
+{
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quad_mesh(s, 5.0f), test_add_diffuse(s, 0.5f, 0.5f, 0.5f), 0, 0, 0);
+    test_add_instance(s, test_add_sphere_mesh(s, 0.01f, 16, 8, 0), test_add_glass(s, 1.5f), 0, 0, 0.5f);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.position[2] = 3.5f;
+    l.color[0] = l.color[1] = l.color[2] = 10.0f;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera(s, 0, 0, 3.0f, 0.5f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    photon_maps a, b;
+    for (int t = 0; t < 2; t++) {
+        photon_trace_settings ps = trace_settings(1000, 50000, t ? 2u : 1u);
+        photon_maps *m = t ? &b : &a;
+        photon_maps_init(m);
+        atomic_int cancel = 0;
+        CHECK(photon_maps_trace(s, &ps, m, &cancel, NULL) == PHOS_OK);
+        CHECK(photon_maps_build(m) == PHOS_OK);
+    }
+    printf("  glass bead: %u caustic photons from %llu paths (cap 50 M)\n", a.caustic.count,
+           (unsigned long long)a.caustic_emitted);
+    CHECK_MSG(a.caustic_emitted == 1000000, "the caustic pass emitted %llu paths, not 1 M",
+              (unsigned long long)a.caustic_emitted);
+    CHECK(a.caustic.count < 5000);
+    CHECK(a.caustic_emitted == b.caustic_emitted && a.caustic.count == b.caustic.count);
+    CHECK(a.caustic.count == 0 || memcmp(a.caustic.photons, b.caustic.photons, sizeof(photon) * a.caustic.count) == 0);
+    photon_maps_free(&a);
+    photon_maps_free(&b);
     phos_scene_destroy(s);
 }
 
@@ -445,16 +489,7 @@ static void test_emitted_flux_per_light_type(void)
 static void test_power_in_closed_sphere(void)
 {
     const float I = 1.5f, rho = 0.6f;
-    phos_scene *s = phos_scene_create();
-    uint32_t mesh = test_add_sphere_mesh(s, 1.0f, 48, 24, 1);
-    uint32_t mat = test_add_diffuse(s, rho, rho, rho);
-    test_add_instance(s, mesh, mat, 0, 0, 0);
-    phos_light_desc l;
-    phos_light_desc_init(&l);
-    l.color[0] = l.color[1] = l.color[2] = I;
-    phos_scene_add_light(s, &l, NULL);
-    test_set_camera(s, 0, 0, 0, 1.0f);
-    CHECK(phos_scene_commit(s) == PHOS_OK);
+    phos_scene *s = light_in_closed_sphere(I, rho, 48, 24, 1);
     photon_trace_settings ps = trace_settings(200000, 0, 0);
     ps.max_bounces = 200;
     photon_maps maps;
@@ -843,17 +878,7 @@ static phos_scene *metal_ceiling_scene(void)
     metal.type = PHOS_CLOSURE_REFLECTION;
     metal.weight[0] = metal.weight[1] = metal.weight[2] = 0.9f;
     metal.roughness = 0.5f;
-    uint32_t ceiling = test_add_quad_mesh(s, 3.0f);
-    phos_instance_desc inst;
-    phos_instance_desc_init(&inst);
-    inst.mesh_id = ceiling;
-    /* Upside down (normal −z) at z = 2. */
-    float t[12] = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, 2.0f};
-    memcpy(inst.transform, t, sizeof(t));
-    uint32_t mat = test_add_closure_material(s, &metal);
-    inst.material_count = 1;
-    inst.materials = &mat;
-    phos_scene_add_instance(s, &inst, NULL);
+    test_add_ceiling(s, 3.0f, 2.0f, test_add_closure_material(s, &metal));
     phos_light_desc l;
     phos_light_desc_init(&l);
     l.type = PHOS_LIGHT_SPOT;
@@ -957,20 +982,7 @@ static phos_scene *mirror_mix_scene(void)
     c[1].type = PHOS_CLOSURE_DIFFUSE;
     for (int k = 0; k < 3; k++)
         c[0].weight[k] = c[1].weight[k] = 0.45f;
-    phos_material_desc m;
-    phos_material_desc_init(&m);
-    m.closure_count = 2;
-    m.closures = c;
-    uint32_t mat = 0;
-    phos_scene_add_material(s, &m, &mat);
-    phos_instance_desc inst;
-    phos_instance_desc_init(&inst);
-    inst.mesh_id = test_add_quad_mesh(s, 1.0f);
-    float t[12] = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, 1.5f}; /* facing down at z = 1.5 */
-    memcpy(inst.transform, t, sizeof(t));
-    inst.material_count = 1;
-    inst.materials = &mat;
-    phos_scene_add_instance(s, &inst, NULL);
+    test_add_ceiling(s, 1.0f, 1.5f, test_add_mix_material(s, c, 2));
     phos_light_desc l;
     phos_light_desc_init(&l);
     l.type = PHOS_LIGHT_AREA;
@@ -1199,6 +1211,7 @@ int main(void)
     test_radiance_photons_unbiased();
     test_emitted_flux_per_light_type();
     test_caustic_pass_needs_a_delta_lobe();
+    test_caustic_pass_gives_up_on_hopeless_yield();
     test_radiance_lookup_in_a_corner();
     test_power_in_closed_sphere();
     test_maps_deterministic();

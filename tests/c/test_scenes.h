@@ -116,16 +116,23 @@ static uint32_t test_add_quads(phos_scene *s, const float (*quads)[4][3], uint32
     return id;
 }
 
-/* A material of one closure; returns its id. */
-static uint32_t test_add_closure_material(phos_scene *s, const phos_closure_desc *c)
+/* A material of `count` closures (a mix, their weights already split);
+ * returns its id. */
+static uint32_t test_add_mix_material(phos_scene *s, const phos_closure_desc *c, uint32_t count)
 {
     phos_material_desc m;
     phos_material_desc_init(&m);
-    m.closure_count = 1;
+    m.closure_count = count;
     m.closures = c;
     uint32_t id = 0;
     phos_scene_add_material(s, &m, &id);
     return id;
+}
+
+/* A material of one closure; returns its id. */
+static uint32_t test_add_closure_material(phos_scene *s, const phos_closure_desc *c)
+{
+    return test_add_mix_material(s, c, 1);
 }
 
 /* Clear sharp glass of index ior. */
@@ -159,6 +166,21 @@ static uint32_t test_add_instance(phos_scene *s, uint32_t mesh, uint32_t materia
     d.transform[3] = tx;
     d.transform[7] = ty;
     d.transform[11] = tz;
+    d.material_count = 1;
+    d.materials = &material;
+    uint32_t id = 0;
+    phos_scene_add_instance(s, &d, &id);
+    return id;
+}
+
+/* A square of side 2·half at height z, facing down (normal −Z). */
+static uint32_t test_add_ceiling(phos_scene *s, float half, float z, uint32_t material)
+{
+    phos_instance_desc d;
+    phos_instance_desc_init(&d);
+    d.mesh_id = test_add_quad_mesh(s, half);
+    float t[12] = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, z}; /* a half turn about X */
+    memcpy(d.transform, t, sizeof(t));
     d.material_count = 1;
     d.materials = &material;
     uint32_t id = 0;

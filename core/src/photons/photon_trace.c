@@ -167,6 +167,24 @@ static void trace_batch(void *ctx, uint32_t item, uint32_t thread)
         atomic_fetch_add(&w->progress->emitted, end - begin);
 }
 
+/* The caustic pass gives up once it has emitted CAUSTIC_PROBE_PATHS paths
+ * and its yield so far would not store a tenth of its target even at the
+ * cap on emitted paths: a small glass object far from the light, say. The
+ * photons it has stay (they carry 1/emitted each, so the map is as right
+ * as any, only sparse), and the tens of millions of paths the cap would
+ * allow, which would store almost nothing, are not traced. */
+#define CAUSTIC_PROBE_PATHS 1000000u
+#define CAUSTIC_HOPELESS_FRACTION 10u
+
+static int caustic_yield_hopeless(uint64_t emitted, uint32_t stored, uint32_t target, uint64_t max_emitted)
+{
+    if (emitted < CAUSTIC_PROBE_PATHS)
+        return 0;
+    /* stored · max_emitted / emitted < target / 10, in integers */
+    return (long double)stored * (long double)max_emitted * CAUSTIC_HOPELESS_FRACTION <
+           (long double)target * (long double)emitted;
+}
+
 /* Traces paths until `target` photons are kept; fills *kept (path order)
  * and *emitted. */
 static phos_status trace_map(const scene *s, const photon_trace_settings *ps, uint32_t map, uint32_t target,
@@ -183,7 +201,7 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
     if (!batches)
         return PHOS_ERROR_OUT_OF_MEMORY;
     phos_status status = PHOS_OK;
-    uint64_t next = 0;
+    uint64_t next = 0, checkpoint = CAUSTIC_PROBE_PATHS;
     int done = 0;
     while (!done) {
         wave w = {s, ps, map, next, next + (uint64_t)batches_per_wave * PATHS_PER_BATCH, batches, progress, cancel};
@@ -229,6 +247,19 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
             *emitted = next;
             if (next >= ps->max_emitted)
                 done = 1; /* photons escape or are absorbed: keep what there is */
+            /* The yield is judged at fixed path counts (1 M, 2 M, 4 M, ...),
+             * not at wave ends, which depend on the thread count. */
+            while (map == MAP_CAUSTIC && !done && next >= checkpoint) {
+                uint32_t before = kept->count;
+                while (before > 0 && kept->items[before - 1].path >= checkpoint)
+                    before--;
+                if (caustic_yield_hopeless(checkpoint, before, target, ps->max_emitted)) {
+                    kept->count = before;
+                    *emitted = checkpoint;
+                    done = 1;
+                }
+                checkpoint *= 2;
+            }
         }
     }
     for (uint32_t i = 0; i < batches_per_wave; i++)
