@@ -354,16 +354,34 @@ static uint32_t map_search(const photon_map *m, vec3 x, int disc, vec3 normal, f
     query_start(q, max_radius2);
     if (!m->built)
         return 0;
-    for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
-        uint32_t start = m->class_start[c], n = m->class_start[c + 1] - start;
-        if (n == 0 || (f && ((photon_class_flags(c) & f->exclude_flags) ||
-                             facing_class_max_dot(c / 4u, f->normal) < f->min_normal_cos)))
+    /* A surface search visits the facings its normal can accept, nearest
+     * first: the class it faces usually holds the nearest photons, and the
+     * radius they set prunes the other trees early. */
+    unsigned order[PHOTON_FACINGS], facings = 0;
+    float best[PHOTON_FACINGS];
+    for (unsigned c = 0; c < PHOTON_FACINGS; c++) {
+        float d = f ? facing_class_max_dot(c, f->normal) : 1.0f;
+        if (f && d < f->min_normal_cos)
             continue;
-        if (disc)
-            knn_search(m->photons + start, n, start, x, 1, normal, c2m1, f, max_radius2, q);
-        else
-            knn_search(m->photons + start, n, start, x, 0, normal, 0.0f, NULL, max_radius2, q);
+        unsigned j = facings++;
+        for (; j > 0 && best[j - 1] < d; j--) { /* insertion, stable: the same order every time */
+            best[j] = best[j - 1];
+            order[j] = order[j - 1];
+        }
+        best[j] = d;
+        order[j] = c;
     }
+    for (unsigned i = 0; i < facings; i++)
+        for (unsigned flags = 0; flags < 4; flags++) {
+            unsigned c = order[i] * 4u + flags;
+            uint32_t start = m->class_start[c], n = m->class_start[c + 1] - start;
+            if (n == 0 || (f && (photon_class_flags(c) & f->exclude_flags)))
+                continue;
+            if (disc)
+                knn_search(m->photons + start, n, start, x, 1, normal, c2m1, f, max_radius2, q);
+            else
+                knn_search(m->photons + start, n, start, x, 0, normal, 0.0f, NULL, max_radius2, q);
+        }
     q->radius2 = q->found == q->k ? q->dist2[0] : max_radius2;
     return q->found;
 }

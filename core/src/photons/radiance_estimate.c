@@ -57,10 +57,13 @@ static float kernel_weight(const estimate_params *ep, float d2, float r2)
     return 1.0f;
 }
 
-vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q)
+/* Σ w_j f_j ΔΦ_j / (π r² · norm) over the photons found, with f_j the BSDF
+ * toward wo (b NULL: f = 1, the irradiance). One loop for both estimates. */
+static vec3 estimate(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, const estimate_params *ep,
+                     kdtree_query *q)
 {
     vec3 sum = v3s(0.0f);
-    if (m->count == 0 || !(ep->max_radius > 0.0f))
+    if (m->count == 0 || !(ep->max_radius > 0.0f) || (b && b->count == 0))
         return sum;
     weighted_photon_sum w;
     uint32_t far_index = gather(m, x, n, ep, q, &w);
@@ -68,30 +71,27 @@ vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_param
         if (j == far_index)
             continue;
         const photon *p = kdtree_result(m->photons, q, j);
-        sum = v3_madd(sum, photon_power(p), kernel_weight(ep, q->dist2[j], w.r2));
+        vec3 power = photon_power(p);
+        if (b) {
+            vec3 wi = v3_neg(photon_direction(p)); /* toward where the photon came from */
+            /* bsdf_eval includes |cos θi|; the estimate wants f alone. The
+             * search kept only photons with cos θi = wi·n > 0. */
+            power = v3_mul(v3_scale(bsdf_eval(b, wo, wi, NULL), 1.0f / v3_dot(wi, n)), power);
+        }
+        sum = v3_madd(sum, power, kernel_weight(ep, q->dist2[j], w.r2));
     }
     return v3_scale(sum, 1.0f / (PHOS_PI * w.r2 * w.norm));
+}
+
+vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q)
+{
+    return estimate(m, NULL, v3s(0.0f), x, n, ep, q);
 }
 
 vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, const estimate_params *ep,
                      kdtree_query *q)
 {
-    vec3 sum = v3s(0.0f);
-    if (m->count == 0 || !(ep->max_radius > 0.0f) || b->count == 0)
-        return sum;
-    weighted_photon_sum w;
-    uint32_t far_index = gather(m, x, n, ep, q, &w);
-    for (uint32_t j = 0; j < q->found; j++) {
-        if (j == far_index)
-            continue;
-        const photon *p = kdtree_result(m->photons, q, j);
-        vec3 wi = v3_neg(photon_direction(p)); /* toward where the photon came from */
-        float cos_i = v3_dot(wi, n);
-        /* bsdf_eval includes |cos θi|; the estimate wants f alone. */
-        vec3 f = v3_scale(bsdf_eval(b, wo, wi, NULL), 1.0f / cos_i);
-        sum = v3_add(sum, v3_scale(v3_mul(f, photon_power(p)), kernel_weight(ep, q->dist2[j], w.r2)));
-    }
-    return v3_scale(sum, 1.0f / (PHOS_PI * w.r2 * w.norm));
+    return estimate(m, b, wo, x, n, ep, q);
 }
 
 int radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q, vec3 *L)

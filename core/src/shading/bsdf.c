@@ -433,19 +433,29 @@ void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric)
     b->sample_weight_sum = 0.0f;
 }
 
-void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other)
+/* Splits b's closures into those `in_first` accepts and the others. */
+static void split_closures(const bsdf *b, int (*in_first)(const closure *), bsdf *first, bsdf *second)
 {
-    diffuse->shading = other->shading = b->shading;
-    diffuse->ng = other->ng = b->ng;
-    diffuse->count = other->count = 0;
-    diffuse->sample_weight_sum = other->sample_weight_sum = 0.0f;
+    first->shading = second->shading = b->shading;
+    first->ng = second->ng = b->ng;
+    first->count = second->count = 0;
+    first->sample_weight_sum = second->sample_weight_sum = 0.0f;
     for (uint32_t i = 0; i < b->count; i++) {
         const closure *c = &b->closures[i];
-        int is_diffuse = c->type == PHOS_CLOSURE_DIFFUSE || c->type == PHOS_CLOSURE_PRINCIPLED_DIFFUSE;
-        bsdf *dst = is_diffuse ? diffuse : other;
+        bsdf *dst = in_first(c) ? first : second;
         dst->closures[dst->count++] = *c;
         dst->sample_weight_sum += c->sample_weight;
     }
+}
+
+static int closure_is_diffuse(const closure *c)
+{
+    return c->type == PHOS_CLOSURE_DIFFUSE || c->type == PHOS_CLOSURE_PRINCIPLED_DIFFUSE;
+}
+
+void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other)
+{
+    split_closures(b, closure_is_diffuse, diffuse, other);
 }
 
 /* Whether closure c has a lobe that is not a Dirac delta (transparent
@@ -481,18 +491,11 @@ int bsdf_transmits(const bsdf *b)
     return 0;
 }
 
+static int closure_is_delta(const closure *c) { return !closure_has_non_delta(c); }
+
 float bsdf_split_delta(const bsdf *b, bsdf *delta, bsdf *rest)
 {
-    delta->shading = rest->shading = b->shading;
-    delta->ng = rest->ng = b->ng;
-    delta->count = rest->count = 0;
-    delta->sample_weight_sum = rest->sample_weight_sum = 0.0f;
-    for (uint32_t i = 0; i < b->count; i++) {
-        const closure *c = &b->closures[i];
-        bsdf *dst = closure_has_non_delta(c) ? rest : delta;
-        dst->closures[dst->count++] = *c;
-        dst->sample_weight_sum += c->sample_weight;
-    }
+    split_closures(b, closure_is_delta, delta, rest);
     return b->sample_weight_sum > 0.0f ? delta->sample_weight_sum / b->sample_weight_sum : 0.0f;
 }
 
