@@ -17,11 +17,12 @@ typedef struct photon_maps {
     photon_map global;         /* every non-specular hit: paths L {S|D}* D */
     photon_map caustic;        /* paths L S+ D */
     photon_map radiance;       /* Christensen 1999: power = outgoing radiance W/(m²·sr),
-                                  direction = the surface normal on the lit side */
+                                  direction and normal bits = the surface normal on the lit side */
     uint64_t global_emitted;   /* photon paths emitted to fill each map */
     uint64_t caustic_emitted;
-    /* Where radiance photons will be computed (every fourth global photon):
-     * position, normal on the lit side, diffuse reflectance; 9 floats each.
+    /* Where radiance photons will be computed (as many as a quarter of the
+     * global photons, where photon paths of their own land): position,
+     * normal on the lit side, diffuse reflectance; 9 floats each.
      * Freed by photon_maps_precompute_radiance. */
     float *radiance_sites;
     uint32_t radiance_site_count;
@@ -57,9 +58,10 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
 /* Balances the kd-trees of the global and caustic maps. */
 phos_status photon_maps_build(photon_maps *m);
 
-/* Christensen 1999: at every fourth global photon, the radiance the
- * surface reflects there, ρ/π·E, from the global map; stored as its own
- * map so that final gathering reads one photon instead of k. */
+/* Christensen 1999: at each radiance site, the radiance the surface
+ * reflects there, ρ/π·E, from the global map's photons that scattered at
+ * least once (not the direct ones); stored as its own map so that final
+ * gathering reads one photon instead of k. */
 phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_settings *ps, photon_maps *m,
                                             atomic_int *cancel);
 
