@@ -4,7 +4,8 @@
 Two families, each a dict name -> builder(scene):
 
 LIGHT_SCENES: one light of each kind over a diffuse floor and a diffuse
-  sphere, in a black world (except the world-lighting scene).
+  sphere, in a black world (except the world-lighting scene); all kinds at
+  once; and Blender's default cube with its lamp and grey world.
 MATERIAL_SCENES: a sphere with the material under test on a diffuse floor,
   lit by a square area light and a uniform world.
 
@@ -59,6 +60,33 @@ def _world(scene):
     pt.set_world(scene, (0.6, 0.7, 0.9), strength=1.0)
 
 
+def _default_cube(scene):
+    """Blender's start-up scene: a 2 m cube, a 1000 W point lamp and the grey
+    world (0.05), seen from a side the lamp does not reach, so that side is
+    lit by the world alone (light picking per shading point, light_pick.c)."""
+    pt.add_camera(scene, location=(-5.5, -6.0, 4.0), target=(0.0, 0.0, 0.0), lens=50.0)
+    pt.add_cube(scene, "Cube", size=2.0, material=pt.diffuse("Cube", (0.8, 0.8, 0.8)))
+    pt.add_plane(scene, "Floor", size=12.0, location=(0.0, 0.0, -1.0),
+                 material=pt.diffuse("Floor", (0.8, 0.8, 0.8)))
+    pt.set_world(scene, (0.05, 0.05, 0.05), strength=1.0)
+    pt.add_light(scene, "POINT", 1000.0, location=(4.08, 1.0, 5.9), target=(0, 0, 0), shadow_soft_size=0.1)
+
+
+def _mixed_lights(scene):
+    """Every kind of light at once, each reaching part of the scene: MIS
+    and per-point light picking must agree across light types."""
+    _stage(scene)
+    pt.set_world(scene, (0.1, 0.12, 0.15), strength=1.0)
+    pt.add_light(scene, "POINT", 100.0, location=(-1.5, -1.0, 1.5), target=SPHERE_CENTRE, shadow_soft_size=0.2)
+    pt.add_light(scene, "SPOT", 300.0, location=(1.2, -1.2, 3.0), target=(0.8, 0.5, 0.0), shadow_soft_size=0.1,
+                 spot_size=math.radians(40.0), spot_blend=0.5)
+    pt.add_light(scene, "AREA", 80.0, location=(0.0, 1.5, 2.0), target=SPHERE_CENTRE, shape="DISK", size=0.8)
+    pt.add_light(scene, "SUN", 1.0, location=(2.0, 2.0, 4.0), target=(0, 0, 0), angle=math.radians(10.0))
+    lamp = pt.add_plane(scene, "Lamp", size=0.5, location=(-1.2, 1.2, 1.2),
+                        material=pt.emission("Lamp", (1.0, 0.8, 0.6), 8.0))
+    pt.point_at(lamp, SPHERE_CENTRE)
+
+
 LIGHT_SCENES = {
     "point_r0": _light_scene("POINT", 200.0, shadow_soft_size=0.0),
     "point_r": _light_scene("POINT", 200.0, shadow_soft_size=0.4),
@@ -73,6 +101,8 @@ LIGHT_SCENES = {
                                 angle=math.radians(15.0)),
     "emissive_mesh": _emissive_mesh,
     "world": _world,
+    "default_cube": _default_cube,
+    "mixed": _mixed_lights,
 }
 
 

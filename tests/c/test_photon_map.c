@@ -206,16 +206,22 @@ static void test_radiance_photons_unbiased(void)
     phos_scene_destroy(s);
 }
 
-/* A glass bead of 1 cm radius 3 m from a point light: a caustic path hits
- * it about 3 times in a million, so 50 000 caustic photons would take 17
- * billion paths. The caustic pass gives up at the first checkpoint (1 M
- * paths) instead of running to its cap of 50 M, keeps the photons it has,
- * and does so at the same path whatever the thread count. */
-static void test_caustic_pass_gives_up_on_hopeless_yield(void)
+/* A glass bead of 1 cm radius 3 m from a point light, over a floor.
+ * Emitted over the whole sphere, a photon hits it about 3 times in a
+ * million (50 000 caustic photons would take 17 billion paths); aimed at
+ * it by the projection map, about one in five does. With a diffuse board
+ * between the lamp and the bead no aimed photon can reach it, and the
+ * caustic pass gives up at the first checkpoint (1 M paths) instead of
+ * running to its cap of 50 M, keeps the photons it has, and does so at the
+ * same path whatever the thread count. */
+static void bead_maps(int blocked, photon_maps *a, photon_maps *b)
 {
     phos_scene *s = phos_scene_create();
-    test_add_instance(s, test_add_quad_mesh(s, 5.0f), test_add_diffuse(s, 0.5f, 0.5f, 0.5f), 0, 0, 0);
+    uint32_t grey = test_add_diffuse(s, 0.5f, 0.5f, 0.5f);
+    test_add_instance(s, test_add_quad_mesh(s, 5.0f), grey, 0, 0, 0);
     test_add_instance(s, test_add_sphere_mesh(s, 0.01f, 16, 8, 0), test_add_glass(s, 1.5f), 0, 0, 0.5f);
+    if (blocked)
+        test_add_ceiling(s, 0.5f, 2.0f, grey);
     phos_light_desc l;
     phos_light_desc_init(&l);
     l.position[2] = 3.5f;
@@ -223,24 +229,125 @@ static void test_caustic_pass_gives_up_on_hopeless_yield(void)
     phos_scene_add_light(s, &l, NULL);
     test_set_camera(s, 0, 0, 3.0f, 0.5f);
     CHECK(phos_scene_commit(s) == PHOS_OK);
-    photon_maps a, b;
     for (int t = 0; t < 2; t++) {
         photon_trace_settings ps = trace_settings(1000, 50000, t ? 2u : 1u);
-        photon_maps *m = t ? &b : &a;
+        photon_maps *m = t ? b : a;
         photon_maps_init(m);
         atomic_int cancel = 0;
         CHECK(photon_maps_trace(s, &ps, m, &cancel, NULL) == PHOS_OK);
         CHECK(photon_maps_build(m) == PHOS_OK);
     }
+    CHECK(a->caustic_emitted == b->caustic_emitted && a->caustic.count == b->caustic.count);
+    CHECK(a->caustic.count == 0 ||
+          memcmp(a->caustic.photons, b->caustic.photons, sizeof(photon) * a->caustic.count) == 0);
+    phos_scene_destroy(s);
+}
+
+static void test_caustic_photons_aimed_at_a_bead(void)
+{
+    photon_maps a, b;
+    bead_maps(0, &a, &b);
     printf("  glass bead: %u caustic photons from %llu paths (cap 50 M)\n", a.caustic.count,
+           (unsigned long long)a.caustic_emitted);
+    CHECK_MSG(a.caustic.count >= 50000 && a.caustic_emitted < 1000000,
+              "aimed at the bead, 50 000 caustic photons took %llu paths (%u stored)",
+              (unsigned long long)a.caustic_emitted, a.caustic.count);
+    photon_maps_free(&a);
+    photon_maps_free(&b);
+    bead_maps(1, &a, &b);
+    printf("  glass bead behind a board: %u caustic photons from %llu paths\n", a.caustic.count,
            (unsigned long long)a.caustic_emitted);
     CHECK_MSG(a.caustic_emitted == 1000000, "the caustic pass emitted %llu paths, not 1 M",
               (unsigned long long)a.caustic_emitted);
     CHECK(a.caustic.count < 5000);
-    CHECK(a.caustic_emitted == b.caustic_emitted && a.caustic.count == b.caustic.count);
-    CHECK(a.caustic.count == 0 || memcmp(a.caustic.photons, b.caustic.photons, sizeof(photon) * a.caustic.count) == 0);
     photon_maps_free(&a);
     photon_maps_free(&b);
+}
+
+/* Projection maps change where caustic photons are emitted, not what the
+ * map holds in expectation: the caustic map's total power must equal that
+ * of the caustic-flagged photons of the global map, which is emitted over
+ * every direction. Glass and mirror balls over a floor, lit by a point
+ * lamp, a spot with a blend, an area light and a sun with an angle (the
+ * sun aims through plane cells, the others through cones). Within 4
+ * standard errors of the two sums (each photon's power taken as an
+ * independent draw). */
+static void test_caustic_projection_unbiased(void)
+{
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quad_mesh(s, 3.0f), test_add_diffuse(s, 0.6f, 0.6f, 0.6f), 0, 0, 0);
+    test_add_instance(s, test_add_sphere_mesh(s, 0.3f, 32, 16, 0), test_add_glass(s, 1.5f), -0.5f, 0, 0.5f);
+    phos_closure_desc mirror;
+    phos_closure_desc_init(&mirror);
+    mirror.type = PHOS_CLOSURE_REFLECTION;
+    mirror.roughness = 0.0f;
+    test_add_instance(s, test_add_sphere_mesh(s, 0.25f, 32, 16, 0), test_add_closure_material(s, &mirror), 0.7f,
+                      0.3f, 0.4f);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.position[0] = 1.0f;
+    l.position[2] = 2.5f;
+    l.color[0] = l.color[1] = l.color[2] = 5.0f;
+    phos_scene_add_light(s, &l, NULL);
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_SPOT;
+    l.position[0] = -1.5f;
+    l.position[2] = 2.0f;
+    l.direction[0] = 0.5f;
+    l.direction[2] = -1.0f;
+    l.spot_angle = 0.8f;
+    l.spot_blend = 0.4f;
+    l.radius = 0.1f;
+    l.color[0] = l.color[1] = l.color[2] = 8.0f;
+    phos_scene_add_light(s, &l, NULL);
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_AREA;
+    l.position[1] = -1.5f;
+    l.position[2] = 2.0f;
+    l.direction[1] = 0.6f;
+    l.direction[2] = -0.8f;
+    l.axis_u[0] = 0.8f;
+    l.axis_v[1] = 0.48f;
+    l.axis_v[2] = 0.36f;
+    l.color[0] = l.color[1] = l.color[2] = 3.0f;
+    phos_scene_add_light(s, &l, NULL);
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_SUN;
+    l.direction[0] = 0.3f;
+    l.direction[2] = -1.0f;
+    l.sun_angle = 0.2f;
+    l.color[0] = l.color[1] = l.color[2] = 1.0f;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera(s, 0, 0, 3.0f, 0.5f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    photon_trace_settings ps = trace_settings(400000, 100000, 0);
+    photon_maps m;
+    photon_maps_init(&m);
+    atomic_int cancel = 0;
+    CHECK(photon_maps_trace(s, &ps, &m, &cancel, NULL) == PHOS_OK);
+    double sum[2] = {0.0, 0.0}, sum2[2] = {0.0, 0.0};
+    uint32_t n[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        const photon_map *pm = k ? &m.caustic : &m.global;
+        for (uint32_t i = 0; i < pm->count; i++) {
+            if (!k && !photon_is_caustic(&pm->photons[i]))
+                continue;
+            double p = v3_average(photon_power(&pm->photons[i]));
+            sum[k] += p;
+            sum2[k] += p * p;
+            n[k]++;
+        }
+    }
+    /* Var of a sum of independent photons: Σp² (Poisson-like counting). */
+    double se = sqrt(sum2[0] + sum2[1]);
+    printf("  caustic power: global map's caustic photons %.5f W (%u), caustic map %.5f W (%u of %llu paths, "
+           "global %llu), ± %.5f\n",
+           sum[0], n[0], sum[1], n[1], (unsigned long long)m.caustic_emitted,
+           (unsigned long long)m.global_emitted, 4.0 * se);
+    CHECK(n[0] > 1000 && n[1] >= 100000);
+    CHECK_MSG(fabs(sum[1] - sum[0]) < 4.0 * se, "aimed caustic photons carry %.5f W, unaimed ones %.5f W (± %.5f)",
+              sum[1], sum[0], 4.0 * se);
+    photon_maps_free(&m);
     phos_scene_destroy(s);
 }
 
@@ -1211,7 +1318,8 @@ int main(void)
     test_radiance_photons_unbiased();
     test_emitted_flux_per_light_type();
     test_caustic_pass_needs_a_delta_lobe();
-    test_caustic_pass_gives_up_on_hopeless_yield();
+    test_caustic_photons_aimed_at_a_bead();
+    test_caustic_projection_unbiased();
     test_radiance_lookup_in_a_corner();
     test_power_in_closed_sphere();
     test_maps_deterministic();

@@ -59,6 +59,7 @@ typedef struct walk_start {
     int indirect_only;      /* leave out emission found after delta events only */
     float first_pdf;        /* MIS pdf of the first segment's emission; 0: the camera's rule, or
                                (indirect_only) left out too */
+    const light_context *from; /* first_pdf > 0: the vertex the walk leaves, for the light-pick pdf */
 } walk_start;
 
 static sample_result walk(const scene *s, const integrator_settings *is, const walk_start *start, const sampler *smp,
@@ -76,6 +77,9 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
     int prev_delta = !(start->first_pdf > 0.0f); /* the camera ray takes emission unweighted */
     int transparent_steps = 0;
     uint32_t vertex = 0;                       /* surface interactions, for sample dimensions */
+    light_context prev = {v3s(0.0f), v3s(0.0f), v3s(0.0f), 0, 1, 0}; /* the vertex the ray left */
+    if (start->from)
+        prev = *start->from;
 
     for (;;) {
         ray_hit h;
@@ -88,11 +92,11 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
             emission_component = COMPONENT_EMISSION; /* seen by the walk's first segment */
 
         light_hit lh;
-        if (lights_intersect(s, o, d, tmin, t_hit, camera_segment, &lh))
+        if (lights_intersect(s, prev_delta ? NULL : &prev, o, d, tmin, t_hit, camera_segment, &lh))
             add_to(&res, emission_component, p.beta, lh.radiance, emission_weight(prev_delta, prev_pdf, lh.pdf));
         if (!hit) {
             if (!(camera_segment && is->transparent_background))
-                add_to(&res, emission_component, p.beta, lights_escape(s, d, prev_pdf, prev_delta, camera_segment),
+                add_to(&res, emission_component, p.beta, lights_escape(s, prev_delta ? NULL : &prev, d, prev_pdf, prev_delta, camera_segment),
                        1.0f);
             if (camera_segment && !is->transparent_background)
                 res.alpha = 1.0f;
@@ -107,7 +111,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
             if (!prev_delta) {
                 const instance *inst = &s->instances[sf.instance];
                 int32_t li = inst->emitter_of_triangle ? inst->emitter_of_triangle[sf.prim] : -1;
-                w = emission_weight(prev_delta, prev_pdf, light_pdf_triangle(s, li, o, sf.p, sf.ng));
+                w = emission_weight(prev_delta, prev_pdf, light_pdf_triangle(s, li, &prev, sf.p, sf.ng));
             }
             add_to(&res, emission_component, p.beta, material_emission(s, &sf), w);
         }
@@ -121,7 +125,8 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
                 res.alpha = 1.0f;
             break;
         }
-        path_vertex v = {&sf, &b, v3_neg(d), v_index};
+        light_context here = light_context_at(&sf, 1);
+        path_vertex v = {&sf, &b, v3_neg(d), v_index, &here};
         const bsdf *next = policy(&p, &v, &storage);
 
         bsdf_sample bs;
@@ -153,6 +158,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
 
         o = ray_leave_surface(sf.p, sf.ng, bs.wi);
         d = bs.wi;
+        prev = here;
         tmin = 0.0f;
         tmax = INFINITY;
         prev_pdf = bs.pdf;
@@ -175,14 +181,14 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
 sample_result camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
                                integrator_scratch *scratch, vertex_policy policy)
 {
-    walk_start start = {ray, 1, 0, 0, 0.0f};
+    walk_start start = {ray, 1, 0, 0, 0.0f, NULL};
     return walk(s, is, &start, smp, scratch, policy);
 }
 
-sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, vec3 o, vec3 d,
-                                        uint32_t depth, float first_pdf, const sampler *smp,
+sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, const light_context *from, vec3 o,
+                                        vec3 d, uint32_t depth, float first_pdf, const sampler *smp,
                                         integrator_scratch *scratch, vertex_policy policy)
 {
-    walk_start start = {{o, d, 0.0f, INFINITY}, 0, depth, 1, first_pdf};
+    walk_start start = {{o, d, 0.0f, INFINITY}, 0, depth, 1, first_pdf, from};
     return walk(s, is, &start, smp, scratch, policy);
 }

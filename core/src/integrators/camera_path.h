@@ -21,6 +21,7 @@
 #define PHOS_CAMERA_PATH_H
 
 #include "integrators/integrator.h"
+#include "lights/light.h"
 #include "shading/material.h"
 
 #define CAMERA_PATH_MAX_TRANSPARENT_STEPS 64
@@ -45,6 +46,9 @@ typedef struct path_vertex {
     const bsdf *b;          /* the whole BSDF there (at least one closure) */
     vec3 wo;                /* toward the previous vertex */
     uint32_t index;         /* surface interactions before this one: its sample dimensions */
+    light_context *light;   /* the receiver for light samples here and for the MIS weights of what
+                               the ray leaving it finds; the policy clears rays_find_world when
+                               it leaves a non-delta part to estimates that do not count the world */
 } path_vertex;
 
 /* What an integrator does at a vertex: adds what it estimates there through
@@ -69,8 +73,8 @@ sample_result camera_path_walk(const scene *s, const integrator_settings *is, ca
  * the ray left (indirect_diffuse.h). The result's Emission holds what the
  * first segment saw, its other components the rest of the radiance
  * arriving along the ray. */
-sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, vec3 o, vec3 d,
-                                        uint32_t depth, float first_pdf, const sampler *smp,
+sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, const light_context *from, vec3 o,
+                                        vec3 d, uint32_t depth, float first_pdf, const sampler *smp,
                                         integrator_scratch *scratch, vertex_policy policy);
 
 /* Light estimated at the vertex that arrived straight from an emitter and

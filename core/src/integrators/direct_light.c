@@ -39,12 +39,12 @@ float gather_rays_pdf(const surface *sf, vec3 wi, uint32_t gather_rays)
     return (float)gather_rays * c * PHOS_INV_PI;
 }
 
-vec3 direct_light(const scene *s, const surface *sf, const bsdf *sampled, const bsdf *unsampled, uint32_t gather_rays,
-                  vec3 wo, const sampler *smp, uint32_t vertex)
+vec3 direct_light(const scene *s, const light_context *c, const surface *sf, const bsdf *sampled,
+                  const bsdf *unsampled, uint32_t gather_rays, vec3 wo, const sampler *smp, uint32_t vertex)
 {
     light_sample ls;
     float2 u = sampler_2d(smp, dim_bounce(vertex, DIM_LIGHT_POINT));
-    if (!light_sample_pick(s, sf->p, sampler_1d(smp, dim_bounce(vertex, DIM_LIGHT_PICK)), u, &ls))
+    if (!light_sample_pick(s, c, sampler_1d(smp, dim_bounce(vertex, DIM_LIGHT_PICK)), u, &ls))
         return v3s(0.0f);
     float pdf_sampled = 0.0f;
     vec3 f_sampled = sampled->count ? bsdf_eval(sampled, wo, ls.wi, &pdf_sampled) : v3s(0.0f);

@@ -6,6 +6,7 @@
 #ifndef PHOS_DIRECT_LIGHT_H
 #define PHOS_DIRECT_LIGHT_H
 
+#include "lights/light.h"
 #include "sampling/sampler.h"
 #include "shading/material.h"
 
@@ -15,7 +16,7 @@
 vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist);
 
 /* Reflected radiance toward wo (W/(m²·sr)) from one light sample at vertex
- * `vertex` of a path.
+ * `vertex` of a path, picked for the receiver c (light.h).
  *
  * `sampled` is the part of the BSDF the path continues through: its light
  * is MIS-weighted, since the ray that leaves through it can also find the
@@ -25,8 +26,8 @@ vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist
  * gather_rays cosine-distributed rays about the shading normal also count
  * the emitters they reach, and the light sample is weighted against them
  * (indirect_diffuse.h). */
-vec3 direct_light(const scene *s, const surface *sf, const bsdf *sampled, const bsdf *unsampled, uint32_t gather_rays,
-                  vec3 wo, const sampler *smp, uint32_t vertex);
+vec3 direct_light(const scene *s, const light_context *c, const surface *sf, const bsdf *sampled,
+                  const bsdf *unsampled, uint32_t gather_rays, vec3 wo, const sampler *smp, uint32_t vertex);
 
 /* Solid-angle pdf of a gather ray of a stratified cosine hemisphere about
  * sf's shading normal, times the number of rays: the MIS weight's

@@ -68,7 +68,8 @@ static vec3 hit_direct(const indirect_query *q, const specular_chain_end *end, c
         return v3s(0.0f);
     bsdf none;
     none.count = 0;
-    return direct_light(q->s, &end->sf, &none, &end->read, 0, end->wo, smp, GATHER_LIGHT_VERTEX);
+    light_context c = light_context_at(&end->sf, 0);
+    return direct_light(q->s, &c, &end->sf, &none, &end->read, 0, end->wo, smp, GATHER_LIGHT_VERTEX);
 }
 
 /* Radiance arriving along a gather ray: at the surface it lands on after
@@ -89,7 +90,7 @@ static gather_estimate gather_ray(const indirect_query *q, vec3 o, vec3 d, const
         /* Only the first segment counts emitters; later ones would find
          * what the light sample at the previous hit already counted. */
         specular_chain c = {STOP_AT_NON_DELTA, GATHER_SPECULAR_BOUNCES + 1, 0, &smp, GATHER_DIM_CHAIN,
-                            step ? 0.0f : ray_pdf};
+                            step ? 0.0f : ray_pdf, q->light};
         specular_chain_end end;
         int hit = specular_chain_follow(q->s, &c, o, d, 0.0f, INFINITY, &end);
         if (step == 0)

@@ -23,6 +23,7 @@
 #define PHOS_INDIRECT_DIFFUSE_H
 
 #include "integrators/integrator.h"
+#include "lights/light.h"
 #include "shading/material.h"
 
 /* Where and how an indirect estimate is asked for. */
@@ -30,6 +31,7 @@ typedef struct indirect_query {
     const scene *s;
     const integrator_settings *is;
     const surface *sf;
+    const light_context *light; /* the surface as a receiver of light samples (light.h) */
     const bsdf *diffuse;        /* f_d: the diffuse closures of the surface's BSDF */
     vec3 wo;
     const sampler *smp;         /* the camera sample's */

@@ -15,7 +15,7 @@ const bsdf *path_vertex_policy(camera_path *p, const path_vertex *v, bsdf *stora
 {
     (void)storage;
     if (bsdf_has_non_delta(v->b) && p->s->lights.count > 0)
-        camera_path_add_direct(p, direct_light(p->s, v->sf, v->b, NULL, 0, v->wo, p->smp, v->index));
+        camera_path_add_direct(p, direct_light(p->s, v->light, v->sf, v->b, NULL, 0, v->wo, p->smp, v->index));
     return v->b;
 }
 

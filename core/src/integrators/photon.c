@@ -33,12 +33,15 @@ static const bsdf *photon_vertex_policy(camera_path *p, const path_vertex *v, bs
     bsdf_split(v->b, &diffuse, rest);
     /* The rays the gather really sends (its M×N strata), for the MIS weights. */
     uint32_t gather_rays = is->indirect->gathers_emitters ? hemisphere_ray_count(is->final_gather_rays) : 0;
+    if (diffuse.count && !gather_rays)
+        v->light->rays_find_world = 0; /* the map's estimate of the diffuse part does not count it */
     if (bsdf_has_non_delta(v->b) && s->lights.count > 0)
-        camera_path_add_direct(p, direct_light(s, v->sf, rest, &diffuse, gather_rays, v->wo, p->smp, v->index));
+        camera_path_add_direct(p, direct_light(s, v->light, v->sf, rest, &diffuse, gather_rays, v->wo, p->smp,
+                                               v->index));
     if (diffuse.count) {
         vec3 caustics = photon_radiance(&is->maps->caustic, &diffuse, v->wo, v->sf->p, v->sf->ns,
                                         &is->caustic_estimate, &p->scratch->caustic);
-        indirect_query q = {s, is, v->sf, &diffuse, v->wo, p->smp, v->index, p->depth, p->scratch};
+        indirect_query q = {s, is, v->sf, v->light, &diffuse, v->wo, p->smp, v->index, p->depth, p->scratch};
         gather_estimate g = is->indirect->estimate(&q);
         camera_path_add_diffuse(p, 1, caustics);
         camera_path_add_diffuse(p, 0, g.indirect);
@@ -61,7 +64,7 @@ void photon_debug_estimates(const scene *s, const integrator_settings *is, camer
         return;
     /* Through specular and glossy surfaces, always along the lobe and
      * direction at u = 0.5, to the first diffuse surface. */
-    specular_chain c = {STOP_AT_DIFFUSE, DEBUG_CHAIN_STEPS, 1, NULL, 0, 0.0f};
+    specular_chain c = {STOP_AT_DIFFUSE, DEBUG_CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL};
     specular_chain_end end;
     if (!specular_chain_follow(s, &c, ray.o, ray.d, ray.tmin, ray.tmax, &end))
         return;

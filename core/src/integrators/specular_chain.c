@@ -11,19 +11,21 @@
 /* Emitters on the first segment of a ray from o (hit: the surface at t_hit,
  * or the ray escaped), each weighted by the power heuristic between the
  * ray's pdf and the light sample's (Veach 1997 §9.2). */
-static vec3 first_segment_emission(const scene *s, float ray_pdf, vec3 o, vec3 d, float tmin, const ray_hit *hit,
-                                   const surface *sf)
+static vec3 first_segment_emission(const scene *s, const specular_chain *c, vec3 o, vec3 d, float tmin,
+                                   const ray_hit *hit, const surface *sf)
 {
+    float ray_pdf = c->first_pdf;
+    const light_context *from = c->origin;
     vec3 E = v3s(0.0f);
     light_hit lh;
-    if (lights_intersect(s, o, d, tmin, hit ? hit->t : INFINITY, 0, &lh))
+    if (lights_intersect(s, from, o, d, tmin, hit ? hit->t : INFINITY, 0, &lh))
         E = v3_madd(E, lh.radiance, mis_power_heuristic(ray_pdf, lh.pdf));
     if (!hit)
-        return v3_add(E, lights_escape(s, d, ray_pdf, 0, 0));
+        return v3_add(E, lights_escape(s, from, d, ray_pdf, 0, 0));
     if (sf->mat->emissive) {
         const instance *inst = &s->instances[sf->instance];
         int32_t li = inst->emitter_of_triangle ? inst->emitter_of_triangle[sf->prim] : -1;
-        float w = mis_power_heuristic(ray_pdf, light_pdf_triangle(s, li, o, sf->p, sf->ng));
+        float w = mis_power_heuristic(ray_pdf, light_pdf_triangle(s, li, from, sf->p, sf->ng));
         E = v3_madd(E, material_emission(s, sf), w);
     }
     return E;
@@ -72,14 +74,14 @@ int specular_chain_follow(const scene *s, const specular_chain *c, vec3 o, vec3 
         int hit = embree_intersect(s->bvh, o, d, tmin, tmax, c->coherent, &h);
         if (!hit) {
             if (first)
-                out->emission = v3_add(out->emission, v3_mul(beta, first_segment_emission(s, c->first_pdf, o, d,
-                                                                                          tmin, NULL, NULL)));
+                out->emission = v3_add(out->emission, v3_mul(beta, first_segment_emission(s, c, o, d, tmin, NULL,
+                                                                                          NULL)));
             return 0;
         }
         surface_from_hit(s, h.instance, h.prim, h.b1, h.b2, d, &out->sf);
         if (first)
-            out->emission = v3_add(out->emission, v3_mul(beta, first_segment_emission(s, c->first_pdf, o, d, tmin,
-                                                                                      &h, &out->sf)));
+            out->emission = v3_add(out->emission, v3_mul(beta, first_segment_emission(s, c, o, d, tmin, &h,
+                                                                                      &out->sf)));
         material_bsdf(s, &out->sf, &out->b);
         if (out->b.count == 0)
             return 0;

@@ -8,6 +8,7 @@
 #define PHOS_SPECULAR_CHAIN_H
 
 #include "sampling/sampler.h"
+#include "lights/light.h"
 #include "shading/material.h"
 
 enum specular_chain_stop {
@@ -27,6 +28,7 @@ typedef struct specular_chain {
     float first_pdf;       /* > 0: collect the emitters the first segment reaches (lamps, distant
                               lights, emissive surfaces), MIS-weighted as a sample of this pdf
                               against a light sample at the ray's origin; 0: none */
+    const light_context *origin; /* first_pdf > 0: the receiver the ray leaves (light.h) */
 } specular_chain;
 
 typedef struct specular_chain_end {

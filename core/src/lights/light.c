@@ -34,6 +34,21 @@ float light_spot_attenuation(const light *l, vec3 dir_from_light)
     return a;
 }
 
+/* ∫ a(ω) dω over the spot's cone (sr): 2π ∫ a dcos θ, by the midpoint
+ * rule in cos θ, where the blend and the cosine make a smooth. */
+static float spot_solid_angle(const light *l)
+{
+    const int steps = 256;
+    float width = 1.0f - l->spot_cos_half, sum = 0.0f;
+    for (int k = 0; k < steps; k++) {
+        float c = l->spot_cos_half + width * ((float)k + 0.5f) / (float)steps;
+        float sin_t = safe_sqrtf(1.0f - c * c);
+        vec3 d = v3_add(v3_scale(l->direction, c), v3_scale(frame_from_normal(l->direction).t, sin_t));
+        sum += light_spot_attenuation(l, d);
+    }
+    return 2.0f * PHOS_PI * width * sum / (float)steps;
+}
+
 float light_power(const light *l, float scene_radius)
 {
     float c = fmaxf(v3_average(l->color), 0.0f);
@@ -42,7 +57,7 @@ float light_power(const light *l, float scene_radius)
     case LIGHT_POINT:
         return 4.0f * PHOS_PI * c;                       /* Φ = 4πI */
     case LIGHT_SPOT:
-        return 2.0f * PHOS_PI * (1.0f - l->spot_cos_half) * c;
+        return spot_solid_angle(l) * c;                  /* Φ = I ∫ a dω */
     case LIGHT_AREA:
         return PHOS_PI * l->area * c;                    /* Φ = πAL, one-sided */
     case LIGHT_SUN: /* Φ = E·πR², or L·Ω·πR² with an angle (light_sample_emission) */
@@ -52,7 +67,7 @@ float light_power(const light *l, float scene_radius)
     case LIGHT_TRIANGLE:
         return 2.0f * PHOS_PI * l->area * c;             /* both faces emit */
     case LIGHT_WORLD:
-        return PHOS_PI * c * disk;                       /* irradiance πL over the scene's disk */
+        return 4.0f * PHOS_PI * c * disk;                /* L·πR² per steradian, from every direction */
     }
     return 0.0f;
 }
@@ -204,9 +219,9 @@ phos_status light_table_build(scene *s)
         return PHOS_ERROR_OUT_OF_MEMORY;
     for (uint32_t i = 0; i < t->count; i++)
         power[i] = light_power(&t->lights[i], t->radius);
-    int ok = distribution_build(&t->pick, power, t->count);
+    st = distribution_build(&t->pick, power, t->count) ? light_groups_build(t, power) : PHOS_ERROR_OUT_OF_MEMORY;
     free(power);
-    return ok ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
+    return st;
 }
 
 /* ------------------------------------------------------------- sampling */
@@ -357,15 +372,42 @@ static int sample_triangle(const scene *s, const light *l, vec3 p, float2 u, lig
     return !v3_is_zero(out->radiance);
 }
 
-int light_sample_pick(const scene *s, vec3 p, float u_pick, float2 u, light_sample *out)
+/* The world is sampled cosine-weighted about the shading normal where only
+ * light from above it can be reflected (bsdf.c: a reflected wi lies above
+ * both normals), so that a diffuse surface under a uniform world gets its
+ * irradiance with no variance but that of occlusion; over the whole
+ * sphere where the surface also transmits. */
+static int world_samples_hemisphere(const light_context *c) { return !c->no_normal && !c->two_sided; }
+
+/* Cosine-weighted direction about n (Malley's method). */
+static vec3 sample_cosine_about(vec3 n, float2 u)
+{
+    frame f = frame_from_normal(n);
+    return frame_to_world(&f, warp_cosine_hemisphere(u));
+}
+
+static vec3 world_direction(const light_context *c, float2 u)
+{
+    return world_samples_hemisphere(c) ? sample_cosine_about(c->ns, u) : warp_uniform_sphere(u);
+}
+
+float light_world_pdf(const light_context *c, vec3 wi)
+{
+    if (!c || !world_samples_hemisphere(c))
+        return PHOS_INV_4PI;
+    return fmaxf(v3_dot(wi, c->ns), 0.0f) * PHOS_INV_PI;
+}
+
+int light_sample_pick(const scene *s, const light_context *c, float u_pick, float2 u, light_sample *out)
 {
     const light_table *t = &s->lights;
     if (t->count == 0)
         return 0;
     float pick_pdf;
-    uint32_t i = distribution_sample(&t->pick, u_pick, &pick_pdf, NULL);
+    uint32_t i = light_pick(t, c, u_pick, &pick_pdf);
     if (!(pick_pdf > 0.0f))
         return 0;
+    vec3 p = c->p;
     const light *l = &t->lights[i];
     int ok = 0;
     switch (l->kind) {
@@ -383,10 +425,10 @@ int light_sample_pick(const scene *s, vec3 p, float u_pick, float2 u, light_samp
         ok = sample_triangle(s, l, p, u, out);
         break;
     case LIGHT_WORLD:
-        out->wi = warp_uniform_sphere(u);
+        out->wi = world_direction(c, u);
         out->distance = INFINITY;
         out->radiance = l->color;
-        out->pdf = PHOS_INV_4PI;
+        out->pdf = light_world_pdf(c, out->wi);
         out->delta = 0;
         ok = 1;
         break;
@@ -397,8 +439,9 @@ int light_sample_pick(const scene *s, vec3 p, float u_pick, float2 u, light_samp
     return 1;
 }
 
-float light_pdf_triangle(const scene *s, int32_t index, vec3 p, vec3 x, vec3 ng)
+float light_pdf_triangle(const scene *s, int32_t index, const light_context *c, vec3 x, vec3 ng)
 {
+    vec3 p = c->p;
     if (index < 0 || (uint32_t)index >= s->lights.count)
         return 0.0f;
     const light *l = &s->lights.lights[index];
@@ -407,17 +450,11 @@ float light_pdf_triangle(const scene *s, int32_t index, vec3 p, vec3 x, vec3 ng)
     float cos_l = fabsf(v3_dot(v3_normalize(to_x), ng));
     if (!(cos_l > 0.0f) || !(l->area > 0.0f))
         return 0.0f;
-    return distribution_pdf(&s->lights.pick, (uint32_t)index) * d2 / (l->area * cos_l);
+    return light_pick_pdf(&s->lights, c, (uint32_t)index) * d2 / (l->area * cos_l);
 }
 
 /* ------------------------------------------------------------- emission */
 
-/* Cosine-weighted direction about n (Malley's method). */
-static vec3 sample_cosine_about(vec3 n, float2 u)
-{
-    frame f = frame_from_normal(n);
-    return frame_to_world(&f, warp_cosine_hemisphere(u));
-}
 
 /* Origin on the disk of the scene's bounding sphere that faces a distant
  * light sending photons along d: every photon that can reach the scene
@@ -431,62 +468,78 @@ static float distant_origin(const light_table *t, vec3 d, float2 u, vec3 *origin
     return PHOS_PI * t->radius * t->radius;
 }
 
-int light_sample_emission(const scene *s, const float u[5], vec3 *origin, vec3 *direction, vec3 *power)
+int light_emit_toward(const scene *s, uint32_t index, vec3 d, float2 u, vec3 *origin, vec3 *intensity)
 {
-    const light_table *t = &s->lights;
-    if (t->count == 0)
-        return 0;
-    float pick_pdf;
-    uint32_t i = distribution_sample(&t->pick, u[0], &pick_pdf, NULL);
-    if (!(pick_pdf > 0.0f))
-        return 0;
-    const light *l = &t->lights[i];
-    float2 ua = {u[1], u[2]}, ub = {u[3], u[4]};
-    vec3 phi; /* W, for a single photon */
+    const light *l = &s->lights.lights[index];
     switch (l->kind) {
     case LIGHT_POINT:
     case LIGHT_SPOT: {
-        vec3 d;
-        float pdf_dir;
-        if (l->kind == LIGHT_SPOT) {
-            d = warp_cone(l->direction, l->spot_cos_half, ub);
-            pdf_dir = 1.0f / (2.0f * PHOS_PI * (1.0f - l->spot_cos_half));
-        } else {
-            d = warp_uniform_sphere(ub);
-            pdf_dir = PHOS_INV_4PI;
-        }
         float a = l->kind == LIGHT_SPOT ? light_spot_attenuation(l, d) : 1.0f;
         /* A lamp of radius r emits the same flux from its surface; start
          * the photon there so it is not born inside nearby geometry. */
         *origin = l->radius > 0.0f ? v3_madd(l->position, d, l->radius) : l->position;
-        *direction = d;
-        phi = v3_scale(l->color, a / pdf_dir); /* I·a / p_ω */
-        break;
+        *intensity = v3_scale(l->color, a); /* I·a */
+        return a > 0.0f;
     }
     case LIGHT_AREA: {
-        *origin = area_point(l, ua);
-        *direction = sample_cosine_about(l->direction, ub);
-        phi = v3_scale(l->color, PHOS_PI * l->area); /* L cos / (cos/π · 1/A) */
-        break;
+        float c = v3_dot(d, l->direction);
+        *origin = area_point(l, u);
+        *intensity = v3_scale(l->color, l->area * fmaxf(c, 0.0f)); /* L·A·cos, one-sided */
+        return c > 0.0f;
     }
     case LIGHT_TRIANGLE: {
         float b1, b2;
-        triangle_barycentrics(ua, &b1, &b2);
+        triangle_barycentrics(u, &b1, &b2);
         *origin = v3_add(v3_add(v3_scale(l->p0, 1.0f - b1 - b2), v3_scale(l->p1, b1)), v3_scale(l->p2, b2));
         vec3 ng = v3_normalize(v3_cross(v3_sub(l->p1, l->p0), v3_sub(l->p2, l->p0)));
-        /* Both faces emit: pick one with probability ½ (reusing ub.x). */
-        float2 ud = ub;
-        if (ub.x < 0.5f) {
-            ng = v3_neg(ng);
-            ud.x = 2.0f * ub.x;
-        } else {
-            ud.x = 2.0f * ub.x - 1.0f;
-        }
-        *direction = sample_cosine_about(ng, ud);
-        vec3 L = material_emission_at(s, l->instance, l->prim, b1, b2);
-        phi = v3_scale(L, 2.0f * PHOS_PI * l->area);
-        break;
+        float c = fabsf(v3_dot(d, ng)); /* both faces emit */
+        *intensity = v3_scale(material_emission_at(s, l->instance, l->prim, b1, b2), l->area * c);
+        return c > 0.0f;
     }
+    default:
+        return 0;
+    }
+}
+
+/* Samples the direction a local light's photon leaves by, with its
+ * density: uniform over the sphere (points) or the cone (spots), cosine-
+ * weighted about the emitting side (area lights; emissive triangles pick a
+ * side with ½ first). */
+static vec3 emission_direction(const light *l, float2 u, float *pdf)
+{
+    switch (l->kind) {
+    case LIGHT_SPOT:
+        *pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - l->spot_cos_half));
+        return warp_cone(l->direction, l->spot_cos_half, u);
+    case LIGHT_AREA: {
+        vec3 d = sample_cosine_about(l->direction, u);
+        *pdf = fmaxf(v3_dot(d, l->direction), 0.0f) * PHOS_INV_PI;
+        return d;
+    }
+    case LIGHT_TRIANGLE: {
+        vec3 ng = v3_normalize(v3_cross(v3_sub(l->p1, l->p0), v3_sub(l->p2, l->p0)));
+        if (u.x < 0.5f) {
+            ng = v3_neg(ng);
+            u.x = 2.0f * u.x;
+        } else {
+            u.x = 2.0f * u.x - 1.0f;
+        }
+        vec3 d = sample_cosine_about(ng, u);
+        *pdf = 0.5f * fmaxf(v3_dot(d, ng), 0.0f) * PHOS_INV_PI;
+        return d;
+    }
+    default:
+        *pdf = PHOS_INV_4PI;
+        return warp_uniform_sphere(u);
+    }
+}
+
+int light_emit(const scene *s, uint32_t index, const float u[4], vec3 *origin, vec3 *direction, vec3 *flux)
+{
+    const light_table *t = &s->lights;
+    const light *l = &t->lights[index];
+    float2 ua = {u[0], u[1]}, ub = {u[2], u[3]};
+    switch (l->kind) {
     case LIGHT_SUN: {
         vec3 d = l->sun_cos_half < 1.0f ? warp_cone(l->direction, l->sun_cos_half, ub) : l->direction;
         float area = distant_origin(t, d, ua, origin);
@@ -494,23 +547,42 @@ int light_sample_emission(const scene *s, const float u[5], vec3 *origin, vec3 *
         /* A photon per direction of the cone carries L·Ω·πR² (Ω the cone's
          * solid angle), not E·πR²: E = ∫ L cos θ dω = L·π sin²α is less
          * than L·Ω by (1 + cos α)/2 (α the half angle). */
-        phi = l->sun_cos_half < 1.0f
-                  ? v3_scale(l->sun_radiance, 2.0f * PHOS_PI * (1.0f - l->sun_cos_half) * area)
-                  : v3_scale(l->color, area); /* E · πR² */
-        break;
+        *flux = l->sun_cos_half < 1.0f
+                    ? v3_scale(l->sun_radiance, 2.0f * PHOS_PI * (1.0f - l->sun_cos_half) * area)
+                    : v3_scale(l->color, area); /* E · πR² */
+        return 1;
     }
     case LIGHT_WORLD: {
         vec3 w = warp_uniform_sphere(ub); /* where the light comes from */
         vec3 d = v3_neg(w);
         float area = distant_origin(t, d, ua, origin);
         *direction = d;
-        phi = v3_scale(l->color, area / PHOS_INV_4PI); /* L · πR² / p_ω */
-        break;
+        *flux = v3_scale(l->color, area / PHOS_INV_4PI); /* L · πR² / p_ω */
+        return 1;
     }
-    default:
+    default: {
+        float pdf;
+        vec3 d = emission_direction(l, ub, &pdf);
+        vec3 intensity;
+        if (!(pdf > 0.0f) || !light_emit_toward(s, index, d, ua, origin, &intensity))
+            return 0;
+        *direction = d;
+        *flux = v3_scale(intensity, 1.0f / pdf); /* e.g. L cos A / (cos/π) = πAL for an area light */
+        return 1;
+    }
+    }
+}
+
+int light_sample_emission(const scene *s, const float u[5], vec3 *origin, vec3 *direction, vec3 *power)
+{
+    const light_table *t = &s->lights;
+    if (t->count == 0)
         return 0;
-    }
-    *power = v3_scale(phi, 1.0f / pick_pdf);
+    float pick_pdf;
+    uint32_t i = distribution_sample(&t->pick, u[0], &pick_pdf, NULL);
+    if (!(pick_pdf > 0.0f) || !light_emit(s, i, u + 1, origin, direction, power))
+        return 0;
+    *power = v3_scale(*power, 1.0f / pick_pdf);
     return !v3_is_zero(*power) && v3_is_finite(*power);
 }
 
@@ -582,7 +654,8 @@ static int intersect_area(const light *l, vec3 o, vec3 d, float tmax, light_hit 
     return 1;
 }
 
-int lights_intersect(const scene *s, vec3 o, vec3 d, float tmin, float tmax, int camera_ray, light_hit *out)
+int lights_intersect(const scene *s, const light_context *from, vec3 o, vec3 d, float tmin, float tmax,
+                     int camera_ray, light_hit *out)
 {
     const light_table *tab = &s->lights;
     int found = 0;
@@ -598,7 +671,7 @@ int lights_intersect(const scene *s, vec3 o, vec3 d, float tmin, float tmax, int
         else if (l->kind == LIGHT_AREA)
             hit = intersect_area(l, o, d, tmax, &h);
         if (hit && h.t > tmin) {
-            h.pdf *= distribution_pdf(&tab->pick, i);
+            h.pdf = from ? h.pdf * light_pick_pdf(tab, from, i) : 0.0f;
             *out = h;
             tmax = h.t;
             found = 1;
@@ -607,7 +680,8 @@ int lights_intersect(const scene *s, vec3 o, vec3 d, float tmin, float tmax, int
     return found;
 }
 
-vec3 lights_escape(const scene *s, vec3 d, float bsdf_pdf, int bsdf_delta, int camera_ray)
+vec3 lights_escape(const scene *s, const light_context *from, vec3 d, float bsdf_pdf, int bsdf_delta,
+                   int camera_ray)
 {
     const light_table *tab = &s->lights;
     vec3 sum = v3s(0.0f);
@@ -620,7 +694,7 @@ vec3 lights_escape(const scene *s, vec3 d, float bsdf_pdf, int bsdf_delta, int c
         float pdf;
         if (l->kind == LIGHT_WORLD) {
             L = l->color;
-            pdf = PHOS_INV_4PI;
+            pdf = light_world_pdf(from, d);
         } else if (l->kind == LIGHT_SUN && l->sun_cos_half < 1.0f) {
             if (-v3_dot(d, l->direction) < l->sun_cos_half)
                 continue;
@@ -629,7 +703,7 @@ vec3 lights_escape(const scene *s, vec3 d, float bsdf_pdf, int bsdf_delta, int c
         } else {
             continue;
         }
-        float w = bsdf_delta ? 1.0f : mis_power_heuristic(bsdf_pdf, pdf * distribution_pdf(&tab->pick, i));
+        float w = bsdf_delta || !from ? 1.0f : mis_power_heuristic(bsdf_pdf, pdf * light_pick_pdf(tab, from, i));
         sum = v3_madd(sum, L, w);
     }
     return sum;

@@ -1,7 +1,8 @@
 /*
  * light.h — every emitter of the scene in one table: lamps (point, spot,
- * area, sun), emissive triangles and the world background, picked in
- * proportion to their power for next-event estimation.
+ * area, sun), emissive triangles and the world background. Next-event
+ * estimation picks among them by what each can give the shading point
+ * (light_pick.c); photons leave them in proportion to their power.
  *
  * Radiometric conventions: a sample carries the radiance arriving at the
  * shading point along −wi (W/(m²·sr)) and the solid-angle pdf of having
@@ -17,6 +18,29 @@
 #include "phos.h"
 #include "sampling/sampler.h"
 #include "scene/scene.h"
+#include "shading/material.h"
+
+/* Groups evaluated per shading point; scenes with more pick by power. */
+#define LIGHT_PICK_MAX_GROUPS 64
+
+/* The receiver a light is picked for: a surface point with its normals,
+ * whether its material scatters light to the other side, and whether the
+ * rays that leave it find the world. A path vertex builds one and uses it
+ * both for its light sample and for the MIS weights of what its rays find,
+ * so the two always agree. */
+typedef struct light_context {
+    vec3 p, ng, ns;
+    int two_sided;
+    int no_normal;              /* no orientation to test (a point in space) */
+    int rays_find_world;        /* every non-delta closure is sampled by rays that count the world
+                                   (MIS-weighted): a uniform world then needs no light sample */
+} light_context;
+
+static inline light_context light_context_at(const surface *sf, int rays_find_world)
+{
+    light_context c = {sf->p, sf->ng, sf->ns, sf->mat->transmits, 0, rays_find_world};
+    return c;
+}
 
 typedef struct light_sample {
     vec3 wi;                    /* toward the light */
@@ -38,25 +62,45 @@ typedef struct light_hit {
  * and world; needs the scene bounds. */
 phos_status light_table_build(scene *s);
 
-/* Picks a light and samples a direction toward it from p. Returns 0 when
- * the sample carries nothing (e.g. behind a one-sided light). */
-int light_sample_pick(const scene *s, vec3 p, float u_pick, float2 u, light_sample *out);
+/* Groups of lights for picking (light_pick.c), from each light's power. */
+phos_status light_groups_build(light_table *t, const float *power);
 
-/* pdf (solid angle, pick included) with which light_sample_pick would have
- * chosen the emissive triangle `index` seen from p at point x with
- * geometric normal ng. */
-float light_pdf_triangle(const scene *s, int32_t index, vec3 p, vec3 x, vec3 ng);
+/* Picks the light a next-event estimate at c samples, with probability
+ * *pdf (0: nothing can light c). c NULL: by power. */
+uint32_t light_pick(const light_table *t, const light_context *c, float u, float *pdf);
+
+/* The probability with which light_pick chooses `light` at c. */
+float light_pick_pdf(const light_table *t, const light_context *c, uint32_t light);
+
+/* Picks a light for the receiver c and samples a direction toward it from
+ * c->p. Returns 0 when the sample carries nothing (e.g. behind a one-sided
+ * light). */
+int light_sample_pick(const scene *s, const light_context *c, float u_pick, float2 u, light_sample *out);
+
+/* Solid-angle pdf of the world's light sample toward wi at c (pick not
+ * included): cosine-weighted about the shading normal, or uniform over the
+ * sphere at surfaces that transmit and at points without a normal. */
+float light_world_pdf(const light_context *c, vec3 wi);
+
+/* pdf (solid angle, pick included) with which light_sample_pick at c would
+ * have chosen the emissive triangle `index` at point x with geometric
+ * normal ng. */
+float light_pdf_triangle(const scene *s, int32_t index, const light_context *c, vec3 x, vec3 ng);
 
 /* Nearest lamp (point, spot, area) along the ray within (tmin, tmax);
  * camera rays skip lamps hidden from the camera. A ray that passed
  * through transparent surfaces keeps its origin and moves tmin past each
- * of them, so lamps before them are not found again. */
-int lights_intersect(const scene *s, vec3 o, vec3 d, float tmin, float tmax, int camera_ray, light_hit *out);
+ * of them, so lamps before them are not found again. `from` is the vertex
+ * the ray left, for the light-sample pdf (NULL for camera rays, which
+ * take emission unweighted). */
+int lights_intersect(const scene *s, const light_context *from, vec3 o, vec3 d, float tmin, float tmax,
+                     int camera_ray, light_hit *out);
 
 /* Radiance of the distant lights (world, suns with an angle) seen along an
- * escaping ray, each weighted for MIS against a BSDF sample of pdf
- * bsdf_pdf (no weighting if bsdf_delta). */
-vec3 lights_escape(const scene *s, vec3 d, float bsdf_pdf, int bsdf_delta, int camera_ray);
+ * escaping ray from the vertex `from`, each weighted for MIS against a
+ * BSDF sample of pdf bsdf_pdf (no weighting if bsdf_delta or from NULL). */
+vec3 lights_escape(const scene *s, const light_context *from, vec3 d, float bsdf_pdf, int bsdf_delta,
+                   int camera_ray);
 
 /* A photon leaving a light (Jensen 2001 §5.1; pbrt-v4 SampleLe): picks a
  * light in proportion to its power and samples an origin and direction.
@@ -69,10 +113,22 @@ vec3 lights_escape(const scene *s, vec3 d, float bsdf_pdf, int bsdf_delta, int c
 int light_sample_emission(const scene *s, const float u[5], vec3 *origin, vec3 *direction,
                           vec3 *power);
 
+/* A photon of light `index` alone (no pick): origin, direction and the
+ * flux Φ = L_e·|cos θ| / (p_A · p_ω) it carries (W), from four numbers
+ * (origin 0–1, direction 2–3). Returns 0 if it carries nothing. */
+int light_emit(const scene *s, uint32_t index, const float u[4], vec3 *origin, vec3 *direction, vec3 *flux);
+
+/* For a local light (point, spot, area, emissive triangle) and a direction
+ * d chosen by the caller: an origin on the light from u and the radiant
+ * intensity it stands for along d, I = L_e·A·|cos θ| (W/sr; a point's I·a),
+ * so that a photon of direction density p_ω carries I/p_ω. Returns 0 if
+ * the light sends nothing along d. */
+int light_emit_toward(const scene *s, uint32_t index, vec3 d, float2 u, vec3 *origin, vec3 *intensity);
+
 /* Spot attenuation for the direction from the light toward the point. */
 float light_spot_attenuation(const light *l, vec3 dir_from_light);
 
-/* Estimated emitted power (W), luminance-weighted, for picking. */
+/* Emitted power (W), the channels' mean: the flux its photons carry. */
 float light_power(const light *l, float scene_radius);
 
 #endif /* PHOS_LIGHT_H */

@@ -38,12 +38,28 @@ typedef struct light {
     int camera_visible;         /* lamps: seen by camera rays */
     uint32_t instance, prim;    /* TRIANGLE */
     vec3 p0, p1, p2;            /* TRIANGLE corners, world space */
+    uint32_t group;             /* index into light_table.groups */
 } light;
+
+/* Lights picked together for next-event estimation (light_pick.c): each
+ * lamp, sun and the world alone, the emissive triangles of one instance
+ * together. A group is chosen by its estimated irradiance at the shading
+ * point, a light within it by power. */
+typedef struct light_group {
+    uint32_t first, count;      /* lights[first .. first + count) */
+    float power;                /* W, the sum of light_power */
+    vec3 center;                /* m: bounding sphere (lamps: position and radius) */
+    float radius;
+    distribution within;        /* count > 1: by power */
+} light_group;
 
 typedef struct light_table {
     light *lights;
     uint32_t count;
-    distribution pick;          /* by estimated power */
+    distribution pick;          /* by power: photon emission, and next-event estimation in scenes
+                                   with more than LIGHT_PICK_MAX_GROUPS groups */
+    light_group *groups;
+    uint32_t group_count;
     int32_t world;              /* index of the world light, −1 if black */
     uint32_t *shapes;           /* indices of lights a ray can hit: lamps with area, suns with an angle, world */
     uint32_t shape_count;
@@ -56,6 +72,9 @@ static inline void light_table_free(light_table *t)
     free(t->lights);
     free(t->shapes);
     distribution_free(&t->pick);
+    for (uint32_t g = 0; g < t->group_count; g++)
+        distribution_free(&t->groups[g].within);
+    free(t->groups);
     memset(t, 0, sizeof(*t));
     t->world = -1;
 }

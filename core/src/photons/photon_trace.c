@@ -27,6 +27,7 @@
 #include "scene/ray.h"
 #include "shading/material.h"
 #include "util/parallel.h"
+#include "photons/projection_map.h"
 #include "photons/radiance_estimate.h"
 
 #define PATHS_PER_BATCH 2048u
@@ -77,14 +78,15 @@ static float t_after(float t) { return fmaxf(t * (1.0f + 4e-6f), t + 1e-7f); }
 
 enum { DIM_EMIT = 0, DIM_SCATTER_BASE = 5, DIM_SCATTER_STRIDE = 4 };
 
-static void trace_path(const scene *s, const photon_trace_settings *ps, uint32_t map, uint64_t path, batch *out)
+static void trace_path(const scene *s, const photon_trace_settings *ps, uint32_t map, const projection_map *aim,
+                       uint64_t path, batch *out)
 {
     sampler smp = sampler_for_index(ps->seed, map, path);
     float u[5];
     for (int k = 0; k < 5; k++)
         u[k] = sampler_1d(&smp, DIM_EMIT + (uint32_t)k);
     vec3 o, d, power;
-    if (!light_sample_emission(s, u, &o, &d, &power))
+    if (!(aim ? projection_map_emit(s, aim, u, &o, &d, &power) : light_sample_emission(s, u, &o, &d, &power)))
         return;
     int specular_only = 1;   /* every scattering so far was a delta lobe */
     uint32_t depth = 0;      /* scattering events so far */
@@ -144,6 +146,7 @@ typedef struct wave {
     const scene *s;
     const photon_trace_settings *ps;
     uint32_t map;
+    const projection_map *aim;  /* the caustic map's emission, or NULL */
     uint64_t first_path, end_path;
     batch *batches;
     photon_trace_progress *progress;
@@ -161,7 +164,7 @@ static void trace_batch(void *ctx, uint32_t item, uint32_t thread)
     for (uint64_t i = begin; i < end; i++) {
         if ((i & 255u) == 0 && atomic_load_explicit(w->cancel, memory_order_relaxed))
             return;
-        trace_path(w->s, w->ps, w->map, i, b);
+        trace_path(w->s, w->ps, w->map, w->aim, i, b);
     }
     if (w->progress)
         atomic_fetch_add(&w->progress->emitted, end - begin);
@@ -187,7 +190,8 @@ static int caustic_yield_hopeless(uint64_t emitted, uint32_t stored, uint32_t ta
 
 /* Traces paths until `target` photons are kept; fills *kept (path order)
  * and *emitted. */
-static phos_status trace_map(const scene *s, const photon_trace_settings *ps, uint32_t map, uint32_t target,
+static phos_status trace_map(const scene *s, const photon_trace_settings *ps, uint32_t map, const projection_map *aim,
+                             uint32_t target,
                              batch *kept, uint64_t *emitted, atomic_int *cancel, photon_trace_progress *progress,
                              uint32_t stored_before)
 {
@@ -204,7 +208,8 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
     uint64_t next = 0, checkpoint = CAUSTIC_PROBE_PATHS;
     int done = 0;
     while (!done) {
-        wave w = {s, ps, map, next, next + (uint64_t)batches_per_wave * PATHS_PER_BATCH, batches, progress, cancel};
+        wave w = {s, ps, map, aim, next, next + (uint64_t)batches_per_wave * PATHS_PER_BATCH, batches, progress,
+                  cancel};
         if (w.end_path > ps->max_emitted)
             w.end_path = ps->max_emitted;
         uint32_t nb = (uint32_t)((w.end_path - next + PATHS_PER_BATCH - 1) / PATHS_PER_BATCH);
@@ -317,7 +322,7 @@ static phos_status trace_radiance_sites(const scene *s, const photon_trace_setti
 {
     batch kept;
     uint64_t emitted;
-    phos_status st = trace_map(s, ps, MAP_RADIANCE_SITES, n, &kept, &emitted, cancel, progress, out->global.count);
+    phos_status st = trace_map(s, ps, MAP_RADIANCE_SITES, NULL, n, &kept, &emitted, cancel, progress, out->global.count);
     if (st == PHOS_OK && kept.count > 0) {
         out->radiance_sites = malloc(sizeof(float) * 9 * kept.count);
         if (!out->radiance_sites) {
@@ -343,7 +348,7 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     batch kept;
     if (progress)
         atomic_store(&progress->map, PHOS_MAP_GLOBAL);
-    phos_status st = trace_map(s, ps, MAP_GLOBAL, ps->global_photons, &kept, &out->global_emitted, cancel, progress, 0);
+    phos_status st = trace_map(s, ps, MAP_GLOBAL, NULL, ps->global_photons, &kept, &out->global_emitted, cancel, progress, 0);
     if (st == PHOS_OK)
         st = fill_map(&out->global, &kept, out->global_emitted);
     uint32_t global_count = kept.count;
@@ -359,8 +364,15 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     uint32_t caustic_target = scene_can_scatter_delta(s) ? ps->caustic_photons : 0;
     if (progress)
         atomic_store(&progress->map, PHOS_MAP_CAUSTIC);
-    st = trace_map(s, ps, MAP_CAUSTIC, caustic_target, &kept, &out->caustic_emitted, cancel, progress,
-                   out->global.count);
+    /* Caustic photons leave only toward the objects that scatter delta
+     * (projection_map.h). */
+    projection_map aim;
+    if (caustic_target && !projection_map_build(&aim, s))
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    st = trace_map(s, ps, MAP_CAUSTIC, caustic_target ? &aim : NULL, caustic_target, &kept, &out->caustic_emitted,
+                   cancel, progress, out->global.count);
+    if (caustic_target)
+        projection_map_free(&aim);
     if (st == PHOS_OK)
         st = fill_map(&out->caustic, &kept, out->caustic_emitted);
     free(kept.items);

@@ -20,6 +20,7 @@ typedef struct material {
     phos_closure_desc closures[PHOS_MAX_CLOSURES];
     int emissive;               /* has an EMISSION closure */
     int transparent;            /* has a TRANSPARENT closure */
+    int transmits;              /* has a REFRACTION or GLASS closure: scatters light to its other side */
 } material;
 
 typedef struct image {

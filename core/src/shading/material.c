@@ -14,6 +14,7 @@ const material scene_default_material = {
       {1.0f, 1.0f, 1.0f}, -1.0f, 0}},
     0,
     0,
+    0,
 };
 
 static vec3 normal_to_world(const instance *inst, vec3 n)

@@ -1,0 +1,61 @@
+/*
+ * projection_map.h — caustic photons aimed at the objects that can make
+ * caustics (Jensen 1996, "Global Illumination using Photon Maps", §2.1;
+ * Jensen 2001 §5.1.5 "projection maps").
+ *
+ * A caustic photon must reach a delta-scattering surface first (L S+ D), so
+ * emitting it anywhere else is wasted work. Each light group (a lamp, or
+ * the emissive triangles of an instance) emits its caustic photons only
+ * into the cones of directions that can reach the bounding sphere of an
+ * object with a delta-scattering material; a sun only from the cells of
+ * the plane its photons start on that lie in such an object's shadow. The
+ * photon's power divides by that density, so the map is the same in
+ * expectation: every direction that can start a caustic path is still
+ * sampled. The world emits without a projection map.
+ */
+#ifndef PHOS_PROJECTION_MAP_H
+#define PHOS_PROJECTION_MAP_H
+
+#include <stdint.h>
+
+#include "phos.h"
+#include "sampling/distribution.h"
+#include "scene/scene.h"
+
+typedef struct projection_cone {
+    vec3 axis;                  /* unit, from the light toward the object */
+    float cos_max;              /* cos of the half angle */
+    float omega;                /* sr, 2π(1 − cos_max) */
+    float cdf_end;              /* the group's cones picked by solid angle: cumulative share */
+} projection_cone;
+
+typedef struct projection_group {
+    uint32_t first, count;      /* sun: projection_map.cells[first ..]; others: cones[first ..] */
+    uint32_t sun;
+    uint32_t all;               /* 1: no projection (the light sits among the specular objects,
+                                   or it is the world), emitted as for the global map */
+} projection_group;
+
+typedef struct projection_map {
+    projection_group *groups;   /* one per light group (light_table.groups) */
+    uint32_t group_count;
+    uint16_t *cells;            /* the suns' marked plane cells */
+    projection_cone *cones;
+    distribution pick;          /* groups by the power they send into their marked cells */
+    float marked_fraction;      /* of all power, the share sent into marked cells (diagnostics) */
+} projection_map;
+
+/* Marks the cells of every light group against the bounding spheres of
+ * the instances with delta-scattering materials. Returns 0 when memory is
+ * exhausted; a scene without such instances gets an empty map (every
+ * group `all`). */
+int projection_map_build(projection_map *pm, const scene *s);
+void projection_map_free(projection_map *pm);
+
+/* A caustic photon leaving a light toward its marked cells: as
+ * light_sample_emission, with the same five numbers and the flux divided
+ * by the projected densities. */
+int projection_map_emit(const scene *s, const projection_map *pm, const float u[5], vec3 *origin, vec3 *direction,
+                        vec3 *power);
+
+#endif /* PHOS_PROJECTION_MAP_H */
