@@ -27,6 +27,7 @@
 #include "scene/ray.h"
 #include "shading/material.h"
 #include "util/parallel.h"
+#include "photons/photon_importance.h"
 #include "photons/projection_map.h"
 #include "photons/radiance_estimate.h"
 
@@ -34,7 +35,10 @@
 #define RADIANCE_SITE_STRIDE 4u   /* Christensen: a quarter of the photons (RAD's default 0.25) */
 
 /* The photon passes; each draws its paths from a sample domain of its own. */
-enum { MAP_GLOBAL = 0, MAP_CAUSTIC = 1, MAP_RADIANCE_SITES = 2 };
+enum { MAP_GLOBAL = 0, MAP_CAUSTIC = 1, MAP_RADIANCE_SITES = 2, MAP_PILOT = 3 };
+
+#define PILOT_PHOTONS 8        /* pilot paths per sun cell */
+#define PILOT_FLOOR 0.005f     /* weight of a cell no pilot path of which reached what the camera reads */
 
 typedef struct traced_photon {
     vec3 position, power, direction; /* power: W for a single emitted photon */
@@ -78,6 +82,9 @@ static float t_after(float t) { return fmaxf(t * (1.0f + 4e-6f), t + 1e-7f); }
 
 enum { DIM_EMIT = 0, DIM_SCATTER_BASE = 5, DIM_SCATTER_STRIDE = 4 };
 
+static void trace_from(const scene *s, const photon_trace_settings *ps, uint32_t map, const sampler *smp, vec3 o,
+                       vec3 d, vec3 power, uint64_t path, batch *out);
+
 static void trace_path(const scene *s, const photon_trace_settings *ps, uint32_t map, const projection_map *aim,
                        uint64_t path, batch *out)
 {
@@ -88,6 +95,13 @@ static void trace_path(const scene *s, const photon_trace_settings *ps, uint32_t
     vec3 o, d, power;
     if (!(aim ? projection_map_emit(s, aim, u, &o, &d, &power) : light_sample_emission(s, u, &o, &d, &power)))
         return;
+    trace_from(s, ps, map, &smp, o, d, power, path, out);
+}
+
+static void trace_from(const scene *s, const photon_trace_settings *ps, uint32_t map, const sampler *sp, vec3 o, vec3 d,
+                       vec3 power, uint64_t path, batch *out)
+{
+    const sampler smp = *sp;
     int specular_only = 1;   /* every scattering so far was a delta lobe */
     uint32_t depth = 0;      /* scattering events so far */
     float tmin = 0.0f;
@@ -317,12 +331,13 @@ void photon_maps_free(photon_maps *m)
  * an estimate, 27 % where sparse photons leave an estimate a handful
  * (measured in a sunlit room; docs/algorithms.md §5.3). Independent paths
  * make the sites independent of the photons they are estimated from. */
-static phos_status trace_radiance_sites(const scene *s, const photon_trace_settings *ps, photon_maps *out, uint32_t n,
-                                        atomic_int *cancel, photon_trace_progress *progress)
+static phos_status trace_radiance_sites(const scene *s, const photon_trace_settings *ps, const projection_map *aim,
+                                        photon_maps *out, uint32_t n, atomic_int *cancel,
+                                        photon_trace_progress *progress)
 {
     batch kept;
     uint64_t emitted;
-    phos_status st = trace_map(s, ps, MAP_RADIANCE_SITES, NULL, n, &kept, &emitted, cancel, progress, out->global.count);
+    phos_status st = trace_map(s, ps, MAP_RADIANCE_SITES, aim, n, &kept, &emitted, cancel, progress, out->global.count);
     if (st == PHOS_OK && kept.count > 0) {
         out->radiance_sites = malloc(sizeof(float) * 9 * kept.count);
         if (!out->radiance_sites) {
@@ -342,20 +357,110 @@ static phos_status trace_radiance_sites(const scene *s, const photon_trace_setti
     return st;
 }
 
+/* Pilot photons through each sun cell (docs/algorithms.md §3.1): a cell's
+ * weight is the share of its pilot paths that store a photon where the
+ * camera reads photons (photon_importance.h), never below PILOT_FLOOR, so
+ * that every cell keeps a chance and the map stays unbiased. */
+typedef struct pilot {
+    const scene *s;
+    const photon_trace_settings *ps;
+    const projection_map *pm;
+    const photon_importance *imp;
+    const uint32_t *cell_group;  /* the group of each listed cell */
+    float *weights;
+} pilot;
+
+static void pilot_cell(void *ctx, uint32_t item, uint32_t thread)
+{
+    (void)thread;
+    pilot *p = ctx;
+    uint32_t g = p->cell_group[item];
+    uint32_t k = item - p->pm->groups[g].first;
+    batch b;
+    memset(&b, 0, sizeof(b));
+    uint32_t useful = 0;
+    for (uint32_t i = 0; i < PILOT_PHOTONS; i++) {
+        uint64_t path = (uint64_t)item * PILOT_PHOTONS + i;
+        sampler smp = sampler_for_index(p->ps->seed, MAP_PILOT, path);
+        vec3 o, d;
+        projection_map_cell_ray(p->s, p->pm, g, k, sampler_2d(&smp, DIM_EMIT + 1), sampler_2d(&smp, DIM_EMIT + 3), &o,
+                                &d);
+        b.count = 0;
+        trace_from(p->s, p->ps, MAP_GLOBAL, &smp, o, d, v3s(1.0f), path, &b);
+        for (uint32_t j = 0; j < b.count; j++)
+            if (photon_importance_marked(p->imp, b.items[j].position, b.items[j].normal)) {
+                useful++;
+                break;
+            }
+    }
+    free(b.items);
+    p->weights[item] = fmaxf((float)useful / PILOT_PHOTONS, PILOT_FLOOR);
+}
+
+/* Global photons from suns aimed at what the camera reads; NULL (*aim
+ * untouched) where there is no sun or camera. */
+static phos_status aim_global(const scene *s, const photon_trace_settings *ps, projection_map *aim, int *aimed,
+                              atomic_int *cancel)
+{
+    *aimed = 0;
+    int has_sun = 0;
+    for (uint32_t i = 0; i < s->lights.count; i++)
+        has_sun |= s->lights.lights[i].kind == LIGHT_SUN;
+    if (!has_sun || !s->has_camera)
+        return PHOS_OK;
+    photon_importance imp;
+    if (!photon_importance_build(&imp, s) || !projection_map_build_suns(aim, s)) {
+        photon_importance_free(&imp);
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    }
+    uint32_t cells = 0;
+    for (uint32_t g = 0; g < aim->group_count; g++)
+        cells += aim->groups[g].sun ? aim->groups[g].count : 0;
+    float *weights = malloc(sizeof(float) * (cells ? cells : 1));
+    uint32_t *cell_group = malloc(sizeof(uint32_t) * (cells ? cells : 1));
+    phos_status st = weights && cell_group ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
+    if (st == PHOS_OK) {
+        for (uint32_t g = 0; g < aim->group_count; g++)
+            for (uint32_t k = 0; aim->groups[g].sun && k < aim->groups[g].count; k++)
+                cell_group[aim->groups[g].first + k] = g;
+        pilot p = {s, ps, aim, &imp, cell_group, weights};
+        if (!parallel_for(cells, parallel_thread_count(ps->threads), pilot_cell, &p, cancel))
+            st = PHOS_ERROR_CANCELLED;
+        else if (!projection_map_set_weights(aim, s, weights))
+            st = PHOS_ERROR_OUT_OF_MEMORY;
+    }
+    free(weights);
+    free(cell_group);
+    photon_importance_free(&imp);
+    if (st != PHOS_OK)
+        projection_map_free(aim);
+    else
+        *aimed = 1;
+    return st;
+}
+
 phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, photon_maps *out, atomic_int *cancel,
                               photon_trace_progress *progress)
 {
     batch kept;
     if (progress)
         atomic_store(&progress->map, PHOS_MAP_GLOBAL);
-    phos_status st = trace_map(s, ps, MAP_GLOBAL, NULL, ps->global_photons, &kept, &out->global_emitted, cancel, progress, 0);
+    projection_map global_aim;
+    int aimed = 0;
+    phos_status st = ps->global_photons ? aim_global(s, ps, &global_aim, &aimed, cancel) : PHOS_OK;
+    if (st != PHOS_OK)
+        return st;
+    const projection_map *ga = aimed ? &global_aim : NULL;
+    st = trace_map(s, ps, MAP_GLOBAL, ga, ps->global_photons, &kept, &out->global_emitted, cancel, progress, 0);
     if (st == PHOS_OK)
         st = fill_map(&out->global, &kept, out->global_emitted);
     uint32_t global_count = kept.count;
     free(kept.items);
     if (st == PHOS_OK && global_count > 0)
-        st = trace_radiance_sites(s, ps, out, (global_count + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE, cancel,
-                                  progress);
+        st = trace_radiance_sites(s, ps, ga, out, (global_count + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE,
+                                  cancel, progress);
+    if (aimed)
+        projection_map_free(&global_aim);
     if (st != PHOS_OK)
         return st;
     /* A caustic photon needs a delta scattering on its way (L S+ D): in a

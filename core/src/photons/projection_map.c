@@ -158,6 +158,7 @@ void projection_map_free(projection_map *pm)
 {
     free(pm->groups);
     free(pm->cells);
+    free(pm->cell_cum);
     free(pm->cones);
     distribution_free(&pm->pick);
     memset(pm, 0, sizeof(*pm));
@@ -168,12 +169,17 @@ static int append_cell(projection_map *pm, uint32_t *capacity, uint32_t cell)
     if (pm->groups[pm->group_count].first + pm->groups[pm->group_count].count == *capacity) {
         uint32_t cap = *capacity ? *capacity * 2 : 1024;
         uint16_t *n = realloc(pm->cells, sizeof(uint16_t) * cap);
-        if (!n)
+        if (n)
+            pm->cells = n;
+        float *c = realloc(pm->cell_cum, sizeof(float) * cap);
+        if (c)
+            pm->cell_cum = c;
+        if (!n || !c)
             return 0;
-        pm->cells = n;
         *capacity = cap;
     }
     projection_group *g = &pm->groups[pm->group_count];
+    pm->cell_cum[g->first + g->count] = (float)(g->count + 1); /* weight 1 each */
     pm->cells[g->first + g->count++] = (uint16_t)cell;
     return 1;
 }
@@ -310,18 +316,139 @@ int projection_map_build(projection_map *pm, const scene *s)
     return ok;
 }
 
+/* The power a sun group sends through its cells as weighted: E·Σ w·A. */
+static float sun_weight(const light_table *tab, const projection_map *pm, uint32_t g)
+{
+    const light *l = &tab->lights[tab->groups[g].first];
+    const projection_group *pg = &pm->groups[g];
+    sun_plane p = plane_of(tab, l);
+    float side = 2.0f * p.half / PLANE_CELLS;
+    return fmaxf(v3_average(l->color), 0.0f) * side * side * pm->cell_cum[pg->first + pg->count - 1];
+}
+
+static int rebuild_pick(projection_map *pm, const scene *s)
+{
+    const light_table *tab = &s->lights;
+    float *weight = malloc(sizeof(float) * tab->group_count);
+    if (!weight)
+        return 0;
+    for (uint32_t g = 0; g < tab->group_count; g++) {
+        const projection_group *pg = &pm->groups[g];
+        weight[g] = pg->all || !pg->sun ? tab->groups[g].power : (pg->count ? sun_weight(tab, pm, g) : 0.0f);
+    }
+    distribution_free(&pm->pick);
+    int ok = distribution_build(&pm->pick, weight, tab->group_count);
+    free(weight);
+    return ok;
+}
+
+int projection_map_build_suns(projection_map *pm, const scene *s)
+{
+    memset(pm, 0, sizeof(*pm));
+    const light_table *tab = &s->lights;
+    if (tab->group_count == 0)
+        return 1;
+    pm->groups = calloc(tab->group_count, sizeof(projection_group));
+    if (!pm->groups)
+        return 0;
+    /* One target, the scene's bounding sphere: every cell a photon can
+     * reach the scene from. */
+    sphere scene_sphere = {tab->center, tab->radius};
+    uint32_t capacity = 0, first = 0;
+    int ok = 1;
+    for (uint32_t g = 0; ok && g < tab->group_count; g++) {
+        const light *l = &tab->lights[tab->groups[g].first];
+        projection_group *pg = &pm->groups[g];
+        pg->first = first;
+        if (l->kind != LIGHT_SUN) {
+            pg->all = 1;
+        } else {
+            pg->sun = 1;
+            mark_sun(pm, &capacity, tab, l, &scene_sphere, 1, &ok);
+            first += pg->count;
+        }
+        pm->group_count++;
+    }
+    if (ok)
+        ok = rebuild_pick(pm, s);
+    if (!ok)
+        projection_map_free(pm);
+    return ok;
+}
+
+/* Each cell takes the largest weight of its 3 × 3 neighbourhood: a cell
+ * only partly over an opening, which the pilots may all have missed, lies
+ * beside one they found, and keeps its full share. Otherwise its photons
+ * that do pass would carry 1/PILOT_FLOOR times the power of the others and
+ * blotch the map. */
+int projection_map_set_weights(projection_map *pm, const scene *s, const float *weights)
+{
+    float *grid = malloc(sizeof(float) * PLANE_CELLS * PLANE_CELLS);
+    if (!grid)
+        return 0;
+    for (uint32_t g = 0; g < pm->group_count; g++) {
+        const projection_group *pg = &pm->groups[g];
+        if (pg->all || !pg->sun)
+            continue;
+        memset(grid, 0, sizeof(float) * PLANE_CELLS * PLANE_CELLS);
+        for (uint32_t k = 0; k < pg->count; k++)
+            grid[pm->cells[pg->first + k]] = weights[pg->first + k];
+        float cum = 0.0f;
+        for (uint32_t k = 0; k < pg->count; k++) {
+            int cx = pm->cells[pg->first + k] % PLANE_CELLS, cy = pm->cells[pg->first + k] / PLANE_CELLS;
+            float w = 0.0f;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) {
+                    int x = cx + dx, y = cy + dy;
+                    if (x >= 0 && y >= 0 && x < PLANE_CELLS && y < PLANE_CELLS)
+                        w = fmaxf(w, grid[y * PLANE_CELLS + x]);
+                }
+            cum += w;
+            pm->cell_cum[pg->first + k] = cum;
+        }
+    }
+    free(grid);
+    return rebuild_pick(pm, s);
+}
+
 /* ------------------------------------------------------------- emission */
 
-/* A uniform point of one of `count` cells: cell from u.x, rescaled to the
- * position within it. */
-static uint32_t pick_cell(const projection_map *pm, const projection_group *g, float *u)
+/* A cell of the group by weight, from u (rescaled to the position within
+ * it); *share receives the cell's weight over the group's total. */
+static uint32_t pick_cell(const projection_map *pm, const projection_group *g, float *u, float *share)
 {
-    float x = *u * (float)g->count;
-    uint32_t k = (uint32_t)x;
-    if (k >= g->count)
-        k = g->count - 1;
-    *u = fminf(x - (float)k, 0x1.fffffep-1f);
-    return pm->cells[g->first + k];
+    const float *cum = pm->cell_cum + g->first;
+    float total = cum[g->count - 1], x = *u * total;
+    uint32_t lo = 0, hi = g->count - 1; /* the first k with cum[k] > x */
+    while (lo < hi) {
+        uint32_t mid = (lo + hi) / 2;
+        if (cum[mid] > x)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    float below = lo ? cum[lo - 1] : 0.0f, w = cum[lo] - below;
+    *u = fminf(fmaxf((x - below) / w, 0.0f), 0x1.fffffep-1f);
+    *share = w / total;
+    return pm->cells[g->first + lo];
+}
+
+/* Origin on the sun's plane in `cell` and direction, from u and ud. */
+static void sun_cell_ray(const light *l, const sun_plane *p, uint32_t cell, float2 u, float2 ud, vec3 *origin,
+                         vec3 *direction)
+{
+    float side = 2.0f * p->half / PLANE_CELLS;
+    float px = ((float)(cell % PLANE_CELLS) + u.x) * side, py = ((float)(cell / PLANE_CELLS) + u.y) * side;
+    *origin = v3_add(p->corner, v3_add(v3_scale(p->f.t, px), v3_scale(p->f.b, py)));
+    *direction = l->sun_cos_half < 1.0f ? warp_cone(l->direction, l->sun_cos_half, ud) : l->direction;
+}
+
+void projection_map_cell_ray(const scene *s, const projection_map *pm, uint32_t g, uint32_t k, float2 u, float2 ud,
+                             vec3 *origin, vec3 *direction)
+{
+    const light *l = &s->lights.lights[s->lights.groups[g].first];
+    sun_plane p = plane_of(&s->lights, l);
+    sun_cell_ray(l, &p, pm->cells[pm->groups[g].first + k], u, ud, origin, direction);
 }
 
 int projection_map_emit(const scene *s, const projection_map *pm, const float u[5], vec3 *origin, vec3 *direction,
@@ -347,21 +474,17 @@ int projection_map_emit(const scene *s, const projection_map *pm, const float u[
         return 0;
     } else if (l->kind == LIGHT_SUN) {
         sun_plane p = plane_of(tab, l);
-        float side = 2.0f * p.half / PLANE_CELLS;
-        float x = u[1];
-        uint32_t cell = pick_cell(pm, pg, &x);
-        float px = ((float)(cell % PLANE_CELLS) + x) * side, py = ((float)(cell / PLANE_CELLS) + u[2]) * side;
-        *origin = v3_add(p.corner, v3_add(v3_scale(p.f.t, px), v3_scale(p.f.b, py)));
-        float area = (float)pg->count * side * side; /* 1/p_A */
+        float side = 2.0f * p.half / PLANE_CELLS, share;
+        float2 uc = {u[1], u[2]}, ud = {u[3], u[4]};
+        uint32_t cell = pick_cell(pm, pg, &uc.x, &share);
+        sun_cell_ray(l, &p, cell, uc, ud, origin, direction);
+        float area = side * side / share; /* 1/p_A: the cell's area over its probability */
         if (l->sun_cos_half < 1.0f) {
             /* Through a plane across the axis, radiance L from direction d
              * brings L·cos θ per unit area and solid angle. */
-            float2 ud = {u[3], u[4]};
-            *direction = warp_cone(l->direction, l->sun_cos_half, ud);
             float omega = 2.0f * PHOS_PI * (1.0f - l->sun_cos_half);
             flux = v3_scale(l->sun_radiance, v3_dot(*direction, l->direction) * omega * area);
         } else {
-            *direction = l->direction;
             flux = v3_scale(l->color, area); /* E / p_A */
         }
     } else {

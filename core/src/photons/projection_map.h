@@ -20,6 +20,7 @@
 
 #include "phos.h"
 #include "sampling/distribution.h"
+#include "sampling/sampler.h"
 #include "scene/scene.h"
 
 typedef struct projection_cone {
@@ -40,6 +41,8 @@ typedef struct projection_map {
     projection_group *groups;   /* one per light group (light_table.groups) */
     uint32_t group_count;
     uint16_t *cells;            /* the suns' marked plane cells */
+    float *cell_cum;            /* their weights, cumulative within each group (the caustic map's
+                                   are all 1; the global map's come from pilot photons) */
     projection_cone *cones;
     distribution pick;          /* groups by the power they send into their marked cells */
     float marked_fraction;      /* of all power, the share sent into marked cells (diagnostics) */
@@ -51,6 +54,20 @@ typedef struct projection_map {
  * group `all`). */
 int projection_map_build(projection_map *pm, const scene *s);
 void projection_map_free(projection_map *pm);
+
+/* For the global map: every sun's cells over the scene's bounds, each of
+ * weight 1 until projection_map_set_weights; the other lights emit as
+ * usual. Returns 0 when memory is exhausted. */
+int projection_map_build_suns(projection_map *pm, const scene *s);
+
+/* A photon's origin and direction through cell k of sun group g (u: the
+ * point in the cell, ud: the direction in the sun's cone), for pilots. */
+void projection_map_cell_ray(const scene *s, const projection_map *pm, uint32_t g, uint32_t k, float2 u, float2 ud,
+                             vec3 *origin, vec3 *direction);
+
+/* Sets the weights of the cells of every sun group (weights[first + k] as
+ * listed, each > 0) and the groups' pick weights to match. */
+int projection_map_set_weights(projection_map *pm, const scene *s, const float *weights);
 
 /* A caustic photon leaving a light toward its marked cells: as
  * light_sample_emission, with the same five numbers and the flux divided
