@@ -9,6 +9,10 @@
 #   make install | uninstall              add-on into the user's Blender
 #   make package                          dist/phos-<version>.zip
 #   make bench [BENCH_ARGS=...]           kd-tree benchmark vs nanoflann (not in make test)
+#   make bench-defaults                   PHOTON settings swept against cached Cycles
+#               [BENCH_SCENES=...]        references, ranked by error per second, and
+#                                         the defaults against Cycles at equal time
+#                                         (docs/benchmarks.md; about an hour)
 #   make image-digests [DIGESTS=file]     SHA-256 of every pass of every test scene, per
 #                                         integrator (compare before/after a refactoring)
 #   make deps | build | clean
@@ -41,10 +45,10 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
-.PHONY: deps build binding check-binding test test-blender4 bench render image-digests install uninstall package clean help
+.PHONY: deps build binding check-binding test test-blender4 bench bench-defaults render image-digests install uninstall package clean help
 
 help:
-	@sed -n '3,17p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,21p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -90,6 +94,28 @@ bench:
 	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DPHOS_BUILD_BENCH=ON -DPHOS_BUILD_TESTS=OFF
 	cmake --build $(BENCH_DIR) -j $(JOBS) --target bench_kdtree
 	$(BENCH_DIR)/bench/bench_kdtree $(BENCH_ARGS)
+
+# Image quality against time (bench/quality.py, docs/benchmarks.md): the
+# Cycles references are cached in BENCH_REF_DIR and only extended, never
+# re-rendered; the CSVs go to out/bench/.
+BENCH_REF_DIR    ?= $(HOME)/.cache/phos-bench
+BENCH_SCENES     ?= cornell_box sunlit_room
+BENCH_RESOLUTION ?= 128 128
+BENCH_REF_CHUNKS ?= 32
+BENCH_GRID       ?= samples=16,32,64,128,256 final_gather_rays=1,2,4,8 global_photons=50000,200000,800000
+BENCH_QUALITY := $(BLENDER_ISOLATED) $(BLENDER_RUN) --python bench/quality.py --
+BENCH_QUIET   := grep --line-buffered -v '^Fra:'
+bench-defaults: build
+	mkdir -p out/bench
+	for s in $(BENCH_SCENES); do \
+	  $(BENCH_QUALITY) reference --scene $$s --resolution $(BENCH_RESOLUTION) \
+	    --chunks $(BENCH_REF_CHUNKS) --reference-dir $(BENCH_REF_DIR) | $(BENCH_QUIET); \
+	  $(BENCH_QUALITY) sweep --scene $$s --resolution $(BENCH_RESOLUTION) --reference-dir $(BENCH_REF_DIR) \
+	    --grid "$(BENCH_GRID)" --csv out/bench/sweep_$$s.csv | $(BENCH_QUIET); \
+	  $(BENCH_QUALITY) equal-time --scene $$s --resolution $(BENCH_RESOLUTION) --reference-dir $(BENCH_REF_DIR) \
+	    --csv out/bench/equal_time_$$s.csv | $(BENCH_QUIET); \
+	done
+	python3 bench/defaults_report.py $(foreach s,$(BENCH_SCENES),out/bench/sweep_$(s).csv)
 
 # Not a test: digests depend on the compiler, Embree and the CPU, so two runs
 # are compared on one machine (tools/image-digests.py).

@@ -78,6 +78,23 @@ def _stage_text(progress, stage_id, name, samples):
     return name
 
 
+# Wall time (s) of the last final render: "export" (export and BVH build)
+# and each stage it ran, by enum phos_stage; `blender -b` prints them at the
+# end of a render, and scripts that measure Phos read them here
+# (bench/quality.py).
+last_render_seconds = {}
+
+
+def _timing(plan, progress, export_seconds):
+    """({"export": s, stage id: s, ...}, 'exporting and building the BVH 0.05 s, ...')."""
+    seconds, parts = {"export": export_seconds}, [("exporting and building the BVH", export_seconds)]
+    for stage_id, name in plan:
+        if stage_id not in (core.PHOS_STAGE_WAITING, core.PHOS_STAGE_FINISHED):
+            seconds[stage_id] = progress.stage_seconds[stage_id]
+            parts.append((name.lower(), seconds[stage_id]))
+    return seconds, ", ".join("%s %.2f s" % part for part in parts)
+
+
 class PhosRenderEngine(bpy.types.RenderEngine):
     bl_idname = "PHOS"
     bl_label = "Phos"
@@ -191,10 +208,16 @@ class PhosRenderEngine(bpy.types.RenderEngine):
                 for _label, pass_id in enabled_passes(depsgraph.view_layer):
                     rs.pass_mask |= 1 << pass_id
 
+            export_seconds = time.perf_counter() - t0
             with core.Render(core_scene, rs) as render:
                 self._plan = render.stages()
                 render.start()
                 self._poll(render, rs)
+                if not self.is_preview:
+                    seconds, text = _timing(self._plan, render.progress(), export_seconds)
+                    last_render_seconds.clear()
+                    last_render_seconds.update(seconds)
+                    print("Phos: " + text)
 
     def _poll(self, render, rs):
         """Deliver tiles as they finish until the render ends or is cancelled."""

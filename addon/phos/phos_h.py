@@ -271,6 +271,7 @@ class phos_progress(ctypes.Structure):
         ("global_photons", ctypes.c_uint32),
         ("caustic_photons", ctypes.c_uint32),
         ("photon_map", ctypes.c_uint32),
+        ("stage_seconds", ctypes.c_double * 6),
     ]
 
 
@@ -441,7 +442,7 @@ RENDER_SETTINGS = (
         label='Max Radius',
         description="Largest search radius of a radiance estimate; 0 chooses it from the scene's size (its diagonal / 40)"),
     RenderSetting(
-        name='final_gather_rays', ctype='uint32_t', default=32, min=1, max=65536,
+        name='final_gather_rays', ctype='uint32_t', default=4, min=1, max=65536,
         user=True, prop='final_gather_rays', kind='NUMBER', enum=None, soft_max=1024,
         label='Final Gather Rays',
         description='Gather rays per camera sample at the first diffuse surface (final gathering and the path-traced gather)'),

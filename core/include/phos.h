@@ -339,7 +339,11 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
     USER(float, max_radius, 0.0f, 0.0f, FLT_MAX, max_radius, LENGTH, 10.0f, "Max Radius",         \
          "Largest search radius of a radiance estimate; 0 chooses it from the "                   \
          "scene's size (its diagonal / 40)")                                                      \
-    USER(uint32_t, final_gather_rays, 32, 1, 65536, final_gather_rays, NUMBER, 1024,              \
+    /* 4: the most image quality per second on the Cornell box and the sunlit                   \
+     * room (docs/benchmarks.md): the sampler stratifies each ray's directions                  \
+     * over the pixel's samples, so more samples with few rays each beat the                    \
+     * reverse. */                                                                              \
+    USER(uint32_t, final_gather_rays, 4, 1, 65536, final_gather_rays, NUMBER, 1024,               \
          "Final Gather Rays", "Gather rays per camera sample at the first diffuse surface "       \
          "(final gathering and the path-traced gather)")                                          \
     USER(uint32_t, photon_view, PHOS_PHOTON_VIEW_FINAL_GATHER, 0, PHOS_PHOTON_VIEW_PATH_TRACED,   \
@@ -414,6 +418,11 @@ typedef struct phos_progress {
     uint64_t photons_emitted;  /* photon paths so far */
     uint32_t global_photons, caustic_photons; /* in the maps, once built */
     uint32_t photon_map;       /* TRACING_PHOTONS: the map being traced (enum phos_photon_map) */
+    /* Wall time (s) each stage has run, by enum phos_stage: the whole of a
+     * finished stage, the running one so far, 0 for one not reached or not
+     * in the plan. What a photon render spends on its maps, and the part of
+     * a render that does not grow with the pixel count (docs/benchmarks.md). */
+    double stage_seconds[PHOS_STAGE_COUNT];
 } phos_progress;
 PHOS_API phos_status phos_render_progress(phos_render *render, phos_progress *out);
 

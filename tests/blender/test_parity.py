@@ -147,7 +147,7 @@ def compare(name, scene, tmp_path):
         % (name, D, NOISE_FACTOR, V, ratio, var_p, var_c))
 
 
-@pytest.mark.parametrize("name", ["cornell_box"])
+@pytest.mark.parametrize("name", ["cornell_box", "sunlit_room"])
 def test_scene_script(name, scene, tmp_path):
     """The scenes/ scripts, built as they build themselves (their own camera and lights)."""
     import importlib

@@ -343,9 +343,26 @@ static void check_plan(phos_scene *s, uint32_t integrator, uint32_t view, uint32
     phos_progress p;
     CHECK(phos_render_progress(r, &p) == PHOS_OK && p.stage_index == 0 && p.stage_id == PHOS_STAGE_WAITING &&
           strcmp(p.stage, "Waiting") == 0);
+    for (uint32_t k = 0; k < PHOS_STAGE_COUNT; k++)
+        CHECK_MSG(p.stage_seconds[k] == 0.0, "stage %u: %g s before the start", k, p.stage_seconds[k]);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
     CHECK(phos_render_progress(r, &p) == PHOS_OK && p.stage_index == n - 1 && p.stage_id == PHOS_STAGE_FINISHED &&
           strcmp(p.stage, plan[n - 1].name) == 0);
+    /* Every stage the plan ran took some time, the others none, and
+     * together they fit in the wall time from start to wait. */
+    double wall = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec), sum = 0.0;
+    for (uint32_t k = 0; k < PHOS_STAGE_COUNT; k++) {
+        int ran = 0;
+        for (uint32_t i = 1; i + 1 < n; i++)
+            ran |= plan[i].id == k;
+        CHECK_MSG(ran ? p.stage_seconds[k] > 0.0 : p.stage_seconds[k] == 0.0, "stage %u (%s the plan): %g s", k,
+                  ran ? "in" : "not in", p.stage_seconds[k]);
+        sum += p.stage_seconds[k];
+    }
+    CHECK_MSG(sum <= wall, "stages %g s in %g s from start to finish", sum, wall);
     /* A short buffer gets the first stages and the full count. */
     phos_stage_info first;
     CHECK(phos_render_stages(r, &first, 1, &n) == PHOS_OK && n == want_count && first.id == PHOS_STAGE_WAITING);

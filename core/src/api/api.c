@@ -578,6 +578,7 @@ phos_status phos_render_create(phos_scene *s, const phos_render_settings *rs, ph
     atomic_init(&r->photon_progress.map, PHOS_MAP_GLOBAL);
     r->state = PHOS_STATE_IDLE;
     r->status = PHOS_OK;
+    r->stage_started = -1.0;
     r->scene = s;
     atomic_fetch_add(&s->refcount, 1);
     if (!render_prepare(r)) {
@@ -629,6 +630,9 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     memset(out, 0, sizeof(*out));
     pthread_mutex_lock(&r->lock);
     out->state = r->state;
+    memcpy(out->stage_seconds, r->stage_seconds, sizeof(out->stage_seconds));
+    if (r->stage_started >= 0.0) /* a stage is running */
+        out->stage_seconds[r->plan.stages[atomic_load(&r->stage_index)]] += monotonic_seconds() - r->stage_started;
     pthread_mutex_unlock(&r->lock);
     out->tiles_total = r->tile_count;
     out->tiles_done = atomic_load(&r->tiles_done);

@@ -115,6 +115,7 @@ static void trace_from(const scene *s, const photon_trace_settings *ps, uint32_t
         material_bsdf(s, &sf, &b);
         if (b.count == 0)
             return; /* absorbed (black, or an emitter only) */
+        bsdf_set_adjoint(&b);
         if (bsdf_has_non_delta(&b)) {
             int caustic = specular_only && depth > 0;
             if (map != MAP_CAUSTIC || caustic) {
@@ -135,7 +136,10 @@ static void trace_from(const scene *s, const photon_trace_settings *ps, uint32_t
         bsdf_sample bs;
         if (!bsdf_sample_direction(&b, v3_neg(d), sampler_1d(&smp, dim), sampler_2d(&smp, dim + 1), &bs))
             return;
-        vec3 scattered = v3_mul(power, bs.weight);
+        /* Light flows from -d toward bs.wi: the adjoint BSDF (bsdf.h). */
+        vec3 weight = (bs.flags & (BSDF_DELTA | BSDF_TRANSPARENT)) ? bs.weight
+                                                                 : bsdf_adjoint_weight(&b, v3_neg(d), bs.wi, bs.pdf);
+        vec3 scattered = v3_mul(power, weight);
         float p = fminf(1.0f, v3_max_component(scattered) / v3_max_component(power));
         if (!(p > 0.0f) || sampler_1d(&smp, dim + 3) >= p)
             return;

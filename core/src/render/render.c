@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "scene/embree.h"
 #include "util/parallel.h"
@@ -255,6 +256,13 @@ static phos_status run_stage(render *r, uint32_t stage)
     }
 }
 
+double monotonic_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static void *controller_main(void *arg)
 {
     render *r = arg;
@@ -266,8 +274,15 @@ static void *controller_main(void *arg)
             st = PHOS_ERROR_CANCELLED;
             break;
         }
+        pthread_mutex_lock(&r->lock);
+        r->stage_started = monotonic_seconds();
         atomic_store(&r->stage_index, i);
+        pthread_mutex_unlock(&r->lock);
         st = run_stage(r, r->plan.stages[i]);
+        pthread_mutex_lock(&r->lock);
+        r->stage_seconds[r->plan.stages[i]] += monotonic_seconds() - r->stage_started;
+        r->stage_started = -1.0;
+        pthread_mutex_unlock(&r->lock);
     }
     if (st == PHOS_ERROR_OUT_OF_MEMORY)
         fail(r, st, "out of memory while rendering (try fewer photons or a smaller image)");

@@ -43,6 +43,8 @@ struct phos_render {
     uint32_t state;                /* enum phos_render_state */
     phos_status status;
     char error[512];
+    double stage_seconds[PHOS_STAGE_COUNT]; /* wall time of each finished stage, s */
+    double stage_started;          /* when the running stage began, s (monotonic clock); < 0 between stages */
 
     atomic_int cancel;
     pthread_t controller;
@@ -57,5 +59,7 @@ int render_prepare(render *r);
 phos_status render_start(render *r);
 void render_join(render *r);
 void render_free(render *r);
+/* Seconds on the monotonic clock (stage timings). */
+double monotonic_seconds(void);
 
 #endif /* PHOS_RENDER_H */

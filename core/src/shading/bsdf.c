@@ -222,6 +222,17 @@ static vec3 eval_refraction(const closure *c, const query *q, float *pdf)
     return v3_scale(c->weight, ggx_refraction(q, c->alpha, c->eta, 0, &h, pdf));
 }
 
+/* The probability with which a MACRO glass picks its reflection lobe: F at
+ * the shading normal, capped for photons (bsdf_set_adjoint) where a rough
+ * refraction lobe exists. A sharp glass keeps F: its lobes are deltas,
+ * whose adjoint is the lobe itself. */
+static float macro_reflect_pick(const closure *c, float F)
+{
+    if (c->adjoint && !closure_is_sharp(c) && !refraction_is_sharp(c) && !closure_index_matched(c))
+        return fminf(F, BSDF_ADJOINT_MAX_REFLECT);
+    return F;
+}
+
 static vec3 eval_glass(const closure *c, const query *q, float *pdf)
 {
     vec3 h;
@@ -240,16 +251,26 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
         lobe = q->wi.z > 0.0f ? fresnel_dielectric(cos_oh, c->eta)
                               : fresnel_dielectric_transmittance(cos_oh, c->eta);
     } else {
-        /* Cycles 3.4: two closures weighted F and 1 − F, F at the shading normal. */
+        /* Cycles 3.4: two closures weighted F and 1 − F, F at the shading
+         * normal; sampling picks them with macro_reflect_pick. */
+        float F = fresnel_dielectric(q->wo.z, c->eta), pick = macro_reflect_pick(c, F);
         if (q->wi.z > 0.0f) {
             v = closure_is_sharp(c) ? 0.0f : ggx_reflection(q, c->alpha, 0, &h, pdf);
-            lobe = fresnel_dielectric(q->wo.z, c->eta);
+            lobe = F;
+            *pdf *= pick;
         } else {
             v = (closure_index_matched(c) || refraction_is_sharp(c))
                     ? 0.0f
                     : ggx_refraction(q, c->alpha_t, c->eta, 0, &h, pdf);
             lobe = fresnel_dielectric_transmittance(q->wo.z, c->eta);
+            *pdf *= pick < F ? 1.0f - pick : lobe; /* lobe: 1 − F without cancellation */
         }
+        if (v == 0.0f) {
+            *pdf = 0.0f;
+            return v3s(0.0f);
+        }
+        vec3 colour = q->wi.z > 0.0f ? c->weight : v3_mul(c->weight, c->transmission_tint);
+        return v3_scale(colour, v * lobe);
     }
     if (v == 0.0f) {
         *pdf = 0.0f;
@@ -344,7 +365,7 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
 
     /* Fresnel at the shading normal (MACRO, or any sharp glass). */
     float F = fresnel_dielectric(wo.z, c->eta);
-    if (u_lobe < F) {
+    if (u_lobe < macro_reflect_pick(c, F)) {
         if (closure_is_sharp(c))
             return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_scale(c->weight, F), F);
         vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
@@ -504,6 +525,7 @@ int bsdf_add_closure(bsdf *b, const closure *c)
     if (c->type == PHOS_CLOSURE_EMISSION || c->type >= PHOS_CLOSURE_TYPE_COUNT)
         return 1;
     closure k = *c;
+    k.adjoint = 0;
     if (!v3_is_finite(k.weight))
         return 1;
     /* Clamp parameters into their domains as Cycles' setup functions do. */
@@ -535,6 +557,38 @@ vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
     if (pdf)
         *pdf = p;
     return value;
+}
+
+void bsdf_set_adjoint(bsdf *b)
+{
+    for (uint32_t i = 0; i < b->count; i++)
+        b->closures[i].adjoint = 1;
+}
+
+/* The surface as material_bsdf builds it for a ray from the other side. */
+static void bsdf_other_side(const bsdf *b, bsdf *out)
+{
+    *out = *b;
+    out->shading = frame_from_normal(v3_neg(b->shading.n));
+    out->ng = v3_neg(b->ng);
+    for (uint32_t i = 0; i < out->count; i++)
+        if (out->closures[i].type != PHOS_CLOSURE_REFLECTION_FRESNEL) /* its IOR is the coating's, outside */
+            out->closures[i].eta = 1.0f / out->closures[i].eta;
+}
+
+vec3 bsdf_adjoint_weight(const bsdf *b, vec3 w_from, vec3 w_to, float pdf)
+{
+    float ng_from = fabsf(v3_dot(b->ng, w_from)), ng_to = fabsf(v3_dot(b->ng, w_to));
+    if (!(pdf > 0.0f) || !(ng_from > 0.0f))
+        return v3s(0.0f);
+    bsdf other;
+    const bsdf *seen = b;
+    if (v3_dot(b->ng, w_to) < 0.0f) { /* transmitted: query from w_to's side */
+        bsdf_other_side(b, &other);
+        seen = &other;
+    }
+    vec3 fcos = bsdf_eval(seen, w_to, w_from, NULL); /* f(w_to, w_from)·|ns·w_from| */
+    return v3_scale(fcos, ng_to / (ng_from * pdf));
 }
 
 /* Chooses closure k with probability sample_weight_k / sum and rescales

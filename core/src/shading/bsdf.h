@@ -44,6 +44,7 @@ typedef struct closure {
     vec3 f0;                /* REFLECTION_FRESNEL: reflectance at normal incidence */
     uint32_t glass_fresnel; /* enum phos_glass_fresnel */
     float sample_weight;    /* probability mass for picking this closure when sampling */
+    uint32_t adjoint;       /* 1: sampled for photons (bsdf_set_adjoint); set by bsdf_add_closure to 0 */
 } closure;
 
 typedef struct bsdf {
@@ -76,6 +77,32 @@ vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi, float *pdf);
 /* Samples a direction: u_pick chooses the closure, u the direction within
  * it. Returns 0 when no direction could be sampled (absorbed). */
 int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_sample *out);
+
+/* The throughput factor of light (a photon) that arrived along -w_from,
+ * i.e. from direction w_from, and leaves toward w_to: the adjoint BSDF
+ * f*(w_from -> w_to) = f(w_to, w_from) with Veach's shading-normal
+ * correction (Veach 1997 §5.3.2, eq. 5.17), times |cos θ| / pdf:
+ *   f(w_to, w_from)·|ns·w_from| · |ng·w_to| / (|ng·w_from| · pdf).
+ * b is built for a ray arriving from w_from's side, as photon tracing
+ * builds it; where w_to lies on the other side the reciprocal query is made
+ * on the surface as seen from there (normals reversed, each interface's
+ * relative IOR inverted). The BSDFs here are not symmetric — a refraction
+ * lobe's Fresnel split at the shading normal depends on which side it is
+ * entered from — so photons weighted by f(w_from, w_to) would not converge
+ * to what camera paths compute with f (docs/algorithms.md §3). pdf is the
+ * density with which w_to was sampled (bsdf_sample.pdf); non-delta lobes
+ * only. */
+vec3 bsdf_adjoint_weight(const bsdf *b, vec3 w_from, vec3 w_to, float pdf);
+
+/* Prepares b to be sampled for photons, whose weights are the adjoint's
+ * (bsdf_adjoint_weight): the sampling density must cover every direction
+ * the adjoint can send light to. A MACRO glass picks its reflection lobe
+ * with F at the shading normal, which is 1 beyond the critical angle from
+ * inside; but seen from outside, a rough refraction lobe can carry light
+ * into those directions, so for photons the pick of reflection is capped
+ * at BSDF_ADJOINT_MAX_REFLECT. Values are unchanged, only densities. */
+#define BSDF_ADJOINT_MAX_REFLECT 0.75f
+void bsdf_set_adjoint(bsdf *b);
 
 /* Splits b into its diffuse closures (Lambert, Principled diffuse) and all
  * others (glossy, specular, glass, transparent): the split of Jensen's

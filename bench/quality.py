@@ -1,0 +1,373 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Image quality against render time: Phos and Cycles against a converged
+reference of the same scene, measured in one Blender process.
+
+    blender -b --factory-startup --python bench/quality.py -- COMMAND [options]
+
+Commands (each takes --scene NAME, a script in scenes/, and --resolution W H):
+
+    reference   render, or extend, the scene's reference: Cycles in chunks
+                of --chunk-samples samples, each with its own seed, until
+                the reference holds --chunks chunks. Kept in --reference-dir
+                (make bench names it; not in git), as the per-pixel sum and
+                sum of squares of the chunk images, so that the reference's
+                own noise is known and can be taken out of every error.
+    sweep       Phos over a grid of settings (--grid "samples=4,16
+                final_gather_rays=8,32 ..."; scene.phos property names),
+                one CSV row per combination: render time, the part of it
+                that does not grow with the pixel count, relative MSE.
+    equal-time  Phos at the given settings (default: the engine's
+                defaults), then Cycles given the same wall time.
+
+Relative MSE (Rousselle et al. 2011): the mean over pixels and RGB channels
+of (x - r)^2 / (r^2 + 0.01), minus the reference's own share, the same sum
+with the variance of the reference mean (from its chunks) in the numerator:
+E[(x - r)^2] = E[(x - truth)^2] + var(r) for a reference independent of x.
+
+Render time is measured from Blender's render_pre to render_post handlers,
+export to last pixel, for both engines alike (Blender's start-up and file
+writing excluded). docs/benchmarks.md describes the method and the results.
+"""
+
+import argparse
+import csv
+import importlib
+import itertools
+import json
+import os
+import platform
+import sys
+import tempfile
+import time
+
+import bpy
+import numpy as np
+
+REPO_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO_DIR, "scenes"))
+import _common  # noqa: E402
+
+RELATIVE_EPSILON = 0.01      # the denominator's offset of relative MSE
+FULL_HD_PIXELS = 1920 * 1080  # Blender's default output size
+REFERENCE_SEED_BASE = 1000000  # chunk k of a reference renders with seed BASE + k
+
+
+def log(msg):
+    print("[bench] %s" % msg, flush=True)
+
+
+# ------------------------------------------------------------------ scenes
+
+def build_scene(name):
+    """A fresh scene from scenes/<name>.py; returns (scene, its module)."""
+    bpy.ops.wm.read_factory_settings(use_empty=False)
+    module = importlib.import_module(name)
+    scene = bpy.context.scene
+    module.build(scene)
+    if not _common.enable_addon():
+        raise RuntimeError("the Phos add-on could not be enabled from %s" % _common.ADDON_DIR)
+    return scene, module
+
+
+def configure(scene, module, engine, resolution, samples, seed, integrator="PHOTON", settings=None):
+    """Both engines configured as the scene scripts do (equal bounces, filter,
+    caustics on, no denoising or clamping); then Phos's `settings`."""
+    _common.configure_output(scene, resolution)
+    _common.configure_cycles(scene, samples, module.MAX_BOUNCES, seed=seed)
+    _common.configure_phos(scene, samples, module.MAX_BOUNCES, seed=seed, integrator=integrator,
+                           photon_settings=settings)
+    scene.render.engine = engine
+
+
+# --------------------------------------------------------------- rendering
+
+class _Clock:
+    """Wall time from render_pre to render_post (export to last pixel)."""
+
+    def __init__(self):
+        self.start = self.end = None
+
+    def pre(self, *_args):
+        self.start = time.perf_counter()
+
+    def post(self, *_args):
+        self.end = time.perf_counter()
+
+
+def render(scene):
+    """Render the scene; returns (linear RGB float64 array (h, w, 3), seconds)."""
+    clock = _Clock()
+    handlers = bpy.app.handlers
+    handlers.render_pre.append(clock.pre)
+    handlers.render_post.append(clock.post)
+    try:
+        bpy.ops.render.render()
+    finally:
+        handlers.render_pre.remove(clock.pre)
+        handlers.render_post.remove(clock.post)
+    seconds = clock.end - clock.start
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "result.exr")
+        fmt = scene.render.image_settings
+        fmt.file_format, fmt.color_mode, fmt.color_depth = "OPEN_EXR", "RGBA", "32"
+        bpy.data.images["Render Result"].save_render(path, scene=scene)
+        img = bpy.data.images.load(path, check_existing=False)
+        try:
+            w, h = img.size
+            a = np.empty(w * h * img.channels, np.float32)
+            img.pixels.foreach_get(a)
+            rgb = a.reshape(h, w, img.channels)[:, :, :3].astype(np.float64)
+        finally:
+            bpy.data.images.remove(img)
+    return rgb, seconds
+
+
+# --------------------------------------------------------------- reference
+
+def reference_path(ref_dir, scene_name, resolution):
+    return os.path.join(ref_dir, "%s_%dx%d.npz" % (scene_name, resolution[0], resolution[1]))
+
+
+class Reference:
+    """Cycles chunk images of one scene: their per-pixel sum and sum of squares."""
+
+    def __init__(self, total, total_sq, chunks, chunk_samples, meta):
+        self.total, self.total_sq = total, total_sq
+        self.chunks, self.chunk_samples, self.meta = chunks, chunk_samples, meta
+
+    @classmethod
+    def load(cls, path):
+        if not os.path.isfile(path):
+            return None
+        z = np.load(path, allow_pickle=False)
+        return cls(z["total"], z["total_sq"], int(z["chunks"]), int(z["chunk_samples"]),
+                   json.loads(str(z["meta"])))
+
+    def save(self, path):
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        tmp = path + ".tmp.npz"
+        np.savez_compressed(tmp, total=self.total, total_sq=self.total_sq, chunks=self.chunks,
+                            chunk_samples=self.chunk_samples, meta=json.dumps(self.meta))
+        os.replace(tmp, path)
+
+    @property
+    def mean(self):
+        return self.total / self.chunks
+
+    @property
+    def variance_of_mean(self):
+        """Per pixel and channel: the variance of the reference mean, from
+        the spread of its chunks (0 with a single chunk: unknown)."""
+        if self.chunks < 2:
+            return np.zeros_like(self.total)
+        m = self.mean
+        var_chunk = np.maximum(self.total_sq / self.chunks - m * m, 0.0) * self.chunks / (self.chunks - 1)
+        return var_chunk / self.chunks
+
+    def relative_mse(self, image):
+        """(relative MSE of image, the reference's own share that was taken out)."""
+        r = self.mean
+        denom = r * r + RELATIVE_EPSILON
+        own = float(np.mean(self.variance_of_mean / denom))
+        raw = float(np.mean((image - r) ** 2 / denom))
+        return raw - own, own
+
+
+def machine_description():
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return {"cpu": cpu, "cores": os.cpu_count(), "blender": bpy.app.version_string,
+            "date": time.strftime("%Y-%m-%d")}
+
+
+def command_reference(args):
+    path = reference_path(args.reference_dir, args.scene, args.resolution)
+    ref = Reference.load(path)
+    if ref is not None and ref.chunk_samples != args.chunk_samples:
+        raise SystemExit("%s holds chunks of %d samples, not %d" % (path, ref.chunk_samples, args.chunk_samples))
+    scene, module = build_scene(args.scene)
+    start = ref.chunks if ref else 0
+    for k in range(start, args.chunks):
+        configure(scene, module, "CYCLES", args.resolution, args.chunk_samples, REFERENCE_SEED_BASE + k)
+        image, seconds = render(scene)
+        if ref is None:
+            meta = dict(machine_description(), scene=args.scene, resolution=list(args.resolution),
+                        engine="CYCLES", seed_base=REFERENCE_SEED_BASE, max_bounces=module.MAX_BOUNCES)
+            ref = Reference(np.zeros_like(image), np.zeros_like(image), 0, args.chunk_samples, meta)
+        ref.total += image
+        ref.total_sq += image * image
+        ref.chunks += 1
+        ref.meta["seconds"] = ref.meta.get("seconds", 0.0) + seconds
+        ref.save(path)  # after every chunk: an interrupted reference keeps what it has
+        _, own = ref.relative_mse(ref.mean)
+        log("%s: chunk %d/%d (%d samples) in %.1f s; reference noise (relative variance) %.3g"
+            % (args.scene, ref.chunks, args.chunks, args.chunk_samples, seconds, own))
+    if ref is None:
+        raise SystemExit("no reference rendered (--chunks 0?)")
+    log("%s: reference of %d samples in %s" % (args.scene, ref.chunks * ref.chunk_samples, path))
+
+
+def load_reference(args):
+    path = reference_path(args.reference_dir, args.scene, args.resolution)
+    ref = Reference.load(path)
+    if ref is None:
+        raise SystemExit("no reference %s: run the reference command first" % path)
+    return ref
+
+
+# ----------------------------------------------------------- measurements
+
+def parse_grid(text):
+    """'samples=4,16 final_gather_rays=8' -> [('samples', [4, 16]), ...]"""
+    grid = []
+    for item in (text or "").split():
+        name, _, values = item.partition("=")
+        grid.append((name, [_number(v) for v in values.split(",") if v]))
+    return grid
+
+
+def _number(text):
+    try:
+        return int(text)
+    except ValueError:
+        return float(text)
+
+
+def phos_tile_seconds(seconds):
+    """The time Phos's last render spent on its tiles (the add-on's stage
+    times); all of `seconds` if the add-on kept none."""
+    engine = sys.modules.get(_common.ADDON_NAME + ".engine")
+    core = sys.modules.get(_common.ADDON_NAME + ".core")
+    stages = getattr(engine, "last_render_seconds", {})
+    return stages.get(core.PHOS_STAGE_RENDERING, seconds) if core else seconds
+
+
+def phos_measurement(scene, module, args, ref, settings, integrator):
+    """Render Phos with settings (scene.phos properties; 'samples' among
+    them); returns one CSV row. The add-on's stage times split the render
+    time into the part that grows with the pixel count (the tiles) and the
+    part that does not (export, BVH, photon maps, radiance photons); the
+    first is scaled to Full HD for full_hd_seconds."""
+    settings = dict(settings)
+    samples = int(settings.pop("samples", scene.phos.bl_rna.properties["samples"].default))
+    configure(scene, module, "PHOS", args.resolution, samples, args.seed, integrator, settings)
+    image, seconds = render(scene)
+    tiles = phos_tile_seconds(seconds)
+    fixed = max(seconds - tiles, 0.0)
+    rel, own = ref.relative_mse(image)
+    row = {"scene": args.scene, "engine": "PHOS", "integrator": integrator, "samples": samples}
+    row.update(settings)
+    row.update(seconds=seconds, fixed_seconds=fixed,
+               full_hd_seconds=fixed + tiles * FULL_HD_PIXELS / (args.resolution[0] * args.resolution[1]),
+               relative_mse=rel, reference_share=own, mean_ratio=float(image.mean() / ref.mean.mean()))
+    return row
+
+
+def cycles_measurement(scene, module, args, ref, seconds):
+    """Cycles given `seconds` of wall time in all: its time limit is what is
+    left after its own fixed cost (sync, kernel set-up), measured by a render
+    of 1 sample at 16 x 16."""
+    configure(scene, module, "CYCLES", (16, 16), 1, args.seed)
+    _, fixed = render(scene)
+    configure(scene, module, "CYCLES", args.resolution, 1 << 20, args.seed)
+    scene.cycles.time_limit = max(seconds - fixed, 0.1)
+    image, measured = render(scene)
+    scene.cycles.time_limit = 0.0
+    rel, own = ref.relative_mse(image)
+    return {"scene": args.scene, "engine": "CYCLES", "integrator": "", "samples": "",
+            "seconds": measured, "fixed_seconds": fixed, "relative_mse": rel, "reference_share": own,
+            "mean_ratio": float(image.mean() / ref.mean.mean())}
+
+
+def write_rows(path, rows):
+    if not rows:
+        return
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    fields = []
+    for row in rows:
+        fields += [k for k in row if k not in fields]
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        w.writeheader()
+        w.writerows(rows)
+    log("wrote %s" % path)
+
+
+def _format_row(row):
+    keys = [k for k in row if k not in ("scene", "engine", "reference_share")]
+    return "  ".join("%s=%s" % (k, ("%.4g" % row[k]) if isinstance(row[k], float) else row[k]) for k in keys)
+
+
+def command_sweep(args):
+    ref = load_reference(args)
+    scene, module = build_scene(args.scene)
+    grid = parse_grid(args.grid)
+    names = [n for n, _ in grid]
+    rows = []
+    for values in itertools.product(*[v for _, v in grid]):
+        row = phos_measurement(scene, module, args, ref, dict(zip(names, values)), args.integrator)
+        log(_format_row(row))
+        rows.append(row)
+        write_rows(args.csv, rows)
+
+
+def command_equal_time(args):
+    ref = load_reference(args)
+    scene, module = build_scene(args.scene)
+    rows = []
+    settings = dict(s for name, v in parse_grid(args.grid) for s in [(name, v[0])])
+    for integrator in args.integrators:
+        row = phos_measurement(scene, module, args, ref, settings, integrator)
+        log(_format_row(row))
+        rows.append(row)
+        crow = cycles_measurement(scene, module, args, ref, row["seconds"])
+        crow["integrator"] = "vs " + integrator
+        log(_format_row(crow))
+        rows.append(crow)
+        # Cycles' time limit cannot make its render end exactly when Phos's
+        # did; its relative MSE falls as 1 / time, so the ratio of
+        # relative MSE x time is the ratio at equal time.
+        ratio = row["relative_mse"] * row["seconds"] / (crow["relative_mse"] * crow["seconds"])
+        row["vs_cycles"] = crow["vs_cycles"] = ratio
+        log("%s %s: relative MSE Phos / Cycles at equal time (%.1f s, %.1f s) = %.3g"
+            % (args.scene, integrator, row["seconds"], crow["seconds"], ratio))
+    write_rows(args.csv, rows)
+
+
+def main():
+    p = argparse.ArgumentParser(prog="quality.py", description=__doc__.splitlines()[0])
+    p.add_argument("command", choices=("reference", "sweep", "equal-time"))
+    p.add_argument("--scene", required=True)
+    p.add_argument("--resolution", type=int, nargs=2, default=(128, 128), metavar=("W", "H"))
+    p.add_argument("--reference-dir", default=os.path.join(os.path.expanduser("~"), ".cache", "phos-bench"))
+    p.add_argument("--chunks", type=int, default=16)
+    p.add_argument("--chunk-samples", type=int, default=256)
+    p.add_argument("--grid", default="")
+    p.add_argument("--integrator", default="PHOTON", choices=("PATH", "PHOTON"))
+    p.add_argument("--integrators", nargs="+", default=["PHOTON", "PATH"])
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--csv", default=os.path.join(REPO_DIR, "out", "bench", "quality.csv"))
+    args = p.parse_args(_common.script_argv())
+    args.resolution = tuple(args.resolution)
+    {"reference": command_reference, "sweep": command_sweep, "equal-time": command_equal_time}[args.command](args)
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except SystemExit as ex:
+        if ex.code not in (None, 0):
+            print("[bench] %s" % ex.code if isinstance(ex.code, str) else "[bench] failed", flush=True)
+            sys.exit(1)
+        raise
+    except Exception:
+        import traceback
+        traceback.print_exc()
+        sys.exit(1)
