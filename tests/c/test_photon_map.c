@@ -1194,6 +1194,49 @@ static void test_frosted_shade(void)
     phos_scene_destroy(s);
 }
 
+/* A pool: a diffuse floor under 0.5 m of water (a closed box of sharp
+ * glass, IOR 1.33), an area light above, the camera looking straight down
+ * through the surface. Light reaches the floor only through the water's
+ * surface, a caustic (L S D S E; the Specular pass, as the camera sees the
+ * floor through a refraction). Camera paths carry
+ * radiance without 1/η² across a refraction (as Cycles), so photons must
+ * carry T/η² into the water (bsdf_photon_weight); with T alone the
+ * caustics came out η² = 1.77 × too bright. */
+static phos_scene *pool_scene(void)
+{
+    const float a = 1.5f, b = -0.1f, t = 0.5f; /* the water box: |x|, |y| < a, b < z < t */
+    float box[6][4][3] = {
+        {{-a, -a, t}, {a, -a, t}, {a, a, t}, {-a, a, t}},   /* surface, +z */
+        {{-a, -a, b}, {-a, a, b}, {a, a, b}, {a, -a, b}},   /* bottom, −z */
+        {{-a, -a, b}, {a, -a, b}, {a, -a, t}, {-a, -a, t}}, /* y = −a, −y */
+        {{-a, a, b}, {-a, a, t}, {a, a, t}, {a, a, b}},     /* y = +a, +y */
+        {{-a, -a, b}, {-a, -a, t}, {-a, a, t}, {-a, a, b}}, /* x = −a, −x */
+        {{a, -a, b}, {a, a, b}, {a, a, t}, {a, -a, t}},     /* x = +a, +x */
+    };
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])box, 6), test_add_glass(s, 1.33f), 0, 0, 0);
+    test_add_instance(s, test_add_quad_mesh(s, 1.4f), test_add_diffuse(s, 0.7f, 0.7f, 0.7f), 0, 0, 0);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_AREA;
+    l.position[2] = 2.0f;
+    l.direction[2] = -1.0f;
+    l.axis_u[0] = 0.8f;
+    l.axis_v[1] = 0.8f;
+    l.color[0] = l.color[1] = l.color[2] = 5.0f; /* W/(m²·sr) */
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera(s, 0.0f, 0.0f, 2.5f, 0.25f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    return s;
+}
+
+static void test_pool_caustic(void)
+{
+    phos_scene *s = pool_scene();
+    photon_vs_path_passes("pool", s, 100000, 1024, 16, 16, (1u << PHOS_PASS_COMBINED) | (1u << PHOS_PASS_SPECULAR));
+    phos_scene_destroy(s);
+}
+
 /* A closed diffuse room (4 × 4 × 2.5 m, ρ = 0.6) lit only by the sun
  * through a small window (0.8 × 0.8 m) in its +y wall, with a diffuse ball
  * on the floor: almost all the light the camera sees is indirect, and it
@@ -1470,6 +1513,7 @@ int main(void)
     test_glossy_gather_hits();
     test_mirror_mix_caustic();
     test_frosted_shade();
+    test_pool_caustic();
     test_global_photons_aimed_at_the_room();
     test_sunlit_room();
     return test_summary("test_photon_map");

@@ -137,13 +137,13 @@ static void trace_from(const scene *s, const photon_trace_settings *ps, uint32_t
         if (!bsdf_sample_direction(&b, v3_neg(d), sampler_1d(&smp, dim), sampler_2d(&smp, dim + 1), &bs))
             return;
         /* Light flows from -d toward bs.wi: the adjoint BSDF (bsdf.h). */
-        vec3 weight = (bs.flags & (BSDF_DELTA | BSDF_TRANSPARENT)) ? bs.weight
-                                                                 : bsdf_adjoint_weight(&b, v3_neg(d), bs.wi, bs.pdf);
+        float eta_scale;
+        vec3 weight = bsdf_photon_weight(&b, v3_neg(d), &bs, &eta_scale);
         vec3 scattered = v3_mul(power, weight);
         float p = fminf(1.0f, v3_max_component(scattered) / v3_max_component(power));
         if (!(p > 0.0f) || sampler_1d(&smp, dim + 3) >= p)
             return;
-        power = v3_scale(scattered, 1.0f / p);
+        power = v3_scale(scattered, eta_scale / p);
         if (!v3_is_finite(power))
             return;
         if (map == MAP_CAUSTIC && !(bs.flags & (BSDF_DELTA | BSDF_TRANSPARENT)))

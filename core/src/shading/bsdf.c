@@ -559,6 +559,29 @@ vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
     return value;
 }
 
+vec3 bsdf_photon_weight(const bsdf *b, vec3 w_from, const bsdf_sample *bs, float *eta_scale)
+{
+    *eta_scale = 1.0f;
+    if (bs->flags & BSDF_TRANSPARENT)
+        return bs->weight;
+    if (!(bs->flags & BSDF_DELTA)) {
+        vec3 w = bsdf_adjoint_weight(b, w_from, bs->wi, bs->pdf);
+        if (!(bs->flags & BSDF_TRANSMISSION))
+            return w;
+        /* The adjoint's η² split off for the roulette, as for a delta. */
+        *eta_scale = 1.0f / (bs->eta * bs->eta);
+        return v3_scale(w, bs->eta * bs->eta);
+    }
+    vec3 ns = b->shading.n;
+    float ng_from = fabsf(v3_dot(b->ng, w_from)), ns_to = fabsf(v3_dot(ns, bs->wi));
+    if (!(ng_from > 0.0f) || !(ns_to > 0.0f))
+        return v3s(0.0f);
+    float correction = fabsf(v3_dot(ns, w_from)) * fabsf(v3_dot(b->ng, bs->wi)) / (ng_from * ns_to);
+    if (bs->flags & BSDF_TRANSMISSION)
+        *eta_scale = 1.0f / (bs->eta * bs->eta);
+    return v3_scale(bs->weight, correction);
+}
+
 void bsdf_set_adjoint(bsdf *b)
 {
     for (uint32_t i = 0; i < b->count; i++)
@@ -648,6 +671,7 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
         out->weight = weight;
         out->pdf = p;
         out->flags = s.flags;
+        out->eta = (s.flags & BSDF_TRANSMISSION) && !(s.flags & BSDF_TRANSPARENT) ? c->eta : 1.0f;
         return 1;
     }
 
@@ -672,6 +696,7 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
     out->weight = weight;
     out->pdf = pdf;
     out->flags = s.flags;
+    out->eta = (s.flags & BSDF_TRANSMISSION) ? c->eta : 1.0f;
     return 1;
 }
 

@@ -61,6 +61,7 @@ typedef struct bsdf_sample {
     float pdf;              /* solid-angle pdf of the whole mixture; for a delta lobe the
                                probability of having picked it */
     uint32_t flags;         /* enum bsdf_flags of the sampled lobe */
+    float eta;              /* a refraction: the sampled closure's relative IOR (from wo's side); else 1 */
 } bsdf_sample;
 
 /* n_shading and n_geometric must be unit length and already face wo. */
@@ -93,6 +94,18 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
  * density with which w_to was sampled (bsdf_sample.pdf); non-delta lobes
  * only. */
 vec3 bsdf_adjoint_weight(const bsdf *b, vec3 w_from, vec3 w_to, float pdf);
+
+/* The weight of a photon that arrived from w_from and was scattered by the
+ * sample bs of b (b prepared with bsdf_set_adjoint), times *eta_scale:
+ * bsdf_adjoint_weight for a non-delta lobe; a delta lobe's own weight with
+ * the same shading-normal correction; a pass-through's own weight. Across
+ * a refraction the adjoint carries 1/η² (f(ωo→ωi; η) = η² f(ωi→ωo; 1/η)
+ * when radiance carries no 1/η², as here and in Cycles: light entering
+ * water from air carries T/η²), which is returned in *eta_scale (1
+ * otherwise) and left out of the weight. It is
+ * returned apart so that Russian roulette does not end half the photons
+ * entering glass only for their power to grow back by η² as they leave. */
+vec3 bsdf_photon_weight(const bsdf *b, vec3 w_from, const bsdf_sample *bs, float *eta_scale);
 
 /* Prepares b to be sampled for photons, whose weights are the adjoint's
  * (bsdf_adjoint_weight): the sampling density must cover every direction
