@@ -250,6 +250,69 @@ def test_light_passes_sum_to_combined(integrator, scene, tmp_path):
     assert caustic_map.max() > np.percentile(passes["Direct"], 50)
 
 
+def _assert_same_in_expectation(a, b, what, block=8, z=4.5):
+    """a and b (H×W×3) are independent renders of the same quantity: every
+    block×block mean of a − b is zero within z standard errors, each from
+    the spread of a − b inside the block (its pixels are independent
+    estimates of zero)."""
+    d = (a - b).astype(np.float64).mean(axis=-1)
+    h, w = d.shape
+    blocks = d[:h - h % block, :w - w % block].reshape(h // block, block, w // block, block)
+    blocks = blocks.transpose(0, 2, 1, 3).reshape(h // block, w // block, block * block)
+    mean = blocks.mean(axis=-1)
+    se = blocks.std(axis=-1, ddof=1) / np.sqrt(block * block)
+    scale = np.abs(b).mean() * 1e-6  # blocks where both are exactly equal
+    worst = np.max(np.abs(mean) / (se + scale))
+    total_se = d.std(ddof=1) / np.sqrt(d.size)
+    print("%s: image means %.5f vs %.5f (± %.5f), worst block %.2f standard errors" % (
+        what, float(a.mean()), float(b.mean()), total_se, worst))
+    assert abs(d.mean()) < 4.0 * total_se + scale, what
+    assert worst < z, "%s: a %d×%d block differs by %.1f standard errors" % (what, block, block, worst)
+
+
+def test_light_passes_against_independent_renders(scene, tmp_path):
+    """Combined = the sum of the passes holds by construction (the film adds
+    each sample to both), so each pass is checked against something
+    computed apart from it:
+    - Emission: the panel's radiance, 4 × (1, 0.8, 0.6) W/(m²·sr), where
+      the camera sees only the panel, and that colour scaled elsewhere;
+    - Emission + Direct of `PATH`: the Combined of another `PATH` render,
+      another seed, with Max Bounces 0 (light that scattered once only);
+    - Emission + Direct of `PHOTON`: the same sum of `PATH` (both
+      integrators file light that scattered once the same way for every
+      material; README "What the passes mean")."""
+    components_scene(scene)
+    pt.configure_output(scene, 64, 48)
+    pt.configure_phos(scene, 16, max_bounces=8, seed=1)
+    enable_passes(scene, LIGHT_PASSES)
+    full = render_passes(scene, tmp_path, "independent_path")
+    emission = full["Emission"]
+    red = emission[..., 0]
+    panel = red > 3.99
+    print("Emission: %d pixels see only the panel, %d part of it" % (panel.sum(), ((red > 0) & ~panel).sum()))
+    assert panel.sum() >= 4
+    np.testing.assert_allclose(emission[panel], np.broadcast_to([4.0, 3.2, 2.4], emission[panel].shape),
+                               rtol=1e-5)
+    # Elsewhere the camera sees the panel over part of a pixel, or no
+    # emitter at all (it sees no world either): the panel's colour, scaled.
+    assert red.max() <= 4.0 * (1 + 1e-5)
+    np.testing.assert_allclose(emission[..., 1], 0.8 * red, rtol=1e-5, atol=1e-7)
+    np.testing.assert_allclose(emission[..., 2], 0.6 * red, rtol=1e-5, atol=1e-7)
+    once = full["Emission"] + full["Direct"]
+
+    pt.configure_phos(scene, 16, max_bounces=0, seed=2)
+    enable_passes(scene, LIGHT_PASSES, on=False)
+    direct_only = render_passes(scene, tmp_path, "independent_path_b0")["Combined"][..., :3]
+    _assert_same_in_expectation(direct_only, once, "PATH max bounces 0 vs Emission + Direct")
+
+    pt.configure_phos(scene, 16, max_bounces=8, seed=3)
+    configure_photons(scene, 20000, 20000, gather_rays=4)
+    enable_passes(scene, LIGHT_PASSES)
+    photon = render_passes(scene, tmp_path, "independent_photon")
+    _assert_same_in_expectation(photon["Emission"] + photon["Direct"], once,
+                                "PHOTON vs PATH Emission + Direct")
+
+
 def test_photon_map_pass_matches_combined_on_diffuse_scene(scene, tmp_path):
     """Global map read at the first hit ≈ the converged image, for diffuse surfaces only."""
     diffuse_scene(scene)

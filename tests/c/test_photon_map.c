@@ -268,10 +268,30 @@ static void test_caustic_photons_aimed_at_a_bead(void)
  * map holds in expectation: the caustic map's total power must equal that
  * of the caustic-flagged photons of the global map, which is emitted over
  * every direction. Glass and mirror balls over a floor, lit by a point
- * lamp, a spot with a blend, an area light and a sun with an angle (the
- * sun aims through plane cells, the others through cones). Within 4
- * standard errors of the two sums (each photon's power taken as an
- * independent draw). */
+ * lamp, a spot with a blend, an area light, a sun with an angle and a
+ * uniform world (the sun and the world aim through plane cells, the
+ * others through cones). Within 4 standard errors of the two sums (each
+ * photon's power taken as an independent draw). Three traces: the global
+ * map alone, the caustic map alone (all its photons aimed), and both,
+ * where the caustic map reuses the global pass's caustic photons and the
+ * caustic pass traces only the rest (another seed, so independent of the
+ * first). */
+static double caustic_power(const photon_map *pm, int only_flagged, double *sum2, uint32_t *n)
+{
+    double sum = 0.0;
+    *sum2 = 0.0;
+    *n = 0;
+    for (uint32_t i = 0; i < pm->count; i++) {
+        if (only_flagged && !photon_is_caustic(&pm->photons[i]))
+            continue;
+        double p = v3_average(photon_power(&pm->photons[i]));
+        sum += p;
+        *sum2 += p * p;
+        (*n)++;
+    }
+    return sum;
+}
+
 static void test_caustic_projection_unbiased(void)
 {
     phos_scene *s = phos_scene_create();
@@ -318,36 +338,41 @@ static void test_caustic_projection_unbiased(void)
     l.sun_angle = 0.2f;
     l.color[0] = l.color[1] = l.color[2] = 1.0f;
     phos_scene_add_light(s, &l, NULL);
+    phos_world_desc w;
+    phos_world_desc_init(&w);
+    w.color[0] = w.color[1] = w.color[2] = 0.1f;
+    phos_scene_set_world(s, &w);
     test_set_camera(s, 0, 0, 3.0f, 0.5f);
     CHECK(phos_scene_commit(s) == PHOS_OK);
-    photon_trace_settings ps = trace_settings(400000, 100000, 0);
-    photon_maps m;
-    photon_maps_init(&m);
-    atomic_int cancel = 0;
-    CHECK(photon_maps_trace(s, &ps, &m, &cancel, NULL) == PHOS_OK);
-    double sum[2] = {0.0, 0.0}, sum2[2] = {0.0, 0.0};
-    uint32_t n[2] = {0, 0};
-    for (int k = 0; k < 2; k++) {
-        const photon_map *pm = k ? &m.caustic : &m.global;
-        for (uint32_t i = 0; i < pm->count; i++) {
-            if (!k && !photon_is_caustic(&pm->photons[i]))
-                continue;
-            double p = v3_average(photon_power(&pm->photons[i]));
-            sum[k] += p;
-            sum2[k] += p * p;
-            n[k]++;
+    const uint32_t global[3] = {400000, 0, 400000}, caustic[3] = {0, 100000, 100000};
+    double sum[3], sum2[3];
+    uint32_t n[3], reused = 0, own = 0;
+    for (int k = 0; k < 3; k++) {
+        photon_trace_settings ps = trace_settings(global[k], caustic[k], 0);
+        ps.seed = k == 2 ? 11u : 3u;
+        photon_maps m;
+        photon_maps_init(&m);
+        atomic_int cancel = 0;
+        CHECK(photon_maps_trace(s, &ps, &m, &cancel, NULL) == PHOS_OK);
+        sum[k] = caustic_power(k ? &m.caustic : &m.global, k == 0, &sum2[k], &n[k]);
+        if (k == 2) {
+            reused = m.caustic_reused;
+            own = m.caustic.count - reused;
         }
+        printf("  caustic power, %s: %.5f W (%u photons%s)\n",
+               k == 0 ? "global map's caustic photons" : k == 1 ? "caustic map alone" : "caustic map with reuse",
+               sum[k], n[k], k == 2 ? ", some reused" : "");
+        photon_maps_free(&m);
     }
-    /* Var of a sum of independent photons: Σp² (Poisson-like counting). */
-    double se = sqrt(sum2[0] + sum2[1]);
-    printf("  caustic power: global map's caustic photons %.5f W (%u), caustic map %.5f W (%u of %llu paths, "
-           "global %llu), ± %.5f\n",
-           sum[0], n[0], sum[1], n[1], (unsigned long long)m.caustic_emitted,
-           (unsigned long long)m.global_emitted, 4.0 * se);
-    CHECK(n[0] > 1000 && n[1] >= 100000);
-    CHECK_MSG(fabs(sum[1] - sum[0]) < 4.0 * se, "aimed caustic photons carry %.5f W, unaimed ones %.5f W (± %.5f)",
-              sum[1], sum[0], 4.0 * se);
-    photon_maps_free(&m);
+    printf("  caustic map with reuse: %u reused from the global pass, %u traced\n", reused, own);
+    CHECK(n[0] > 1000 && n[1] >= 100000 && n[2] >= 100000);
+    CHECK_MSG(reused > 1000 && own >= 100000 - reused && own < 100000 - reused + 100,
+              "the caustic pass traced %u photons beside %u reused", own, reused);
+    for (int k = 1; k < 3; k++) {
+        double se = sqrt(sum2[0] + sum2[k]);
+        CHECK_MSG(fabs(sum[k] - sum[0]) < 4.0 * se, "%s caustic photons carry %.5f W, unaimed ones %.5f W (± %.5f)",
+                  k == 1 ? "aimed" : "aimed and reused", sum[k], sum[0], 4.0 * se);
+    }
     phos_scene_destroy(s);
 }
 
@@ -1258,7 +1283,9 @@ static void window_wall_quad(float q[4][3], float x0, float x1, float z0, float 
     memcpy(q, c, sizeof(c));
 }
 
-static phos_scene *sunlit_room_scene(void)
+/* The room lit by the sun, or (sky) by a uniform world of radiance
+ * 30/π W/(m²·sr) instead, whose light enters through the same window. */
+static phos_scene *room_scene(int sky)
 {
     const float a = ROOM_HALF, h = ROOM_HEIGHT;
     const float wx = 0.4f, wz0 = 1.0f, wz1 = 1.8f; /* the window */
@@ -1278,14 +1305,21 @@ static phos_scene *sunlit_room_scene(void)
     test_add_instance(s, test_add_quads(s, (const float(*)[4][3])quads, 9), walls, 0, 0, 0);
     test_add_instance(s, test_add_sphere_mesh(s, room_ball[3], 48, 24, 0), walls, room_ball[0], room_ball[1],
                       room_ball[2]);
-    phos_light_desc l;
-    phos_light_desc_init(&l);
-    l.type = PHOS_LIGHT_SUN;
-    float d[3] = {0.35f, -1.0f, -0.9f}, len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (int k = 0; k < 3; k++)
-        l.direction[k] = d[k] / len;
-    l.color[0] = l.color[1] = l.color[2] = 30.0f; /* W/m² */
-    phos_scene_add_light(s, &l, NULL);
+    if (sky) {
+        phos_world_desc w;
+        phos_world_desc_init(&w);
+        w.color[0] = w.color[1] = w.color[2] = 30.0f / (float)M_PI;
+        phos_scene_set_world(s, &w);
+    } else {
+        phos_light_desc l;
+        phos_light_desc_init(&l);
+        l.type = PHOS_LIGHT_SUN;
+        float d[3] = {0.35f, -1.0f, -0.9f}, len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int k = 0; k < 3; k++)
+            l.direction[k] = d[k] / len;
+        l.color[0] = l.color[1] = l.color[2] = 30.0f; /* W/m² */
+        phos_scene_add_light(s, &l, NULL);
+    }
     test_set_camera_pitched(s, room_camera[0], room_camera[1], room_camera[2], ROOM_CAMERA_PITCH, ROOM_TAN_HALF);
     CHECK(phos_scene_commit(s) == PHOS_OK);
     return s;
@@ -1390,36 +1424,49 @@ static void room_inside_power(const photon_map *m, double sum[2], double se[2], 
  * 19.759 W aimed at 1.6 M photons against 19.743 W unaimed at 6.4 M
  * (± 0.024 and ± 0.044 W); 71 % of the aimed photons lie inside, 5.4 % of
  * the unaimed ones. */
-static void test_global_photons_aimed_at_the_room(void)
+static void global_photons_aimed_at_the_room(int sky, uint32_t aimed_photons, uint32_t unaimed_photons,
+                                             double min_gain)
 {
+    const char *name = sky ? "sky-lit room" : "sunlit room";
     double sum[2][2], se[2][2];
     uint32_t n[2][2], stored[2];
     for (int aimed = 0; aimed < 2; aimed++) {
-        phos_scene *s = sunlit_room_scene();
+        phos_scene *s = room_scene(sky);
         if (!aimed)
             ((scene *)s)->has_camera = 0;
-        photon_trace_settings ps = trace_settings(aimed ? 1600000 : 6400000, 0, 0);
+        photon_trace_settings ps = trace_settings(aimed ? aimed_photons : unaimed_photons, 0, 0);
         photon_maps m;
         photon_maps_init(&m);
         atomic_int cancel = 0;
         CHECK(photon_maps_trace(s, &ps, &m, &cancel, NULL) == PHOS_OK);
         room_inside_power(&m.global, sum[aimed], se[aimed], n[aimed]);
         stored[aimed] = m.global.count;
-        printf("  sunlit room, %s: inside indirect %.4f W (± %.4f, %u photons), direct %.4f W (± %.4f, %u), of %u "
+        printf("  %s, %s: inside indirect %.4f W (± %.4f, %u photons), direct %.4f W (± %.4f, %u), of %u "
                "stored from %llu paths\n",
-               aimed ? "aimed" : "unaimed", sum[aimed][0], se[aimed][0], n[aimed][0], sum[aimed][1], se[aimed][1],
-               n[aimed][1], m.global.count, (unsigned long long)m.global_emitted);
+               name, aimed ? "aimed" : "unaimed", sum[aimed][0], se[aimed][0], n[aimed][0], sum[aimed][1],
+               se[aimed][1], n[aimed][1], m.global.count, (unsigned long long)m.global_emitted);
         photon_maps_free(&m);
         phos_scene_destroy(s);
     }
     for (int d = 0; d < 2; d++) {
         double tol = 4.0 * sqrt(se[0][d] * se[0][d] + se[1][d] * se[1][d]);
-        CHECK_MSG(fabs(sum[1][d] - sum[0][d]) < tol, "aimed global photons carry %.4f W inside, unaimed %.4f W (± %.4f)",
-                  sum[1][d], sum[0][d], tol);
+        CHECK_MSG(fabs(sum[1][d] - sum[0][d]) < tol, "%s: aimed global photons carry %.4f W inside, unaimed %.4f W (± %.4f)",
+                  name, sum[1][d], sum[0][d], tol);
     }
+    /* No wasted work: the indirect power inside is known better per stored
+     * photon (variance × photons), not only from more of them. */
+    double cost_aimed = se[1][0] * se[1][0] * stored[1], cost = se[0][0] * se[0][0] * stored[0];
+    CHECK_MSG(cost_aimed * min_gain < cost, "%s: variance × stored photons %.0f aimed, %.0f unaimed", name, cost_aimed,
+              cost);
     double share_aimed = (double)(n[1][0] + n[1][1]) / stored[1], share = (double)(n[0][0] + n[0][1]) / stored[0];
-    CHECK_MSG(share_aimed > 8.0 * share, "aimed, %.1f %% of the photons land inside; unaimed %.1f %%",
+    CHECK_MSG(share_aimed > min_gain * share, "%s: aimed, %.1f %% of the photons land inside; unaimed %.1f %%", name,
               100.0 * share_aimed, 100.0 * share);
+}
+
+static void test_global_photons_aimed_at_the_room(void)
+{
+    global_photons_aimed_at_the_room(0, 1600000, 6400000, 8.0);
+    global_photons_aimed_at_the_room(1, 400000, 3200000, 8.0);
 }
 
 /* Indirect light in the sunlit room, PHOTON (final gathering) against
@@ -1437,7 +1484,7 @@ static void test_global_photons_aimed_at_the_room(void)
  * +0.8 % (limit about 1.05 %), in the strip 0.0 % to +0.4 % (2.9 %). */
 static void test_sunlit_room(void)
 {
-    phos_scene *s = sunlit_room_scene();
+    phos_scene *s = room_scene(0);
     const uint32_t w = 32, n = w * w;
     unsigned char strip[32 * 32], all[32 * 32];
     uint32_t strip_pixels = 0;

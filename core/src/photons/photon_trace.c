@@ -5,7 +5,9 @@
  * is picked by power and the photon leaves it carrying Φ_light/N_emitted
  * (light_sample_emission). At every surface with a non-specular component
  * the photon is stored before it scatters (global map: every such hit;
- * caustic map: the first one after one or more specular bounces, L S+ D).
+ * caustic map: those after one or more specular bounces only, L S+ D: the
+ * global pass's caustic-flagged photons and a pass of its own for the
+ * rest; fill_caustic_map).
  * Scattering samples the BSDF and continues by Russian roulette with
  * probability P = max(Φ·w)/max(Φ), w = f·cos/pdf the sample's weight
  * (Jensen's max form P = max(Φ·ρ)/max(Φ) for a Lambertian surface;
@@ -37,7 +39,8 @@
 /* The photon passes; each draws its paths from a sample domain of its own. */
 enum { MAP_GLOBAL = 0, MAP_CAUSTIC = 1, MAP_RADIANCE_SITES = 2, MAP_PILOT = 3 };
 
-#define PILOT_PHOTONS 8        /* pilot paths per sun cell */
+#define PILOT_PHOTONS 8        /* pilot paths per cell of a sun's plane */
+#define WORLD_PILOT_PHOTONS 4  /* per cell of the world's planes, which have 16 times as many */
 #define PILOT_FLOOR 0.005f     /* weight of a cell no pilot path of which reached what the camera reads */
 
 typedef struct traced_photon {
@@ -291,21 +294,61 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
     return status;
 }
 
-/* Scales by 1/emitted, packs into 20-byte records and fills the map. */
+/* Appends the kept photons (those with all of `flags`) scaled by
+ * `scale`, packed into 20-byte records. */
+static phos_status append_photons(photon_map *m, const batch *kept, float scale, uint16_t flags)
+{
+    for (uint32_t i = 0; i < kept->count; i++) {
+        const traced_photon *tp = &kept->items[i];
+        if ((tp->flags & flags) != flags)
+            continue;
+        photon p = photon_make(tp->position, v3_scale(tp->power, scale), tp->direction, tp->normal, tp->flags);
+        if (!photon_map_append(m, &p, 1))
+            return PHOS_ERROR_OUT_OF_MEMORY;
+    }
+    return PHOS_OK;
+}
+
+/* Scales by 1/emitted and fills the map. */
 static phos_status fill_map(photon_map *m, const batch *kept, uint64_t emitted)
 {
     if (kept->count == 0)
         return PHOS_OK;
     if (!photon_map_reserve(m, kept->count))
         return PHOS_ERROR_OUT_OF_MEMORY;
-    float scale = 1.0f / (float)emitted;
-    for (uint32_t i = 0; i < kept->count; i++) {
-        const traced_photon *tp = &kept->items[i];
-        photon p = photon_make(tp->position, v3_scale(tp->power, scale), tp->direction, tp->normal, tp->flags);
-        if (!photon_map_append(m, &p, 1))
-            return PHOS_ERROR_OUT_OF_MEMORY;
-    }
-    return PHOS_OK;
+    return append_photons(m, kept, 1.0f / (float)emitted, 0);
+}
+
+static uint32_t count_caustic(const batch *kept)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < kept->count; i++)
+        n += (kept->items[i].flags & PHOTON_CAUSTIC) != 0;
+    return n;
+}
+
+/* The caustic map from two independent estimates of the same caustic
+ * flux: the global pass's caustic-flagged photons (n_g of them, from
+ * N_g paths) and the caustic pass's own (n_c, from N_c aimed paths). Each
+ * set alone is unbiased, so any α gives an unbiased map with the global
+ * ones scaled by α/N_g and the caustic pass's by (1 − α)/N_c. α =
+ * n_g/(n_g + n_c) weighs each set by its count, which is its inverse
+ * variance where the two sets' photons carry similar power, and gives
+ * every photon the same share of the map's power on average. */
+static phos_status fill_caustic_map(photon_map *m, const batch *global, uint64_t global_emitted, uint32_t reused,
+                                    const batch *own, uint64_t own_emitted)
+{
+    uint32_t n = reused + own->count;
+    if (n == 0)
+        return PHOS_OK;
+    if (!photon_map_reserve(m, n))
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    double alpha = (double)reused / n;
+    phos_status st = reused ? append_photons(m, global, (float)(alpha / (double)global_emitted), PHOTON_CAUSTIC)
+                            : PHOS_OK;
+    if (st == PHOS_OK && own->count)
+        st = append_photons(m, own, (float)((1.0 - alpha) / (double)own_emitted), 0);
+    return st;
 }
 
 void photon_maps_init(photon_maps *m)
@@ -361,7 +404,7 @@ static phos_status trace_radiance_sites(const scene *s, const photon_trace_setti
     return st;
 }
 
-/* Pilot photons through each sun cell (docs/algorithms.md §3.1): a cell's
+/* Pilot photons through each distant light's cell (docs/algorithms.md §3.1): a cell's
  * weight is the share of its pilot paths that store a photon where the
  * camera reads photons (photon_importance.h), never below PILOT_FLOOR, so
  * that every cell keeps a chance and the map stays unbiased. */
@@ -371,6 +414,7 @@ typedef struct pilot {
     const projection_map *pm;
     const photon_importance *imp;
     const uint32_t *cell_group;  /* the group of each listed cell */
+    const uint32_t *cell_pilots; /* pilot paths through each group's cells */
     float *weights;
 } pilot;
 
@@ -382,8 +426,8 @@ static void pilot_cell(void *ctx, uint32_t item, uint32_t thread)
     uint32_t k = item - p->pm->groups[g].first;
     batch b;
     memset(&b, 0, sizeof(b));
-    uint32_t useful = 0;
-    for (uint32_t i = 0; i < PILOT_PHOTONS; i++) {
+    uint32_t useful = 0, pilots = p->cell_pilots[g];
+    for (uint32_t i = 0; i < pilots; i++) {
         uint64_t path = (uint64_t)item * PILOT_PHOTONS + i;
         sampler smp = sampler_for_index(p->ps->seed, MAP_PILOT, path);
         vec3 o, d;
@@ -398,36 +442,40 @@ static void pilot_cell(void *ctx, uint32_t item, uint32_t thread)
             }
     }
     free(b.items);
-    p->weights[item] = fmaxf((float)useful / PILOT_PHOTONS, PILOT_FLOOR);
+    p->weights[item] = fmaxf((float)useful / (float)pilots, PILOT_FLOOR);
 }
 
-/* Global photons from suns aimed at what the camera reads; NULL (*aim
- * untouched) where there is no sun or camera. */
+/* Global photons from suns and the world aimed at what the camera reads;
+ * NULL (*aim untouched) where there is neither or no camera. */
 static phos_status aim_global(const scene *s, const photon_trace_settings *ps, projection_map *aim, int *aimed,
                               atomic_int *cancel)
 {
     *aimed = 0;
-    int has_sun = 0;
+    int has_distant = 0;
     for (uint32_t i = 0; i < s->lights.count; i++)
-        has_sun |= s->lights.lights[i].kind == LIGHT_SUN;
-    if (!has_sun || !s->has_camera)
+        has_distant |= s->lights.lights[i].kind == LIGHT_SUN || s->lights.lights[i].kind == LIGHT_WORLD;
+    if (!has_distant || !s->has_camera)
         return PHOS_OK;
     photon_importance imp;
-    if (!photon_importance_build(&imp, s) || !projection_map_build_suns(aim, s)) {
+    if (!photon_importance_build(&imp, s) || !projection_map_build_distant(aim, s)) {
         photon_importance_free(&imp);
         return PHOS_ERROR_OUT_OF_MEMORY;
     }
     uint32_t cells = 0;
     for (uint32_t g = 0; g < aim->group_count; g++)
-        cells += aim->groups[g].sun ? aim->groups[g].count : 0;
+        cells += aim->groups[g].distant ? aim->groups[g].count : 0;
     float *weights = malloc(sizeof(float) * (cells ? cells : 1));
     uint32_t *cell_group = malloc(sizeof(uint32_t) * (cells ? cells : 1));
-    phos_status st = weights && cell_group ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
+    uint32_t *cell_pilots = malloc(sizeof(uint32_t) * aim->group_count);
+    phos_status st = weights && cell_group && cell_pilots ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
     if (st == PHOS_OK) {
-        for (uint32_t g = 0; g < aim->group_count; g++)
-            for (uint32_t k = 0; aim->groups[g].sun && k < aim->groups[g].count; k++)
+        for (uint32_t g = 0; g < aim->group_count; g++) {
+            int world = s->lights.lights[s->lights.groups[g].first].kind == LIGHT_WORLD;
+            cell_pilots[g] = world ? WORLD_PILOT_PHOTONS : PILOT_PHOTONS;
+            for (uint32_t k = 0; aim->groups[g].distant && k < aim->groups[g].count; k++)
                 cell_group[aim->groups[g].first + k] = g;
-        pilot p = {s, ps, aim, &imp, cell_group, weights};
+        }
+        pilot p = {s, ps, aim, &imp, cell_group, cell_pilots, weights};
         if (!parallel_for(cells, parallel_thread_count(ps->threads), pilot_cell, &p, cancel))
             st = PHOS_ERROR_CANCELLED;
         else if (!projection_map_set_weights(aim, s, weights))
@@ -435,11 +483,44 @@ static phos_status aim_global(const scene *s, const photon_trace_settings *ps, p
     }
     free(weights);
     free(cell_group);
+    free(cell_pilots);
     photon_importance_free(&imp);
     if (st != PHOS_OK)
         projection_map_free(aim);
     else
         *aimed = 1;
+    return st;
+}
+
+/* The caustic map, given the global pass's photons. A caustic photon
+ * needs a delta scattering on its way (L S+ D): in a scene where no
+ * surface has a delta lobe the map can never fill, and every path traced
+ * for it would be wasted. The global pass's caustic-flagged photons
+ * already hold part of the map; the caustic pass traces only the rest,
+ * aimed at the objects that scatter delta (projection_map.h). */
+static phos_status trace_caustic_map(const scene *s, const photon_trace_settings *ps, photon_maps *out,
+                                     const batch *global, atomic_int *cancel, photon_trace_progress *progress)
+{
+    if (ps->caustic_photons == 0 || !scene_can_scatter_delta(s))
+        return PHOS_OK;
+    uint32_t reused = count_caustic(global);
+    uint32_t target = reused < ps->caustic_photons ? ps->caustic_photons - reused : 0;
+    if (progress)
+        atomic_store(&progress->map, PHOS_MAP_CAUSTIC);
+    batch own;
+    memset(&own, 0, sizeof(own));
+    projection_map aim;
+    if (target && !projection_map_build(&aim, s))
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    phos_status st = trace_map(s, ps, MAP_CAUSTIC, target ? &aim : NULL, target, &own, &out->caustic_emitted, cancel,
+                               progress, out->global.count + reused);
+    if (target)
+        projection_map_free(&aim);
+    if (st == PHOS_OK) {
+        st = fill_caustic_map(&out->caustic, global, out->global_emitted, reused, &own, out->caustic_emitted);
+        out->caustic_reused = reused;
+    }
+    free(own.items);
     return st;
 }
 
@@ -459,31 +540,13 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     if (st == PHOS_OK)
         st = fill_map(&out->global, &kept, out->global_emitted);
     uint32_t global_count = kept.count;
-    free(kept.items);
     if (st == PHOS_OK && global_count > 0)
         st = trace_radiance_sites(s, ps, ga, out, (global_count + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE,
                                   cancel, progress);
     if (aimed)
         projection_map_free(&global_aim);
-    if (st != PHOS_OK)
-        return st;
-    /* A caustic photon needs a delta scattering on its way (L S+ D): in a
-     * scene where no surface has a delta lobe the map can never fill, and
-     * every path traced for it would be wasted. */
-    uint32_t caustic_target = scene_can_scatter_delta(s) ? ps->caustic_photons : 0;
-    if (progress)
-        atomic_store(&progress->map, PHOS_MAP_CAUSTIC);
-    /* Caustic photons leave only toward the objects that scatter delta
-     * (projection_map.h). */
-    projection_map aim;
-    if (caustic_target && !projection_map_build(&aim, s))
-        return PHOS_ERROR_OUT_OF_MEMORY;
-    st = trace_map(s, ps, MAP_CAUSTIC, caustic_target ? &aim : NULL, caustic_target, &kept, &out->caustic_emitted,
-                   cancel, progress, out->global.count);
-    if (caustic_target)
-        projection_map_free(&aim);
     if (st == PHOS_OK)
-        st = fill_map(&out->caustic, &kept, out->caustic_emitted);
+        st = trace_caustic_map(s, ps, out, &kept, cancel, progress);
     free(kept.items);
     return st;
 }

@@ -19,7 +19,8 @@ typedef struct photon_maps {
     photon_map radiance;       /* Christensen 1999: power = outgoing radiance W/(m²·sr),
                                   direction and normal bits = the surface normal on the lit side */
     uint64_t global_emitted;   /* photon paths emitted to fill each map */
-    uint64_t caustic_emitted;
+    uint64_t caustic_emitted;  /* by the caustic pass itself */
+    uint32_t caustic_reused;   /* of the caustic map's photons, those the global pass traced */
     /* Where radiance photons will be computed (as many as a quarter of the
      * global photons, where photon paths of their own land): position,
      * normal on the lit side, diffuse reflectance; 9 floats each.

@@ -12,7 +12,10 @@
  * since cones may overlap. Suns aim at cells of a PLANE_CELLS² grid over a
  * square of the plane their photons start on: a cell is marked when it can
  * meet the shadow of an instance's sphere, widened by the drift of a
- * photon tilted by the sun's half angle.
+ * photon tilted by the sun's half angle. The world is a sun per bin of
+ * directions: each of its WORLD_BINS² bins of equal solid angle has a
+ * plane of its own, and a photon from it takes a uniform direction in the
+ * bin (distant_plane below).
  */
 #include "photons/projection_map.h"
 
@@ -23,7 +26,9 @@
 #include "sampling/warp.h"
 #include "shading/material.h"
 
-#define PLANE_CELLS 64
+#define PLANE_CELLS 64       /* per side of a sun's plane */
+#define WORLD_BINS 8         /* per side of the world's grid of directions: 64 bins of π/16 sr */
+#define WORLD_PLANE_CELLS 32 /* per side of the plane of each of the world's bins */
 #define MAX_CONES 64        /* per light; more instances share one sphere */
 #define MARGIN 1e-3f        /* rad or m: rounding never unmarks a cell that can see a target */
 
@@ -113,43 +118,113 @@ static float cone_share(const light *l, vec3 axis, float omega)
 
 /* ---------------------------------------------------------- plane cells */
 
-typedef struct sun_plane {
-    frame f;                /* f.n = the sun's direction of travel */
+/* A distant light's photons start on a plane across their direction of
+ * travel. A sun has one plane. The world has one per bin of a grid of
+ * WORLD_BINS × WORLD_BINS equal solid angles (the cells of
+ * warp_uniform_sphere's square): its photons from a bin start on the
+ * plane across the bin's centre direction. A cell's index is
+ * bin · grid² + (its place in the bin's grid). */
+typedef struct distant_plane {
+    frame f;                /* f.n = the direction of travel through the plane's centre */
     vec3 corner;            /* of the square, on the plane */
     float half;             /* m: half the square's side */
-} sun_plane;
+    float back;             /* m: how far before the plane a photon starts */
+    float tan_a;            /* tan of the largest angle between f.n and a photon's direction */
+    uint32_t grid;          /* cells per side */
+    float omega;            /* sr of the directions the plane's photons take (0: one direction) */
+} distant_plane;
 
-/* The plane a sun's photons start on: perpendicular to its axis, R before
- * the scene's centre, a square of half side R plus the sideways drift of a
- * photon tilted by the sun's half angle over the 2R it crosses. */
-static sun_plane plane_of(const light_table *t, const light *l)
+/* The world's bin `bin` as a rectangle of warp_uniform_sphere's square. */
+static float2 world_bin_u(uint32_t bin, float2 ud)
 {
-    sun_plane p;
-    p.f = frame_from_normal(l->direction);
-    float tan_a = l->sun_cos_half < 1.0f ? safe_sqrtf(1.0f - l->sun_cos_half * l->sun_cos_half) / l->sun_cos_half
+    float2 u = {((float)(bin / WORLD_BINS) + ud.x) / WORLD_BINS, ((float)(bin % WORLD_BINS) + ud.y) / WORLD_BINS};
+    return u;
+}
+
+/* Direction of travel of a world photon from bin `bin` (ud: where in it). */
+static vec3 world_bin_direction(uint32_t bin, float2 ud) { return v3_neg(warp_uniform_sphere(world_bin_u(bin, ud))); }
+
+/* The plane of a sun (bin 0) or of the world's bin `bin`: perpendicular
+ * to its axis through the scene's centre, a square of half side R / cos a
+ * (a the largest angle between a photon's direction and the axis), so
+ * that every photon with one of the plane's directions that crosses the
+ * scene's sphere crosses the square: a point of the sphere lies at most
+ * R sin φ sideways and R cos φ along the axis from the centre, and its ray
+ * drifts R cos φ · tan a more sideways on its way to the plane. A photon
+ * is parametrized by where it crosses the plane, not where it starts: the
+ * drift of an opening's shadow over a bin's directions grows with its
+ * distance from the plane, and the centre keeps that distance small. */
+static distant_plane plane_of(const light_table *t, const light *l, uint32_t bin)
+{
+    distant_plane p;
+    vec3 axis;
+    if (l->kind == LIGHT_WORLD) {
+        float2 c = {0.5f, 0.5f};
+        axis = world_bin_direction(bin, c);
+        /* The angle from the centre is largest at a corner of the bin: along
+         * an edge of constant z it grows with the azimuth difference, and
+         * along a meridian arc shorter than π it has no interior maximum. */
+        float cos_min = 1.0f;
+        for (int k = 0; k < 4; k++) {
+            float2 corner = {(float)(k & 1), (float)(k >> 1)};
+            cos_min = fminf(cos_min, v3_dot(axis, world_bin_direction(bin, corner)));
+        }
+        cos_min = clampf(cos_min - MARGIN, 0.1f, 1.0f);
+        p.tan_a = safe_sqrtf(1.0f - cos_min * cos_min) / cos_min;
+        p.grid = WORLD_PLANE_CELLS;
+        p.omega = 4.0f * PHOS_PI / (WORLD_BINS * WORLD_BINS);
+    } else {
+        axis = l->direction;
+        p.tan_a = l->sun_cos_half < 1.0f ? safe_sqrtf(1.0f - l->sun_cos_half * l->sun_cos_half) / l->sun_cos_half
                                          : 0.0f;
-    p.half = t->radius * (1.0f + 2.0f * tan_a);
-    vec3 centre = v3_madd(t->center, l->direction, -t->radius);
-    p.corner = v3_sub(centre, v3_add(v3_scale(p.f.t, p.half), v3_scale(p.f.b, p.half)));
+        p.grid = PLANE_CELLS;
+        p.omega = l->sun_cos_half < 1.0f ? 2.0f * PHOS_PI * (1.0f - l->sun_cos_half) : 0.0f;
+    }
+    p.f = frame_from_normal(axis);
+    p.half = t->radius * safe_sqrtf(1.0f + p.tan_a * p.tan_a) * (1.0f + MARGIN);
+    p.back = t->radius + 1.5f * p.half; /* > R + √2·half: every start lies outside the sphere */
+    p.corner = v3_sub(t->center, v3_add(v3_scale(p.f.t, p.half), v3_scale(p.f.b, p.half)));
     return p;
 }
 
-static int plane_cell_marked(const light_table *tab, const light *l, const sun_plane *p, const sphere *t, int nt,
-                             uint32_t cell)
+static uint32_t distant_bins(const light *l) { return l->kind == LIGHT_WORLD ? WORLD_BINS * WORLD_BINS : 1u; }
+
+/* Cells in each of the light's planes. */
+static uint32_t cell_grid_size(const light *l)
 {
-    float side = 2.0f * p->half / PLANE_CELLS;
-    float x0 = (float)(cell % PLANE_CELLS) * side, y0 = (float)(cell / PLANE_CELLS) * side;
-    float tan_a = l->sun_cos_half < 1.0f ? safe_sqrtf(1.0f - l->sun_cos_half * l->sun_cos_half) / l->sun_cos_half
-                                         : 0.0f;
+    return l->kind == LIGHT_WORLD ? WORLD_PLANE_CELLS * WORLD_PLANE_CELLS : PLANE_CELLS * PLANE_CELLS;
+}
+
+/* m²: the area of one of the plane's cells. */
+static float plane_cell_area(const distant_plane *p)
+{
+    float side = 2.0f * p->half / (float)p->grid;
+    return side * side;
+}
+
+/* Whether a photon through cell `cell` of the plane (its place in the
+ * plane's grid) can reach one of the target spheres. */
+static int plane_cell_marked(const light_table *tab, const distant_plane *p, const sphere *t, int nt, uint32_t cell)
+{
+    float side = 2.0f * p->half / (float)p->grid;
+    float x0 = (float)(cell % p->grid) * side, y0 = (float)(cell / p->grid) * side;
     for (int k = 0; k < nt; k++) {
         vec3 v = v3_sub(t[k].c, p->corner);
         float cx = v3_dot(v, p->f.t), cy = v3_dot(v, p->f.b), depth = v3_dot(v, p->f.n);
-        float reach = t[k].r + fmaxf(depth + t[k].r, 0.0f) * tan_a + MARGIN * tab->radius;
+        float reach = t[k].r + (fabsf(depth) + t[k].r) * p->tan_a + MARGIN * tab->radius;
         float dx = fmaxf(fmaxf(x0 - cx, cx - (x0 + side)), 0.0f), dy = fmaxf(fmaxf(y0 - cy, cy - (y0 + side)), 0.0f);
         if (dx * dx + dy * dy <= reach * reach)
             return 1;
     }
     return 0;
+}
+
+/* W/m² a cell's photons carry per unit of its area: the sun's irradiance
+ * across its axis, or the world's radiance times a bin's solid angle. */
+static float distant_flux_density(const light *l, const distant_plane *p)
+{
+    float c = fmaxf(v3_average(l->color), 0.0f);
+    return l->kind == LIGHT_WORLD ? c * p->omega : c;
 }
 
 /* ---------------------------------------------------------------- build */
@@ -168,7 +243,7 @@ static int append_cell(projection_map *pm, uint32_t *capacity, uint32_t cell)
 {
     if (pm->groups[pm->group_count].first + pm->groups[pm->group_count].count == *capacity) {
         uint32_t cap = *capacity ? *capacity * 2 : 1024;
-        uint16_t *n = realloc(pm->cells, sizeof(uint16_t) * cap);
+        uint32_t *n = realloc(pm->cells, sizeof(uint32_t) * cap);
         if (n)
             pm->cells = n;
         float *c = realloc(pm->cell_cum, sizeof(float) * cap);
@@ -180,7 +255,7 @@ static int append_cell(projection_map *pm, uint32_t *capacity, uint32_t cell)
     }
     projection_group *g = &pm->groups[pm->group_count];
     pm->cell_cum[g->first + g->count] = (float)(g->count + 1); /* weight 1 each */
-    pm->cells[g->first + g->count++] = (uint16_t)cell;
+    pm->cells[g->first + g->count++] = cell;
     return 1;
 }
 
@@ -199,17 +274,22 @@ static int append_cone(projection_map *pm, uint32_t *capacity, const projection_
     return 1;
 }
 
-/* The sun's marked cells; returns the power sent into them (W). */
-static float mark_sun(projection_map *pm, uint32_t *capacity, const light_table *tab, const light *l,
-                      const sphere *t, int nt, int *ok)
+/* A distant light's marked cells, over all its planes; returns the power
+ * sent into them (W). */
+static float mark_distant(projection_map *pm, uint32_t *capacity, const light_table *tab, const light *l,
+                          const sphere *t, int nt, int *ok)
 {
-    projection_group *pg = &pm->groups[pm->group_count];
-    sun_plane p = plane_of(tab, l);
-    for (uint32_t cell = 0; cell < PLANE_CELLS * PLANE_CELLS; cell++)
-        if (plane_cell_marked(tab, l, &p, t, nt, cell) && !(*ok = append_cell(pm, capacity, cell)))
-            return 0.0f;
-    float side = 2.0f * p.half / PLANE_CELLS;
-    return fmaxf(v3_average(l->color), 0.0f) * (float)pg->count * side * side; /* E·A_marked */
+    float power = 0.0f;
+    for (uint32_t bin = 0; bin < distant_bins(l); bin++) {
+        distant_plane p = plane_of(tab, l, bin);
+        uint32_t cells = p.grid * p.grid, before = pm->groups[pm->group_count].count;
+        for (uint32_t cell = 0; cell < cells; cell++)
+            if (plane_cell_marked(tab, &p, t, nt, cell) && !(*ok = append_cell(pm, capacity, bin * cells + cell)))
+                return 0.0f;
+        power += distant_flux_density(l, &p) * plane_cell_area(&p) *
+                 (float)(pm->groups[pm->group_count].count - before); /* E·A_marked */
+    }
+    return power;
 }
 
 /* A local light group's cones; returns the power sent into them (W),
@@ -264,19 +344,16 @@ static float mark_group(projection_map *pm, uint32_t *cells_capacity, uint32_t *
     pg->all = 0;
     pg->count = 0;
     pg->first = 0;
-    if (l->kind == LIGHT_WORLD) {
-        pg->all = 1;
-        return g->power;
-    }
     /* Each kind of group keeps its own list, in group order. */
+    int distant = l->kind == LIGHT_SUN || l->kind == LIGHT_WORLD;
     for (const projection_group *q = prev; q; q = q > pm->groups ? q - 1 : NULL)
-        if (!q->all && q->sun == (l->kind == LIGHT_SUN)) {
+        if (!q->all && (int)q->distant == distant) {
             pg->first = q->first + q->count;
             break;
         }
-    pg->sun = l->kind == LIGHT_SUN;
-    if (pg->sun)
-        return mark_sun(pm, cells_capacity, tab, l, t, nt, ok);
+    pg->distant = (uint32_t)distant;
+    if (pg->distant)
+        return mark_distant(pm, cells_capacity, tab, l, t, nt, ok);
     return mark_cones(pm, cones_capacity, tab, g, t, nt, ok);
 }
 
@@ -316,14 +393,26 @@ int projection_map_build(projection_map *pm, const scene *s)
     return ok;
 }
 
-/* The power a sun group sends through its cells as weighted: E·Σ w·A. */
-static float sun_weight(const light_table *tab, const projection_map *pm, uint32_t g)
+/* The power a distant group sends through its cells as weighted: Σ E·w·A
+ * (E the flux density of the cell's plane). */
+static float distant_weight(const light_table *tab, const projection_map *pm, uint32_t g)
 {
     const light *l = &tab->lights[tab->groups[g].first];
     const projection_group *pg = &pm->groups[g];
-    sun_plane p = plane_of(tab, l);
-    float side = 2.0f * p.half / PLANE_CELLS;
-    return fmaxf(v3_average(l->color), 0.0f) * side * side * pm->cell_cum[pg->first + pg->count - 1];
+    double sum = 0.0, below = 0.0;
+    uint32_t bin = UINT32_MAX;
+    float per_weight = 0.0f;
+    for (uint32_t k = 0; k < pg->count; k++) {
+        if (pm->cells[pg->first + k] / cell_grid_size(l) != bin) {
+            bin = pm->cells[pg->first + k] / cell_grid_size(l);
+            distant_plane p = plane_of(tab, l, bin);
+            per_weight = distant_flux_density(l, &p) * plane_cell_area(&p);
+        }
+        double cum = pm->cell_cum[pg->first + k];
+        sum += (cum - below) * per_weight;
+        below = cum;
+    }
+    return (float)sum;
 }
 
 static int rebuild_pick(projection_map *pm, const scene *s)
@@ -334,7 +423,7 @@ static int rebuild_pick(projection_map *pm, const scene *s)
         return 0;
     for (uint32_t g = 0; g < tab->group_count; g++) {
         const projection_group *pg = &pm->groups[g];
-        weight[g] = pg->all || !pg->sun ? tab->groups[g].power : (pg->count ? sun_weight(tab, pm, g) : 0.0f);
+        weight[g] = pg->all || !pg->distant ? tab->groups[g].power : (pg->count ? distant_weight(tab, pm, g) : 0.0f);
     }
     distribution_free(&pm->pick);
     int ok = distribution_build(&pm->pick, weight, tab->group_count);
@@ -342,7 +431,7 @@ static int rebuild_pick(projection_map *pm, const scene *s)
     return ok;
 }
 
-int projection_map_build_suns(projection_map *pm, const scene *s)
+int projection_map_build_distant(projection_map *pm, const scene *s)
 {
     memset(pm, 0, sizeof(*pm));
     const light_table *tab = &s->lights;
@@ -360,11 +449,11 @@ int projection_map_build_suns(projection_map *pm, const scene *s)
         const light *l = &tab->lights[tab->groups[g].first];
         projection_group *pg = &pm->groups[g];
         pg->first = first;
-        if (l->kind != LIGHT_SUN) {
+        if (l->kind != LIGHT_SUN && l->kind != LIGHT_WORLD) {
             pg->all = 1;
         } else {
-            pg->sun = 1;
-            mark_sun(pm, &capacity, tab, l, &scene_sphere, 1, &ok);
+            pg->distant = 1;
+            mark_distant(pm, &capacity, tab, l, &scene_sphere, 1, &ok);
             first += pg->count;
         }
         pm->group_count++;
@@ -376,32 +465,38 @@ int projection_map_build_suns(projection_map *pm, const scene *s)
     return ok;
 }
 
-/* Each cell takes the largest weight of its 3 × 3 neighbourhood: a cell
- * only partly over an opening, which the pilots may all have missed, lies
- * beside one they found, and keeps its full share. Otherwise its photons
- * that do pass would carry 1/PILOT_FLOOR times the power of the others and
- * blotch the map. */
+/* Each cell takes the largest weight of its 3 × 3 neighbourhood in its
+ * plane: a cell only partly over an opening, which the pilots may all have
+ * missed, lies beside one they found, and keeps its full share. Otherwise
+ * its photons that do pass would carry 1/PILOT_FLOOR times the power of
+ * the others and blotch the map. */
 int projection_map_set_weights(projection_map *pm, const scene *s, const float *weights)
 {
-    float *grid = malloc(sizeof(float) * PLANE_CELLS * PLANE_CELLS);
+    const uint32_t most = WORLD_BINS * WORLD_BINS * WORLD_PLANE_CELLS * WORLD_PLANE_CELLS > PLANE_CELLS * PLANE_CELLS
+                              ? WORLD_BINS * WORLD_BINS * WORLD_PLANE_CELLS * WORLD_PLANE_CELLS
+                              : PLANE_CELLS * PLANE_CELLS;
+    float *grid = malloc(sizeof(float) * most);
     if (!grid)
         return 0;
     for (uint32_t g = 0; g < pm->group_count; g++) {
         const projection_group *pg = &pm->groups[g];
-        if (pg->all || !pg->sun)
+        if (pg->all || !pg->distant)
             continue;
-        memset(grid, 0, sizeof(float) * PLANE_CELLS * PLANE_CELLS);
+        const light *l = &s->lights.lights[s->lights.groups[g].first];
+        int side = (int)(l->kind == LIGHT_WORLD ? WORLD_PLANE_CELLS : PLANE_CELLS);
+        memset(grid, 0, sizeof(float) * most);
         for (uint32_t k = 0; k < pg->count; k++)
             grid[pm->cells[pg->first + k]] = weights[pg->first + k];
         float cum = 0.0f;
         for (uint32_t k = 0; k < pg->count; k++) {
-            int cx = pm->cells[pg->first + k] % PLANE_CELLS, cy = pm->cells[pg->first + k] / PLANE_CELLS;
+            uint32_t cell = pm->cells[pg->first + k], bin_first = cell - cell % (uint32_t)(side * side);
+            int cx = (int)(cell % (uint32_t)(side * side)) % side, cy = (int)(cell % (uint32_t)(side * side)) / side;
             float w = 0.0f;
             for (int dy = -1; dy <= 1; dy++)
                 for (int dx = -1; dx <= 1; dx++) {
                     int x = cx + dx, y = cy + dy;
-                    if (x >= 0 && y >= 0 && x < PLANE_CELLS && y < PLANE_CELLS)
-                        w = fmaxf(w, grid[y * PLANE_CELLS + x]);
+                    if (x >= 0 && y >= 0 && x < side && y < side)
+                        w = fmaxf(w, grid[bin_first + (uint32_t)(y * side + x)]);
                 }
             cum += w;
             pm->cell_cum[pg->first + k] = cum;
@@ -433,22 +528,29 @@ static uint32_t pick_cell(const projection_map *pm, const projection_group *g, f
     return pm->cells[g->first + lo];
 }
 
-/* Origin on the sun's plane in `cell` and direction, from u and ud. */
-static void sun_cell_ray(const light *l, const sun_plane *p, uint32_t cell, float2 u, float2 ud, vec3 *origin,
-                         vec3 *direction)
+/* Origin in cell `cell` of the light's planes and direction, from u and
+ * ud; returns the cell's plane. */
+static distant_plane distant_cell_ray(const light_table *tab, const light *l, uint32_t cell, float2 u, float2 ud,
+                                      vec3 *origin, vec3 *direction)
 {
-    float side = 2.0f * p->half / PLANE_CELLS;
-    float px = ((float)(cell % PLANE_CELLS) + u.x) * side, py = ((float)(cell / PLANE_CELLS) + u.y) * side;
-    *origin = v3_add(p->corner, v3_add(v3_scale(p->f.t, px), v3_scale(p->f.b, py)));
-    *direction = l->sun_cos_half < 1.0f ? warp_cone(l->direction, l->sun_cos_half, ud) : l->direction;
+    uint32_t cells = cell_grid_size(l), bin = cell / cells, local = cell % cells;
+    distant_plane p = plane_of(tab, l, bin);
+    float side = 2.0f * p.half / (float)p.grid;
+    float px = ((float)(local % p.grid) + u.x) * side, py = ((float)(local / p.grid) + u.y) * side;
+    vec3 crossing = v3_add(p.corner, v3_add(v3_scale(p.f.t, px), v3_scale(p.f.b, py)));
+    if (l->kind == LIGHT_WORLD)
+        *direction = world_bin_direction(bin, ud);
+    else
+        *direction = l->sun_cos_half < 1.0f ? warp_cone(l->direction, l->sun_cos_half, ud) : l->direction;
+    *origin = v3_madd(crossing, *direction, -p.back);
+    return p;
 }
 
 void projection_map_cell_ray(const scene *s, const projection_map *pm, uint32_t g, uint32_t k, float2 u, float2 ud,
                              vec3 *origin, vec3 *direction)
 {
     const light *l = &s->lights.lights[s->lights.groups[g].first];
-    sun_plane p = plane_of(&s->lights, l);
-    sun_cell_ray(l, &p, pm->cells[pm->groups[g].first + k], u, ud, origin, direction);
+    distant_cell_ray(&s->lights, l, pm->cells[pm->groups[g].first + k], u, ud, origin, direction);
 }
 
 int projection_map_emit(const scene *s, const projection_map *pm, const float u[5], vec3 *origin, vec3 *direction,
@@ -472,18 +574,18 @@ int projection_map_emit(const scene *s, const projection_map *pm, const float u[
             return 0;
     } else if (pg->count == 0) {
         return 0;
-    } else if (l->kind == LIGHT_SUN) {
-        sun_plane p = plane_of(tab, l);
-        float side = 2.0f * p.half / PLANE_CELLS, share;
+    } else if (pg->distant) {
+        float share;
         float2 uc = {u[1], u[2]}, ud = {u[3], u[4]};
         uint32_t cell = pick_cell(pm, pg, &uc.x, &share);
-        sun_cell_ray(l, &p, cell, uc, ud, origin, direction);
-        float area = side * side / share; /* 1/p_A: the cell's area over its probability */
-        if (l->sun_cos_half < 1.0f) {
+        distant_plane p = distant_cell_ray(tab, l, cell, uc, ud, origin, direction);
+        float area = plane_cell_area(&p) / share; /* 1/p_A: the cell's area over its probability */
+        if (p.omega > 0.0f) {
             /* Through a plane across the axis, radiance L from direction d
-             * brings L·cos θ per unit area and solid angle. */
-            float omega = 2.0f * PHOS_PI * (1.0f - l->sun_cos_half);
-            flux = v3_scale(l->sun_radiance, v3_dot(*direction, l->direction) * omega * area);
+             * brings L·cos θ per unit area and solid angle; d is uniform
+             * over the plane's Ω. */
+            vec3 L = l->kind == LIGHT_WORLD ? l->color : l->sun_radiance;
+            flux = v3_scale(L, v3_dot(*direction, p.f.n) * p.omega * area);
         } else {
             flux = v3_scale(l->color, area); /* E / p_A */
         }

@@ -8,10 +8,14 @@
  * the emissive triangles of an instance) emits its caustic photons only
  * into the cones of directions that can reach the bounding sphere of an
  * object with a delta-scattering material; a sun only from the cells of
- * the plane its photons start on that lie in such an object's shadow. The
- * photon's power divides by that density, so the map is the same in
- * expectation: every direction that can start a caustic path is still
- * sampled. The world emits without a projection map.
+ * the plane its photons start on that lie in such an object's shadow, and
+ * the world likewise, from a plane per bin of its directions. The photon's
+ * power divides by that density, so the map is the same in expectation:
+ * every direction that can start a caustic path is still sampled.
+ *
+ * The global map uses the same cells for the distant lights (suns and the
+ * world), weighted by pilot photons toward what the camera reads
+ * (projection_map_build_distant, projection_map_set_weights).
  */
 #ifndef PHOS_PROJECTION_MAP_H
 #define PHOS_PROJECTION_MAP_H
@@ -31,16 +35,16 @@ typedef struct projection_cone {
 } projection_cone;
 
 typedef struct projection_group {
-    uint32_t first, count;      /* sun: projection_map.cells[first ..]; others: cones[first ..] */
-    uint32_t sun;
+    uint32_t first, count;      /* distant: projection_map.cells[first ..]; others: cones[first ..] */
+    uint32_t distant;           /* a sun or the world: plane cells */
     uint32_t all;               /* 1: no projection (the light sits among the specular objects,
-                                   or it is the world), emitted as for the global map */
+                                   or covering every direction), emitted as for the global map */
 } projection_group;
 
 typedef struct projection_map {
     projection_group *groups;   /* one per light group (light_table.groups) */
     uint32_t group_count;
-    uint16_t *cells;            /* the suns' marked plane cells */
+    uint32_t *cells;            /* the distant lights' marked plane cells: bin · grid² + cell */
     float *cell_cum;            /* their weights, cumulative within each group (the caustic map's
                                    are all 1; the global map's come from pilot photons) */
     projection_cone *cones;
@@ -55,17 +59,18 @@ typedef struct projection_map {
 int projection_map_build(projection_map *pm, const scene *s);
 void projection_map_free(projection_map *pm);
 
-/* For the global map: every sun's cells over the scene's bounds, each of
- * weight 1 until projection_map_set_weights; the other lights emit as
- * usual. Returns 0 when memory is exhausted. */
-int projection_map_build_suns(projection_map *pm, const scene *s);
+/* For the global map: every distant light's cells over the scene's
+ * bounds, each of weight 1 until projection_map_set_weights; the other
+ * lights emit as usual. Returns 0 when memory is exhausted. */
+int projection_map_build_distant(projection_map *pm, const scene *s);
 
-/* A photon's origin and direction through cell k of sun group g (u: the
- * point in the cell, ud: the direction in the sun's cone), for pilots. */
+/* A photon's origin and direction through cell k of distant group g (u:
+ * the point in the cell, ud: the direction in the sun's cone or the
+ * world's bin), for pilots. */
 void projection_map_cell_ray(const scene *s, const projection_map *pm, uint32_t g, uint32_t k, float2 u, float2 ud,
                              vec3 *origin, vec3 *direction);
 
-/* Sets the weights of the cells of every sun group (weights[first + k] as
+/* Sets the weights of the cells of every distant group (weights[first + k] as
  * listed, each > 0) and the groups' pick weights to match. */
 int projection_map_set_weights(projection_map *pm, const scene *s, const float *weights);
 
