@@ -423,6 +423,10 @@ typedef struct phos_progress {
      * in the plan. What a photon render spends on its maps, and the part of
      * a render that does not grow with the pixel count (docs/benchmarks.md). */
     double stage_seconds[PHOS_STAGE_COUNT];
+    /* Rays cast by the image's tiles so far (camera, bounce, shadow and
+     * gather rays; not the photon maps'): with the rendering stage's time,
+     * the path tracer's rays per second (docs/benchmarks.md). */
+    uint64_t rays_traced;
 } phos_progress;
 PHOS_API phos_status phos_render_progress(phos_render *render, phos_progress *out);
 

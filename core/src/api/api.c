@@ -572,6 +572,7 @@ phos_status phos_render_create(phos_scene *s, const phos_render_settings *rs, ph
     pthread_cond_init(&r->finished_cond, NULL);
     atomic_init(&r->cancel, 0);
     atomic_init(&r->tiles_done, 0u);
+    atomic_init(&r->rays_traced, 0u);
     atomic_init(&r->stage_index, 0u);
     atomic_init(&r->photon_progress.emitted, 0u);
     atomic_init(&r->photon_progress.stored, 0u);
@@ -636,6 +637,7 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     pthread_mutex_unlock(&r->lock);
     out->tiles_total = r->tile_count;
     out->tiles_done = atomic_load(&r->tiles_done);
+    out->rays_traced = atomic_load(&r->rays_traced);
     out->samples = r->settings.samples;
     out->stage_index = atomic_load(&r->stage_index);
     out->stage_id = r->plan.stages[out->stage_index];

@@ -149,10 +149,14 @@ static void render_tile(void *ctx, uint32_t item, uint32_t thread)
 {
     render *r = ctx;
     const phos_tile *t = &r->tiles[item];
+    uint64_t rays_before = embree_thread_rays();
     for (uint32_t y = t->y; y < t->y + t->height; y++)
         for (uint32_t x = t->x; x < t->x + t->width; x++)
-            if (atomic_load_explicit(&r->cancel, memory_order_relaxed) || !render_pixel(r, x, y, &r->scratch[thread]))
+            if (atomic_load_explicit(&r->cancel, memory_order_relaxed) || !render_pixel(r, x, y, &r->scratch[thread])) {
+                atomic_fetch_add(&r->rays_traced, embree_thread_rays() - rays_before);
                 return;
+            }
+    atomic_fetch_add(&r->rays_traced, embree_thread_rays() - rays_before);
     pthread_mutex_lock(&r->lock);
     r->finished[r->finished_count++] = item;
     pthread_mutex_unlock(&r->lock);

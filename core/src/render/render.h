@@ -32,6 +32,7 @@ struct phos_render {
     phos_tile *tiles;
     uint32_t tile_count;
     atomic_uint tiles_done;
+    atomic_uint_fast64_t rays_traced; /* by the tiles (render_tile) */
     stage_plan plan;               /* the stages it runs, fixed at create */
     atomic_uint stage_index;       /* the one running now, an index into plan */
 

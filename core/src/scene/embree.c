@@ -9,6 +9,7 @@
  */
 #include "scene/embree.h"
 
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -160,11 +161,34 @@ static void setup_ray(struct RTCRay *r, vec3 o, vec3 d, float tmin, float tmax)
     r->flags = 0;
 }
 
+static _Thread_local uint64_t thread_rays;
+static _Atomic(embree_ray_recorder) recorder;
+static void *recorder_ctx;
+
+uint64_t embree_thread_rays(void) { return thread_rays; }
+
+void embree_set_ray_recorder(embree_ray_recorder fn, void *ctx)
+{
+    recorder_ctx = ctx;
+    atomic_store(&recorder, fn);
+}
+
+void *embree_bvh_scene(const struct embree_bvh *bvh) { return bvh->top; }
+
+static void count_ray(vec3 o, vec3 d, float tmin, float tmax, int coherent, int occlusion)
+{
+    thread_rays++;
+    embree_ray_recorder fn = atomic_load_explicit(&recorder, memory_order_relaxed);
+    if (fn)
+        fn(recorder_ctx, o, d, tmin, tmax, coherent, occlusion);
+}
+
 int embree_intersect(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, float tmax, int coherent,
                      ray_hit *hit)
 {
     if (!bvh->top)
         return 0;
+    count_ray(o, d, tmin, tmax, coherent, 0);
     struct RTCRayHit rh __attribute__((aligned(16)));
     setup_ray(&rh.ray, o, d, tmin, tmax);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -194,6 +218,7 @@ int embree_occluded(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, fl
 {
     if (!bvh->top)
         return 0;
+    count_ray(o, d, tmin, tmax, 0, 1);
     struct RTCRay r __attribute__((aligned(16)));
     setup_ray(&r, o, d, tmin, tmax);
 #if PHOS_EMBREE4

@@ -33,6 +33,17 @@ int embree_intersect(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, f
 /* Whether anything lies on the segment t in (tmin, tmax). */
 int embree_occluded(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, float tmax);
 
+/* Rays this thread has cast through embree_intersect and embree_occluded
+ * since it started (a counter per thread, so counting costs no sharing). */
+uint64_t embree_thread_rays(void);
+
+/* For the ray-throughput benchmark only: when set, every ray any thread
+ * casts is passed to fn first (occlusion: hit == NULL). NULL turns it off. */
+typedef void (*embree_ray_recorder)(void *ctx, vec3 o, vec3 d, float tmin, float tmax, int coherent, int occlusion);
+void embree_set_ray_recorder(embree_ray_recorder fn, void *ctx);
+/* The top-level RTCScene, for the benchmark's raw Embree loop. */
+void *embree_bvh_scene(const struct embree_bvh *bvh);
+
 /* The version of the Embree library in use, e.g. "3.13.5". */
 const char *embree_version(void);
 
