@@ -272,6 +272,7 @@ class phos_progress(ctypes.Structure):
         ("caustic_photons", ctypes.c_uint32),
         ("photon_map", ctypes.c_uint32),
         ("stage_seconds", ctypes.c_double * 6),
+        ("rays_traced", ctypes.c_uint64),
     ]
 
 
