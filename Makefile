@@ -8,7 +8,10 @@
 #               [PHOS_CHROOT_DIR=dir]     Debian 13 chroot (root; default /var/tmp/...)
 #   make install | uninstall              add-on into the user's Blender
 #   make package                          dist/phos-<version>.zip
-#   make bench [BENCH_ARGS=...]           kd-tree benchmark vs nanoflann (not in make test)
+#   make bench                            Phos against Cycles, raw Embree and nanoflann in one
+#               [BENCH_SCENES_ALL=...]    run: out/bench/ (CSV, plots, summary.md); cached
+#                                         Cycles references (docs/benchmarks.md; under an hour)
+#   make bench-kdtree [BENCH_ARGS=...]    the kd-tree benchmark alone
 #   make bench-defaults                   PHOTON settings swept against cached Cycles
 #               [BENCH_SCENES=...]        references, ranked by error per second, and
 #                                         the defaults against Cycles at equal time
@@ -45,10 +48,10 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
-.PHONY: deps build binding check-binding test test-blender4 bench bench-defaults render image-digests install uninstall package clean help
+.PHONY: deps build binding check-binding test test-blender4 bench bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
 
 help:
-	@sed -n '3,21p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,22p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -86,13 +89,15 @@ test-blender4:
 
 # Release build of bench/ in its own folder, so that PHOS_BUILD_BENCH=ON never
 # lands in $(BUILD_DIR)'s cache (and C++ never in `make build` or `make test`).
-# BENCH_ARGS: --photons N --queries Q --k K (default 1000000, 100000, 50).
+# BENCH_ARGS: --photons N --queries Q --k K (default 1000000, 100000, 50 and 500).
 BENCH_DIR  ?= $(BUILD_DIR)/bench-release
 BENCH_ARGS ?=
-bench:
+bench-programs:
 	@tools/install-deps.sh --bench
 	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DPHOS_BUILD_BENCH=ON -DPHOS_BUILD_TESTS=OFF
-	cmake --build $(BENCH_DIR) -j $(JOBS) --target bench_kdtree
+	cmake --build $(BENCH_DIR) -j $(JOBS) --target bench_kdtree bench_core
+
+bench-kdtree: bench-programs
 	$(BENCH_DIR)/bench/bench_kdtree $(BENCH_ARGS)
 
 # Image quality against time (bench/quality.py, docs/benchmarks.md): the
@@ -116,6 +121,28 @@ bench-defaults: build
 	    --csv out/bench/equal_time_$$s.csv | $(BENCH_QUIET); \
 	done
 	python3 bench/defaults_report.py $(foreach s,$(BENCH_SCENES),out/bench/sweep_$(s).csv)
+
+# Everything issue by issue asks of the benchmark, in one run; the tables
+# and plots land in out/bench/ (summary.md). Plots use Debian's Python,
+# which has numpy and matplotlib (tools/install-deps.sh --bench).
+BENCH_SCENES_ALL ?= cornell_box sunlit_room glass_sphere_caustic metal_ring
+BENCH_BUDGETS    ?= 4 16 64
+BENCH_TRIANGLES  ?= 10000 100000 1000000 5000000
+bench: bench-programs build
+	mkdir -p out/bench
+	$(BENCH_DIR)/bench/bench_core rays threads photons --csv out/bench
+	$(BENCH_DIR)/bench/bench_core dump out/bench/cornell_200k.photons 200000 dump out/bench/cornell_2M.photons 2000000
+	$(BENCH_DIR)/bench/bench_kdtree --input out/bench/cornell_200k.photons --input out/bench/cornell_2M.photons \
+	  --csv out/bench/kdtree.csv $(BENCH_ARGS)
+	for s in $(BENCH_SCENES_ALL); do \
+	  $(BENCH_QUALITY) reference --scene $$s --resolution $(BENCH_RESOLUTION) \
+	    --chunks $(BENCH_REF_CHUNKS) --reference-dir $(BENCH_REF_DIR) | $(BENCH_QUIET); \
+	  $(BENCH_QUALITY) bench --scene $$s --resolution $(BENCH_RESOLUTION) --reference-dir $(BENCH_REF_DIR) \
+	    --budgets $(BENCH_BUDGETS) --csv out/bench/bench_$$s.csv | $(BENCH_QUIET); \
+	done
+	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python bench/scaling.py -- --triangles $(BENCH_TRIANGLES) \
+	  --csv out/bench/scaling.csv | $(BENCH_QUIET)
+	/usr/bin/python3 bench/plots.py out/bench
 
 # Not a test: digests depend on the compiler, Embree and the CPU, so two runs
 # are compared on one machine (tools/image-digests.py).

@@ -2,14 +2,19 @@
 // against nanoflann's KDTreeSingleIndexAdaptor on the same photons, in the
 // same run, on one thread.
 //
-// Reports build time, k-nearest queries per second (k = 50 with a maximum
-// radius, the photon map's radiance-estimate query), the ratio, and bytes
-// per photon. The two searches must return the same number of photons and
+// Reports build time, k-nearest queries per second (k = 50 and 500 with a
+// maximum radius, the photon map's radiance-estimate query), the ratio,
+// bytes per photon, and the peak memory a build adds (measured in a forked
+// child, from its VmHWM over its VmRSS at the start). The two searches must return the same number of photons and
 // the same final radius² for every query (both accept d² < r² strictly and
 // compute d² in the same float order); the count of agreeing queries is
 // printed. Times are the best of 3 runs; nothing is asserted about them.
 //
-//   bench_kdtree [--photons N] [--queries Q] [--k K]
+//   bench_kdtree [--photons N] [--queries Q] [--k K] [--input FILE]... [--csv FILE]
+//
+// --input reads raw 20-byte photon records (bench_core dump FILE N: the
+// Cornell box's global map), queried at stored photons' positions; without
+// it, synthetic photons on a box and on a room with two spheres.
 //
 // C++ only because nanoflann is a C++ header; Phos itself is C11.
 #include <algorithm>
@@ -19,6 +24,9 @@
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <nanoflann.hpp>
 
@@ -78,9 +86,67 @@ std::vector<photon> make_photons(const Scenario &sc, size_t n, uint32_t seed)
     for (size_t i = 0; i < n; i++) {
         vec3 pos = sc.point(r);
         vec3 power = v3(r.next(), r.next(), r.next());
-        p[i] = photon_make(pos, v3_scale(power, 1e-6f), v3(0.0f, 0.0f, -1.0f), 0, 1);
+        p[i] = photon_make(pos, v3_scale(power, 1e-6f), v3(0.0f, 0.0f, -1.0f), v3(0.0f, 0.0f, 1.0f), 0);
     }
     return p;
+}
+
+std::vector<photon> read_photons(const char *path)
+{
+    std::vector<photon> p;
+    FILE *f = std::fopen(path, "rb");
+    if (!f) {
+        std::fprintf(stderr, "bench_kdtree: cannot read %s\n", path);
+        std::exit(1);
+    }
+    photon rec;
+    while (std::fread(&rec, sizeof rec, 1, f) == 1)
+        p.push_back(rec);
+    std::fclose(f);
+    return p;
+}
+
+// kB from a /proc/self/status line ("VmRSS:", "VmHWM:").
+long status_kb(const char *key)
+{
+    FILE *f = std::fopen("/proc/self/status", "r");
+    char line[256];
+    long kb = -1;
+    while (f && std::fgets(line, sizeof line, f))
+        if (std::strncmp(line, key, std::strlen(key)) == 0)
+            kb = std::strtol(line + std::strlen(key), nullptr, 10);
+    if (f)
+        std::fclose(f);
+    return kb;
+}
+
+// Bytes of memory the build f adds at its peak, in a forked child so that
+// the two structures' peaks are measured apart (−1 if it cannot fork).
+template <class F> long peak_bytes(F f)
+{
+    int fds[2];
+    if (pipe(fds) != 0)
+        return -1;
+    pid_t pid = fork();
+    if (pid == 0) {
+        long before = status_kb("VmRSS:");
+        f();
+        long peak = status_kb("VmHWM:");
+        long delta = (peak - before) * 1024;
+        ssize_t w = write(fds[1], &delta, sizeof delta);
+        (void)w;
+        _exit(0);
+    }
+    long delta = -1;
+    if (pid > 0) {
+        ssize_t r = read(fds[0], &delta, sizeof delta);
+        if (r != (ssize_t)sizeof delta)
+            delta = -1;
+        waitpid(pid, nullptr, 0);
+    }
+    close(fds[0]);
+    close(fds[1]);
+    return delta;
 }
 
 // ---- nanoflann ------------------------------------------------------------
@@ -112,6 +178,7 @@ struct Result {
     double build_s;
     double qps;
     size_t bytes;
+    long peak;
     std::vector<uint32_t> found;
     std::vector<float> radius2;
 };
@@ -139,6 +206,13 @@ void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queri
         return seconds_since(t0);
     });
     res.bytes = photon_map_memory(&map);
+    res.peak = peak_bytes([&] {
+        photon_map m2;
+        photon_map_init(&m2);
+        photon_map_reserve(&m2, (uint32_t)photons.size());
+        photon_map_append(&m2, photons.data(), (uint32_t)photons.size());
+        photon_map_build(&m2);
+    });
 
     kdtree_query q;
     kdtree_query_init(&q, k);
@@ -173,6 +247,13 @@ void run_nanoflann(const std::vector<photon> &photons, const std::vector<vec3> &
         return seconds_since(t0);
     });
     res.bytes = tree->usedMemory(*tree) + cloud.xyz.size() * sizeof(float);
+    res.peak = peak_bytes([&] {
+        Cloud c2;
+        c2.xyz.resize(photons.size() * 3);
+        for (size_t i = 0; i < photons.size(); i++)
+            std::memcpy(&c2.xyz[3 * i], photons[i].position, sizeof(float) * 3);
+        NanoTree t2(3, c2, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+    });
 
     std::vector<uint32_t> index(k);
     std::vector<float> dist2(k);
@@ -202,39 +283,45 @@ size_t agreeing(const Result &a, const Result &b)
     return same;
 }
 
-void bench_scenario(const Scenario &sc, size_t n, size_t nq, uint32_t k)
-{
-    std::vector<photon> photons = make_photons(sc, n, 1);
-    std::vector<vec3> queries(nq);
-    Rng r{12345};
-    for (auto &q : queries)
-        q = sc.point(r);
+FILE *csv_out;
 
-    std::printf("\n%s: %zu photons, %zu queries on the same surfaces, k = %u, 1 thread\n", sc.name, n, nq, k);
-    std::printf("  %-30s %14s %14s %10s\n", "", "Phos", "nanoflann", "Phos/nano");
-    bool first = true;
-    const float radii[] = {0.1f, 0.01f};
-    for (float radius : radii) {
-        Result phos, nano;
-        run_phos(photons, queries, k, radius * radius, phos);
-        run_nanoflann(photons, queries, k, radius * radius, nano);
-        if (first) {
-            std::printf("  %-30s %14.1f %14.1f %10.2f\n", "build (ms, best of 3)", 1e3 * phos.build_s,
-                        1e3 * nano.build_s, phos.build_s / nano.build_s);
+void bench_photons(const char *name, const std::vector<photon> &photons, const std::vector<vec3> &queries,
+                   const std::vector<uint32_t> &ks, const std::vector<float> &radii)
+{
+    size_t n = photons.size(), nq = queries.size();
+    for (uint32_t k : ks) {
+        std::printf("\n%s: %zu photons, %zu queries on the same surfaces, k = %u, 1 thread\n", name, n, nq, k);
+        std::printf("  %-30s %14s %14s %10s\n", "", "Phos", "nanoflann", "Phos/nano");
+        bool first = true;
+        for (float radius : radii) {
+            Result phos, nano;
+            run_phos(photons, queries, k, radius * radius, phos);
+            run_nanoflann(photons, queries, k, radius * radius, nano);
             double pb = (double)phos.bytes / (double)n, nb = (double)nano.bytes / (double)n;
-            std::printf("  %-30s %14.2f %14.2f %10.2f\n", "bytes per photon", pb, nb, pb / nb);
-            std::printf("  %-30s %14s %14.2f %10s\n", "  nanoflann + 8 B payload", "", nb + 8.0, "");
-            first = false;
+            if (first) {
+                std::printf("  %-30s %14.1f %14.1f %10.2f\n", "build (ms, best of 3)", 1e3 * phos.build_s,
+                            1e3 * nano.build_s, phos.build_s / nano.build_s);
+                std::printf("  %-30s %14.2f %14.2f %10.2f\n", "bytes per photon", pb, nb, pb / nb);
+                std::printf("  %-30s %14s %14.2f %10s\n", "  nanoflann + 8 B payload", "", nb + 8.0, "");
+                std::printf("  %-30s %14.1f %14.1f %10s\n", "build's peak memory (MB)", phos.peak / 1e6,
+                            nano.peak / 1e6, "");
+                first = false;
+            }
+            size_t filled = 0;
+            for (uint32_t f : phos.found)
+                filled += f == k;
+            char label[64];
+            std::snprintf(label, sizeof label, "queries/s (best of 3), r %.2g", (double)radius);
+            std::printf("  %-30s %14.0f %14.0f %10.2f\n", label, phos.qps, nano.qps, phos.qps / nano.qps);
+            std::printf("  %-30s %13.1f%% %14s %10s\n", "  queries that found k", 100.0 * filled / (double)nq, "",
+                        "");
+            size_t same = agreeing(phos, nano);
+            std::printf("  %-30s %14zu %14s\n", "  results identical", same, "");
+            if (csv_out)
+                std::fprintf(csv_out, "%s,%zu,%u,%g,%.6f,%.6f,%.0f,%.0f,%.3f,%.3f,%ld,%ld,%.3f,%zu\n", name, n, k,
+                             (double)radius, phos.build_s, nano.build_s, phos.qps, nano.qps, pb, nb, phos.peak,
+                             nano.peak, phos.qps / nano.qps, same);
         }
-        size_t filled = 0;
-        for (uint32_t f : phos.found)
-            filled += f == k;
-        char label[64];
-        std::snprintf(label, sizeof label, "queries/s (best of 3), r %.2g", (double)radius);
-        std::printf("  %-30s %14.0f %14.0f %10.2f\n", label, phos.qps, nano.qps, phos.qps / nano.qps);
-        std::printf("  %-30s %13.1f%% %14s %10s\n", "  queries that found k", 100.0 * filled / (double)nq, "",
-                    "");
-        std::printf("  %-30s %14zu %14s\n", "  results identical", agreeing(phos, nano), "");
     }
 }
 
@@ -252,11 +339,20 @@ int main(int argc, char **argv)
 {
     size_t n = arg_size(argc, argv, "--photons", 1000000);
     size_t nq = arg_size(argc, argv, "--queries", 100000);
-    uint32_t k = (uint32_t)arg_size(argc, argv, "--k", 50);
-    if (n == 0 || n > PHOTON_MAP_MAX_PHOTONS || nq == 0 || k == 0) {
-        std::fprintf(stderr, "usage: bench_kdtree [--photons N] [--queries Q] [--k K]\n");
+    uint32_t k_arg = (uint32_t)arg_size(argc, argv, "--k", 0);
+    if (n == 0 || n > PHOTON_MAP_MAX_PHOTONS || nq == 0) {
+        std::fprintf(stderr, "usage: bench_kdtree [--photons N] [--queries Q] [--k K] [--input FILE]... [--csv FILE]\n");
         return 2;
     }
+    std::vector<uint32_t> ks = k_arg ? std::vector<uint32_t>{k_arg} : std::vector<uint32_t>{50, 500};
+    for (int i = 1; i + 1 < argc; i++)
+        if (std::strcmp(argv[i], "--csv") == 0) {
+            csv_out = std::fopen(argv[i + 1], "w");
+            if (csv_out)
+                std::fprintf(csv_out, "photons_from,photons,k,radius,phos_build_s,nano_build_s,phos_qps,nano_qps,"
+                                      "phos_bytes_per_photon,nano_bytes_per_photon,phos_build_peak_bytes,"
+                                      "nano_build_peak_bytes,qps_ratio,identical\n");
+        }
     std::printf("kd-tree benchmark: Phos (left-balanced heap, 20-byte photons) vs nanoflann %d.%d.%d "
                 "(KDTreeSingleIndexAdaptor, leaf size 10, positions as float[3])\n",
                 NANOFLANN_VERSION >> 8, (NANOFLANN_VERSION >> 4) & 0xf, NANOFLANN_VERSION & 0xf);
@@ -264,8 +360,35 @@ int main(int argc, char **argv)
                 "nanoflann = its index + 12 B of positions; a photon map on it needs 8 B more per photon.\n"
                 "Phos/nano is the ratio of the two columns: below 1 is better for build time and bytes,\n"
                 "above 1 for queries per second.\n");
-    const Scenario scenarios[] = {{"box faces", on_box}, {"room (box + two spheres)", on_room}};
-    for (const Scenario &sc : scenarios)
-        bench_scenario(sc, n, nq, k);
+    bool inputs = false;
+    for (int i = 1; i + 1 < argc; i++) {
+        if (std::strcmp(argv[i], "--input") != 0)
+            continue;
+        inputs = true;
+        std::vector<photon> photons = read_photons(argv[i + 1]);
+        if (photons.empty())
+            continue;
+        std::vector<vec3> queries(nq);
+        Rng r{12345};
+        for (auto &q : queries) {
+            const photon &p = photons[(size_t)(r.next() * (float)photons.size()) % photons.size()];
+            q = v3(p.position[0], p.position[1], p.position[2]);
+        }
+        // Radii for a 2 m box: the estimate's cap, and one that k fills.
+        bench_photons(argv[i + 1], photons, queries, ks, {0.25f, 0.05f});
+    }
+    if (!inputs) {
+        const Scenario scenarios[] = {{"box faces", on_box}, {"room (box + two spheres)", on_room}};
+        for (const Scenario &sc : scenarios) {
+            std::vector<photon> photons = make_photons(sc, n, 1);
+            std::vector<vec3> queries(nq);
+            Rng r{12345};
+            for (auto &q : queries)
+                q = sc.point(r);
+            bench_photons(sc.name, photons, queries, ks, {0.1f, 0.01f});
+        }
+    }
+    if (csv_out)
+        std::fclose(csv_out);
     return 0;
 }

@@ -18,6 +18,13 @@ Commands (each takes --scene NAME, a script in scenes/, and --resolution W H):
                 that does not grow with the pixel count, relative MSE.
     equal-time  Phos at the given settings (default: the engine's
                 defaults), then Cycles given the same wall time.
+    bench       what `make bench` runs per scene: equal time at the
+                defaults (PHOTON, PATH, Cycles), fixed budgets (--budgets
+                seconds; Phos picks the samples, and fewer photons where
+                the maps alone would overrun, to fit each), and the path
+                tracer's time and variance per sample against Cycles' at
+                equal samples. Writes --csv and, beside it, the images
+                (bench_<scene>.npz) for bench/plots.py.
 
 Relative MSE (Rousselle et al. 2011): the mean over pixels and RGB channels
 of (x - r)^2 / (r^2 + 0.01), minus the reference's own share, the same sum
@@ -119,13 +126,27 @@ def render(scene):
             rgb = a.reshape(h, w, img.channels)[:, :, :3].astype(np.float64)
         finally:
             bpy.data.images.remove(img)
+    _last_image[0] = rgb
     return rgb, seconds
+
+
+_last_image = [None]  # the last render's image, for the bench's strips
 
 
 # --------------------------------------------------------------- reference
 
-def reference_path(ref_dir, scene_name, resolution):
-    return os.path.join(ref_dir, "%s_%dx%d.npz" % (scene_name, resolution[0], resolution[1]))
+def reference_recipe(module):
+    """How a scene's reference is rendered: Cycles (engine "CYCLES"), or,
+    for a scene Cycles cannot converge (a small lamp's caustic through
+    glass, found only by hitting the lamp), Phos PHOTON with the scene's
+    BENCH_REFERENCE settings (far more photons than any measured setting),
+    each chunk its own seed and so its own photon maps."""
+    return getattr(module, "BENCH_REFERENCE", {"engine": "CYCLES", "settings": {}})
+
+
+def reference_path(ref_dir, scene_name, resolution, engine="CYCLES"):
+    suffix = "" if engine == "CYCLES" else "_" + engine.lower()
+    return os.path.join(ref_dir, "%s_%dx%d%s.npz" % (scene_name, resolution[0], resolution[1], suffix))
 
 
 class Reference:
@@ -188,19 +209,25 @@ def machine_description():
 
 
 def command_reference(args):
-    path = reference_path(args.reference_dir, args.scene, args.resolution)
-    ref = Reference.load(path)
-    if ref is not None and ref.chunk_samples != args.chunk_samples:
-        raise SystemExit("%s holds chunks of %d samples, not %d" % (path, ref.chunk_samples, args.chunk_samples))
     scene, module = build_scene(args.scene)
+    recipe = reference_recipe(module)
+    engine = recipe["engine"]
+    path = reference_path(args.reference_dir, args.scene, args.resolution, engine)
+    ref = Reference.load(path)
+    chunks = recipe.get("chunks", args.chunks)
+    chunk_samples = recipe.get("chunk_samples", args.chunk_samples)
+    if ref is not None and ref.chunk_samples != chunk_samples:
+        raise SystemExit("%s holds chunks of %d samples, not %d" % (path, ref.chunk_samples, chunk_samples))
     start = ref.chunks if ref else 0
-    for k in range(start, args.chunks):
-        configure(scene, module, "CYCLES", args.resolution, args.chunk_samples, REFERENCE_SEED_BASE + k)
+    for k in range(start, chunks):
+        configure(scene, module, "PHOS" if engine == "PHOS" else "CYCLES", args.resolution, chunk_samples,
+                  REFERENCE_SEED_BASE + k, "PHOTON", recipe.get("settings"))
         image, seconds = render(scene)
         if ref is None:
             meta = dict(machine_description(), scene=args.scene, resolution=list(args.resolution),
-                        engine="CYCLES", seed_base=REFERENCE_SEED_BASE, max_bounces=module.MAX_BOUNCES)
-            ref = Reference(np.zeros_like(image), np.zeros_like(image), 0, args.chunk_samples, meta)
+                        engine=engine, settings=recipe.get("settings", {}), seed_base=REFERENCE_SEED_BASE,
+                        max_bounces=module.MAX_BOUNCES)
+            ref = Reference(np.zeros_like(image), np.zeros_like(image), 0, chunk_samples, meta)
         ref.total += image
         ref.total_sq += image * image
         ref.chunks += 1
@@ -208,14 +235,15 @@ def command_reference(args):
         ref.save(path)  # after every chunk: an interrupted reference keeps what it has
         _, own = ref.relative_mse(ref.mean)
         log("%s: chunk %d/%d (%d samples) in %.1f s; reference noise (relative variance) %.3g"
-            % (args.scene, ref.chunks, args.chunks, args.chunk_samples, seconds, own))
+            % (args.scene, ref.chunks, chunks, chunk_samples, seconds, own))
     if ref is None:
         raise SystemExit("no reference rendered (--chunks 0?)")
     log("%s: reference of %d samples in %s" % (args.scene, ref.chunks * ref.chunk_samples, path))
 
 
 def load_reference(args):
-    path = reference_path(args.reference_dir, args.scene, args.resolution)
+    engine = reference_recipe(importlib.import_module(args.scene))["engine"]
+    path = reference_path(args.reference_dir, args.scene, args.resolution, engine)
     ref = Reference.load(path)
     if ref is None:
         raise SystemExit("no reference %s: run the reference command first" % path)
@@ -341,9 +369,88 @@ def command_equal_time(args):
     write_rows(args.csv, rows)
 
 
+# ------------------------------------------------------------------ bench
+
+def _samples_for(scene, module, args, ref, integrator, settings, budget):
+    """Settings that fit `budget` seconds: a pilot at 8 samples gives the
+    fixed time and the time per sample; photon counts are scaled down
+    where the maps alone would take more than a third of the budget."""
+    settings = dict(settings)
+    pilot = phos_measurement(scene, module, args, ref, dict(settings, samples=8), integrator)
+    fixed = pilot["fixed_seconds"]
+    per_sample = max(pilot["seconds"] - fixed, 1e-3) / 8.0
+    if integrator == "PHOTON" and fixed > budget / 3.0:
+        scale = budget / 3.0 / fixed
+        for name in ("global_photons", "caustic_photons"):
+            default = scene.phos.bl_rna.properties[name].default
+            settings[name] = max(1000, int(settings.get(name, default) * scale))
+        fixed *= scale
+    settings["samples"] = max(1, int((budget - fixed) / per_sample))
+    return settings
+
+
+def command_bench(args):
+    ref = load_reference(args)
+    scene, module = build_scene(args.scene)
+    rows, images = [], {"reference": ref.mean}
+    machine = machine_description()
+
+    def add(row, kind, budget=None, image=None, label=None):
+        row.update(kind=kind, budget=budget if budget is not None else "", **machine)
+        rows.append(row)
+        log(_format_row(row))
+        if image is not None:
+            images[label] = image
+        write_rows(args.csv, rows)
+
+    # Equal time at the defaults, and the images for the strips.
+    for integrator in ("PHOTON", "PATH"):
+        row = phos_measurement(scene, module, args, ref, {}, integrator)
+        image = _last_image[0]
+        crow = cycles_measurement(scene, module, args, ref, row["seconds"])
+        ratio = row["relative_mse"] * row["seconds"] / (crow["relative_mse"] * crow["seconds"])
+        row["vs_cycles"] = crow["vs_cycles"] = ratio
+        crow["integrator"] = "vs " + integrator
+        add(row, "equal_time", image=image, label=integrator)
+        add(crow, "equal_time", image=_last_image[0], label="CYCLES vs " + integrator)
+        log("%s %s: relative MSE Phos / Cycles at equal time (%.1f s) = %.3g"
+            % (args.scene, integrator, row["seconds"], ratio))
+
+    # Fixed budgets.
+    for budget in args.budgets:
+        for integrator in ("PHOTON", "PATH"):
+            settings = _samples_for(scene, module, args, ref, integrator, {}, budget)
+            add(phos_measurement(scene, module, args, ref, settings, integrator), "budget", budget)
+        add(cycles_measurement(scene, module, args, ref, budget), "budget", budget)
+
+    # The path tracers at equal samples: time and variance per sample.
+    samples = args.path_samples
+    for engine in ("PHOS", "CYCLES"):
+        if engine == "PHOS":
+            row = phos_measurement(scene, module, args, ref, {"samples": samples}, "PATH")
+            per_sample = (row["seconds"] - row["fixed_seconds"]) / samples
+        else:
+            configure(scene, module, "CYCLES", args.resolution, 1, args.seed)
+            _, one = render(scene)
+            configure(scene, module, "CYCLES", args.resolution, samples + 1, args.seed)
+            image, seconds = render(scene)
+            rel, own = ref.relative_mse(image)
+            per_sample = (seconds - one) / samples
+            row = {"scene": args.scene, "engine": "CYCLES", "integrator": "PATH", "samples": samples + 1,
+                   "seconds": seconds, "fixed_seconds": one, "relative_mse": rel, "reference_share": own,
+                   "mean_ratio": float(image.mean() / ref.mean.mean())}
+        row.update(seconds_per_sample=per_sample,
+                   variance_per_sample=row["relative_mse"] * int(row["samples"]))
+        add(row, "path_speed")
+    np.savez_compressed(os.path.join(os.path.dirname(os.path.abspath(args.csv)), "bench_%s.npz" % args.scene),
+                        **{k.replace(" ", "_"): v.astype(np.float32) for k, v in images.items()})
+
+
 def main():
     p = argparse.ArgumentParser(prog="quality.py", description=__doc__.splitlines()[0])
-    p.add_argument("command", choices=("reference", "sweep", "equal-time"))
+    p.add_argument("command", choices=("reference", "sweep", "equal-time", "bench"))
+    p.add_argument("--budgets", type=float, nargs="+", default=[4.0, 16.0, 64.0])
+    p.add_argument("--path-samples", type=int, default=64)
     p.add_argument("--scene", required=True)
     p.add_argument("--resolution", type=int, nargs=2, default=(128, 128), metavar=("W", "H"))
     p.add_argument("--reference-dir", default=os.path.join(os.path.expanduser("~"), ".cache", "phos-bench"))
@@ -356,7 +463,8 @@ def main():
     p.add_argument("--csv", default=os.path.join(REPO_DIR, "out", "bench", "quality.csv"))
     args = p.parse_args(_common.script_argv())
     args.resolution = tuple(args.resolution)
-    {"reference": command_reference, "sweep": command_sweep, "equal-time": command_equal_time}[args.command](args)
+    {"reference": command_reference, "sweep": command_sweep, "equal-time": command_equal_time,
+     "bench": command_bench}[args.command](args)
 
 
 if __name__ == "__main__":

@@ -16,10 +16,13 @@ PACKAGES=(
   zip
 )
 
-# Only for `make bench`: the kd-tree benchmark compares with nanoflann (C++).
+# Only for `make bench`: the kd-tree benchmark compares with nanoflann (C++),
+# and the plots are drawn by Debian's Python with matplotlib.
 BENCH_PACKAGES=(
   libnanoflann-dev # header-only kd-tree library
   g++
+  python3-matplotlib
+  python3-numpy
 )
 
 check=0

@@ -1,0 +1,220 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Plots and the Markdown summary of `make bench`, from what the benchmark
+programs wrote to out/bench/ (runs with Debian's python3, numpy and
+matplotlib; not inside Blender).
+
+    python3 bench/plots.py [OUT_DIR]
+
+Reads   bench_<scene>.csv and bench_<scene>.npz (bench/quality.py bench),
+        rays.csv, threads.csv, photons.csv (bench_core), kdtree.csv
+        (bench_kdtree), scaling.csv (bench/scaling.py), when present.
+Writes  quality_vs_time.png (relative MSE against render time, log-log,
+        a panel per scene), strip_<scene>.png (reference, Phos, Cycles and
+        each one's error), scaling.png, and summary.md.
+"""
+
+import csv
+import glob
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+RELATIVE_EPSILON = 0.01  # as in bench/quality.py
+COLOURS = {"PHOTON": "tab:orange", "PATH": "tab:blue", "CYCLES": "tab:gray"}
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def num(row, key):
+    try:
+        return float(row[key])
+    except (KeyError, TypeError, ValueError):
+        return float("nan")
+
+
+def series(rows):
+    """(label, [(seconds, relative MSE)]) for PHOTON, PATH and Cycles over
+    the budget and equal-time rows."""
+    out = {"PHOTON": [], "PATH": [], "CYCLES": []}
+    for r in rows:
+        if r.get("kind") not in ("budget", "equal_time"):
+            continue
+        label = r["integrator"] if r["engine"] == "PHOS" else "CYCLES"
+        if label in out:
+            out[label].append((num(r, "seconds"), num(r, "relative_mse")))
+    return {k: sorted(v) for k, v in out.items() if v}
+
+
+def plot_quality(scenes, out_dir):
+    n = len(scenes)
+    fig, axes = plt.subplots(1, n, figsize=(4.2 * n, 3.8), squeeze=False)
+    for ax, (scene, rows) in zip(axes[0], scenes):
+        for label, pts in series(rows).items():
+            t, e = zip(*pts)
+            name = {"PHOTON": "Phos PHOTON", "PATH": "Phos PATH", "CYCLES": "Cycles"}[label]
+            ax.loglog(t, np.maximum(e, 1e-7), "o-", color=COLOURS[label], label=name, ms=4)
+        ax.set_title(scene)
+        ax.set_xlabel("render time (s)")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0][0].set_ylabel("relative MSE")
+    axes[0][0].legend()
+    fig.tight_layout()
+    path = os.path.join(out_dir, "quality_vs_time.png")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def display(img, exposure):
+    """Linear RGB to an sRGB-like display image (a 2.2 gamma after the
+    exposure that puts the reference's 99th percentile at 1)."""
+    return np.clip(img * exposure, 0.0, 1.0) ** (1.0 / 2.2)
+
+
+def plot_strip(scene, npz_path, out_dir):
+    data = np.load(npz_path)
+    ref = data["reference"].astype(np.float64)
+    exposure = 1.0 / max(np.percentile(ref, 99), 1e-6)
+    panels = [("reference (Cycles)", ref)]
+    for key, title in (("PHOTON", "Phos PHOTON"), ("CYCLES_vs_PHOTON", "Cycles, same time"),
+                       ("PATH", "Phos PATH")):
+        if key in data:
+            panels.append((title, data[key].astype(np.float64)))
+    errors = [(t + ": error", ((img - ref) ** 2 / (ref ** 2 + RELATIVE_EPSILON)).mean(axis=-1))
+              for t, img in panels[1:]]
+    top = max([np.percentile(e, 99) for _, e in errors] + [1e-6])
+    fig, axes = plt.subplots(2, len(panels), figsize=(2.6 * len(panels), 5.4), squeeze=False)
+    for i, (title, img) in enumerate(panels):
+        axes[0][i].imshow(display(img, exposure), origin="upper")
+        axes[0][i].set_title(title, fontsize=9)
+    axes[1][0].axis("off")
+    for i, (title, err) in enumerate(errors, start=1):
+        im = axes[1][i].imshow(err, origin="upper", cmap="inferno", vmin=0.0, vmax=top)
+        axes[1][i].set_title("%s %.2g" % (title, err.mean()), fontsize=8)
+    for row in axes:
+        for ax in row:
+            ax.set_xticks([])
+            ax.set_yticks([])
+    fig.colorbar(im, ax=axes[1].tolist(), shrink=0.8, label="relative squared error")
+    path = os.path.join(out_dir, "strip_%s.png" % scene)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_scaling(rows, photon_rows, out_dir):
+    if not rows and not photon_rows:
+        return None
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.8))
+    if rows:
+        for engine, colour in (("PHOS", COLOURS["PATH"]), ("CYCLES", COLOURS["CYCLES"])):
+            pts = sorted((num(r, "triangles"), num(r, "sync_seconds")) for r in rows if r["engine"] == engine)
+            if pts:
+                axes[0].loglog(*zip(*pts), "o-", color=colour, label="%s export + BVH" % engine.title())
+        axes[0].set_xlabel("triangles")
+        axes[0].set_ylabel("seconds")
+        axes[0].legend()
+        axes[0].grid(True, which="both", alpha=0.3)
+    if photon_rows:
+        n = [num(r, "photons") for r in photon_rows]
+        for key, label in (("trace_seconds", "trace"), ("build_seconds", "kd-tree build")):
+            axes[1].loglog(n, [num(r, key) for r in photon_rows], "o-", label=label)
+        ref = np.array(n) * np.log2(n)
+        b = [num(r, "build_seconds") for r in photon_rows]
+        axes[1].loglog(n, ref * (b[-1] / ref[-1]), "k:", label="n log n")
+        axes[1].set_xlabel("photons")
+        axes[1].legend()
+        axes[1].grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    path = os.path.join(out_dir, "scaling.png")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def table(rows, cols, heads):
+    lines = ["| " + " | ".join(heads) + " |", "|" + "---|" * len(heads)]
+    for r in rows:
+        lines.append("| " + " | ".join(c(r) if callable(c) else str(r.get(c, "")) for c in cols) + " |")
+    return "\n".join(lines)
+
+
+def g(x, fmt="%.3g"):
+    return fmt % x if x == x else ""
+
+
+def main():
+    out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join("out", "bench")
+    scenes = []
+    for path in sorted(glob.glob(os.path.join(out_dir, "bench_*.csv"))):
+        scene = os.path.basename(path)[len("bench_"):-len(".csv")]
+        scenes.append((scene, read_csv(path)))
+    md = ["# Phos benchmark", ""]
+    if scenes and scenes[0][1]:
+        r0 = scenes[0][1][0]
+        md += ["Machine: %s, %s cores; Blender %s; %s." % (r0.get("cpu"), r0.get("cores"), r0.get("blender"),
+                                                           r0.get("date")), ""]
+    if scenes:
+        md += ["## Equal time at the defaults", "",
+               table([r for _, rows in scenes for r in rows if r.get("kind") == "equal_time"
+                      and r["engine"] == "PHOS"],
+                     ["scene", "integrator", lambda r: g(num(r, "seconds"), "%.1f"),
+                      lambda r: g(num(r, "relative_mse")), lambda r: g(num(r, "vs_cycles"))],
+                     ["scene", "Phos", "seconds", "relative MSE", "Phos / Cycles at equal time"]), ""]
+        md += ["## Fixed budgets", "",
+               table([r for _, rows in scenes for r in rows if r.get("kind") == "budget"],
+                     ["scene", "budget", lambda r: r["integrator"] or "Cycles", "samples",
+                      lambda r: g(num(r, "seconds"), "%.1f"), lambda r: g(num(r, "relative_mse"))],
+                     ["scene", "budget (s)", "engine", "samples", "seconds", "relative MSE"]), ""]
+        md += ["## Path tracers at equal samples", "",
+               table([r for _, rows in scenes for r in rows if r.get("kind") == "path_speed"],
+                     ["scene", "engine", "samples", lambda r: g(1e3 * num(r, "seconds_per_sample"), "%.2f"),
+                      lambda r: g(num(r, "variance_per_sample"))],
+                     ["scene", "engine", "samples", "ms per sample", "relative MSE × samples"]), ""]
+        md += ["![quality against time](%s)" % os.path.basename(plot_quality(scenes, out_dir)), ""]
+        for scene, _ in scenes:
+            npz = os.path.join(out_dir, "bench_%s.npz" % scene)
+            if os.path.exists(npz):
+                md += ["![%s](%s)" % (scene, os.path.basename(plot_strip(scene, npz, out_dir))), ""]
+    rays = read_csv(os.path.join(out_dir, "rays.csv"))
+    if rays:
+        md += ["## Ray throughput", "", table(rays, ["threads", "phos_mrays_s", "raw_mrays_s", "ratio"],
+                                              ["threads", "Phos PATH (M rays/s)", "raw Embree (M rays/s)",
+                                               "Phos / raw"]), ""]
+    threads = read_csv(os.path.join(out_dir, "threads.csv"))
+    if threads:
+        md += ["## Thread scaling", "", table(threads, ["stage", "seconds_1", "seconds_all", "speedup"],
+                                              ["stage", "1 thread (s)", "all (s)", "speed-up"]), ""]
+    photons = read_csv(os.path.join(out_dir, "photons.csv"))
+    if photons:
+        md += ["## Photon maps", "", table(photons, ["photons", "trace_seconds", "build_seconds",
+                                                     "build_ns_per_nlog2n", "bytes_per_photon",
+                                                     "queries_per_second"],
+                                           ["photons", "trace (s)", "build (s)", "build ns / (n log₂ n)",
+                                            "bytes per photon", "k = 50 queries/s"]), ""]
+    kd = read_csv(os.path.join(out_dir, "kdtree.csv"))
+    if kd:
+        md += ["## kd-tree against nanoflann", "", table(kd, list(kd[0].keys()), list(kd[0].keys())), ""]
+    scaling = read_csv(os.path.join(out_dir, "scaling.csv"))
+    if scaling:
+        md += ["## Cost against triangles", "", table(scaling, list(scaling[0].keys()), list(scaling[0].keys())), ""]
+    path = plot_scaling(scaling, photons, out_dir)
+    if path:
+        md += ["![scaling](%s)" % os.path.basename(path), ""]
+    with open(os.path.join(out_dir, "summary.md"), "w") as f:
+        f.write("\n".join(md))
+    print("wrote %s" % os.path.join(out_dir, "summary.md"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,149 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""How Phos's and Cycles' costs grow with the triangle count, in one Blender
+process (`make bench`; docs/benchmarks.md).
+
+    blender -b --factory-startup --python bench/scaling.py -- [--triangles N ...] [--csv FILE]
+
+The scene: a rippled grid of N triangles (a bmesh grid with a sine
+displacement, so the BVH is not trivially flat) under a sun, seen from
+above. Per engine and size:
+
+- sync_seconds: Phos's export and BVH build (the add-on's "export"
+  stage); Cycles' time to its first sample, the render time of 1 sample
+  less the time of one more sample;
+- seconds_per_sample: (time at 5 samples − time at 1) / 4, at 64 × 64;
+- peak_bytes: the largest resident memory the render added, from
+  /proc/self/status (VmHWM after the render, reset before it through
+  /proc/self/clear_refs, less VmRSS before it), and per triangle.
+"""
+
+import argparse
+import csv
+import math
+import os
+import sys
+import time
+
+import bmesh
+import bpy
+
+REPO_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO_DIR, "scenes"))
+import _common  # noqa: E402
+
+
+def log(msg):
+    print("[bench] %s" % msg, flush=True)
+
+
+def status_bytes(key):
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith(key):
+                return int(line.split()[1]) * 1024
+    return -1
+
+
+def reset_peak():
+    try:
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")  # resets VmHWM to the current RSS
+        return True
+    except OSError:
+        return False
+
+
+def build(triangles):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    side = max(2, int(math.sqrt(triangles / 2.0)))
+    bm = bmesh.new()
+    bmesh.ops.create_grid(bm, x_segments=side, y_segments=side, size=2.0)
+    for v in bm.verts:
+        v.co.z = 0.05 * math.sin(9.0 * v.co.x) * math.cos(7.0 * v.co.y)
+    mesh = bpy.data.meshes.new("Grid")
+    bm.to_mesh(mesh)
+    bm.free()
+    ob = bpy.data.objects.new("Grid", mesh)
+    scene.collection.objects.link(ob)
+    sun = bpy.data.lights.new("Sun", "SUN")
+    sun.energy = 3.0
+    sun_ob = bpy.data.objects.new("Sun", sun)
+    sun_ob.rotation_euler = (0.6, 0.2, 0.0)
+    scene.collection.objects.link(sun_ob)
+    cam = bpy.data.cameras.new("Camera")
+    cam_ob = bpy.data.objects.new("Camera", cam)
+    cam_ob.location = (0.0, -3.0, 3.0)
+    cam_ob.rotation_euler = (math.radians(45.0), 0.0, 0.0)
+    scene.collection.objects.link(cam_ob)
+    scene.camera = cam_ob
+    world = bpy.data.worlds.new("World")
+    scene.world = world
+    if not _common.enable_addon():
+        raise RuntimeError("the Phos add-on could not be enabled")
+    return scene, len(mesh.polygons) * 2
+
+
+def timed_render(scene):
+    t = {}
+    handlers = bpy.app.handlers
+    pre = lambda *_a: t.__setitem__("start", time.perf_counter())  # noqa: E731
+    post = lambda *_a: t.__setitem__("end", time.perf_counter())  # noqa: E731
+    handlers.render_pre.append(pre)
+    handlers.render_post.append(post)
+    reset = reset_peak()
+    before = status_bytes("VmRSS:")
+    try:
+        bpy.ops.render.render()
+    finally:
+        handlers.render_pre.remove(pre)
+        handlers.render_post.remove(post)
+    peak = status_bytes("VmHWM:") - before if reset else -1
+    return t["end"] - t["start"], peak
+
+
+def measure(scene, engine, samples):
+    _common.configure_output(scene, (64, 64))
+    _common.configure_cycles(scene, samples, 4)
+    _common.configure_phos(scene, samples, 4, integrator="PATH")
+    scene.render.engine = engine
+    return timed_render(scene)
+
+
+def main():
+    p = argparse.ArgumentParser(prog="scaling.py")
+    p.add_argument("--triangles", type=int, nargs="+", default=[10000, 100000, 1000000, 5000000])
+    p.add_argument("--csv", default=os.path.join(REPO_DIR, "out", "bench", "scaling.csv"))
+    args = p.parse_args(_common.script_argv())
+    rows = []
+    for n in args.triangles:
+        scene, count = build(n)
+        for engine in ("PHOS", "CYCLES"):
+            one, peak = measure(scene, engine, 1)
+            five, peak5 = measure(scene, engine, 5)
+            per_sample = max(five - one, 0.0) / 4.0
+            if engine == "PHOS":
+                eng = sys.modules.get(_common.ADDON_NAME + ".engine")
+                sync = getattr(eng, "last_render_seconds", {}).get("export", float("nan"))
+            else:
+                sync = one - per_sample
+            peak = max(peak, peak5)
+            row = {"engine": engine, "triangles": count, "sync_seconds": round(sync, 4),
+                   "seconds_per_sample": round(per_sample, 5), "peak_bytes": peak,
+                   "bytes_per_triangle": round(peak / count, 1) if peak > 0 else ""}
+            log(" ".join("%s=%s" % kv for kv in row.items()))
+            rows.append(row)
+        os.makedirs(os.path.dirname(os.path.abspath(args.csv)), exist_ok=True)
+        with open(args.csv, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except Exception:
+        import traceback
+        traceback.print_exc()
+        sys.exit(1)
