@@ -457,6 +457,7 @@ static void dump_photons(const char *path, uint32_t n)
 
 int main(int argc, char **argv)
 {
+    setvbuf(stdout, NULL, _IOLBF, 0); /* lines as they come, also into a log */
     const char *csv_dir = NULL;
     for (int i = 1; i + 1 < argc; i++)
         if (strcmp(argv[i], "--csv") == 0)

@@ -344,6 +344,7 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "usage: bench_kdtree [--photons N] [--queries Q] [--k K] [--input FILE]... [--csv FILE]\n");
         return 2;
     }
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);
     std::vector<uint32_t> ks = k_arg ? std::vector<uint32_t>{k_arg} : std::vector<uint32_t>{50, 500};
     for (int i = 1; i + 1 < argc; i++)
         if (std::strcmp(argv[i], "--csv") == 0) {

@@ -92,7 +92,12 @@ def _timing(plan, progress, export_seconds):
         if stage_id not in (core.PHOS_STAGE_WAITING, core.PHOS_STAGE_FINISHED):
             seconds[stage_id] = progress.stage_seconds[stage_id]
             parts.append((name.lower(), seconds[stage_id]))
-    return seconds, ", ".join("%s %.2f s" % part for part in parts)
+    text = ", ".join("%s %.2f s" % part for part in parts)
+    tiles = progress.stage_seconds[core.PHOS_STAGE_RENDERING]
+    seconds["rays"] = progress.rays_traced
+    if progress.rays_traced and tiles > 0.0:
+        text += "; %.1f M rays, %.2f M rays/s" % (progress.rays_traced * 1e-6, progress.rays_traced * 1e-6 / tiles)
+    return seconds, text
 
 
 class PhosRenderEngine(bpy.types.RenderEngine):

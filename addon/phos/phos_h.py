@@ -423,7 +423,7 @@ RENDER_SETTINGS = (
         label='Global Photons',
         description='Photons stored in the global photon map (indirect light); photons are emitted until this many are stored'),
     RenderSetting(
-        name='caustic_photons', ctype='uint32_t', default=50000, min=0, max=268435456,
+        name='caustic_photons', ctype='uint32_t', default=800000, min=0, max=268435456,
         user=True, prop='caustic_photons', kind='NUMBER', enum=None, soft_max=10000000,
         label='Caustic Photons',
         description='Photons stored in the caustic photon map (light focused by mirrors and glass)'),

@@ -328,7 +328,7 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
          "Global Photons",                                                                        \
          "Photons stored in the global photon map (indirect light); "                             \
          "photons are emitted until this many are stored")                                        \
-    USER(uint32_t, caustic_photons, 50000, 0, 1u << 28, caustic_photons, NUMBER, 10000000,        \
+    USER(uint32_t, caustic_photons, 800000, 0, 1u << 28, caustic_photons, NUMBER, 10000000,        \
          "Caustic Photons",                                                                       \
          "Photons stored in the caustic photon map (light focused by mirrors and glass)")         \
     USER(uint32_t, global_estimate_photons, 50, 1, 10000, global_estimate_photons, NUMBER, 1000,  \

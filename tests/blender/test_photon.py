@@ -130,7 +130,7 @@ def diffuse_scene(scene):
 def test_photon_settings_and_defaults(scene):
     p = scene.phos
     props = type(p).bl_rna.properties
-    expected = {"global_photons": 200000, "caustic_photons": 50000, "global_estimate_photons": 50,
+    expected = {"global_photons": 200000, "caustic_photons": 800000, "global_estimate_photons": 50,
                 "caustic_estimate_photons": 80, "max_radius": 0.0, "final_gather_rays": 4,
                 "photon_view": "FINAL_GATHER"}
     for name, value in expected.items():
@@ -524,3 +524,21 @@ def test_failed_render_writes_every_pass(scene, monkeypatch):
     for name, shape, peak in written:
         assert shape == (32 * 24, 4 if name == "Combined" else 3), (name, shape)
         assert peak == 0.0, name
+
+
+def test_render_reports_stage_times_and_rays(scene):
+    """After an F12 the add-on keeps what each stage took and how many rays
+    the tiles cast (bench/quality.py reads them; Blender's console shows
+    them): every stage of the plan, and at least one camera ray a sample."""
+    from phos import core, engine
+    components_scene(scene)
+    pt.configure_output(scene, 32, 24)
+    pt.configure_phos(scene, 4, max_bounces=4)
+    configure_photons(scene, 2000, 2000, gather_rays=2)
+    bpy.ops.render.render()
+    seconds = engine.last_render_seconds
+    print("last render: %s" % seconds)
+    assert seconds["export"] > 0.0
+    for stage in (core.PHOS_STAGE_TRACING_PHOTONS, core.PHOS_STAGE_BUILDING_KDTREES, core.PHOS_STAGE_RENDERING):
+        assert seconds[stage] > 0.0, stage
+    assert seconds["rays"] >= 32 * 24 * 4

@@ -345,6 +345,7 @@ static void check_plan(phos_scene *s, uint32_t integrator, uint32_t view, uint32
           strcmp(p.stage, "Waiting") == 0);
     for (uint32_t k = 0; k < PHOS_STAGE_COUNT; k++)
         CHECK_MSG(p.stage_seconds[k] == 0.0, "stage %u: %g s before the start", k, p.stage_seconds[k]);
+    CHECK(p.rays_traced == 0);
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
@@ -363,6 +364,8 @@ static void check_plan(phos_scene *s, uint32_t integrator, uint32_t view, uint32
         sum += p.stage_seconds[k];
     }
     CHECK_MSG(sum <= wall, "stages %g s in %g s from start to finish", sum, wall);
+    /* Every pixel's sample casts its camera ray at least. */
+    CHECK_MSG(p.rays_traced >= 16u * 16u, "%llu rays counted for 16 × 16 samples", (unsigned long long)p.rays_traced);
     /* A short buffer gets the first stages and the full count. */
     phos_stage_info first;
     CHECK(phos_render_stages(r, &first, 1, &n) == PHOS_OK && n == want_count && first.id == PHOS_STAGE_WAITING);
