@@ -231,6 +231,41 @@ void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queri
     photon_map_free(&map);
 }
 
+// The kd-tree alone, one tree over all photons (kdtree_build, kdtree_knn):
+// the structure nanoflann is compared with. A photon map splits its photons
+// into a tree per facing and flag class (photon.h), and photon_map_knn
+// without a surface filter searches every class's tree in turn.
+void run_tree(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
+              Result &res)
+{
+    std::vector<photon> tree;
+    res.build_s = best_of(3, [&] {
+        tree = photons;
+        auto t0 = Clock::now();
+        kdtree_build(tree.data(), (uint32_t)tree.size());
+        return seconds_since(t0);
+    });
+    res.bytes = tree.size() * sizeof(photon);
+    res.peak = peak_bytes([&] {
+        std::vector<photon> t2 = photons;
+        kdtree_build(t2.data(), (uint32_t)t2.size());
+    });
+    kdtree_query q;
+    kdtree_query_init(&q, k);
+    res.found.resize(queries.size());
+    res.radius2.resize(queries.size());
+    double t = best_of(3, [&] {
+        auto t0 = Clock::now();
+        for (size_t i = 0; i < queries.size(); i++) {
+            res.found[i] = kdtree_knn(tree.data(), (uint32_t)tree.size(), queries[i], r2, &q);
+            res.radius2[i] = q.radius2;
+        }
+        return seconds_since(t0);
+    });
+    res.qps = (double)queries.size() / t;
+    kdtree_query_free(&q);
+}
+
 void run_nanoflann(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
                    Result &res)
 {
@@ -291,20 +326,24 @@ void bench_photons(const char *name, const std::vector<photon> &photons, const s
     size_t n = photons.size(), nq = queries.size();
     for (uint32_t k : ks) {
         std::printf("\n%s: %zu photons, %zu queries on the same surfaces, k = %u, 1 thread\n", name, n, nq, k);
-        std::printf("  %-30s %14s %14s %10s\n", "", "Phos", "nanoflann", "Phos/nano");
+        std::printf("  %-30s %14s %14s %10s %14s %10s\n", "", "Phos tree", "nanoflann", "tree/nano", "Phos map",
+                    "map/nano");
         bool first = true;
         for (float radius : radii) {
-            Result phos, nano;
-            run_phos(photons, queries, k, radius * radius, phos);
+            Result phos, nano, map;
+            run_tree(photons, queries, k, radius * radius, phos);
             run_nanoflann(photons, queries, k, radius * radius, nano);
+            run_phos(photons, queries, k, radius * radius, map);
             double pb = (double)phos.bytes / (double)n, nb = (double)nano.bytes / (double)n;
+            double mb = (double)map.bytes / (double)n;
             if (first) {
-                std::printf("  %-30s %14.1f %14.1f %10.2f\n", "build (ms, best of 3)", 1e3 * phos.build_s,
-                            1e3 * nano.build_s, phos.build_s / nano.build_s);
-                std::printf("  %-30s %14.2f %14.2f %10.2f\n", "bytes per photon", pb, nb, pb / nb);
+                std::printf("  %-30s %14.1f %14.1f %10.2f %14.1f %10.2f\n", "build (ms, best of 3)", 1e3 * phos.build_s,
+                            1e3 * nano.build_s, phos.build_s / nano.build_s, 1e3 * map.build_s,
+                            map.build_s / nano.build_s);
+                std::printf("  %-30s %14.2f %14.2f %10.2f %14.2f\n", "bytes per photon", pb, nb, pb / nb, mb);
                 std::printf("  %-30s %14s %14.2f %10s\n", "  nanoflann + 8 B payload", "", nb + 8.0, "");
-                std::printf("  %-30s %14.1f %14.1f %10s\n", "build's peak memory (MB)", phos.peak / 1e6,
-                            nano.peak / 1e6, "");
+                std::printf("  %-30s %14.1f %14.1f %10s %14.1f\n", "build's peak memory (MB)", phos.peak / 1e6,
+                            nano.peak / 1e6, "", map.peak / 1e6);
                 first = false;
             }
             size_t filled = 0;
@@ -312,15 +351,17 @@ void bench_photons(const char *name, const std::vector<photon> &photons, const s
                 filled += f == k;
             char label[64];
             std::snprintf(label, sizeof label, "queries/s (best of 3), r %.2g", (double)radius);
-            std::printf("  %-30s %14.0f %14.0f %10.2f\n", label, phos.qps, nano.qps, phos.qps / nano.qps);
+            std::printf("  %-30s %14.0f %14.0f %10.2f %14.0f %10.2f\n", label, phos.qps, nano.qps,
+                        phos.qps / nano.qps, map.qps, map.qps / nano.qps);
             std::printf("  %-30s %13.1f%% %14s %10s\n", "  queries that found k", 100.0 * filled / (double)nq, "",
                         "");
             size_t same = agreeing(phos, nano);
-            std::printf("  %-30s %14zu %14s\n", "  results identical", same, "");
+            std::printf("  %-30s %14zu %14s %10s %14zu\n", "  results identical", same, "", "", agreeing(map, nano));
             if (csv_out)
-                std::fprintf(csv_out, "%s,%zu,%u,%g,%.6f,%.6f,%.0f,%.0f,%.3f,%.3f,%ld,%ld,%.3f,%zu\n", name, n, k,
-                             (double)radius, phos.build_s, nano.build_s, phos.qps, nano.qps, pb, nb, phos.peak,
-                             nano.peak, phos.qps / nano.qps, same);
+                std::fprintf(csv_out, "%s,%zu,%u,%g,%.6f,%.6f,%.0f,%.0f,%.3f,%.3f,%ld,%ld,%.3f,%zu,%.6f,%.0f,%.3f\n",
+                             name, n, k, (double)radius, phos.build_s, nano.build_s, phos.qps, nano.qps, pb, nb,
+                             phos.peak, nano.peak, phos.qps / nano.qps, same, map.build_s, map.qps,
+                             map.qps / nano.qps);
         }
     }
 }
@@ -352,7 +393,7 @@ int main(int argc, char **argv)
             if (csv_out)
                 std::fprintf(csv_out, "photons_from,photons,k,radius,phos_build_s,nano_build_s,phos_qps,nano_qps,"
                                       "phos_bytes_per_photon,nano_bytes_per_photon,phos_build_peak_bytes,"
-                                      "nano_build_peak_bytes,qps_ratio,identical\n");
+                                      "nano_build_peak_bytes,qps_ratio,identical,map_build_s,map_qps,map_qps_ratio\n");
         }
     std::printf("kd-tree benchmark: Phos (left-balanced heap, 20-byte photons) vs nanoflann %d.%d.%d "
                 "(KDTreeSingleIndexAdaptor, leaf size 10, positions as float[3])\n",

@@ -5,7 +5,8 @@ matplotlib; not inside Blender).
 
     python3 bench/plots.py [OUT_DIR]
 
-Reads   bench_<scene>.csv and bench_<scene>.npz (bench/quality.py bench),
+Reads   bench_<scene>.csv and bench_<scene>.npz (bench/quality.py bench;
+        budgets_<scene>.csv, from --parts budgets, replaces its budget rows),
         rays.csv, threads.csv, photons.csv (bench_core), kdtree.csv
         (bench_kdtree), scaling.csv (bench/scaling.py), when present.
 Writes  quality_vs_time.png (relative MSE against render time, log-log,
@@ -158,7 +159,13 @@ def main():
     scenes = []
     for path in sorted(glob.glob(os.path.join(out_dir, "bench_*.csv"))):
         scene = os.path.basename(path)[len("bench_"):-len(".csv")]
-        scenes.append((scene, read_csv(path)))
+        rows = read_csv(path)
+        # Budgets measured again on their own (quality.py bench --parts
+        # budgets) replace those of the full run.
+        budgets = read_csv(os.path.join(out_dir, "budgets_%s.csv" % scene))
+        if budgets:
+            rows = [r for r in rows if r.get("kind") != "budget"] + budgets
+        scenes.append((scene, rows))
     md = ["# Phos benchmark", ""]
     if scenes and scenes[0][1]:
         r0 = scenes[0][1][0]

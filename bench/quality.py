@@ -57,6 +57,8 @@ import _common  # noqa: E402
 RELATIVE_EPSILON = 0.01      # the denominator's offset of relative MSE
 FULL_HD_PIXELS = 1920 * 1080  # Blender's default output size
 REFERENCE_SEED_BASE = 1000000  # chunk k of a reference renders with seed BASE + k
+PHOTON_SETTING_NAMES = ("global_photons", "caustic_photons", "global_estimate_photons",
+                        "caustic_estimate_photons", "final_gather_rays", "max_radius")
 
 
 def log(msg):
@@ -285,6 +287,10 @@ def phos_measurement(scene, module, args, ref, settings, integrator):
     first is scaled to Full HD for full_hd_seconds."""
     settings = dict(settings)
     samples = int(settings.pop("samples", scene.phos.bl_rna.properties["samples"].default))
+    # Every photon setting not given is the engine's default, not what an
+    # earlier measurement of this process left on the scene.
+    props = scene.phos.bl_rna.properties
+    settings = dict({name: props[name].default for name in PHOTON_SETTING_NAMES}, **settings)
     configure(scene, module, "PHOS", args.resolution, samples, args.seed, integrator, settings)
     image, seconds = render(scene)
     tiles = phos_tile_seconds(seconds)
@@ -404,7 +410,7 @@ def command_bench(args):
         write_rows(args.csv, rows)
 
     # Equal time at the defaults, and the images for the strips.
-    for integrator in ("PHOTON", "PATH"):
+    for integrator in ("PHOTON", "PATH") if "equal" in args.parts else ():
         row = phos_measurement(scene, module, args, ref, {}, integrator)
         image = _last_image[0]
         crow = cycles_measurement(scene, module, args, ref, row["seconds"])
@@ -417,7 +423,7 @@ def command_bench(args):
             % (args.scene, integrator, row["seconds"], ratio))
 
     # Fixed budgets.
-    for budget in args.budgets:
+    for budget in args.budgets if "budgets" in args.parts else ():
         for integrator in ("PHOTON", "PATH"):
             settings = _samples_for(scene, module, args, ref, integrator, {}, budget)
             add(phos_measurement(scene, module, args, ref, settings, integrator), "budget", budget)
@@ -425,7 +431,7 @@ def command_bench(args):
 
     # The path tracers at equal samples: time and variance per sample.
     samples = args.path_samples
-    for engine in ("PHOS", "CYCLES"):
+    for engine in ("PHOS", "CYCLES") if "path" in args.parts else ():
         if engine == "PHOS":
             row = phos_measurement(scene, module, args, ref, {"samples": samples}, "PATH")
             per_sample = (row["seconds"] - row["fixed_seconds"]) / samples
@@ -442,8 +448,9 @@ def command_bench(args):
         row.update(seconds_per_sample=per_sample,
                    variance_per_sample=row["relative_mse"] * int(row["samples"]))
         add(row, "path_speed")
-    np.savez_compressed(os.path.join(os.path.dirname(os.path.abspath(args.csv)), "bench_%s.npz" % args.scene),
-                        **{k.replace(" ", "_"): v.astype(np.float32) for k, v in images.items()})
+    if "equal" in args.parts:
+        np.savez_compressed(os.path.join(os.path.dirname(os.path.abspath(args.csv)), "bench_%s.npz" % args.scene),
+                            **{k.replace(" ", "_"): v.astype(np.float32) for k, v in images.items()})
 
 
 def main():
@@ -451,6 +458,8 @@ def main():
     p.add_argument("command", choices=("reference", "sweep", "equal-time", "bench"))
     p.add_argument("--budgets", type=float, nargs="+", default=[4.0, 16.0, 64.0])
     p.add_argument("--path-samples", type=int, default=64)
+    p.add_argument("--parts", nargs="+", default=["equal", "budgets", "path"], choices=("equal", "budgets", "path"),
+                   help="bench: which measurements to make")
     p.add_argument("--scene", required=True)
     p.add_argument("--resolution", type=int, nargs=2, default=(128, 128), metavar=("W", "H"))
     p.add_argument("--reference-dir", default=os.path.join(os.path.expanduser("~"), ".cache", "phos-bench"))
