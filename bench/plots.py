@@ -82,11 +82,11 @@ def display(img, exposure):
     return np.clip(img * exposure, 0.0, 1.0) ** (1.0 / 2.2)
 
 
-def plot_strip(scene, npz_path, out_dir):
+def plot_strip(scene, npz_path, out_dir, reference_engine):
     data = np.load(npz_path)
     ref = data["reference"].astype(np.float64)
     exposure = 1.0 / max(np.percentile(ref, 99), 1e-6)
-    panels = [("reference (Cycles)", ref)]
+    panels = [("reference (%s)" % {"PHOS": "Phos PHOTON"}.get(reference_engine, "Cycles"), ref)]
     for key, title in (("PHOTON", "Phos PHOTON"), ("CYCLES_vs_PHOTON", "Cycles, same time"),
                        ("PATH", "Phos PATH")):
         if key in data:
@@ -189,10 +189,11 @@ def main():
                       lambda r: g(num(r, "variance_per_sample"))],
                      ["scene", "engine", "samples", "ms per sample", "relative MSE × samples"]), ""]
         md += ["![quality against time](%s)" % os.path.basename(plot_quality(scenes, out_dir)), ""]
-        for scene, _ in scenes:
+        for scene, rows in scenes:
             npz = os.path.join(out_dir, "bench_%s.npz" % scene)
             if os.path.exists(npz):
-                md += ["![%s](%s)" % (scene, os.path.basename(plot_strip(scene, npz, out_dir))), ""]
+                engine = rows[0].get("reference_engine", "CYCLES") if rows else "CYCLES"
+                md += ["![%s](%s)" % (scene, os.path.basename(plot_strip(scene, npz, out_dir, engine))), ""]
     rays = read_csv(os.path.join(out_dir, "rays.csv"))
     if rays:
         md += ["## Ray throughput", "", table(rays, ["threads", "phos_mrays_s", "raw_mrays_s", "ratio"],

@@ -399,7 +399,8 @@ def command_bench(args):
     ref = load_reference(args)
     scene, module = build_scene(args.scene)
     rows, images = [], {"reference": ref.mean}
-    machine = machine_description()
+    machine = dict(machine_description(), reference_engine=ref.meta.get("engine", "CYCLES"),
+                   reference_samples=ref.chunks * ref.chunk_samples)
 
     def add(row, kind, budget=None, image=None, label=None):
         row.update(kind=kind, budget=budget if budget is not None else "", **machine)
