@@ -86,12 +86,7 @@ static phos_scene *cornell_box(void)
     test_add_instance(s, test_add_quads(s, (const float(*)[4][3])green, 1), test_add_diffuse(s, 0.14f, 0.45f, 0.09f),
                       0, 0, 0);
     test_add_instance(s, test_add_sphere_mesh(s, 0.35f, 64, 32, 0), test_add_glass(s, 1.5f), -0.4f, 0.2f, 0.35f);
-    phos_closure_desc mirror;
-    phos_closure_desc_init(&mirror);
-    mirror.type = PHOS_CLOSURE_REFLECTION;
-    mirror.roughness = 0.0f;
-    test_add_instance(s, test_add_sphere_mesh(s, 0.35f, 64, 32, 0), test_add_closure_material(s, &mirror), 0.45f,
-                      0.45f, 0.35f);
+    test_add_instance(s, test_add_sphere_mesh(s, 0.35f, 64, 32, 0), test_add_mirror(s), 0.45f, 0.45f, 0.35f);
     phos_light_desc l;
     phos_light_desc_init(&l);
     l.type = PHOS_LIGHT_AREA;

@@ -191,6 +191,27 @@ template <class F> double best_of(int reps, F f)
     return best;
 }
 
+// Queries per second of search(x, q) (best of 3), each query's count and
+// final radius² kept for the comparison with nanoflann.
+template <class Search>
+void time_queries(const std::vector<vec3> &queries, uint32_t k, Result &res, Search search)
+{
+    kdtree_query q;
+    kdtree_query_init(&q, k);
+    res.found.resize(queries.size());
+    res.radius2.resize(queries.size());
+    double t = best_of(3, [&] {
+        auto t0 = Clock::now();
+        for (size_t i = 0; i < queries.size(); i++) {
+            res.found[i] = search(queries[i], &q);
+            res.radius2[i] = q.radius2;
+        }
+        return seconds_since(t0);
+    });
+    res.qps = (double)queries.size() / t;
+    kdtree_query_free(&q);
+}
+
 void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
               Result &res)
 {
@@ -214,20 +235,7 @@ void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queri
         photon_map_build(&m2);
     });
 
-    kdtree_query q;
-    kdtree_query_init(&q, k);
-    res.found.resize(queries.size());
-    res.radius2.resize(queries.size());
-    double t = best_of(3, [&] {
-        auto t0 = Clock::now();
-        for (size_t i = 0; i < queries.size(); i++) {
-            res.found[i] = photon_map_knn(&map, queries[i], r2, &q);
-            res.radius2[i] = q.radius2;
-        }
-        return seconds_since(t0);
-    });
-    res.qps = (double)queries.size() / t;
-    kdtree_query_free(&q);
+    time_queries(queries, k, res, [&](vec3 x, kdtree_query *q) { return photon_map_knn(&map, x, r2, q); });
     photon_map_free(&map);
 }
 
@@ -250,20 +258,8 @@ void run_tree(const std::vector<photon> &photons, const std::vector<vec3> &queri
         std::vector<photon> t2 = photons;
         kdtree_build(t2.data(), (uint32_t)t2.size());
     });
-    kdtree_query q;
-    kdtree_query_init(&q, k);
-    res.found.resize(queries.size());
-    res.radius2.resize(queries.size());
-    double t = best_of(3, [&] {
-        auto t0 = Clock::now();
-        for (size_t i = 0; i < queries.size(); i++) {
-            res.found[i] = kdtree_knn(tree.data(), (uint32_t)tree.size(), queries[i], r2, &q);
-            res.radius2[i] = q.radius2;
-        }
-        return seconds_since(t0);
-    });
-    res.qps = (double)queries.size() / t;
-    kdtree_query_free(&q);
+    time_queries(queries, k, res,
+                 [&](vec3 x, kdtree_query *q) { return kdtree_knn(tree.data(), (uint32_t)tree.size(), x, r2, q); });
 }
 
 void run_nanoflann(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,

@@ -297,12 +297,7 @@ static void test_caustic_projection_unbiased(void)
     phos_scene *s = phos_scene_create();
     test_add_instance(s, test_add_quad_mesh(s, 3.0f), test_add_diffuse(s, 0.6f, 0.6f, 0.6f), 0, 0, 0);
     test_add_instance(s, test_add_sphere_mesh(s, 0.3f, 32, 16, 0), test_add_glass(s, 1.5f), -0.5f, 0, 0.5f);
-    phos_closure_desc mirror;
-    phos_closure_desc_init(&mirror);
-    mirror.type = PHOS_CLOSURE_REFLECTION;
-    mirror.roughness = 0.0f;
-    test_add_instance(s, test_add_sphere_mesh(s, 0.25f, 32, 16, 0), test_add_closure_material(s, &mirror), 0.7f,
-                      0.3f, 0.4f);
+    test_add_instance(s, test_add_sphere_mesh(s, 0.25f, 32, 16, 0), test_add_mirror(s), 0.7f, 0.3f, 0.4f);
     phos_light_desc l;
     phos_light_desc_init(&l);
     l.position[0] = 1.0f;

@@ -147,6 +147,16 @@ static uint32_t test_add_glass(phos_scene *s, float ior)
     return test_add_closure_material(s, &c);
 }
 
+/* A sharp mirror (Glossy of roughness 0, white). */
+static uint32_t test_add_mirror(phos_scene *s)
+{
+    phos_closure_desc c;
+    phos_closure_desc_init(&c);
+    c.type = PHOS_CLOSURE_REFLECTION;
+    c.roughness = 0.0f;
+    return test_add_closure_material(s, &c);
+}
+
 static uint32_t test_add_diffuse(phos_scene *s, float r, float g, float b)
 {
     phos_closure_desc c;
