@@ -133,7 +133,7 @@ bench: bench-programs build
 	$(BENCH_DIR)/bench/bench_core rays threads photons --csv out/bench
 	$(BENCH_DIR)/bench/bench_core dump out/bench/cornell_200k.photons 200000 dump out/bench/cornell_2M.photons 2000000
 	$(BENCH_DIR)/bench/bench_kdtree --input out/bench/cornell_200k.photons --input out/bench/cornell_2M.photons \
-	  --csv out/bench/kdtree.csv $(BENCH_ARGS)
+	  --queries 20000 --csv out/bench/kdtree.csv
 	for s in $(BENCH_SCENES_ALL); do \
 	  $(BENCH_QUALITY) reference --scene $$s --resolution $(BENCH_RESOLUTION) \
 	    --chunks $(BENCH_REF_CHUNKS) --reference-dir $(BENCH_REF_DIR) | $(BENCH_QUIET); \
