@@ -8,9 +8,10 @@
 #               [PHOS_CHROOT_DIR=dir]     Debian 13 chroot (root; default /var/tmp/...)
 #   make install | uninstall              add-on into the user's Blender
 #   make package                          dist/phos-<version>.zip
-#   make bench                            Phos against Cycles, raw Embree and nanoflann in one
+#   make bench [QUICK=1]                  Phos against Cycles, raw Embree and nanoflann in one
 #               [BENCH_SCENES_ALL=...]    run: out/bench/ (CSV, plots, summary.md); cached
-#                                         Cycles references (docs/benchmarks.md; under an hour)
+#                                         references (docs/benchmarks.md; 36 min from a
+#                                         fresh clone, QUICK=1 a few minutes)
 #   make bench-kdtree [BENCH_ARGS=...]    the kd-tree benchmark alone
 #   make bench-defaults                   PHOTON settings swept against cached Cycles
 #               [BENCH_SCENES=...]        references, ranked by error per second, and
@@ -125,24 +126,42 @@ bench-defaults: build
 # Everything issue by issue asks of the benchmark, in one run; the tables
 # and plots land in out/bench/ (summary.md). Plots use Debian's Python,
 # which has numpy and matplotlib (tools/install-deps.sh --bench).
+# QUICK=1: the same steps, reduced to a few minutes (one scene at 64², short
+# budgets, small photon maps and meshes); its tables are for checking that
+# the benchmark runs, not for docs/benchmarks.md.
+ifeq ($(QUICK),1)
+BENCH_SCENES_ALL ?= cornell_box
+BENCH_BUDGETS    ?= 1 4
+BENCH_TRIANGLES  ?= 10000 100000
+BENCH_RESOLUTION := 64 64
+BENCH_REF_CHUNKS := 4
+BENCH_MAX_PHOTONS := 1000000
+BENCH_DUMPS := 200000
+BENCH_OUT := out/bench-quick
+else
 BENCH_SCENES_ALL ?= cornell_box sunlit_room glass_sphere_caustic metal_ring
 BENCH_BUDGETS    ?= 4 16 64
 BENCH_TRIANGLES  ?= 10000 100000 1000000 5000000
+BENCH_MAX_PHOTONS := 10000000
+BENCH_DUMPS := 200000 2000000
+BENCH_OUT := out/bench
+endif
 bench: bench-programs build
-	mkdir -p out/bench
-	$(BENCH_DIR)/bench/bench_core rays threads photons --csv out/bench
-	$(BENCH_DIR)/bench/bench_core dump out/bench/cornell_200k.photons 200000 dump out/bench/cornell_2M.photons 2000000
-	$(BENCH_DIR)/bench/bench_kdtree --input out/bench/cornell_200k.photons --input out/bench/cornell_2M.photons \
-	  --queries 20000 --csv out/bench/kdtree.csv
+	mkdir -p $(BENCH_OUT)
+	$(BENCH_DIR)/bench/bench_core rays threads photons --max-photons $(BENCH_MAX_PHOTONS) --csv $(BENCH_OUT)
+	for n in $(BENCH_DUMPS); do \
+	  $(BENCH_DIR)/bench/bench_core dump $(BENCH_OUT)/cornell_$$n.photons $$n; done
+	$(BENCH_DIR)/bench/bench_kdtree $(foreach n,$(BENCH_DUMPS),--input $(BENCH_OUT)/cornell_$(n).photons) \
+	  --queries 20000 --csv $(BENCH_OUT)/kdtree.csv
 	for s in $(BENCH_SCENES_ALL); do \
 	  $(BENCH_QUALITY) reference --scene $$s --resolution $(BENCH_RESOLUTION) \
 	    --chunks $(BENCH_REF_CHUNKS) --reference-dir $(BENCH_REF_DIR) | $(BENCH_QUIET); \
 	  $(BENCH_QUALITY) bench --scene $$s --resolution $(BENCH_RESOLUTION) --reference-dir $(BENCH_REF_DIR) \
-	    --budgets $(BENCH_BUDGETS) --csv out/bench/bench_$$s.csv | $(BENCH_QUIET); \
+	    --budgets $(BENCH_BUDGETS) --csv $(BENCH_OUT)/bench_$$s.csv | $(BENCH_QUIET); \
 	done
 	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python bench/scaling.py -- --triangles $(BENCH_TRIANGLES) \
-	  --csv out/bench/scaling.csv | $(BENCH_QUIET)
-	/usr/bin/python3 bench/plots.py out/bench
+	  --csv $(BENCH_OUT)/scaling.csv | $(BENCH_QUIET)
+	/usr/bin/python3 bench/plots.py $(BENCH_OUT)
 
 # Not a test: digests depend on the compiler, Embree and the CPU, so two runs
 # are compared on one machine (tools/image-digests.py).

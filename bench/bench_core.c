@@ -65,39 +65,10 @@ static FILE *csv_open(const char *dir, const char *name, const char *header)
 
 /* ------------------------------------------------------------ the scene */
 
-/* The Cornell box of scenes/cornell_box.py in spirit: a 2 m box open
- * toward the camera, red and green side walls, a square area light under
- * the ceiling, a glass and a mirror sphere. */
 static phos_scene *cornell_box(void)
 {
-    const float a = 1.0f, h = 2.0f;
-    float white[3][4][3] = {
-        {{-a, -a, 0}, {a, -a, 0}, {a, a, 0}, {-a, a, 0}}, /* floor, +z */
-        {{-a, -a, h}, {-a, a, h}, {a, a, h}, {a, -a, h}}, /* ceiling, −z */
-        {{-a, a, 0}, {a, a, 0}, {a, a, h}, {-a, a, h}},   /* back wall y = a, −y */
-    };
-    float red[1][4][3] = {{{-a, -a, 0}, {-a, a, 0}, {-a, a, h}, {-a, -a, h}}}; /* x = −a, +x */
-    float green[1][4][3] = {{{a, -a, 0}, {a, -a, h}, {a, a, h}, {a, a, 0}}};   /* x = +a, −x */
-    phos_scene *s = phos_scene_create();
-    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])white, 3), test_add_diffuse(s, 0.73f, 0.73f, 0.73f),
-                      0, 0, 0);
-    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])red, 1), test_add_diffuse(s, 0.63f, 0.06f, 0.05f),
-                      0, 0, 0);
-    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])green, 1), test_add_diffuse(s, 0.14f, 0.45f, 0.09f),
-                      0, 0, 0);
-    test_add_instance(s, test_add_sphere_mesh(s, 0.35f, 64, 32, 0), test_add_glass(s, 1.5f), -0.4f, 0.2f, 0.35f);
-    test_add_instance(s, test_add_sphere_mesh(s, 0.35f, 64, 32, 0), test_add_mirror(s), 0.45f, 0.45f, 0.35f);
-    phos_light_desc l;
-    phos_light_desc_init(&l);
-    l.type = PHOS_LIGHT_AREA;
-    l.position[2] = h - 0.01f;
-    l.direction[2] = -1.0f;
-    l.axis_u[0] = 0.5f;
-    l.axis_v[1] = 0.5f;
-    l.color[0] = l.color[1] = l.color[2] = 15.0f; /* W/(m²·sr) */
-    phos_scene_add_light(s, &l, NULL);
-    test_set_camera_pitched(s, 0.0f, -3.6f, 1.0f, 1.5707963f, 0.32f);
-    if (phos_scene_commit(s) != PHOS_OK) {
+    phos_scene *s = test_cornell_box(1);
+    if (!s) {
         fprintf(stderr, "bench_core: the Cornell box does not commit\n");
         exit(1);
     }
@@ -366,8 +337,8 @@ static void bench_threads(const char *csv_dir)
             trace[a] = t.trace < trace[a] ? t.trace : trace[a];
             build[a] = t.build < build[a] ? t.build : build[a];
         }
-    const char *names[4] = {"photon tracing (1 M global)", "kd-tree build (1 M, one thread)", "rendering PATH 96², 8 spp",
-                            "rendering PHOTON 96², 8 spp × 4"};
+    const char *names[4] = {"photon tracing (1 M global)", "kd-tree build (1 M; serial)", "rendering PATH 96² at 8 spp",
+                            "rendering PHOTON 96² at 8 spp × 4 rays"};
     double one[4] = {trace[0], build[0], 1e30, 1e30}, many[4] = {trace[1], build[1], 1e30, 1e30};
     for (int i = 2; i < 4; i++)
         for (int k = 0; k < 3; k++)
@@ -392,7 +363,8 @@ static void bench_threads(const char *csv_dir)
 
 /* ------------------------------------------------------------- photons */
 
-static void bench_photons(const char *csv_dir)
+/* Photon maps up to max_photons (10⁷ in make bench, fewer for QUICK=1). */
+static void bench_photons(const char *csv_dir, uint32_t max_photons)
 {
     phos_scene *s = cornell_box();
     uint32_t threads = parallel_thread_count(0);
@@ -404,7 +376,7 @@ static void bench_photons(const char *csv_dir)
            "queries/s", "MB");
     FILE *f = csv_open(csv_dir, "photons.csv",
                        "photons,trace_seconds,build_seconds,build_ns_per_nlog2n,bytes_per_photon,queries_per_second");
-    for (int c = 0; c < 3; c++) {
+    for (int c = 0; c < 3 && counts[c] <= max_photons; c++) {
         photon_maps m;
         map_timing t = time_maps(s, counts[c], threads, &m);
         /* Queries at stored photons' positions, as a gather's hits are. */
@@ -454,34 +426,38 @@ int main(int argc, char **argv)
 {
     setvbuf(stdout, NULL, _IOLBF, 0); /* lines as they come, also into a log */
     const char *csv_dir = NULL;
-    for (int i = 1; i + 1 < argc; i++)
+    uint32_t max_photons = 10000000;
+    for (int i = 1; i + 1 < argc; i++) {
         if (strcmp(argv[i], "--csv") == 0)
             csv_dir = argv[i + 1];
+        if (strcmp(argv[i], "--max-photons") == 0)
+            max_photons = (uint32_t)strtoul(argv[i + 1], NULL, 10);
+    }
     uint32_t v = phos_version();
     printf("bench_core: Phos %u.%u.%u, Embree %s, %u hardware threads\n", v >> 16, (v >> 8) & 0xffu, v & 0xffu,
            embree_version(), parallel_thread_count(0));
     int any = 0;
     for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--csv") == 0) {
+        if (strcmp(argv[i], "--csv") == 0 || strcmp(argv[i], "--max-photons") == 0) {
             i++;
         } else if (strcmp(argv[i], "rays") == 0) {
             bench_rays(csv_dir), any = 1;
         } else if (strcmp(argv[i], "threads") == 0) {
             bench_threads(csv_dir), any = 1;
         } else if (strcmp(argv[i], "photons") == 0) {
-            bench_photons(csv_dir), any = 1;
+            bench_photons(csv_dir, max_photons), any = 1;
         } else if (strcmp(argv[i], "dump") == 0 && i + 2 < argc) {
             dump_photons(argv[i + 1], (uint32_t)strtoul(argv[i + 2], NULL, 10)), any = 1;
             i += 2;
         } else {
-            fprintf(stderr, "usage: bench_core [rays|threads|photons|dump FILE N]... [--csv DIR]\n");
+            fprintf(stderr, "usage: bench_core [rays|threads|photons|dump FILE N]... [--csv DIR] [--max-photons N]\n");
             return 2;
         }
     }
     if (!any) {
         bench_rays(csv_dir);
         bench_threads(csv_dir);
-        bench_photons(csv_dir);
+        bench_photons(csv_dir, max_photons);
     }
     return 0;
 }

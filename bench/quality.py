@@ -58,7 +58,8 @@ RELATIVE_EPSILON = 0.01      # the denominator's offset of relative MSE
 FULL_HD_PIXELS = 1920 * 1080  # Blender's default output size
 REFERENCE_SEED_BASE = 1000000  # chunk k of a reference renders with seed BASE + k
 PHOTON_SETTING_NAMES = ("global_photons", "caustic_photons", "global_estimate_photons",
-                        "caustic_estimate_photons", "final_gather_rays", "max_radius")
+                        "caustic_estimate_photons", "final_gather_rays", "max_radius",
+                        "irradiance_cache", "ic_accuracy", "ic_rays", "ic_min_spacing", "ic_max_spacing")
 
 
 def log(msg):
@@ -264,10 +265,13 @@ def parse_grid(text):
 
 
 def _number(text):
-    try:
-        return int(text)
-    except ValueError:
-        return float(text)
+    """A grid value: an int, a float, or an enum item's identifier ('ON')."""
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
 
 
 def phos_tile_seconds(seconds):

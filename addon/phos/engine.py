@@ -74,14 +74,25 @@ def _stage_text(progress, stage_id, name, samples):
         if progress.global_photons or progress.caustic_photons:
             text += " | photons {:,} global, {:,} caustic".format(
                 progress.global_photons, progress.caustic_photons)
-        return text
+        return text + _cache_text(progress)
     return name
 
 
+def _cache_text(progress):
+    """" | irradiance cache 1,234 records, 97.5 % interpolated", or "" without a cache."""
+    if not progress.cache_records:
+        return ""
+    text = " | irradiance cache {:,} records".format(progress.cache_records)
+    if progress.cache_lookups:
+        text += ", %.1f %% interpolated" % (100.0 * progress.cache_interpolated / progress.cache_lookups)
+    return text
+
+
 # Wall time (s) of the last final render: "export" (export and BVH build)
-# and each stage it ran, by enum phos_stage; `blender -b` prints them at the
-# end of a render, and scripts that measure Phos read them here
-# (bench/quality.py).
+# and each stage it ran, by enum phos_stage; with the tiles' ray count
+# ("rays") and the irradiance cache's records and share of lookups
+# interpolated. `blender -b` prints them at the end of a render, and
+# scripts that measure Phos read them here (bench/quality.py).
 last_render_seconds = {}
 
 
@@ -95,8 +106,12 @@ def _timing(plan, progress, export_seconds):
     text = ", ".join("%s %.2f s" % part for part in parts)
     tiles = progress.stage_seconds[core.PHOS_STAGE_RENDERING]
     seconds["rays"] = progress.rays_traced
+    seconds["cache_records"] = progress.cache_records
+    seconds["cache_interpolated"] = (progress.cache_interpolated / progress.cache_lookups
+                                     if progress.cache_lookups else 0.0)
     if progress.rays_traced and tiles > 0.0:
         text += "; %.1f M rays, %.2f M rays/s" % (progress.rays_traced * 1e-6, progress.rays_traced * 1e-6 / tiles)
+    text += _cache_text(progress).replace(" | ", "; ", 1)
     return seconds, text
 
 

@@ -71,6 +71,11 @@ PHOS_CAMERA_ORTHOGRAPHIC = 1
 PHOS_INTEGRATOR_PATH = 0
 PHOS_INTEGRATOR_PHOTON = 1
 
+# enum phos_irradiance_cache
+PHOS_IRRADIANCE_CACHE_OFF = 0
+PHOS_IRRADIANCE_CACHE_PHOTON = 1
+PHOS_IRRADIANCE_CACHE_ALWAYS = 2
+
 # enum phos_photon_view
 PHOS_PHOTON_VIEW_FINAL_GATHER = 0
 PHOS_PHOTON_VIEW_FAST = 1
@@ -86,7 +91,8 @@ PHOS_PASS_INDIRECT = 5
 PHOS_PASS_PHOTON_MAP = 6
 PHOS_PASS_CAUSTIC_MAP = 7
 PHOS_PASS_PHOTONS = 8
-PHOS_PASS_COUNT = 9
+PHOS_PASS_IRRADIANCE_CACHE = 9
+PHOS_PASS_COUNT = 10
 
 # enum phos_render_state
 PHOS_STATE_IDLE = 0
@@ -100,9 +106,10 @@ PHOS_STAGE_WAITING = 0
 PHOS_STAGE_TRACING_PHOTONS = 1
 PHOS_STAGE_BUILDING_KDTREES = 2
 PHOS_STAGE_PRECOMPUTING_RADIANCE = 3
-PHOS_STAGE_RENDERING = 4
-PHOS_STAGE_FINISHED = 5
-PHOS_STAGE_COUNT = 6
+PHOS_STAGE_FILLING_IRRADIANCE_CACHE = 4
+PHOS_STAGE_RENDERING = 5
+PHOS_STAGE_FINISHED = 6
+PHOS_STAGE_COUNT = 7
 
 # enum phos_photon_map
 PHOS_MAP_GLOBAL = 0
@@ -119,10 +126,11 @@ ENUMS = {
     'phos_point_shape': {'PHOS_POINT_DISK': 0, 'PHOS_POINT_SPHERE': 1},
     'phos_camera_type': {'PHOS_CAMERA_PERSPECTIVE': 0, 'PHOS_CAMERA_ORTHOGRAPHIC': 1},
     'phos_integrator': {'PHOS_INTEGRATOR_PATH': 0, 'PHOS_INTEGRATOR_PHOTON': 1},
+    'phos_irradiance_cache': {'PHOS_IRRADIANCE_CACHE_OFF': 0, 'PHOS_IRRADIANCE_CACHE_PHOTON': 1, 'PHOS_IRRADIANCE_CACHE_ALWAYS': 2},
     'phos_photon_view': {'PHOS_PHOTON_VIEW_FINAL_GATHER': 0, 'PHOS_PHOTON_VIEW_FAST': 1, 'PHOS_PHOTON_VIEW_PATH_TRACED': 2},
-    'phos_pass': {'PHOS_PASS_COMBINED': 0, 'PHOS_PASS_EMISSION': 1, 'PHOS_PASS_DIRECT': 2, 'PHOS_PASS_SPECULAR': 3, 'PHOS_PASS_CAUSTICS': 4, 'PHOS_PASS_INDIRECT': 5, 'PHOS_PASS_PHOTON_MAP': 6, 'PHOS_PASS_CAUSTIC_MAP': 7, 'PHOS_PASS_PHOTONS': 8, 'PHOS_PASS_COUNT': 9},
+    'phos_pass': {'PHOS_PASS_COMBINED': 0, 'PHOS_PASS_EMISSION': 1, 'PHOS_PASS_DIRECT': 2, 'PHOS_PASS_SPECULAR': 3, 'PHOS_PASS_CAUSTICS': 4, 'PHOS_PASS_INDIRECT': 5, 'PHOS_PASS_PHOTON_MAP': 6, 'PHOS_PASS_CAUSTIC_MAP': 7, 'PHOS_PASS_PHOTONS': 8, 'PHOS_PASS_IRRADIANCE_CACHE': 9, 'PHOS_PASS_COUNT': 10},
     'phos_render_state': {'PHOS_STATE_IDLE': 0, 'PHOS_STATE_RUNNING': 1, 'PHOS_STATE_DONE': 2, 'PHOS_STATE_CANCELLED': 3, 'PHOS_STATE_FAILED': 4},
-    'phos_stage': {'PHOS_STAGE_WAITING': 0, 'PHOS_STAGE_TRACING_PHOTONS': 1, 'PHOS_STAGE_BUILDING_KDTREES': 2, 'PHOS_STAGE_PRECOMPUTING_RADIANCE': 3, 'PHOS_STAGE_RENDERING': 4, 'PHOS_STAGE_FINISHED': 5, 'PHOS_STAGE_COUNT': 6},
+    'phos_stage': {'PHOS_STAGE_WAITING': 0, 'PHOS_STAGE_TRACING_PHOTONS': 1, 'PHOS_STAGE_BUILDING_KDTREES': 2, 'PHOS_STAGE_PRECOMPUTING_RADIANCE': 3, 'PHOS_STAGE_FILLING_IRRADIANCE_CACHE': 4, 'PHOS_STAGE_RENDERING': 5, 'PHOS_STAGE_FINISHED': 6, 'PHOS_STAGE_COUNT': 7},
     'phos_photon_map': {'PHOS_MAP_GLOBAL': 0, 'PHOS_MAP_CAUSTIC': 1},
 }
 
@@ -246,6 +254,11 @@ class phos_render_settings(ctypes.Structure):
         ("final_gather_rays", ctypes.c_uint32),
         ("photon_view", ctypes.c_uint32),
         ("max_photons_emitted_millions", ctypes.c_uint32),
+        ("irradiance_cache", ctypes.c_uint32),
+        ("ic_accuracy", ctypes.c_float),
+        ("ic_rays", ctypes.c_uint32),
+        ("ic_min_spacing", ctypes.c_float),
+        ("ic_max_spacing", ctypes.c_float),
     ]
 
 
@@ -271,8 +284,13 @@ class phos_progress(ctypes.Structure):
         ("global_photons", ctypes.c_uint32),
         ("caustic_photons", ctypes.c_uint32),
         ("photon_map", ctypes.c_uint32),
-        ("stage_seconds", ctypes.c_double * 6),
+        ("stage_seconds", ctypes.c_double * 7),
         ("rays_traced", ctypes.c_uint64),
+        ("cache_records", ctypes.c_uint32),
+        ("cache_rays_traced", ctypes.c_uint64),
+        ("cache_lookups", ctypes.c_uint64),
+        ("cache_interpolated", ctypes.c_uint64),
+        ("gather_rays", ctypes.c_uint64),
     ]
 
 
@@ -413,7 +431,7 @@ RENDER_SETTINGS = (
         label=None,
         description='1: the world is not seen by camera rays, alpha = coverage'),
     RenderSetting(
-        name='pass_mask', ctype='uint32_t', default=1, min=0, max=511,
+        name='pass_mask', ctype='uint32_t', default=1, min=0, max=1023,
         user=False, prop=None, kind=None, enum=None, soft_max=None,
         label=None,
         description='Bit (1 << pass) per enabled pass; COMBINED is always on'),
@@ -457,6 +475,31 @@ RENDER_SETTINGS = (
         user=True, prop='max_photons_emitted', kind='NUMBER', enum=None, soft_max=1000,
         label='Max Emitted (Millions)',
         description='Stop filling the photon maps after this many million emitted photon paths (for scenes where most photons escape)'),
+    RenderSetting(
+        name='irradiance_cache', ctype='uint32_t', default=1, min=0, max=2,
+        user=True, prop='irradiance_cache', kind='ENUM', enum='phos_irradiance_cache', soft_max=0,
+        label='Irradiance Cache',
+        description="Compute the indirect light of diffuse surfaces at a few points and interpolate between them (Ward's irradiance cache)"),
+    RenderSetting(
+        name='ic_accuracy', ctype='float', default=5.0, min=1.0, max=1000.0,
+        user=True, prop='ic_accuracy', kind='NUMBER', enum=None, soft_max=50.0,
+        label='Accuracy',
+        description='A record is used where its weight exceeds this (q in w > q): higher places records closer together'),
+    RenderSetting(
+        name='ic_rays', ctype='uint32_t', default=1024, min=4, max=65536,
+        user=True, prop='ic_rays', kind='NUMBER', enum=None, soft_max=4096,
+        label='Rays per Record',
+        description='Stratified hemisphere rays that compute one record'),
+    RenderSetting(
+        name='ic_min_spacing', ctype='float', default=4.0, min=0.0, max=1000.0,
+        user=True, prop='ic_min_spacing', kind='PIXELS', enum=None, soft_max=20.0,
+        label='Min Spacing',
+        description='Smallest reach of a record, in pixels: records never crowd closer'),
+    RenderSetting(
+        name='ic_max_spacing', ctype='float', default=32.0, min=1.0, max=4096.0,
+        user=True, prop='ic_max_spacing', kind='PIXELS', enum=None, soft_max=128.0,
+        label='Max Spacing',
+        description='Largest reach of a record, in pixels: records never spread further'),
 )
 
 __all__ = (
@@ -501,6 +544,9 @@ __all__ = (
     'PHOS_CAMERA_ORTHOGRAPHIC',
     'PHOS_INTEGRATOR_PATH',
     'PHOS_INTEGRATOR_PHOTON',
+    'PHOS_IRRADIANCE_CACHE_OFF',
+    'PHOS_IRRADIANCE_CACHE_PHOTON',
+    'PHOS_IRRADIANCE_CACHE_ALWAYS',
     'PHOS_PHOTON_VIEW_FINAL_GATHER',
     'PHOS_PHOTON_VIEW_FAST',
     'PHOS_PHOTON_VIEW_PATH_TRACED',
@@ -513,6 +559,7 @@ __all__ = (
     'PHOS_PASS_PHOTON_MAP',
     'PHOS_PASS_CAUSTIC_MAP',
     'PHOS_PASS_PHOTONS',
+    'PHOS_PASS_IRRADIANCE_CACHE',
     'PHOS_PASS_COUNT',
     'PHOS_STATE_IDLE',
     'PHOS_STATE_RUNNING',
@@ -523,6 +570,7 @@ __all__ = (
     'PHOS_STAGE_TRACING_PHOTONS',
     'PHOS_STAGE_BUILDING_KDTREES',
     'PHOS_STAGE_PRECOMPUTING_RADIANCE',
+    'PHOS_STAGE_FILLING_IRRADIANCE_CACHE',
     'PHOS_STAGE_RENDERING',
     'PHOS_STAGE_FINISHED',
     'PHOS_STAGE_COUNT',

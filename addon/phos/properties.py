@@ -47,9 +47,21 @@ PHOTON_VIEW_ITEMS = (
      core.PHOS_PHOTON_VIEW_PATH_TRACED),
 )
 
+IRRADIANCE_CACHE_ITEMS = (
+    ('OFF', "Off", "Indirect diffuse light gathered at every sample", core.PHOS_IRRADIANCE_CACHE_OFF),
+    ('PHOTON', "Photon Mapping",
+     "With Photon Mapping, its final gather computed at a few records and interpolated between them "
+     "(Ward's irradiance cache); Path Tracing stays the unbiased reference",
+     core.PHOS_IRRADIANCE_CACHE_PHOTON),
+    ('ALWAYS', "Always",
+     "Also with Path Tracing: its hemisphere of paths at the records (Ward's original method; biased, "
+     "but converging as the records grow)", core.PHOS_IRRADIANCE_CACHE_ALWAYS),
+)
+
 ENUM_ITEMS = {
     "phos_integrator": INTEGRATOR_ITEMS,
     "phos_photon_view": PHOTON_VIEW_ITEMS,
+    "phos_irradiance_cache": IRRADIANCE_CACHE_ITEMS,
 }
 
 # The settings the user chooses (`scene.phos`), in the core's table order;
@@ -126,9 +138,13 @@ PASSES = (
      "Debug: the caustic photon map's radiance estimate at the first diffuse surface seen"),
     ("use_pass_photons", "Photons", core.PHOS_PASS_PHOTONS,
      "Debug: every stored photon drawn as a dot where it lies in the image"),
+    ("use_pass_irradiance_cache", "Irradiance Cache", core.PHOS_PASS_IRRADIANCE_CACHE,
+     "Debug: every irradiance-cache record drawn as a dot where it lies in the image (needs the "
+     "cache on)"),
 )
 LIGHT_PASSES = PASSES[:5]
-DEBUG_PASSES = PASSES[5:]
+DEBUG_PASSES = PASSES[5:8]   # they build the photon maps, whatever the integrator
+CACHE_PASSES = PASSES[8:]
 
 
 class PhosSceneSettings(bpy.types.PropertyGroup):
@@ -169,6 +185,7 @@ class PhosViewLayerSettings(bpy.types.PropertyGroup):
     use_pass_photon_map: _pass_property("Photon Map")
     use_pass_caustic_map: _pass_property("Caustic Map")
     use_pass_photons: _pass_property("Photons")
+    use_pass_irradiance_cache: _pass_property("Irradiance Cache")
 
 
 def enabled_passes(view_layer):

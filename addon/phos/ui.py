@@ -13,7 +13,7 @@ object, so adding to one of them would show all of them.
 import bpy
 
 from . import core
-from .properties import DEBUG_PASSES, LIGHT_PASSES
+from .properties import CACHE_PASSES, DEBUG_PASSES, LIGHT_PASSES
 
 ENGINE = 'PHOS'
 
@@ -86,6 +86,35 @@ class PHOS_RENDER_PT_photon_mapping(PhosButtonsPanel, bpy.types.Panel):
         sub.active = phos.photon_view in {'FINAL_GATHER', 'PATH_TRACED'}
         sub.prop(phos, "final_gather_rays")
         layout.prop(phos, "max_photons_emitted")
+
+
+def cache_used(phos):
+    """Whether a render with these settings uses the irradiance cache (as the
+    core's stage plan decides, core/src/render/stages.c)."""
+    if phos.integrator == 'PHOTON' and phos.photon_view == 'FAST':
+        return False
+    return phos.irradiance_cache == 'ALWAYS' or (phos.irradiance_cache == 'PHOTON' and phos.integrator == 'PHOTON')
+
+
+class PHOS_RENDER_PT_irradiance_cache(PhosButtonsPanel, bpy.types.Panel):
+    """Ward's irradiance cache over either integrator's indirect diffuse light."""
+
+    bl_label = "Irradiance Cache"
+    bl_context = "render"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        phos = context.scene.phos
+        layout.prop(phos, "irradiance_cache", text="Use")
+        layout = layout.column()
+        layout.active = cache_used(phos)
+        layout.prop(phos, "ic_accuracy")
+        layout.prop(phos, "ic_rays")
+        col = layout.column(align=True)
+        col.prop(phos, "ic_min_spacing", text="Spacing Min")
+        col.prop(phos, "ic_max_spacing", text="Max")
 
 
 def _debug_passes_enabled(context):
@@ -178,6 +207,25 @@ class PHOS_VIEW_LAYER_PT_passes_photon_debug(PhosButtonsPanel, bpy.types.Panel):
         col = layout.column(heading="Include", align=True)
         for prop, label, _pass_id, _d in DEBUG_PASSES:
             col.prop(settings, prop, text=label)
+
+
+class PHOS_VIEW_LAYER_PT_passes_cache_debug(PhosButtonsPanel, bpy.types.Panel):
+    """Where the irradiance cache put its records."""
+
+    bl_label = "Irradiance Cache Debug"
+    bl_context = "view_layer"
+    bl_parent_id = "PHOS_VIEW_LAYER_PT_passes"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.view_layer.phos
+        col = layout.column(heading="Include", align=True)
+        for prop, label, _pass_id, _d in CACHE_PASSES:
+            col.prop(settings, prop, text=label)
+        if settings.use_pass_irradiance_cache and not cache_used(context.scene.phos):
+            layout.label(text="The irradiance cache is not used: the pass stays black", icon='INFO')
 
 
 # --------------------------------------------------------------- node views
@@ -383,12 +431,14 @@ class PHOS_WORLD_PT_surface(PhosButtonsPanel, bpy.types.Panel):
 classes = (
     PHOS_RENDER_PT_sampling,
     PHOS_RENDER_PT_photon_mapping,
+    PHOS_RENDER_PT_irradiance_cache,
     PHOS_RENDER_PT_light_paths,
     PHOS_RENDER_PT_film,
     PHOS_RENDER_PT_performance,
     PHOS_VIEW_LAYER_PT_passes,
     PHOS_VIEW_LAYER_PT_passes_light,
     PHOS_VIEW_LAYER_PT_passes_photon_debug,
+    PHOS_VIEW_LAYER_PT_passes_cache_debug,
     PHOS_MATERIAL_PT_preview,
     PHOS_MATERIAL_PT_context_material,
     PHOS_MATERIAL_PT_surface,

@@ -242,6 +242,15 @@ enum phos_integrator {
     PHOS_INTEGRATOR_PHOTON = 1  /* photon mapping with final gathering (Jensen) */
 };
 
+/* Where the indirect light of diffuse surfaces is cached (Ward et al.
+ * 1988): PHOTON's final gather (or path-traced gather), and with ALWAYS
+ * also PATH's hemisphere of paths, which makes PATH biased (consistent). */
+enum phos_irradiance_cache {
+    PHOS_IRRADIANCE_CACHE_OFF = 0,
+    PHOS_IRRADIANCE_CACHE_PHOTON = 1,  /* with the PHOTON integrator only: PATH stays the reference */
+    PHOS_IRRADIANCE_CACHE_ALWAYS = 2
+};
+
 /* What a photon-mapping render shows for indirect diffuse light. */
 enum phos_photon_view {
     PHOS_PHOTON_VIEW_FINAL_GATHER = 0, /* final gathering on the global map */
@@ -260,7 +269,9 @@ enum phos_photon_view {
  * Debug passes: PHOTON_MAP and CAUSTIC_MAP, each map's radiance estimate at
  * the first diffuse surface seen; PHOTONS, every stored photon drawn as a
  * dot where it lies in the image (colour = its power's hue). The debug
- * passes build the photon maps for either integrator.
+ * passes build the photon maps for either integrator. IRRADIANCE_CACHE:
+ * each irradiance-cache record drawn as a dot (colour = its irradiance's
+ * hue), over black; it needs the cache on.
  */
 enum phos_pass {
     PHOS_PASS_COMBINED = 0,   /* RGBA */
@@ -272,7 +283,8 @@ enum phos_pass {
     PHOS_PASS_PHOTON_MAP = 6,
     PHOS_PASS_CAUSTIC_MAP = 7,
     PHOS_PASS_PHOTONS = 8,
-    PHOS_PASS_COUNT = 9
+    PHOS_PASS_IRRADIANCE_CACHE = 9,
+    PHOS_PASS_COUNT = 10
 };
 /* Channels of a pass (4 for COMBINED, 3 for the others), 0 for an unknown pass. */
 PHOS_API uint32_t phos_pass_channels(uint32_t pass);
@@ -352,7 +364,25 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
     USER(uint32_t, max_photons_emitted_millions, 50, 1, 100000, max_photons_emitted, NUMBER,      \
          1000, "Max Emitted (Millions)",                                                          \
          "Stop filling the photon maps after this many million emitted photon paths "             \
-         "(for scenes where most photons escape)")
+         "(for scenes where most photons escape)")                                               \
+    /* Irradiance caching (Ward et al. 1988): PATH's diffuse indirect light,                    \
+     * or PHOTON's final gather, computed at records and interpolated. */                       \
+    /* PHOTON, q = 5, 1024 rays, 4 pixels: the most image quality per second on the          \
+     * bench scenes (docs/benchmarks.md, "The irradiance cache"). */                            \
+    USER(uint32_t, irradiance_cache, PHOS_IRRADIANCE_CACHE_PHOTON, 0,                             \
+         PHOS_IRRADIANCE_CACHE_ALWAYS, irradiance_cache, enum phos_irradiance_cache, 0,           \
+         "Irradiance Cache",                                                                      \
+         "Compute the indirect light of diffuse surfaces at a few points and interpolate "        \
+         "between them (Ward's irradiance cache)")                                                \
+    USER(float, ic_accuracy, 5.0f, 1.0f, 1000.0f, ic_accuracy, NUMBER, 50.0f, "Accuracy",         \
+         "A record is used where its weight exceeds this (q in w > q): higher places "            \
+         "records closer together")                                                               \
+    USER(uint32_t, ic_rays, 1024, 4, 65536, ic_rays, NUMBER, 4096, "Rays per Record",            \
+         "Stratified hemisphere rays that compute one record")                                    \
+    USER(float, ic_min_spacing, 4.0f, 0.0f, 1000.0f, ic_min_spacing, PIXELS, 20.0f,               \
+         "Min Spacing", "Smallest reach of a record, in pixels: records never crowd closer")      \
+    USER(float, ic_max_spacing, 32.0f, 1.0f, 4096.0f, ic_max_spacing, PIXELS, 128.0f,             \
+         "Max Spacing", "Largest reach of a record, in pixels: records never spread further")
 
 #define PHOS_SETTING_FIELD_(type, name, ...) type name;
 typedef struct phos_render_settings {
@@ -381,16 +411,17 @@ enum phos_render_state {
 /* The stages a render goes through. Which of them it runs, in which order,
  * is its plan, fixed at create (phos_render_stages): WAITING, then the
  * photon stages if it uses photon maps (the PHOTON integrator or a photon
- * debug pass; PRECOMPUTING_RADIANCE for final gathering only), RENDERING,
- * FINISHED. */
+ * debug pass; PRECOMPUTING_RADIANCE for final gathering only), the
+ * irradiance cache's pre-pass if the cache is on, RENDERING, FINISHED. */
 enum phos_stage {
     PHOS_STAGE_WAITING = 0,
     PHOS_STAGE_TRACING_PHOTONS = 1,
     PHOS_STAGE_BUILDING_KDTREES = 2,
     PHOS_STAGE_PRECOMPUTING_RADIANCE = 3,
-    PHOS_STAGE_RENDERING = 4,
-    PHOS_STAGE_FINISHED = 5,
-    PHOS_STAGE_COUNT = 6
+    PHOS_STAGE_FILLING_IRRADIANCE_CACHE = 4,
+    PHOS_STAGE_RENDERING = 5,
+    PHOS_STAGE_FINISHED = 6,
+    PHOS_STAGE_COUNT = 7
 };
 
 typedef struct phos_stage_info {
@@ -427,6 +458,15 @@ typedef struct phos_progress {
      * gather rays; not the photon maps'): with the rendering stage's time,
      * the path tracer's rays per second (docs/benchmarks.md). */
     uint64_t rays_traced;
+    /* The irradiance cache: records made by its pre-pass and the rays it
+     * cast, and the tiles' lookups so far and how many of them
+     * interpolated (the rest gathered for that sample alone). */
+    uint32_t cache_records;
+    uint64_t cache_rays_traced, cache_lookups, cache_interpolated;
+    /* Rays the stratified hemispheres of indirect diffuse light sent, in
+     * the tiles (final gathering, the path-traced gather) and in the
+     * irradiance cache's records; each counts once, whatever it did after. */
+    uint64_t gather_rays;
 } phos_progress;
 PHOS_API phos_status phos_render_progress(phos_render *render, phos_progress *out);
 

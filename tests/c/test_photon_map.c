@@ -720,7 +720,8 @@ static float *render_settings_passes(phos_scene *s, const phos_render_settings *
     return passes[0];
 }
 
-/* Square test renders of w² pixels, 8 bounces, 16 gather rays. */
+/* Square test renders of w² pixels, 8 bounces, 16 gather rays, no
+ * irradiance cache. */
 static phos_render_settings test_settings(uint32_t integrator, uint32_t mask, uint32_t samples, uint32_t seed,
                                           uint32_t w)
 {
@@ -733,6 +734,9 @@ static phos_render_settings test_settings(uint32_t integrator, uint32_t mask, ui
     rs.max_bounces = 8;
     rs.pass_mask = mask ? mask : (1u << PHOS_PASS_COUNT) - 1u;
     rs.final_gather_rays = 16;
+    /* These tests are of the photon maps and the gather; the irradiance
+     * cache over them is test_irradiance_cache.c's. */
+    rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_OFF;
     return rs;
 }
 

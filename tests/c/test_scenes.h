@@ -230,6 +230,48 @@ static void test_set_camera_pitched(phos_scene *s, float x, float y, float z, fl
     phos_scene_set_camera(s, &c);
 }
 
+/* The Cornell box of scenes/cornell_box.py in spirit: a 2 m box open
+ * toward the camera, red and green side walls, a square area light under
+ * the ceiling, a glass and a mirror sphere (if `spheres`). Committed;
+ * NULL if the commit fails. */
+static phos_scene *test_cornell_box(int spheres)
+{
+    const float a = 1.0f, h = 2.0f;
+    float white[3][4][3] = {
+        {{-a, -a, 0}, {a, -a, 0}, {a, a, 0}, {-a, a, 0}}, /* floor, +z */
+        {{-a, -a, h}, {-a, a, h}, {a, a, h}, {a, -a, h}}, /* ceiling, −z */
+        {{-a, a, 0}, {a, a, 0}, {a, a, h}, {-a, a, h}},   /* back wall y = a, −y */
+    };
+    float red[1][4][3] = {{{-a, -a, 0}, {-a, a, 0}, {-a, a, h}, {-a, -a, h}}}; /* x = −a, +x */
+    float green[1][4][3] = {{{a, -a, 0}, {a, -a, h}, {a, a, h}, {a, a, 0}}};   /* x = +a, −x */
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])white, 3), test_add_diffuse(s, 0.73f, 0.73f, 0.73f),
+                      0, 0, 0);
+    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])red, 1), test_add_diffuse(s, 0.63f, 0.06f, 0.05f),
+                      0, 0, 0);
+    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])green, 1), test_add_diffuse(s, 0.14f, 0.45f, 0.09f),
+                      0, 0, 0);
+    if (spheres) {
+        test_add_instance(s, test_add_sphere_mesh(s, 0.35f, 64, 32, 0), test_add_glass(s, 1.5f), -0.4f, 0.2f, 0.35f);
+        test_add_instance(s, test_add_sphere_mesh(s, 0.35f, 64, 32, 0), test_add_mirror(s), 0.45f, 0.45f, 0.35f);
+    }
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_AREA;
+    l.position[2] = h - 0.01f;
+    l.direction[2] = -1.0f;
+    l.axis_u[0] = 0.5f;
+    l.axis_v[1] = 0.5f;
+    l.color[0] = l.color[1] = l.color[2] = 15.0f; /* W/(m²·sr) */
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera_pitched(s, 0.0f, -3.6f, 1.0f, 1.5707963f, 0.32f);
+    if (phos_scene_commit(s) != PHOS_OK) {
+        phos_scene_destroy(s);
+        return NULL;
+    }
+    return s;
+}
+
 /* Renders synchronously; returns a malloc'd RGBA image or NULL. */
 static float *test_render(phos_scene *s, const phos_render_settings *rs)
 {

@@ -531,6 +531,9 @@ static phos_status validate_settings(scene *s, const phos_render_settings *rs)
     if (st != PHOS_OK)
         return st;
     /* What one row cannot say. */
+    if (rs->ic_min_spacing > rs->ic_max_spacing)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "render: ic_min_spacing %g must not exceed ic_max_spacing %g",
+             (double)rs->ic_min_spacing, (double)rs->ic_max_spacing);
     if (rs->region_width || rs->region_height) {
         if (rs->region_width == 0 || rs->region_height == 0 || rs->region_x >= rs->width ||
             rs->region_y >= rs->height || rs->region_width > rs->width - rs->region_x ||
@@ -573,6 +576,11 @@ phos_status phos_render_create(phos_scene *s, const phos_render_settings *rs, ph
     atomic_init(&r->cancel, 0);
     atomic_init(&r->tiles_done, 0u);
     atomic_init(&r->rays_traced, 0u);
+    atomic_init(&r->cache_lookups, 0u);
+    atomic_init(&r->cache_hits, 0u);
+    atomic_init(&r->cache_rays, 0u);
+    atomic_init(&r->gather_rays, 0u);
+    atomic_init(&r->cache_passes_done, 0u);
     atomic_init(&r->stage_index, 0u);
     atomic_init(&r->photon_progress.emitted, 0u);
     atomic_init(&r->photon_progress.stored, 0u);
@@ -644,19 +652,31 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     out->photons_stored = atomic_load(&r->photon_progress.stored);
     out->photons_emitted = atomic_load(&r->photon_progress.emitted);
     out->photon_map = atomic_load(&r->photon_progress.map);
-    if (out->stage_id >= PHOS_STAGE_RENDERING) {
+    if (out->stage_id >= PHOS_STAGE_FILLING_IRRADIANCE_CACHE) {
         out->global_photons = r->maps.global.count;
         out->caustic_photons = r->maps.caustic.count;
     }
-    /* Photon stages take the first 20 % of the bar when there are any. */
+    if (out->stage_id >= PHOS_STAGE_RENDERING)
+        out->cache_records = r->cache.count;
+    out->cache_lookups = atomic_load(&r->cache_lookups);
+    out->cache_interpolated = atomic_load(&r->cache_hits);
+    out->cache_rays_traced = atomic_load(&r->cache_rays);
+    out->gather_rays = atomic_load(&r->gather_rays);
+    /* The photon stages take the first 20 % of the bar when there are any,
+     * the irradiance cache's pre-pass the next 20 % when it runs, the tiles
+     * the rest. */
     float tiles = r->tile_count ? (float)out->tiles_done / (float)r->tile_count : 1.0f;
     float photons_target = (float)r->settings.global_photons + (float)r->settings.caustic_photons;
-    float before = r->use_maps ? 0.2f : 0.0f;
+    float maps_part = r->use_maps ? 0.2f : 0.0f, cache_part = r->use_cache ? 0.2f : 0.0f;
+    float before = maps_part + cache_part;
     float photon_part = photons_target > 0.0f ? fminf((float)out->photons_stored / photons_target, 1.0f) : 1.0f;
+    uint32_t cache_passes = irradiance_cache_fill_passes(&r->cache_fill);
+    float cache_done = (float)atomic_load(&r->cache_passes_done) / (float)(cache_passes ? cache_passes : 1);
     switch (out->stage_id) {
     case PHOS_STAGE_TRACING_PHOTONS: out->fraction = 0.15f * photon_part; break;
     case PHOS_STAGE_BUILDING_KDTREES: out->fraction = 0.16f; break;
     case PHOS_STAGE_PRECOMPUTING_RADIANCE: out->fraction = 0.18f; break;
+    case PHOS_STAGE_FILLING_IRRADIANCE_CACHE: out->fraction = maps_part + cache_part * cache_done; break;
     case PHOS_STAGE_WAITING: out->fraction = 0.0f; break;
     default: out->fraction = before + (1.0f - before) * tiles; break;
     }

@@ -57,7 +57,9 @@ static const layout_field fields[] = {
     FIELD(phos_progress, stage_id) FIELD(phos_progress, stage_index) FIELD(phos_progress, photons_stored)
     FIELD(phos_progress, photons_emitted) FIELD(phos_progress, global_photons)
     FIELD(phos_progress, caustic_photons) FIELD(phos_progress, photon_map) FIELD(phos_progress, stage_seconds)
-    FIELD(phos_progress, rays_traced)
+    FIELD(phos_progress, rays_traced) FIELD(phos_progress, cache_records)
+    FIELD(phos_progress, cache_rays_traced) FIELD(phos_progress, cache_lookups)
+    FIELD(phos_progress, cache_interpolated) FIELD(phos_progress, gather_rays)
 
     FIELD(phos_tile, x) FIELD(phos_tile, y) FIELD(phos_tile, width) FIELD(phos_tile, height)
 };

@@ -57,6 +57,7 @@ typedef struct walk_start {
     int from_camera;
     uint32_t depth;         /* scattering events before the ray */
     int indirect_only;      /* leave out emission found after delta events only */
+    int caustics_apart;     /* indirect_only: file it as Caustics instead */
     float first_pdf;        /* MIS pdf of the first segment's emission; 0: the camera's rule, or
                                (indirect_only) left out too */
     const light_context *from; /* first_pdf > 0: the vertex the walk leaves, for the light-pick pdf */
@@ -67,6 +68,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
 {
     sample_result res;
     memset(&res, 0, sizeof(res));
+    res.first_distance = INFINITY;
     camera_path p = {s, is, smp, scratch, &res, v3s(1.0f), start->depth, 0, 1};
     vec3 o = start->ray.o, d = start->ray.d;
     float tmin = start->ray.tmin, tmax = start->ray.tmax;
@@ -85,8 +87,12 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         ray_hit h;
         int hit = embree_intersect(s->bvh, o, d, tmin, tmax, camera_segment, &h);
         float t_hit = hit ? h.t : tmax;
+        if (vertex == 0 && hit)
+            res.first_distance = h.t;
         int emission_component = classify(p.depth, p.first_diffuse, p.later_delta);
-        if (start->indirect_only && only_delta && (p.depth > start->depth || !(start->first_pdf > 0.0f)))
+        if (start->indirect_only && only_delta && p.depth > start->depth)
+            emission_component = start->caustics_apart ? COMPONENT_CAUSTICS : -1;
+        else if (start->indirect_only && only_delta && !(start->first_pdf > 0.0f))
             emission_component = -1;
         else if (!start->from_camera && p.depth == start->depth)
             emission_component = COMPONENT_EMISSION; /* seen by the walk's first segment */
@@ -181,14 +187,14 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
 sample_result camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
                                integrator_scratch *scratch, vertex_policy policy)
 {
-    walk_start start = {ray, 1, 0, 0, 0.0f, NULL};
+    walk_start start = {ray, 1, 0, 0, 0, 0.0f, NULL};
     return walk(s, is, &start, smp, scratch, policy);
 }
 
 sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, const light_context *from, vec3 o,
-                                        vec3 d, uint32_t depth, float first_pdf, const sampler *smp,
-                                        integrator_scratch *scratch, vertex_policy policy)
+                                        vec3 d, uint32_t depth, float first_pdf, int caustics_apart,
+                                        const sampler *smp, integrator_scratch *scratch, vertex_policy policy)
 {
-    walk_start start = {{o, d, 0.0f, INFINITY}, 0, depth, 1, first_pdf, from};
+    walk_start start = {{o, d, 0.0f, INFINITY}, 0, depth, 1, caustics_apart, first_pdf, from};
     return walk(s, is, &start, smp, scratch, policy);
 }

@@ -61,6 +61,12 @@ typedef const bsdf *(*vertex_policy)(camera_path *p, const path_vertex *v, bsdf 
  * on through the whole BSDF. */
 const bsdf *path_vertex_policy(camera_path *p, const path_vertex *v, bsdf *storage);
 
+/* PHOTON's policy, and PATH's with the irradiance cache (diffuse_split.c):
+ * the diffuse part's indirect light and caustics by estimates (the
+ * settings' indirect provider, the caustic map), its direct light by a
+ * light sample, and on through the rest of the BSDF only. */
+const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bsdf *rest);
+
 /* Walks the camera ray; the result holds its light components and alpha. */
 sample_result camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
                                integrator_scratch *scratch, vertex_policy policy);
@@ -69,13 +75,14 @@ sample_result camera_path_walk(const scene *s, const integrator_settings *is, ca
  * scattering events (the one there included). Emission found on the first
  * segment is weighted for MIS as a sample of pdf first_pdf against the
  * vertex's light sample (first_pdf = 0: left out); emission found after
- * delta scatterings only is left out, since it is a caustic at the vertex
- * the ray left (indirect_diffuse.h). The result's Emission holds what the
- * first segment saw, its other components the rest of the radiance
- * arriving along the ray. */
+ * delta scatterings only is a caustic at the vertex the ray left
+ * (indirect_diffuse.h): left out, or with caustics_apart filed as the
+ * result's Caustics (which a walk from a vertex holds nothing else in).
+ * The result's Emission holds what the first segment saw, its Specular and
+ * Direct the rest of the radiance arriving along the ray. */
 sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, const light_context *from, vec3 o,
-                                        vec3 d, uint32_t depth, float first_pdf, const sampler *smp,
-                                        integrator_scratch *scratch, vertex_policy policy);
+                                        vec3 d, uint32_t depth, float first_pdf, int caustics_apart,
+                                        const sampler *smp, integrator_scratch *scratch, vertex_policy policy);
 
 /* Light estimated at the vertex that arrived straight from an emitter and
  * scattered there once more (next-event estimation): f·L·T/pdf. */

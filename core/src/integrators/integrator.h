@@ -43,14 +43,27 @@ typedef struct integrator_settings {
     estimate_params global_estimate, caustic_estimate;
     uint32_t final_gather_rays;
     float radiance_lookup_radius;  /* scene units */
-    /* PHOTON: where the diffuse part's indirect light comes from
-     * (indirect_diffuse.h; indirect_provider_for chooses it). */
+    /* PHOTON, and PATH with the irradiance cache: where the diffuse part's
+     * indirect light comes from (indirect_diffuse.h; indirect_provider_for
+     * chooses it); NULL: PATH follows the whole BSDF. */
     const struct indirect_diffuse_provider *indirect;
+    /* The irradiance cache's provider: the read-only cache (NULL while the
+     * pre-pass fills it: every lookup misses) and the provider whose gather
+     * rays it sends (irradiance_cache.h). */
+    const struct irradiance_cache *cache;
+    const struct indirect_diffuse_provider *cache_inner;
+    /* 1: no caustic map counts the light reaching a diffuse point from
+     * emitters through specular surfaces only (PATH with the irradiance
+     * cache): the gathers' rays count it, apart (indirect_diffuse.h). */
+    int gathers_find_caustics;
 } integrator_settings;
 
-/* Per-thread scratch for photon-map queries. */
+/* Per-thread scratch: photon-map queries, and counts render.c sums per
+ * tile: the irradiance cache's lookups and interpolations, and the gather
+ * rays the hemispheres sent (hemisphere.c, irradiance_record.c). */
 typedef struct integrator_scratch {
     kdtree_query global, caustic, radiance;
+    uint64_t cache_lookups, cache_hits, gather_rays;
 } integrator_scratch;
 
 typedef struct sample_result {
@@ -58,6 +71,7 @@ typedef struct sample_result {
     vec3 photon_map;               /* debug: global-map estimate at the first diffuse hit */
     vec3 caustic_map;              /* debug: caustic-map estimate there */
     float alpha;                   /* 1 where the ray hit something opaque */
+    float first_distance;          /* how far the ray went to the first surface it hit (INFINITY: none) */
 } sample_result;
 
 /* The integrators: each is a vertex policy of the camera-path walker

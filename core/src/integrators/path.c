@@ -6,7 +6,10 @@
  *
  * At a vertex the whole BSDF is both light-sampled and followed, so the
  * indirect light of its diffuse part is the path-traced hemisphere with
- * one sample: the path's own continuation.
+ * one sample: the path's own continuation. With the irradiance cache
+ * (is->indirect set), the diffuse part's indirect light comes from the
+ * cache instead and the path goes on through the rest of the BSDF only:
+ * Ward's method (Ward et al. 1988; diffuse_split.c).
  */
 #include "integrators/camera_path.h"
 #include "integrators/direct_light.h"
@@ -22,5 +25,5 @@ const bsdf *path_vertex_policy(camera_path *p, const path_vertex *v, bsdf *stora
 sample_result path_trace(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
                          integrator_scratch *scratch)
 {
-    return camera_path_walk(s, is, ray, smp, scratch, path_vertex_policy);
+    return camera_path_walk(s, is, ray, smp, scratch, is->indirect ? diffuse_split_vertex_policy : path_vertex_policy);
 }

@@ -68,6 +68,7 @@ int specular_chain_follow(const scene *s, const specular_chain *c, vec3 o, vec3 
 {
     vec3 beta = v3s(1.0f);
     out->emission = v3s(0.0f);
+    out->first_distance = INFINITY;
     int first = c->first_pdf > 0.0f; /* still on the first segment: nothing but transparent surfaces passed */
     for (uint32_t step = 0; step < c->max_steps; step++) {
         ray_hit h;
@@ -78,6 +79,8 @@ int specular_chain_follow(const scene *s, const specular_chain *c, vec3 o, vec3 
                                                                                           NULL)));
             return 0;
         }
+        if (step == 0)
+            out->first_distance = h.t;
         surface_from_hit(s, h.instance, h.prim, h.b1, h.b2, d, &out->sf);
         if (first)
             out->emission = v3_add(out->emission, v3_mul(beta, first_segment_emission(s, c, o, d, tmin, &h,

@@ -41,6 +41,8 @@ typedef struct specular_chain_end {
     vec3 wo;               /* toward the previous surface */
     vec3 emission;         /* first_pdf > 0: the first segment's emitters, weighted (set also
                               when the ray escapes) */
+    float first_distance;  /* how far the ray went to the first surface it hit, INFINITY if none
+                              (set also when it escapes) */
 } specular_chain_end;
 
 /* Follows the ray (o, d) over t in (tmin, tmax); returns 1 with the surface

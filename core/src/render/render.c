@@ -12,7 +12,7 @@
  */
 #include "render/render.h"
 
-#include "integrators/indirect_diffuse.h"
+#include "indirect/indirect_diffuse.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -149,14 +149,19 @@ static void render_tile(void *ctx, uint32_t item, uint32_t thread)
 {
     render *r = ctx;
     const phos_tile *t = &r->tiles[item];
-    uint64_t rays_before = embree_thread_rays();
-    for (uint32_t y = t->y; y < t->y + t->height; y++)
-        for (uint32_t x = t->x; x < t->x + t->width; x++)
-            if (atomic_load_explicit(&r->cancel, memory_order_relaxed) || !render_pixel(r, x, y, &r->scratch[thread])) {
-                atomic_fetch_add(&r->rays_traced, embree_thread_rays() - rays_before);
-                return;
-            }
+    integrator_scratch *sc = &r->scratch[thread];
+    uint64_t rays_before = embree_thread_rays(), lookups_before = sc->cache_lookups, hits_before = sc->cache_hits;
+    uint64_t gathers_before = sc->gather_rays;
+    int whole = 1;
+    for (uint32_t y = t->y; y < t->y + t->height && whole; y++)
+        for (uint32_t x = t->x; x < t->x + t->width && whole; x++)
+            whole = !atomic_load_explicit(&r->cancel, memory_order_relaxed) && render_pixel(r, x, y, sc);
     atomic_fetch_add(&r->rays_traced, embree_thread_rays() - rays_before);
+    atomic_fetch_add(&r->cache_lookups, sc->cache_lookups - lookups_before);
+    atomic_fetch_add(&r->cache_hits, sc->cache_hits - hits_before);
+    atomic_fetch_add(&r->gather_rays, sc->gather_rays - gathers_before);
+    if (!whole)
+        return;
     pthread_mutex_lock(&r->lock);
     r->finished[r->finished_count++] = item;
     pthread_mutex_unlock(&r->lock);
@@ -199,25 +204,39 @@ static int project_to_film(const render *r, vec3 p, float *px, float *py)
     return !embree_occluded(r->scene->bvh, origin, v3_scale(to, 1.0f / dist), 0.0f, dist * (1.0f - 1e-3f));
 }
 
-static void draw_photons(render *r, const photon_map *m)
+/* A dot in a debug pass where the camera sees p, coloured by the hue of
+ * `value` (its largest channel scaled to 1); nothing where value is 0. */
+static void draw_dot(render *r, uint32_t pass, vec3 p, vec3 value)
 {
     film *f = &r->film;
-    for (uint32_t i = 0; i < m->count; i++) {
-        const photon *p = &m->photons[i];
-        float fx, fy;
-        if (!project_to_film(r, photon_position(p), &fx, &fy) || fx < (float)f->x0 || fy < (float)f->y0)
-            continue;
-        uint32_t x = (uint32_t)fx, y = (uint32_t)fy;
-        if (x >= f->x0 + f->width || y >= f->y0 + f->height)
-            continue;
-        vec3 power = photon_power(p);
-        float mx = v3_max_component(power);
-        if (!(mx > 0.0f))
-            continue;
-        float *px = film_pixel(f, PHOS_PASS_PHOTONS, x, y);
-        px[0] = power.x / mx;
-        px[1] = power.y / mx;
-        px[2] = power.z / mx;
+    float fx, fy;
+    if (!project_to_film(r, p, &fx, &fy) || fx < (float)f->x0 || fy < (float)f->y0)
+        return;
+    uint32_t x = (uint32_t)fx, y = (uint32_t)fy;
+    if (x >= f->x0 + f->width || y >= f->y0 + f->height)
+        return;
+    float mx = v3_max_component(value);
+    if (!(mx > 0.0f))
+        return;
+    float *px = film_pixel(f, pass, x, y);
+    px[0] = value.x / mx;
+    px[1] = value.y / mx;
+    px[2] = value.z / mx;
+}
+
+static void draw_photons(render *r, const photon_map *m)
+{
+    for (uint32_t i = 0; i < m->count; i++)
+        draw_dot(r, PHOS_PASS_PHOTONS, photon_position(&m->photons[i]), photon_power(&m->photons[i]));
+}
+
+/* The records, as the course's "Cache Positions" pictures show them; a
+ * record that gathered no light is drawn white. */
+static void draw_records(render *r, const irradiance_cache *c)
+{
+    for (uint32_t i = 0; i < c->count; i++) {
+        vec3 E = v3_add(c->records[i].E, c->records[i].E_caustic);
+        draw_dot(r, PHOS_PASS_IRRADIANCE_CACHE, c->records[i].p, v3_max_component(E) > 0.0f ? E : v3s(1.0f));
     }
 }
 
@@ -233,6 +252,26 @@ static void fail(render *r, phos_status st, const char *msg)
     pthread_mutex_unlock(&r->lock);
 }
 
+static uint64_t scratch_gather_rays(const render *r)
+{
+    uint64_t n = 0;
+    for (uint32_t t = 0; t < r->threads; t++)
+        n += r->scratch[t].gather_rays;
+    return n;
+}
+
+/* The irradiance cache's pre-pass; its records' gathers read the maps. */
+static phos_status fill_cache(render *r)
+{
+    if (r->use_maps)
+        r->integrator.maps = &r->maps;
+    uint64_t before = scratch_gather_rays(r);
+    phos_status st = irradiance_cache_fill(&r->cache, r->scene, &r->integrator, &r->cache_fill, r->scratch, &r->cancel,
+                                           &r->cache_passes_done, &r->cache_rays);
+    atomic_fetch_add(&r->gather_rays, scratch_gather_rays(r) - before);
+    return st;
+}
+
 /* Runs one stage of the plan (stages.h). */
 static phos_status run_stage(render *r, uint32_t stage)
 {
@@ -243,14 +282,22 @@ static phos_status run_stage(render *r, uint32_t stage)
         return photon_maps_build(&r->maps);
     case PHOS_STAGE_PRECOMPUTING_RADIANCE:
         return photon_maps_precompute_radiance(r->scene, &r->photon_settings, &r->maps, &r->cancel);
+    case PHOS_STAGE_FILLING_IRRADIANCE_CACHE:
+        return fill_cache(r);
     case PHOS_STAGE_RENDERING:
-        /* The maps are complete: draw them, hand them to the integrators. */
+        /* The maps and the cache are complete: draw them, hand them to the
+         * integrators. */
         if (r->use_maps) {
             if (pass_on(r, PHOS_PASS_PHOTONS)) {
                 draw_photons(r, &r->maps.global);
                 draw_photons(r, &r->maps.caustic);
             }
             r->integrator.maps = &r->maps;
+        }
+        if (r->use_cache) {
+            if (pass_on(r, PHOS_PASS_IRRADIANCE_CACHE))
+                draw_records(r, &r->cache);
+            r->integrator.cache = &r->cache;
         }
         if (!parallel_for(r->tile_count, r->threads, render_tile, r, &r->cancel))
             return atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_INTERNAL;
@@ -331,7 +378,26 @@ int render_prepare(render *r)
     is->caustic_estimate = (estimate_params){rs->caustic_estimate_photons, radius, ESTIMATE_CONE, 0};
     is->final_gather_rays = rs->final_gather_rays;
     is->radiance_lookup_radius = radius;
-    is->indirect = indirect_provider_for(rs->photon_view);
+    /* Where the diffuse part's indirect light comes from: PATH follows the
+     * whole BSDF unless the irradiance cache wraps its path-traced
+     * hemisphere; PHOTON reads its photon view's provider, or the cache
+     * wrapping it. */
+    r->use_cache = stage_plan_has(&r->plan, PHOS_STAGE_FILLING_IRRADIANCE_CACHE);
+    int photon = rs->integrator == PHOS_INTEGRATOR_PHOTON;
+    is->cache_inner = photon ? indirect_provider_for(rs->photon_view) : &indirect_path_hemisphere;
+    is->indirect = r->use_cache ? &indirect_irradiance_cache : (photon ? is->cache_inner : NULL);
+    is->cache = NULL;
+    is->gathers_find_caustics = !photon;
+    irradiance_cache_fill_settings *fs = &r->cache_fill;
+    fs->width = rs->width;
+    fs->height = rs->height;
+    fs->seed = rs->seed;
+    fs->rays = rs->ic_rays;
+    fs->min_spacing = rs->ic_min_spacing;
+    fs->max_spacing = rs->ic_max_spacing;
+    fs->threads = r->threads;
+    if (r->use_cache && !irradiance_cache_init(&r->cache, r->scene->bounds_min, r->scene->bounds_max, rs->ic_accuracy))
+        return 0;
     photon_trace_settings *ps = &r->photon_settings;
     /* The path-traced gather reads no global map: trace one only for the
      * debug passes that show it. */
@@ -400,4 +466,5 @@ void render_free(render *r)
         free(r->scratch);
     }
     photon_maps_free(&r->maps);
+    irradiance_cache_free(&r->cache);
 }

@@ -12,6 +12,8 @@
 #include "render/film.h"
 #include "render/stages.h"
 #include "integrators/integrator.h"
+#include "indirect/irradiance_cache.h"
+#include "indirect/irradiance_cache_fill.h"
 #include "photons/photon_trace.h"
 #include "scene/scene.h"
 
@@ -28,6 +30,14 @@ struct phos_render {
     photon_trace_settings photon_settings;
     photon_trace_progress photon_progress;
     integrator_scratch *scratch;   /* one per thread */
+
+    irradiance_cache cache;
+    int use_cache;                 /* the irradiance cache is on (and the pre-pass in the plan) */
+    irradiance_cache_fill_settings cache_fill;
+    atomic_uint cache_passes_done;
+    atomic_uint_fast64_t cache_lookups, cache_hits; /* by the tiles, summed per tile */
+    atomic_uint_fast64_t cache_rays;                /* cast by the pre-pass */
+    atomic_uint_fast64_t gather_rays;               /* hemisphere rays of tiles and pre-pass */
 
     phos_tile *tiles;
     uint32_t tile_count;

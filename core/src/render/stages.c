@@ -6,6 +6,16 @@
 /* The passes that need the photon maps whatever the integrator. */
 #define PHOTON_DEBUG_PASSES ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_CAUSTIC_MAP) | (1u << PHOS_PASS_PHOTONS))
 
+int stage_plan_uses_cache(const phos_render_settings *rs)
+{
+    int photon = rs->integrator == PHOS_INTEGRATOR_PHOTON;
+    /* The fast estimate sends no gather rays: there is nothing to cache. */
+    if (photon && rs->photon_view == PHOS_PHOTON_VIEW_FAST)
+        return 0;
+    return rs->irradiance_cache == PHOS_IRRADIANCE_CACHE_ALWAYS ||
+           (rs->irradiance_cache == PHOS_IRRADIANCE_CACHE_PHOTON && photon);
+}
+
 void stage_plan_make(const phos_render_settings *rs, stage_plan *plan)
 {
     int photon = rs->integrator == PHOS_INTEGRATOR_PHOTON;
@@ -19,6 +29,8 @@ void stage_plan_make(const phos_render_settings *rs, stage_plan *plan)
         if (photon && rs->photon_view == PHOS_PHOTON_VIEW_FINAL_GATHER)
             plan->stages[n++] = PHOS_STAGE_PRECOMPUTING_RADIANCE;
     }
+    if (stage_plan_uses_cache(rs))
+        plan->stages[n++] = PHOS_STAGE_FILLING_IRRADIANCE_CACHE;
     plan->stages[n++] = PHOS_STAGE_RENDERING;
     plan->stages[n++] = PHOS_STAGE_FINISHED;
     plan->count = n;
@@ -39,6 +51,7 @@ const char *stage_name(uint32_t stage, uint32_t integrator)
     case PHOS_STAGE_TRACING_PHOTONS: return "Tracing photons";
     case PHOS_STAGE_BUILDING_KDTREES: return "Building kd-trees";
     case PHOS_STAGE_PRECOMPUTING_RADIANCE: return "Precomputing radiance";
+    case PHOS_STAGE_FILLING_IRRADIANCE_CACHE: return "Filling irradiance cache";
     case PHOS_STAGE_RENDERING:
         return integrator == PHOS_INTEGRATOR_PHOTON ? "Rendering with photon maps" : "Path tracing";
     case PHOS_STAGE_FINISHED: return "Finished";

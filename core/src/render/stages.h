@@ -17,8 +17,12 @@ typedef struct stage_plan {
 /* The plan of a render with these (validated) settings: WAITING; the photon
  * stages if it uses photon maps (the PHOTON integrator, or a photon debug
  * pass with either integrator), with the radiance precomputation only for
- * final gathering; RENDERING; FINISHED. */
+ * final gathering; the irradiance cache's pre-pass if the cache is on;
+ * RENDERING; FINISHED. */
 void stage_plan_make(const phos_render_settings *rs, stage_plan *plan);
+
+/* 1 if the settings turn the irradiance cache on for their integrator. */
+int stage_plan_uses_cache(const phos_render_settings *rs);
 
 /* 1 if the plan runs the stage. */
 int stage_plan_has(const stage_plan *plan, uint32_t stage);

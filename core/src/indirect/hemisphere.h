@@ -8,7 +8,7 @@
 #ifndef PHOS_HEMISPHERE_H
 #define PHOS_HEMISPHERE_H
 
-#include "integrators/indirect_diffuse.h"
+#include "indirect/indirect_diffuse.h"
 
 /* The dimension plan of a gather. The gather's sampler g is split off the
  * camera sample's by the vertex; in g, ray i's direction takes dimensions
@@ -19,13 +19,9 @@
  * number of rays or steps. */
 #define HEMISPHERE_RAY_STREAM 0x4a7b0000u
 
-/* Radiance W/(m²·sr) arriving at the query's point along wi from a ray
- * leaving o; g is the gather's sampler and ray_index the ray's number.
- * Emitters the ray reaches on its first segment count with the MIS weight
- * of a sample of pdf ray_pdf (all the gather's rays together,
- * gather_rays_pdf) against the light sample of the diffuse part. */
-typedef gather_estimate (*hemisphere_incoming)(const indirect_query *q, vec3 o, vec3 wi, const sampler *g,
-                                               uint32_t ray_index, float ray_pdf);
+/* The sampler of the gather at the query's vertex, split off the camera
+ * sample's (or the irradiance record's) own. */
+#define HEMISPHERE_GATHER_STREAM 0x9a7e0000u
 
 /* The M×N strata the gather makes of `rays` requested: M = round(√(rays/π)),
  * N = ⌊rays/M⌋, so M·N may be a little less than rays. MIS weights against
@@ -38,9 +34,22 @@ static inline uint32_t hemisphere_ray_count(uint32_t rays)
     return M * N;
 }
 
+/* The direction, in the frame of the normal, of stratum (j, k) of M×N at
+ * the jitter u: θ = asin √((j + u.x)/M), φ = 2π(k + u.y)/N. */
+static inline vec3 hemisphere_stratum_direction(uint32_t j, uint32_t k, uint32_t M, uint32_t N, float2 u)
+{
+    float sin2 = ((float)j + u.x) / (float)M;
+    float sin_t = sqrtf(sin2), cos_t = sqrtf(fmaxf(1.0f - sin2, 0.0f));
+    float phi = 2.0f * PHOS_PI * ((float)k + u.y) / (float)N;
+    return v3(cosf(phi) * sin_t, sinf(phi) * sin_t, cos_t);
+}
+
 /* ∫ f_d L_i cos dω over the query's hemisphere with `rays` cosine-stratified
  * rays, each weighted by f_d·π (the cosine pdf's cos θ/π cancels the cosine
- * of the integrand). */
-gather_estimate hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming);
+ * of the integrand). count_emitters: the rays count the emitters their
+ * first segment reaches, MIS-weighted (indirect_diffuse.h); 0: they leave
+ * them to the light sample. */
+gather_estimate hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming,
+                                  int count_emitters);
 
 #endif /* PHOS_HEMISPHERE_H */

@@ -1,7 +1,7 @@
 /*
  * hemisphere.c — the stratified cosine hemisphere (hemisphere.h).
  */
-#include "integrators/hemisphere.h"
+#include "indirect/hemisphere.h"
 
 #include "scene/ray.h"
 
@@ -15,35 +15,40 @@ void hemisphere_strata(uint32_t rays, uint32_t *M, uint32_t *N)
         *N = 1;
 }
 
-gather_estimate hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming)
+gather_estimate hemisphere_gather(const indirect_query *q, uint32_t rays, hemisphere_incoming incoming,
+                                  int count_emitters)
 {
     const surface *sf = q->sf;
     uint32_t M, N;
     hemisphere_strata(rays, &M, &N);
-    sampler g = sampler_split(q->smp, 0x9a7e0000u + q->vertex);
+    sampler g = sampler_split(q->smp, HEMISPHERE_GATHER_STREAM + q->vertex);
     frame f = frame_from_normal(sf->ns);
     vec3 o_up = offset_ray_origin(sf->p, sf->ng);
-    gather_estimate sum = {v3s(0.0f), v3s(0.0f)};
+    gather_estimate sum = GATHER_ESTIMATE_ZERO;
     uint32_t index = 0;
     for (uint32_t j = 0; j < M; j++) {
         for (uint32_t k = 0; k < N; k++, index++) {
-            float2 u = sampler_2d(&g, 2u * index);
-            float sin2 = ((float)j + u.x) / (float)M;
-            float sin_t = sqrtf(sin2), cos_t = safe_sqrtf(1.0f - sin2);
-            float phi = 2.0f * PHOS_PI * ((float)k + u.y) / (float)N;
-            vec3 wi = frame_to_world(&f, v3(cosf(phi) * sin_t, sinf(phi) * sin_t, cos_t));
+            vec3 local = hemisphere_stratum_direction(j, k, M, N, sampler_2d(&g, 2u * index));
+            float cos_t = local.z;
+            vec3 wi = frame_to_world(&f, local);
             if (v3_dot(wi, sf->ng) <= 0.0f || cos_t <= 0.0f)
                 continue;
             vec3 fcos = bsdf_eval(q->diffuse, q->wo, wi, NULL);
             if (v3_is_zero(fcos))
                 continue;
-            gather_estimate Li = incoming(q, o_up, wi, &g, index, (float)(M * N) * cos_t * PHOS_INV_PI);
+            float ray_pdf = count_emitters ? (float)(M * N) * cos_t * PHOS_INV_PI : 0.0f;
+            q->scratch->gather_rays++;
+            gather_estimate Li = incoming(q, o_up, wi, &g, index, ray_pdf);
             /* f·cos / (cos/π) = π·f */
             vec3 weight = v3_scale(fcos, PHOS_PI / cos_t);
             sum.indirect = v3_add(sum.indirect, v3_mul(weight, Li.indirect));
             sum.direct = v3_add(sum.direct, v3_mul(weight, Li.direct));
+            sum.caustic = v3_add(sum.caustic, v3_mul(weight, Li.caustic));
         }
     }
     float inv = 1.0f / (float)(M * N);
-    return (gather_estimate){v3_scale(sum.indirect, inv), v3_scale(sum.direct, inv)};
+    sum.indirect = v3_scale(sum.indirect, inv);
+    sum.direct = v3_scale(sum.direct, inv);
+    sum.caustic = v3_scale(sum.caustic, inv);
+    return sum;
 }

@@ -5,8 +5,8 @@
  * surface itself (the fast estimate).
  */
 #include "integrators/direct_light.h"
-#include "integrators/hemisphere.h"
-#include "integrators/indirect_diffuse.h"
+#include "indirect/hemisphere.h"
+#include "indirect/indirect_diffuse.h"
 #include "integrators/specular_chain.h"
 #include "photons/radiance_estimate.h"
 #include "scene/ray.h"
@@ -84,7 +84,7 @@ static gather_estimate gather_ray(const indirect_query *q, vec3 o, vec3 d, const
     sampler ray_smp = sampler_split(g, HEMISPHERE_RAY_STREAM + ray_index); /* hemisphere.h */
     float near2 = GATHER_NEAR_RADII * GATHER_NEAR_RADII * is->radiance_lookup_radius * is->radiance_lookup_radius;
     vec3 beta = v3s(1.0f), L = v3s(0.0f);
-    gather_estimate out = {v3s(0.0f), v3s(0.0f)};
+    gather_estimate out = GATHER_ESTIMATE_ZERO;
     for (uint32_t step = 0;; step++) {
         sampler smp = step ? sampler_split(&ray_smp, step) : ray_smp;
         /* Only the first segment counts emitters; later ones would find
@@ -93,8 +93,10 @@ static gather_estimate gather_ray(const indirect_query *q, vec3 o, vec3 d, const
                             step ? 0.0f : ray_pdf, q->light};
         specular_chain_end end;
         int hit = specular_chain_follow(q->s, &c, o, d, 0.0f, INFINITY, &end);
-        if (step == 0)
+        if (step == 0) {
             out.direct = end.emission;
+            out.distance = end.first_distance;
+        }
         if (!hit)
             break;
         beta = v3_mul(beta, end.beta);
@@ -124,7 +126,7 @@ static gather_estimate gather_ray(const indirect_query *q, vec3 o, vec3 d, const
 /* Final gathering: the stratified hemisphere of gather rays. */
 static gather_estimate final_gather(const indirect_query *q)
 {
-    return hemisphere_gather(q, q->is->final_gather_rays, gather_ray);
+    return hemisphere_gather(q, q->is->final_gather_rays, gather_ray, 1);
 }
 
 /* The global map's estimate at the surface, leaving out its direct and
@@ -134,9 +136,11 @@ static gather_estimate photon_map_estimate(const indirect_query *q)
     estimate_params ep = q->is->global_estimate;
     ep.exclude_flags = PHOTON_DIRECT | PHOTON_CAUSTIC;
     vec3 L = photon_radiance(&q->is->maps->global, q->diffuse, q->wo, q->sf->p, q->sf->ns, &ep, &q->scratch->global);
-    return (gather_estimate){L, v3s(0.0f)};
+    gather_estimate out = GATHER_ESTIMATE_ZERO;
+    out.indirect = L;
+    return out;
 }
 
-const indirect_diffuse_provider indirect_final_gather = {"final gather", 1, final_gather};
-const indirect_diffuse_provider indirect_photon_map = {"photon map", 0, photon_map_estimate};
+const indirect_diffuse_provider indirect_final_gather = {"final gather", 1, final_gather, gather_ray};
+const indirect_diffuse_provider indirect_photon_map = {"photon map", 0, photon_map_estimate, NULL};
 

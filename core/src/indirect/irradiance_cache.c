@@ -1,0 +1,226 @@
+/*
+ * irradiance_cache.c — the records' octree, lookup and insertion
+ * (irradiance_cache.h).
+ */
+#include "indirect/irradiance_cache.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define NO_RECORD UINT32_MAX
+#define WEIGHT_MAX 1e4f      /* w at (almost) a record's own position */
+#define LOOKUP_STACK 256     /* 8 children × depth: octrees here are far shallower than 32 levels */
+/* A record lies in front of the point if the point is behind the record's
+ * tangent plane, averaged with its own, by more than this share of the
+ * record's reach: the two may see different light (Ward et al. 1988).
+ * Relative, not absolute, so the test does not depend on the scene's
+ * scale (docs/algorithms.md §10.2). The averaged normal makes the offset
+ * vanish on a sphere, so curved surfaces need no larger tolerance. */
+#define IN_FRONT_TOLERANCE 0.05f
+
+static uint32_t new_node(irradiance_cache *c, vec3 centre, float half)
+{
+    if (c->node_count == c->node_capacity) {
+        uint32_t cap = c->node_capacity ? 2 * c->node_capacity : 64;
+        irradiance_cache_node *n = realloc(c->nodes, sizeof(*n) * cap);
+        if (!n)
+            return 0;
+        c->nodes = n;
+        c->node_capacity = cap;
+    }
+    irradiance_cache_node *n = &c->nodes[c->node_count];
+    memset(n, 0, sizeof(*n));
+    n->centre = centre;
+    n->half = half;
+    n->first = NO_RECORD;
+    return c->node_count++;
+}
+
+int irradiance_cache_init(irradiance_cache *c, vec3 bmin, vec3 bmax, float accuracy)
+{
+    memset(c, 0, sizeof(*c));
+    c->accuracy = accuracy;
+    vec3 centre = v3_scale(v3_add(bmin, bmax), 0.5f);
+    vec3 ext = v3_sub(bmax, bmin);
+    float half = 0.5f * fmaxf(fmaxf(ext.x, ext.y), ext.z);
+    half = half * 1.01f + 1e-6f;
+    if (!(half < INFINITY))
+        half = 1e30f;
+    /* Node 0 is the root; it needs room before any child is made. */
+    return new_node(c, centre, half) == 0 && c->nodes != NULL;
+}
+
+void irradiance_cache_free(irradiance_cache *c)
+{
+    free(c->records);
+    free(c->nodes);
+    memset(c, 0, sizeof(*c));
+}
+
+static float reach(const irradiance_cache *c, const irradiance_record *r) { return r->R / c->accuracy; }
+
+
+static int octant(vec3 centre, vec3 p)
+{
+    return (p.x >= centre.x) | ((p.y >= centre.y) << 1) | ((p.z >= centre.z) << 2);
+}
+
+/* Whether p lies within the cube of node n grown by `grow` on every side. */
+static int near_node(const irradiance_cache_node *n, vec3 p, float grow)
+{
+    float h = n->half + grow;
+    return fabsf(p.x - n->centre.x) <= h && fabsf(p.y - n->centre.y) <= h && fabsf(p.z - n->centre.z) <= h;
+}
+
+/* Calls visit for every record whose node p may lie within the reach of,
+ * plus `extra`: a record in a node of edge s reaches at most s beyond the
+ * node's cube. Records are visited in a fixed order. */
+typedef void (*record_visitor)(void *ctx, uint32_t record);
+static void for_each_record_near(const irradiance_cache *c, vec3 p, float extra, record_visitor visit, void *ctx)
+{
+    uint32_t stack[LOOKUP_STACK];
+    uint32_t top = 0;
+    stack[top++] = 0;
+    while (top) {
+        const irradiance_cache_node *n = &c->nodes[stack[--top]];
+        for (uint32_t r = n->first; r != NO_RECORD; r = c->records[r].next)
+            visit(ctx, r);
+        for (int k = 7; k >= 0; k--) {
+            uint32_t ch = n->child[k];
+            if (ch && top < LOOKUP_STACK && near_node(&c->nodes[ch], p, 2.0f * c->nodes[ch].half + extra))
+                stack[top++] = ch;
+        }
+    }
+}
+
+/* ------------------------------------------------------------ insertion */
+
+typedef struct clamp_ctx {
+    irradiance_cache *c;
+    uint32_t self;
+} clamp_ctx;
+
+static void clamp_record(irradiance_record *r, float bound)
+{
+    r->R_free = fminf(r->R_free, bound);
+    r->R = clampf(r->R_free, r->R_lo, r->R_hi);
+}
+
+/* Neighbour clamping (Křivánek et al. 2006): two records whose reaches
+ * overlap keep radii that differ by at most their distance, so a small
+ * record near geometry detail lowers its neighbours' radii and they do
+ * not reach across the detail. */
+static void clamp_neighbour(void *ctx, uint32_t j)
+{
+    clamp_ctx *k = ctx;
+    irradiance_cache *c = k->c;
+    if (j == k->self)
+        return;
+    irradiance_record *ri = &c->records[k->self], *rj = &c->records[j];
+    float d = v3_length(v3_sub(ri->p, rj->p));
+    if (d >= reach(c, ri) + reach(c, rj))
+        return;
+    clamp_record(ri, rj->R + d);
+    clamp_record(rj, ri->R + d);
+}
+
+int irradiance_cache_insert(irradiance_cache *c, const irradiance_record *rec)
+{
+    if (c->count == c->capacity) {
+        uint32_t cap = c->capacity ? 2 * c->capacity : 256;
+        irradiance_record *r = realloc(c->records, sizeof(*r) * cap);
+        if (!r)
+            return 0;
+        c->records = r;
+        c->capacity = cap;
+    }
+    uint32_t i = c->count++;
+    c->records[i] = *rec;
+    c->records[i].next = NO_RECORD;
+    clamp_ctx k = {c, i};
+    for_each_record_near(c, rec->p, reach(c, &c->records[i]), clamp_neighbour, &k);
+
+    /* The largest node no larger than twice the (clamped) reach. */
+    float rho = reach(c, &c->records[i]);
+    uint32_t node = 0;
+    while (c->nodes[node].half > rho) {
+        const irradiance_cache_node *n = &c->nodes[node];
+        if (!near_node(n, rec->p, 0.0f))
+            break; /* outside the root: kept there */
+        int o = octant(n->centre, rec->p);
+        uint32_t child = n->child[o];
+        if (!child) {
+            float h = 0.5f * n->half;
+            vec3 cc = v3_add(n->centre, v3((o & 1) ? h : -h, (o & 2) ? h : -h, (o & 4) ? h : -h));
+            child = new_node(c, cc, h); /* may move c->nodes */
+            if (!child)
+                return 0;
+            c->nodes[node].child[o] = child;
+        }
+        node = child;
+    }
+    c->records[i].next = c->nodes[node].first;
+    c->nodes[node].first = i;
+    return 1;
+}
+
+/* --------------------------------------------------------------- lookup */
+
+vec3 irradiance_record_extrapolate(const irradiance_record *r, vec3 p, vec3 n)
+{
+    vec3 rot = v3_cross(r->n, n), dp = v3_sub(p, r->p);
+    vec3 E = r->E;
+    E.x = fmaxf(E.x + v3_dot(rot, r->grad_r[0]) + v3_dot(dp, r->grad_t[0]), 0.0f);
+    E.y = fmaxf(E.y + v3_dot(rot, r->grad_r[1]) + v3_dot(dp, r->grad_t[1]), 0.0f);
+    E.z = fmaxf(E.z + v3_dot(rot, r->grad_r[2]) + v3_dot(dp, r->grad_t[2]), 0.0f);
+    return E;
+}
+
+typedef struct lookup_ctx {
+    const irradiance_cache *c;
+    vec3 p, n;
+    vec3 E, E_caustic, w_mean;
+    float w_sum;
+    uint32_t used;
+} lookup_ctx;
+
+static void weigh_record(void *ctx, uint32_t i)
+{
+    lookup_ctx *k = ctx;
+    const irradiance_record *r = &k->c->records[i];
+    float cos_n = v3_dot(k->n, r->n);
+    if (!(cos_n > 0.0f))
+        return;
+    vec3 dp = v3_sub(k->p, r->p);
+    float rho = reach(k->c, r);
+    /* In front: the point lies behind the record's surface. */
+    if (0.5f * v3_dot(dp, v3_add(k->n, r->n)) < -IN_FRONT_TOLERANCE * rho)
+        return;
+    float e = v3_length(dp) / r->R + sqrtf(fmaxf(1.0f - cos_n, 0.0f));
+    if (!(e * k->c->accuracy < 1.0f))
+        return; /* w ≤ q */
+    float w = e > 1.0f / WEIGHT_MAX ? 1.0f / e : WEIGHT_MAX;
+    k->E = v3_madd(k->E, irradiance_record_extrapolate(r, k->p, k->n), w);
+    k->E_caustic = v3_madd(k->E_caustic, r->E_caustic, w);
+    k->w_mean = v3_madd(k->w_mean, r->w_mean, w);
+    k->w_sum += w;
+    k->used++;
+}
+
+int irradiance_cache_lookup(const irradiance_cache *c, vec3 p, vec3 n, irradiance_estimate *out)
+{
+    memset(out, 0, sizeof(*out));
+    if (!c || c->count == 0)
+        return 0;
+    lookup_ctx k = {c, p, n, v3s(0.0f), v3s(0.0f), v3s(0.0f), 0.0f, 0};
+    for_each_record_near(c, p, 0.0f, weigh_record, &k);
+    if (!k.used)
+        return 0;
+    float inv = 1.0f / k.w_sum;
+    out->E = v3_scale(k.E, inv);
+    out->E_caustic = v3_scale(k.E_caustic, inv);
+    float len = v3_length(k.w_mean);
+    out->w_mean = len > 0.0f ? v3_scale(k.w_mean, 1.0f / len) : n;
+    out->records = k.used;
+    return 1;
+}

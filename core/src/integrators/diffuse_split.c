@@ -1,0 +1,50 @@
+/*
+ * diffuse_split.c — the vertex policy that splits the BSDF into its
+ * diffuse part f_d and the rest f_s (Jensen 1996; course notes 2002,
+ * "Rendering Equation Solution"), which PHOTON uses everywhere and PATH
+ * with the irradiance cache (Ward et al. 1988):
+ *
+ *   direct     ∫ f_r L_light cos      next-event estimation (f_s also by MIS
+ *                                     with the ray traced through f_s)
+ *   specular   ∫ f_s (L_c + L_d) cos  ray tracing: the camera path goes on
+ *                                     through f_s and the same split recurs
+ *   caustics   ∫ f_d L_c cos          the caustic map's radiance estimate, or
+ *                                     where there is none the provider's rays
+ *   indirect   ∫ f_d L_d cos          the indirect-diffuse provider
+ *
+ * The caustic map is read only on camera paths, since the global map (and
+ * so every gather) already holds caustic photons (docs/algorithms.md §5).
+ */
+#include "integrators/camera_path.h"
+#include "integrators/direct_light.h"
+#include "indirect/hemisphere.h"
+#include "indirect/indirect_diffuse.h"
+#include "photons/radiance_estimate.h"
+
+const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bsdf *rest)
+{
+    const scene *s = p->s;
+    const integrator_settings *is = p->is;
+    bsdf diffuse;
+    bsdf_split(v->b, &diffuse, rest);
+    /* The rays the gather really sends (its M×N strata), for the MIS weights. */
+    uint32_t gather_rays = is->indirect->gathers_emitters ? hemisphere_ray_count(is->final_gather_rays) : 0;
+    if (diffuse.count && !gather_rays)
+        v->light->rays_find_world = 0; /* the diffuse part's estimates do not count it */
+    if (bsdf_has_non_delta(v->b) && s->lights.count > 0)
+        camera_path_add_direct(p, direct_light(s, v->light, v->sf, rest, &diffuse, gather_rays, v->wo, p->smp,
+                                               v->index));
+    if (diffuse.count) {
+        indirect_query q = {s, is, v->sf, v->light, &diffuse, v->wo, p->smp, v->index, p->depth, p->scratch};
+        gather_estimate g = is->indirect->estimate(&q);
+        vec3 caustics = is->gathers_find_caustics
+                            ? g.caustic
+                            : photon_radiance(&is->maps->caustic, &diffuse, v->wo, v->sf->p, v->sf->ns,
+                                              &is->caustic_estimate, &p->scratch->caustic);
+        camera_path_add_diffuse(p, 1, caustics);
+        camera_path_add_diffuse(p, 0, g.indirect);
+        camera_path_add_direct(p, g.direct);
+    }
+    /* Go on through the specular and glossy part. */
+    return rest->count ? rest : NULL;
+}

@@ -1,0 +1,84 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The irradiance cache through Blender: its settings and panels, the
+Irradiance Cache debug pass, the status it reports, and a border render.
+
+The cache's physics (the analytic sphere, gradients, PATH and PHOTON with
+the cache against their references, determinism) is tested through the C
+API in tests/c/test_irradiance_cache.c; here the add-on's wiring is.
+"""
+
+import bpy
+import numpy as np
+
+import phostest as pt
+from test_photon import _load_cornell_box, enable_passes, render_passes, PASS_PROPS
+
+PASS_PROPS.setdefault("Irradiance Cache", "use_pass_irradiance_cache")
+
+
+def cornell(scene, size=48, samples=8):
+    module = _load_cornell_box()
+    module.build(scene)
+    pt.configure_output(scene, size, size)
+    pt.configure_phos(scene, samples, max_bounces=module.MAX_BOUNCES)
+    scene.render.engine = "PHOS"
+    p = scene.phos
+    p.integrator = "PHOTON"
+    p.global_photons = p.caustic_photons = 20000
+    p.irradiance_cache = "PHOTON"
+    return scene
+
+
+def test_cache_settings_and_panels(scene):
+    from phos import core, ui
+    rows = {s.name: s for s in core.RENDER_SETTINGS}
+    p = scene.phos
+    assert {item.identifier for item in p.bl_rna.properties["irradiance_cache"].enum_items} == {"OFF", "PHOTON", "ALWAYS"}
+    for name in ("ic_accuracy", "ic_rays", "ic_min_spacing", "ic_max_spacing"):
+        assert getattr(p, name) == rows[name].default, name
+    names = {cls.__name__ for cls in ui.classes}
+    assert {"PHOS_RENDER_PT_irradiance_cache", "PHOS_VIEW_LAYER_PT_passes_cache_debug"} <= names
+
+
+def test_cache_pass_dots_and_status(scene, tmp_path):
+    """With the cache on, the render reports its records and the share of
+    lookups they served, and the Irradiance Cache pass shows them as dots
+    over black (a record the camera sees is one pixel of its colour)."""
+    from phos import engine
+    cornell(scene)
+    enable_passes(scene, ("Indirect", "Irradiance Cache"))
+    passes = render_passes(scene, tmp_path, "cached")
+    stats = dict(engine.last_render_seconds)
+    print("cache: %d records, %.1f %% interpolated" % (stats["cache_records"], 100 * stats["cache_interpolated"]))
+    assert stats["cache_records"] > 0
+    assert stats["cache_interpolated"] > 0.5
+    dots = passes["Irradiance Cache"]
+    lit = (dots.max(axis=-1) > 0).sum()
+    assert 0 < lit <= stats["cache_records"]
+    assert np.allclose(dots.max(axis=-1)[dots.max(axis=-1) > 0], 1.0)  # each dot's largest channel is 1
+    assert passes["Indirect"].mean() > 0.0
+
+
+def test_cache_off_pass_black(scene, tmp_path):
+    from phos import engine
+    cornell(scene, size=24, samples=2)
+    scene.phos.irradiance_cache = "OFF"
+    enable_passes(scene, ("Irradiance Cache",))
+    passes = render_passes(scene, tmp_path, "uncached")
+    assert engine.last_render_seconds["cache_records"] == 0
+    assert not passes["Irradiance Cache"].any()
+
+
+def test_cache_border_matches_full_frame(scene, tmp_path):
+    """A border reads the same cache as the full frame (the pre-pass covers
+    the whole frame): its pixels are the full frame's, bit for bit."""
+    cornell(scene, size=40, samples=2)
+    scene.phos.integrator = "PATH"
+    scene.phos.irradiance_cache = "ALWAYS"
+    full = pt.render_array(scene, tmp_path, name="full")
+    r = scene.render
+    r.use_border, r.use_crop_to_border = True, False
+    r.border_min_x, r.border_max_x, r.border_min_y, r.border_max_y = 0.25, 0.75, 0.3, 0.8
+    part = pt.render_array(scene, tmp_path, name="border")
+    x0, y0, x1, y1 = pt.border_rect(scene)
+    assert np.array_equal(part[y0:y1, x0:x1], full[y0:y1, x0:x1])

@@ -1,0 +1,394 @@
+/*
+ * test_irradiance_cache.c — the irradiance cache (Ward et al. 1988;
+ * docs/algorithms.md §10): against the analytic irradiance inside a closed
+ * emitting sphere, its gradients against finite differences, PATH with
+ * the cache against PATH without, PHOTON with the cache against final
+ * gathering at every sample, and determinism across threads and borders.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "indirect/irradiance_record.h"
+#include "integrators/integrator.h"
+#include "scene/embree.h"
+#include "shading/material.h"
+#include "test_scenes.h"
+#include "test_util.h"
+
+#define ALL_LIGHT_PASSES ((1u << (PHOS_PASS_INDIRECT + 1)) - 1u)
+
+typedef struct render_out {
+    float *pass[PHOS_PASS_COUNT];
+    phos_progress progress;
+    uint32_t w, h;
+} render_out;
+
+/* Renders every pass of rs->pass_mask of the region (or frame). */
+static int render_all(phos_scene *s, const phos_render_settings *rs, render_out *out)
+{
+    memset(out, 0, sizeof(*out));
+    out->w = rs->region_width ? rs->region_width : rs->width;
+    out->h = rs->region_height ? rs->region_height : rs->height;
+    phos_render *r = NULL;
+    if (phos_render_create(s, rs, &r) != PHOS_OK) {
+        fprintf(stderr, "render: %s\n", phos_scene_error(s));
+        return 0;
+    }
+    int ok = phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK &&
+             phos_render_progress(r, &out->progress) == PHOS_OK;
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT && ok; p++) {
+        if (!(rs->pass_mask & (1u << p)) && p != PHOS_PASS_COMBINED)
+            continue;
+        size_t n = (size_t)phos_pass_channels(p) * out->w * out->h;
+        out->pass[p] = calloc(n, sizeof(float));
+        ok = out->pass[p] && phos_render_read(r, p, rs->region_x, rs->region_y, out->w, out->h, out->pass[p], n) ==
+                                 PHOS_OK;
+    }
+    phos_render_destroy(r);
+    return ok;
+}
+
+static void render_out_free(render_out *o)
+{
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++)
+        free(o->pass[p]);
+    memset(o, 0, sizeof(*o));
+}
+
+/* Mean over pixels and RGB of a pass. */
+static double pass_mean(const render_out *o, uint32_t pass)
+{
+    uint32_t ch = phos_pass_channels(pass);
+    size_t n = (size_t)o->w * o->h;
+    double m = 0.0;
+    for (size_t i = 0; i < n; i++)
+        m += o->pass[pass][i * ch] + o->pass[pass][i * ch + 1] + o->pass[pass][i * ch + 2];
+    return m / (3.0 * (double)n);
+}
+
+static phos_render_settings cache_settings(uint32_t integrator, uint32_t w, uint32_t samples, uint32_t seed)
+{
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.integrator = integrator;
+    rs.width = rs.height = w;
+    rs.samples = samples;
+    rs.seed = seed;
+    rs.max_bounces = 8;
+    rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_ALWAYS;
+    rs.pass_mask = ALL_LIGHT_PASSES | (1u << PHOS_PASS_IRRADIANCE_CACHE);
+    return rs;
+}
+
+/* ------------------------------------------------------------ analytic */
+
+/* Inside a closed sphere whose inner surface emits L_e and reflects with
+ * albedo ρ, the radiance is L_e/(1 − ρ) everywhere; light that scattered
+ * at least once arrives with L_e ρ/(1 − ρ), so the cached irradiance is
+ * E = π L_e ρ/(1 − ρ), and the Indirect pass f_d E = L_e ρ²/(1 − ρ). */
+static void test_closed_sphere_analytic(void)
+{
+    const float Le = 1.0f, rho = 0.5f;
+    phos_scene *s = phos_scene_create();
+    phos_closure_desc c[2];
+    phos_closure_desc_init(&c[0]);
+    phos_closure_desc_init(&c[1]);
+    c[0].type = PHOS_CLOSURE_DIFFUSE;
+    c[0].weight[0] = c[0].weight[1] = c[0].weight[2] = rho;
+    c[1].type = PHOS_CLOSURE_EMISSION;
+    c[1].weight[0] = c[1].weight[1] = c[1].weight[2] = Le;
+    uint32_t mat = test_add_mix_material(s, c, 2);
+    test_add_instance(s, test_add_sphere_mesh(s, 1.0f, 64, 32, 1), mat, 0, 0, 0);
+    test_set_camera(s, 0, 0, 0.5f, 0.6f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    phos_render_settings rs = cache_settings(PHOS_INTEGRATOR_PATH, 32, 4, 1);
+    rs.max_bounces = 64;
+    rs.ic_rays = 1024;
+    render_out o;
+    CHECK(render_all(s, &rs, &o));
+    if (o.pass[0]) {
+        double indirect = pass_mean(&o, PHOS_PASS_INDIRECT), combined = pass_mean(&o, PHOS_PASS_COMBINED);
+        double expect_indirect = Le * rho * rho / (1.0 - rho), expect_combined = Le / (1.0 - rho);
+        printf("  closed sphere: indirect %.5f (analytic %.5f), combined %.5f (analytic %.5f); %u records, "
+               "%.1f %% of lookups interpolated\n",
+               indirect, expect_indirect, combined, expect_combined, o.progress.cache_records,
+               100.0 * (double)o.progress.cache_interpolated / (double)(o.progress.cache_lookups ? o.progress.cache_lookups : 1));
+        CHECK_REL(indirect, expect_indirect, 0.01);
+        CHECK_REL(combined, expect_combined, 0.01);
+        CHECK(o.progress.cache_records > 0);
+    }
+    render_out_free(&o);
+    phos_scene_destroy(s);
+}
+
+/* ------------------------------------------------------------ gradients */
+
+/* A PATH record at the floor point (x, y) of the Cornell box s. */
+static int floor_record(phos_scene *s, float x, float y, uint32_t seed, uint32_t rays, irradiance_record *out)
+{
+    integrator_settings is;
+    memset(&is, 0, sizeof(is));
+    is.max_bounces = 8;
+    is.cache_inner = &indirect_path_hemisphere;
+    is.gathers_find_caustics = 1;
+    integrator_scratch scratch;
+    memset(&scratch, 0, sizeof(scratch));
+    ray_hit h;
+    vec3 o = v3(x, y, 1.0f), d = v3(0.0f, 0.0f, -1.0f);
+    if (!embree_intersect(s->bvh, o, d, 0.0f, INFINITY, 0, &h))
+        return 0;
+    surface sf;
+    surface_from_hit(s, h.instance, h.prim, h.b1, h.b2, d, &sf);
+    bsdf b;
+    material_bsdf(s, &sf, &b);
+    light_context light = light_context_at(&sf, 1);
+    sampler smp = sampler_for_pixel(seed, 0, 0, 0);
+    indirect_query q = {s, &is, &sf, &light, &b, sf.wo, &smp, 0, 0, &scratch};
+    return irradiance_record_compute(&q, is.cache_inner->incoming, rays, 0.0f, INFINITY, out);
+}
+
+/* Ward & Heckbert's gradients on the floor near the red wall (x = −1).
+ * Translational: against the finite difference of two records δ apart
+ * toward the wall, each pair drawn with the same seed, so that the strata's
+ * jitter is shared and the difference has little noise. Over several
+ * seeds, the mean of (difference − gradient) must be zero within 4
+ * standard errors, while the gradient itself is many standard errors from
+ * zero, of the sign the wall gives: red light falls away from it.
+ * Rotational: a normal tilted toward the wall, n = (−sin ε, 0, cos ε),
+ * turns by n_i × n = (0, −sin ε, 0) and sees more red, so ∇_r E (red)
+ * must point along −y (docs/algorithms.md §10.5). */
+static void test_translational_gradient_matches_finite_differences(void)
+{
+    phos_scene *s = test_cornell_box(0);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    const float x0 = -0.6f, y0 = 0.0f, delta = 0.02f;
+    const int seeds = 8;
+    double diff_sum = 0, diff_sum2 = 0, grad_sum = 0, grad_sum2 = 0, rot_sum = 0, rot_sum2 = 0;
+    for (int k = 0; k < seeds; k++) {
+        irradiance_record lo, mid, hi;
+        CHECK(floor_record(s, x0 - delta, y0, 100 + k, 4096, &lo));
+        CHECK(floor_record(s, x0, y0, 100 + k, 4096, &mid));
+        CHECK(floor_record(s, x0 + delta, y0, 100 + k, 4096, &hi));
+        double fd = (hi.E.x - lo.E.x) / (2.0 * delta); /* red: the wall at x = −1 is red */
+        double g = mid.grad_t[0].x;
+        diff_sum += fd - g;
+        diff_sum2 += (fd - g) * (fd - g);
+        grad_sum += g;
+        grad_sum2 += g * g;
+        rot_sum += mid.grad_r[0].y;
+        rot_sum2 += (double)mid.grad_r[0].y * mid.grad_r[0].y;
+    }
+    double n = seeds;
+    double diff_mean = diff_sum / n, diff_se = sqrt(fmax(diff_sum2 / n - diff_mean * diff_mean, 0.0) / (n - 1));
+    double grad_mean = grad_sum / n, grad_se = sqrt(fmax(grad_sum2 / n - grad_mean * grad_mean, 0.0) / (n - 1));
+    printf("  translational gradient (red, toward the red wall): %.4f ± %.4f W/m³; finite difference − gradient "
+           "%.4f ± %.4f\n",
+           grad_mean, grad_se, diff_mean, diff_se);
+    CHECK_MSG(fabs(diff_mean) <= 4.0 * diff_se, "the gradient differs from the finite difference by %.4f ± %.4f",
+              diff_mean, diff_se);
+    CHECK_MSG(grad_mean < -8.0 * grad_se, "the red irradiance must fall away from the red wall: %.4f ± %.4f",
+              grad_mean, grad_se);
+    double rot_mean = rot_sum / n, rot_se = sqrt(fmax(rot_sum2 / n - rot_mean * rot_mean, 0.0) / (n - 1));
+    printf("  rotational gradient (red), y: %.4f ± %.4f W/m² per radian\n", rot_mean, rot_se);
+    CHECK_MSG(rot_mean < -8.0 * rot_se, "turning toward the red wall must add red: %.4f ± %.4f", rot_mean, rot_se);
+    phos_scene_destroy(s);
+}
+
+/* ------------------------------------------------------------ Cornell box */
+
+/* Relative MSE of a against the reference: Σ (a − r)² / Σ r² over pixels and RGB. */
+static double relative_mse_ch(const float *a, const float *ref, size_t pixels, uint32_t ch)
+{
+    double num = 0.0, den = 0.0;
+    for (size_t i = 0; i < pixels; i++)
+        for (uint32_t c = 0; c < 3; c++) {
+            double d = a[ch * i + c] - ref[ch * i + c];
+            num += d * d;
+            den += (double)ref[ch * i + c] * ref[ch * i + c];
+        }
+    return num / den;
+}
+
+static double relative_mse(const float *a, const float *ref, size_t pixels)
+{
+    return relative_mse_ch(a, ref, pixels, 4);
+}
+
+static uint64_t total_rays(const render_out *o) { return o->progress.rays_traced + o->progress.cache_rays_traced; }
+
+/* PATH with the cache (Ward's method) on the Cornell box with its glass
+ * and mirror spheres, against a converged PATH render. The bound: at the
+ * same samples per pixel, the cached render's relative MSE is below
+ * PATH's. Both have the same noise of direct light and of the specular
+ * paths; the cache replaces the indirect light's noise with its own
+ * error (interpolation and its records' noise), and that error must be
+ * the smaller one, or the cache is not worth its records at any time
+ * budget (which make bench measures). Both errors include the reference's
+ * own noise (2048 samples: 1/32 of the 64-sample render's), which only
+ * makes the comparison harder for the cache. */
+static void test_path_with_cache_against_path(void)
+{
+    phos_scene *s = test_cornell_box(1);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    const uint32_t w = 64, n = w * w;
+    render_out ref, path, cached;
+    phos_render_settings rs = cache_settings(PHOS_INTEGRATOR_PATH, w, 2048, 7);
+    rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_OFF;
+    CHECK(render_all(s, &rs, &ref));
+    rs.samples = 64;
+    rs.seed = 1;
+    CHECK(render_all(s, &rs, &path));
+    rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_ALWAYS;
+    CHECK(render_all(s, &rs, &cached));
+    if (ref.pass[0] && path.pass[0] && cached.pass[0]) {
+        double e_path = relative_mse(path.pass[0], ref.pass[0], n), e_cached = relative_mse(cached.pass[0], ref.pass[0], n);
+        printf("  Cornell box, %u², 64 spp: PATH relMSE %.5f (%.2f M rays); PATH + cache relMSE %.5f "
+               "(%.2f M rays, %u records, %.1f %% interpolated)\n",
+               w, e_path, total_rays(&path) * 1e-6, e_cached, total_rays(&cached) * 1e-6, cached.progress.cache_records,
+               100.0 * cached.progress.cache_interpolated / (double)(cached.progress.cache_lookups + 1));
+        CHECK_MSG(e_cached < e_path, "PATH + cache %.5f vs PATH %.5f", e_cached, e_path);
+        /* The Caustics pass keeps its meaning: the caustic under the glass
+         * sphere, now from the records' rays. */
+        double c_ref = pass_mean(&ref, PHOS_PASS_CAUSTICS), c_cached = pass_mean(&cached, PHOS_PASS_CAUSTICS);
+        printf("  caustics pass: PATH %.5f, PATH + cache %.5f\n", c_ref, c_cached);
+        CHECK_REL(c_cached, c_ref, 0.25);
+    }
+    render_out_free(&ref);
+    render_out_free(&path);
+    render_out_free(&cached);
+    phos_scene_destroy(s);
+}
+
+/* Records stay few at the defaults (fewer than 5 % of the pixels at 256²,
+ * where the spacing clamps do not decide), and a stricter accuracy adds
+ * records: the course's q = 10 against q = 20. */
+static void test_record_counts(void)
+{
+    phos_scene *s = test_cornell_box(1);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    const uint32_t w = 256;
+    uint32_t records[2] = {0, 0};
+    float q[2] = {10.0f, 20.0f};
+    phos_render_settings rs = cache_settings(PHOS_INTEGRATOR_PATH, w, 1, 1);
+    rs.pass_mask = 1u << PHOS_PASS_COMBINED;
+    render_out o;
+    CHECK(render_all(s, &rs, &o));
+    printf("  defaults at %u²: %u records, %.2f %% of the pixels\n", w, o.progress.cache_records,
+           100.0 * o.progress.cache_records / (w * w));
+    CHECK(o.progress.cache_records > 0 && o.progress.cache_records < 0.05 * w * w);
+    render_out_free(&o);
+    for (int k = 0; k < 2; k++) {
+        rs.ic_accuracy = q[k];
+        CHECK(render_all(s, &rs, &o));
+        records[k] = o.progress.cache_records;
+        render_out_free(&o);
+    }
+    printf("  q = 10: %u records; q = 20: %u records\n", records[0], records[1]);
+    CHECK(records[1] > records[0]);
+    phos_scene_destroy(s);
+}
+
+/* PHOTON with the cache against final gathering at every sample, on the
+ * Cornell box at the default 128 samples: the same mean within 1 % (the
+ * cache's interpolation adds no bias the image shows), from at least 10×
+ * fewer gather rays (the records' rays counted with the tiles'). The
+ * records' count grows more slowly than the pixels', so the ratio grows
+ * with the image: 8.6× at 128², 12× at 192². */
+static void test_photon_with_cache_against_final_gather(void)
+{
+    phos_scene *s = test_cornell_box(1);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    const uint32_t w = 192;
+    render_out gathered, cached;
+    phos_render_settings rs = cache_settings(PHOS_INTEGRATOR_PHOTON, w, 128, 3);
+    rs.global_photons = rs.caustic_photons = 200000;
+    rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_OFF;
+    CHECK(render_all(s, &rs, &gathered));
+    rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_ALWAYS;
+    CHECK(render_all(s, &rs, &cached));
+    if (gathered.pass[0] && cached.pass[0]) {
+        double a = pass_mean(&gathered, PHOS_PASS_COMBINED), b = pass_mean(&cached, PHOS_PASS_COMBINED);
+        double ia = pass_mean(&gathered, PHOS_PASS_INDIRECT), ib = pass_mean(&cached, PHOS_PASS_INDIRECT);
+        uint64_t ga = gathered.progress.gather_rays, gb = cached.progress.gather_rays;
+        printf("  PHOTON, %u², 128 spp: mean %.5f gathering, %.5f cached (indirect %.5f, %.5f); gather rays "
+               "%.2f M against %.2f M (%.1f×); %u records\n",
+               w, a, b, ia, ib, ga * 1e-6, gb * 1e-6, (double)ga / (double)(gb ? gb : 1), cached.progress.cache_records);
+        CHECK_REL(b, a, 0.01);
+        CHECK_MSG(gb * 10 <= ga, "gather rays: %llu cached against %llu", (unsigned long long)gb,
+                  (unsigned long long)ga);
+    }
+    render_out_free(&gathered);
+    render_out_free(&cached);
+    phos_scene_destroy(s);
+}
+
+static int same_pass(const render_out *a, const render_out *b, uint32_t pass, uint32_t ax, uint32_t ay)
+{
+    uint32_t ch = phos_pass_channels(pass);
+    for (uint32_t y = 0; y < b->h; y++)
+        if (memcmp(&a->pass[pass][((size_t)(y + ay) * a->w + ax) * ch], &b->pass[pass][(size_t)y * b->w * ch],
+                   sizeof(float) * ch * b->w) != 0)
+            return 0;
+    return 1;
+}
+
+/* The same image, bit for bit, on 1 and 2 threads, with other tiles, and
+ * for a border against the same pixels of the full frame, for PATH and
+ * PHOTON with the cache (its pre-pass inserts in a fixed order and covers
+ * the full frame). */
+static void test_cache_is_deterministic(void)
+{
+    phos_scene *s = test_cornell_box(1);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    for (uint32_t integrator = 0; integrator < 2; integrator++) {
+        render_out full, other, border;
+        phos_render_settings rs = cache_settings(integrator, 48, 4, 5);
+        rs.global_photons = rs.caustic_photons = 50000;
+        rs.threads = 1;
+        CHECK(render_all(s, &rs, &full));
+        rs.threads = 2;
+        rs.tile_size = 16;
+        CHECK(render_all(s, &rs, &other));
+        rs.region_x = 13;
+        rs.region_y = 7;
+        rs.region_width = 20;
+        rs.region_height = 30;
+        CHECK(render_all(s, &rs, &border));
+        if (full.pass[0] && other.pass[0] && border.pass[0]) {
+            for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+                if (!full.pass[p])
+                    continue;
+                CHECK_MSG(same_pass(&full, &other, p, 0, 0), "%s: pass %u differs between 1 and 2 threads",
+                          integrator ? "PHOTON" : "PATH", p);
+                CHECK_MSG(same_pass(&full, &border, p, 13, 7), "%s: pass %u of a border differs from the full frame",
+                          integrator ? "PHOTON" : "PATH", p);
+            }
+            CHECK(full.progress.cache_records > 0 && full.progress.cache_records == border.progress.cache_records);
+        }
+        render_out_free(&full);
+        render_out_free(&other);
+        render_out_free(&border);
+    }
+    phos_scene_destroy(s);
+}
+
+int main(void)
+{
+    test_closed_sphere_analytic();
+    test_translational_gradient_matches_finite_differences();
+    test_path_with_cache_against_path();
+    test_record_counts();
+    test_photon_with_cache_against_final_gather();
+    test_cache_is_deterministic();
+    return test_summary("test_irradiance_cache");
+}
