@@ -216,7 +216,7 @@ def test_stats_line_follows_the_core_plan(scene, monkeypatch):
     assert len(plans) == 1
     names = [name for _id, name in plans[0]]
     assert names == ["Waiting", "Tracing photons", "Building kd-trees", "Precomputing radiance",
-                     "Rendering with photon maps", "Finished"], names
+                     "Filling irradiance cache", "Rendering with photon maps", "Finished"], names
     shown = []
     for line in lines:
         for name in names:

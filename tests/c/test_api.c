@@ -317,8 +317,8 @@ static void test_settings_ranges(void)
 }
 
 /* The plan of a render (phos_render_stages), and progress through it. */
-static void check_plan(phos_scene *s, uint32_t integrator, uint32_t view, uint32_t pass_mask, const uint32_t *want,
-                       uint32_t want_count, const char *render_name)
+static void check_plan(phos_scene *s, uint32_t integrator, uint32_t view, uint32_t cache, uint32_t pass_mask,
+                       const uint32_t *want, uint32_t want_count, const char *render_name)
 {
     phos_render_settings rs;
     phos_render_settings_init(&rs);
@@ -326,6 +326,8 @@ static void check_plan(phos_scene *s, uint32_t integrator, uint32_t view, uint32
     rs.samples = 1;
     rs.integrator = integrator;
     rs.photon_view = view;
+    rs.irradiance_cache = cache;
+    rs.ic_rays = 16;
     rs.pass_mask = pass_mask;
     rs.global_photons = rs.caustic_photons = 200;
     phos_render *r = NULL;
@@ -383,17 +385,27 @@ static void test_stage_plans(void)
     CHECK(phos_scene_add_light(s, &l, NULL) == PHOS_OK);
     CHECK(phos_scene_commit(s) == PHOS_OK);
     const uint32_t W = PHOS_STAGE_WAITING, T = PHOS_STAGE_TRACING_PHOTONS, B = PHOS_STAGE_BUILDING_KDTREES,
-                   P = PHOS_STAGE_PRECOMPUTING_RADIANCE, R = PHOS_STAGE_RENDERING, F = PHOS_STAGE_FINISHED;
+                   P = PHOS_STAGE_PRECOMPUTING_RADIANCE, C = PHOS_STAGE_FILLING_IRRADIANCE_CACHE,
+                   R = PHOS_STAGE_RENDERING, F = PHOS_STAGE_FINISHED;
+    const uint32_t OFF = PHOS_IRRADIANCE_CACHE_OFF, PHO = PHOS_IRRADIANCE_CACHE_PHOTON,
+                   ALL = PHOS_IRRADIANCE_CACHE_ALWAYS;
     uint32_t combined = 1u << PHOS_PASS_COMBINED;
-    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FINAL_GATHER, combined, (uint32_t[]){W, R, F}, 3,
+    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FINAL_GATHER, PHO, combined, (uint32_t[]){W, R, F}, 3,
                "Path tracing");
-    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FINAL_GATHER, combined | (1u << PHOS_PASS_PHOTON_MAP),
+    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FINAL_GATHER, ALL, combined, (uint32_t[]){W, C, R, F}, 4,
+               "Path tracing");
+    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FINAL_GATHER, OFF, combined | (1u << PHOS_PASS_PHOTON_MAP),
                (uint32_t[]){W, T, B, R, F}, 5, "Path tracing");
-    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FAST, combined | (1u << PHOS_PASS_PHOTONS),
+    check_plan(s, PHOS_INTEGRATOR_PATH, PHOS_PHOTON_VIEW_FAST, OFF, combined | (1u << PHOS_PASS_PHOTONS),
                (uint32_t[]){W, T, B, R, F}, 5, "Path tracing");
-    check_plan(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, combined, (uint32_t[]){W, T, B, P, R, F}, 6,
-               "Rendering with photon maps");
-    check_plan(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FAST, combined, (uint32_t[]){W, T, B, R, F}, 5,
+    check_plan(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, OFF, combined, (uint32_t[]){W, T, B, P, R, F},
+               6, "Rendering with photon maps");
+    check_plan(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, PHO, combined,
+               (uint32_t[]){W, T, B, P, C, R, F}, 7, "Rendering with photon maps");
+    check_plan(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_PATH_TRACED, ALL, combined, (uint32_t[]){W, T, B, C, R, F},
+               6, "Rendering with photon maps");
+    /* The fast estimate sends no gather rays: nothing to cache. */
+    check_plan(s, PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FAST, ALL, combined, (uint32_t[]){W, T, B, R, F}, 5,
                "Rendering with photon maps");
     uint32_t n;
     CHECK(phos_render_stages(NULL, NULL, 0, &n) == PHOS_ERROR_INVALID_ARGUMENT);

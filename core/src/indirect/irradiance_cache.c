@@ -9,7 +9,8 @@
 
 #define NO_RECORD UINT32_MAX
 #define WEIGHT_MAX 1e4f      /* w at (almost) a record's own position */
-#define LOOKUP_STACK 256     /* 8 children × depth: octrees here are far shallower than 32 levels */
+#define MAX_DEPTH 24         /* octree levels below the root: 2⁻²⁴ of the scene's size */
+#define LOOKUP_STACK (7 * MAX_DEPTH + 8) /* a depth-first walk holds at most 7 siblings per level */
 /* A record lies in front of the point if the point is behind the record's
  * tangent plane, averaged with its own, by more than this share of the
  * record's reach: the two may see different light (Ward et al. 1988).
@@ -126,6 +127,10 @@ static void clamp_neighbour(void *ctx, uint32_t j)
 
 int irradiance_cache_insert(irradiance_cache *c, const irradiance_record *rec)
 {
+    /* A record that cannot reach anything (a point at the camera, a
+     * numerical failure) would only deepen the tree. */
+    if (!(rec->R > 0.0f) || !(rec->R < INFINITY) || !v3_is_finite(rec->p))
+        return 1;
     if (c->count == c->capacity) {
         uint32_t cap = c->capacity ? 2 * c->capacity : 256;
         irradiance_record *r = realloc(c->records, sizeof(*r) * cap);
@@ -143,7 +148,7 @@ int irradiance_cache_insert(irradiance_cache *c, const irradiance_record *rec)
     /* The largest node no larger than twice the (clamped) reach. */
     float rho = reach(c, &c->records[i]);
     uint32_t node = 0;
-    while (c->nodes[node].half > rho) {
+    for (uint32_t depth = 0; depth < MAX_DEPTH && c->nodes[node].half > rho; depth++) {
         const irradiance_cache_node *n = &c->nodes[node];
         if (!near_node(n, rec->p, 0.0f))
             break; /* outside the root: kept there */

@@ -4,12 +4,13 @@
  * render afterwards only read the cache and the image is the same for any
  * thread count, tile order or border region.
  *
- * The passes visit pixel centres on ever finer grids: first every S-th
+ * The passes visit pixels on ever finer grids: first every S-th
  * pixel in x and y (S, a power of two, about the largest spacing), then
  * for each s = S/2 … 1 the three cosets of the 2s grid that are new at
  * step s, (s, 0), (0, s) and (s, s), so that within a pass candidates lie
  * 2s pixels apart and rarely fall within one another's reach. In a pass,
- * each candidate follows its camera ray through specular surfaces (always
+ * each candidate follows a camera ray through a point of its pixel (drawn
+ * from the pixel's own numbers) through specular surfaces (always
  * the lobe at u = 0.5, so the floor seen in a mirror gets records too) to
  * the first surface with a diffuse part, and looks the cache up there; the
  * candidates no record covers get one, computed in parallel, and the new
@@ -32,7 +33,9 @@
 #include "util/parallel.h"
 
 #define FILL_CHAIN_STEPS 16        /* specular surfaces a candidate's ray passes */
-#define FILL_RECORD_STREAM 0x1cac0000u /* the records' sampler, split off the pixel's */
+#define FILL_RECORD_STREAM 0x1cac0000u /* the candidates' sampler, split off the pixel's */
+#define FILL_DIM_FILM 0u           /* 2: the candidate's point in its pixel, the sampler's only own
+                                      dimensions (a record's rays draw from streams split off it) */
 #define FILL_BLOCK 64              /* candidates per work item of the lookup phase */
 
 uint32_t irradiance_cache_fill_passes(const irradiance_cache_fill_settings *fs)
@@ -82,13 +85,27 @@ static void candidate_pixel(const fill_job *job, uint32_t i, uint32_t *x, uint32
     *y = job->oy + (i / job->nx) * job->step;
 }
 
-/* The first surface with a diffuse part along pixel (x, y)'s centre ray. */
+/* The sampler of pixel (x, y)'s candidate: where in the pixel its ray
+ * goes, and its record's rays. */
+static sampler candidate_sampler(const fill_job *job, uint32_t x, uint32_t y)
+{
+    sampler pixel = sampler_for_pixel(job->fs->seed, x, y, 0);
+    return sampler_split(&pixel, FILL_RECORD_STREAM);
+}
+
+/* The first surface with a diffuse part along pixel (x, y)'s candidate
+ * ray: through a point of the pixel drawn from its own sampler, not its
+ * centre, since a ray through the exact centre of a symmetric view can
+ * meet a triangle's edge exactly, where which of the two triangles the
+ * kernel reports depends on how its BVH was built. */
 static int candidate_point(const fill_job *job, uint32_t x, uint32_t y, specular_chain_end *end, bsdf *diffuse)
 {
     const irradiance_cache_fill_settings *fs = job->fs;
+    sampler smp = candidate_sampler(job, x, y);
+    float2 u = sampler_2d(&smp, FILL_DIM_FILM);
     float2 lens = {0.5f, 0.5f}; /* the lens centre */
-    camera_ray ray = camera_generate_ray(&job->s->camera, ((float)x + 0.5f) / (float)fs->width,
-                                         ((float)y + 0.5f) / (float)fs->height, lens);
+    camera_ray ray = camera_generate_ray(&job->s->camera, ((float)x + u.x) / (float)fs->width,
+                                         ((float)y + u.y) / (float)fs->height, lens);
     specular_chain chain = {STOP_AT_DIFFUSE, FILL_CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL};
     if (!specular_chain_follow(job->s, &chain, ray.o, ray.d, ray.tmin, ray.tmax, end))
         return 0;
@@ -137,8 +154,7 @@ static void record_one(void *ctx, uint32_t item, uint32_t thread)
     uint64_t rays_before = embree_thread_rays();
     if (!candidate_point(job, x, y, &end, &diffuse))
         return;
-    sampler pixel = sampler_for_pixel(job->fs->seed, x, y, 0);
-    sampler smp = sampler_split(&pixel, FILL_RECORD_STREAM);
+    sampler smp = candidate_sampler(job, x, y);
     light_context light = light_context_at(&end.sf, 1);
     indirect_query q = {job->s, job->is, &end.sf, &light, &diffuse, end.wo, &smp, 0, 0, &job->scratch[thread]};
     float fp = pixel_footprint(job->s, job->fs, end.sf.p), acc = job->c->accuracy;
