@@ -251,6 +251,29 @@ static void test_path_with_cache_against_path(void)
                w, e_path, total_rays(&path) * 1e-6, e_cached, total_rays(&cached) * 1e-6, cached.progress.cache_records,
                100.0 * cached.progress.cache_interpolated / (double)(cached.progress.cache_lookups + 1));
         CHECK_MSG(e_cached < e_path, "PATH + cache %.5f vs PATH %.5f", e_cached, e_path);
+        /* Consistent: the error of the Indirect pass, all that the cache
+         * makes, falls as the records grow denser and gather more rays
+         * (here, where the bias lives: the box's corners and edges, the
+         * floor under the spheres). The reference's own noise in that
+         * pass is the same in each. */
+        const float q[3] = {2.0f, 5.0f, 12.0f};
+        const uint32_t rays[3] = {128, 1024, 4096};
+        double e_prev = INFINITY;
+        for (int k = 0; k < 3; k++) {
+            render_out o;
+            phos_render_settings cs = rs;
+            cs.ic_accuracy = q[k];
+            cs.ic_rays = rays[k];
+            cs.ic_min_spacing = 1.0f;
+            CHECK(render_all(s, &cs, &o));
+            if (o.pass[0]) {
+                double e = relative_mse_ch(o.pass[PHOS_PASS_INDIRECT], ref.pass[PHOS_PASS_INDIRECT], n, 3);
+                printf("  q = %g, %u rays: %u records, Indirect relMSE %.5f\n", (double)q[k], rays[k], o.progress.cache_records, e);
+                CHECK_MSG(e < e_prev, "q = %g, %u rays: relMSE %.5f, not below %.5f", (double)q[k], rays[k], e, e_prev);
+                e_prev = e;
+            }
+            render_out_free(&o);
+        }
         /* The Caustics pass keeps its meaning: the caustic under the glass
          * sphere, now from the records' rays. */
         double c_ref = pass_mean(&ref, PHOS_PASS_CAUSTICS), c_cached = pass_mean(&cached, PHOS_PASS_CAUSTICS);
