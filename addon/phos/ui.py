@@ -175,56 +175,50 @@ class PHOS_VIEW_LAYER_PT_passes(PhosButtonsPanel, bpy.types.Panel):
         pass
 
 
-class PHOS_VIEW_LAYER_PT_passes_light(PhosButtonsPanel, bpy.types.Panel):
+class PhosPassGroupPanel(PhosButtonsPanel):
+    """A group of pass toggles under Passes: `passes` is a slice of
+    properties.PASSES."""
+
+    bl_context = "view_layer"
+    bl_parent_id = "PHOS_VIEW_LAYER_PT_passes"
+    passes = ()
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.view_layer.phos
+        col = layout.column(heading="Include", align=True)
+        for prop, label, _pass_id, _d in self.passes:
+            col.prop(settings, prop, text=label)
+        self.draw_note(context, layout)
+
+    def draw_note(self, context, layout):
+        pass
+
+
+class PHOS_VIEW_LAYER_PT_passes_light(PhosPassGroupPanel, bpy.types.Panel):
     """The light components; Combined is their sum."""
 
     bl_label = "Light"
-    bl_context = "view_layer"
-    bl_parent_id = "PHOS_VIEW_LAYER_PT_passes"
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.view_layer.phos
-        col = layout.column(heading="Include", align=True)
-        for prop, label, _pass_id, _d in LIGHT_PASSES:
-            col.prop(settings, prop, text=label)
+    passes = LIGHT_PASSES
 
 
-class PHOS_VIEW_LAYER_PT_passes_photon_debug(PhosButtonsPanel, bpy.types.Panel):
+class PHOS_VIEW_LAYER_PT_passes_photon_debug(PhosPassGroupPanel, bpy.types.Panel):
     """The photon maps seen directly; they build the maps for either integrator."""
 
     bl_label = "Photon Map Debug"
-    bl_context = "view_layer"
-    bl_parent_id = "PHOS_VIEW_LAYER_PT_passes"
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.view_layer.phos
-        col = layout.column(heading="Include", align=True)
-        for prop, label, _pass_id, _d in DEBUG_PASSES:
-            col.prop(settings, prop, text=label)
+    passes = DEBUG_PASSES
 
 
-class PHOS_VIEW_LAYER_PT_passes_cache_debug(PhosButtonsPanel, bpy.types.Panel):
+class PHOS_VIEW_LAYER_PT_passes_cache_debug(PhosPassGroupPanel, bpy.types.Panel):
     """Where the irradiance cache put its records."""
 
     bl_label = "Irradiance Cache Debug"
-    bl_context = "view_layer"
-    bl_parent_id = "PHOS_VIEW_LAYER_PT_passes"
+    passes = CACHE_PASSES
 
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.view_layer.phos
-        col = layout.column(heading="Include", align=True)
-        for prop, label, _pass_id, _d in CACHE_PASSES:
-            col.prop(settings, prop, text=label)
-        if settings.use_pass_irradiance_cache and not cache_used(context.scene.phos):
+    def draw_note(self, context, layout):
+        if context.view_layer.phos.use_pass_irradiance_cache and not cache_used(context.scene.phos):
             layout.label(text="The irradiance cache is not used: the pass stays black", icon='INFO')
 
 

@@ -172,3 +172,65 @@ def test_library_loaded(addon):
     assert core.load() is not None, core.load_error()
     assert core.load_error() == ""
     assert core.version_string().startswith("%d.%d." % core.EXPECTED_VERSION)
+
+
+class _Layout:
+    """A stand-in for bpy.types.UILayout in background mode: records the
+    properties a panel draws and checks that each exists on its data."""
+
+    def __init__(self, drawn):
+        self.drawn = drawn
+        self.active = True
+        self.use_property_split = self.use_property_decorate = False
+        self.alert = False
+
+    def prop(self, data, name, **_kw):
+        assert name in data.bl_rna.properties, "%s has no property %r" % (data, name)
+        self.drawn.append(name)
+
+    def label(self, **_kw):
+        pass
+
+    def column(self, **_kw):
+        return self
+
+    row = box = column
+    separator = label
+
+
+def _fake_panel(cls, drawn):
+    """An object that draw() can take as `self`: the stand-in layout, and
+    the panel class's own attributes and methods (bound to it)."""
+    class Fake:
+        def __getattr__(self, name):
+            value = getattr(cls, name)
+            return value.__get__(self) if callable(value) and hasattr(value, "__get__") else value
+    fake = Fake()
+    fake.layout = _Layout(drawn)
+    return fake
+
+
+def test_phos_panels_draw(scene):
+    """Every Phos panel of the render and view-layer tabs draws, for each
+    integrator and cache mode, naming only properties that exist (an
+    exception in draw() leaves an empty panel in Blender and a traceback
+    in its console)."""
+    from phos import ui
+    panels = [c for c in ui.classes if issubclass(c, bpy.types.Panel)
+              and getattr(c, "bl_context", "") in ("render", "view_layer")]
+    assert panels
+    scene.render.engine = "PHOS"
+    context = type("Context", (), {"scene": scene, "view_layer": scene.view_layers[0]})()
+    scene.view_layers[0].phos.use_pass_irradiance_cache = True
+    names = set()
+    for integrator in ("PATH", "PHOTON"):
+        for cache in ("OFF", "PHOTON", "ALWAYS"):
+            scene.phos.integrator, scene.phos.irradiance_cache = integrator, cache
+            for cls in panels:
+                drawn = []
+                fake = _fake_panel(cls, drawn)
+                for method in ("draw_header", "draw"):
+                    if method in vars(cls) or any(method in vars(b) for b in cls.__mro__[1:] if b.__module__.startswith("phos")):
+                        getattr(cls, method)(fake, context)
+                names.update(drawn)
+    assert {"irradiance_cache", "ic_accuracy", "ic_rays", "use_pass_irradiance_cache"} <= names, sorted(names)

@@ -19,16 +19,25 @@
  * vanish on a sphere, so curved surfaces need no larger tolerance. */
 #define IN_FRONT_TOLERANCE 0.05f
 
+/* Room for one more element in a growing array (doubling); 0 when memory
+ * is exhausted. */
+static int reserve_one(void **array, uint32_t count, uint32_t *capacity, size_t size, uint32_t first)
+{
+    if (count < *capacity)
+        return 1;
+    uint32_t cap = *capacity ? 2 * *capacity : first;
+    void *a = realloc(*array, size * cap);
+    if (!a)
+        return 0;
+    *array = a;
+    *capacity = cap;
+    return 1;
+}
+
 static uint32_t new_node(irradiance_cache *c, vec3 centre, float half)
 {
-    if (c->node_count == c->node_capacity) {
-        uint32_t cap = c->node_capacity ? 2 * c->node_capacity : 64;
-        irradiance_cache_node *n = realloc(c->nodes, sizeof(*n) * cap);
-        if (!n)
-            return 0;
-        c->nodes = n;
-        c->node_capacity = cap;
-    }
+    if (!reserve_one((void **)&c->nodes, c->node_count, &c->node_capacity, sizeof(*c->nodes), 64))
+        return 0;
     irradiance_cache_node *n = &c->nodes[c->node_count];
     memset(n, 0, sizeof(*n));
     n->centre = centre;
@@ -131,14 +140,8 @@ int irradiance_cache_insert(irradiance_cache *c, const irradiance_record *rec)
      * numerical failure) would only deepen the tree. */
     if (!(rec->R > 0.0f) || !(rec->R < INFINITY) || !v3_is_finite(rec->p))
         return 1;
-    if (c->count == c->capacity) {
-        uint32_t cap = c->capacity ? 2 * c->capacity : 256;
-        irradiance_record *r = realloc(c->records, sizeof(*r) * cap);
-        if (!r)
-            return 0;
-        c->records = r;
-        c->capacity = cap;
-    }
+    if (!reserve_one((void **)&c->records, c->count, &c->capacity, sizeof(*c->records), 256))
+        return 0;
     uint32_t i = c->count++;
     c->records[i] = *rec;
     c->records[i].next = NO_RECORD;
