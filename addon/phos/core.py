@@ -412,6 +412,12 @@ class Render(_Handle):
     def _error_text(self, handle):
         return _decode(self._lib.phos_render_error(handle))
 
+    def set_cache_file(self, kind, path, mode):
+        """Save the cache to `path` after computing it, or read it from there
+        (enum phos_cache_kind, enum phos_cache_file_mode); before start()."""
+        self._raise_on(self._lib.phos_render_set_cache_file(self.handle, kind, os.fsencode(path), mode),
+                       "setting the cache file")
+
     def start(self):
         self._raise_on(self._lib.phos_render_start(self.handle), "starting the render")
 

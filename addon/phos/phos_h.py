@@ -94,6 +94,14 @@ PHOS_PASS_PHOTONS = 8
 PHOS_PASS_IRRADIANCE_CACHE = 9
 PHOS_PASS_COUNT = 10
 
+# enum phos_cache_kind
+PHOS_CACHE_IRRADIANCE = 0
+
+# enum phos_cache_file_mode
+PHOS_CACHE_FILE_NONE = 0
+PHOS_CACHE_FILE_SAVE = 1
+PHOS_CACHE_FILE_LOAD = 2
+
 # enum phos_render_state
 PHOS_STATE_IDLE = 0
 PHOS_STATE_RUNNING = 1
@@ -129,6 +137,8 @@ ENUMS = {
     'phos_irradiance_cache': {'PHOS_IRRADIANCE_CACHE_OFF': 0, 'PHOS_IRRADIANCE_CACHE_PHOTON': 1, 'PHOS_IRRADIANCE_CACHE_ALWAYS': 2},
     'phos_photon_view': {'PHOS_PHOTON_VIEW_FINAL_GATHER': 0, 'PHOS_PHOTON_VIEW_FAST': 1, 'PHOS_PHOTON_VIEW_PATH_TRACED': 2},
     'phos_pass': {'PHOS_PASS_COMBINED': 0, 'PHOS_PASS_EMISSION': 1, 'PHOS_PASS_DIRECT': 2, 'PHOS_PASS_SPECULAR': 3, 'PHOS_PASS_CAUSTICS': 4, 'PHOS_PASS_INDIRECT': 5, 'PHOS_PASS_PHOTON_MAP': 6, 'PHOS_PASS_CAUSTIC_MAP': 7, 'PHOS_PASS_PHOTONS': 8, 'PHOS_PASS_IRRADIANCE_CACHE': 9, 'PHOS_PASS_COUNT': 10},
+    'phos_cache_kind': {'PHOS_CACHE_IRRADIANCE': 0},
+    'phos_cache_file_mode': {'PHOS_CACHE_FILE_NONE': 0, 'PHOS_CACHE_FILE_SAVE': 1, 'PHOS_CACHE_FILE_LOAD': 2},
     'phos_render_state': {'PHOS_STATE_IDLE': 0, 'PHOS_STATE_RUNNING': 1, 'PHOS_STATE_DONE': 2, 'PHOS_STATE_CANCELLED': 3, 'PHOS_STATE_FAILED': 4},
     'phos_stage': {'PHOS_STAGE_WAITING': 0, 'PHOS_STAGE_TRACING_PHOTONS': 1, 'PHOS_STAGE_BUILDING_KDTREES': 2, 'PHOS_STAGE_PRECOMPUTING_RADIANCE': 3, 'PHOS_STAGE_FILLING_IRRADIANCE_CACHE': 4, 'PHOS_STAGE_RENDERING': 5, 'PHOS_STAGE_FINISHED': 6, 'PHOS_STAGE_COUNT': 7},
     'phos_photon_map': {'PHOS_MAP_GLOBAL': 0, 'PHOS_MAP_CAUSTIC': 1},
@@ -348,6 +358,7 @@ FUNCTIONS = {
     "phos_render_create": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_render_settings), ctypes.POINTER(ctypes.c_void_p)]),
     "phos_render_destroy": (None, [ctypes.c_void_p]),
     "phos_render_error": (ctypes.c_char_p, [ctypes.c_void_p]),
+    "phos_render_set_cache_file": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32, ctypes.c_char_p, ctypes.c_uint32]),
     "phos_render_start": (ctypes.c_int, [ctypes.c_void_p]),
     "phos_render_stages": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_stage_info), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint32)]),
     "phos_render_progress": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_progress)]),
@@ -561,6 +572,10 @@ __all__ = (
     'PHOS_PASS_PHOTONS',
     'PHOS_PASS_IRRADIANCE_CACHE',
     'PHOS_PASS_COUNT',
+    'PHOS_CACHE_IRRADIANCE',
+    'PHOS_CACHE_FILE_NONE',
+    'PHOS_CACHE_FILE_SAVE',
+    'PHOS_CACHE_FILE_LOAD',
     'PHOS_STATE_IDLE',
     'PHOS_STATE_RUNNING',
     'PHOS_STATE_DONE',

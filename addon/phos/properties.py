@@ -18,7 +18,7 @@ import os
 import textwrap
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from . import core
 
@@ -108,7 +108,30 @@ def _scene_settings():
             props["preview_samples"] = _property(
                 s, label="Preview Samples", description="Samples per pixel of material and light previews",
                 default=16, soft_max=1024)
+    # Not numbers, so not rows of the core's table: where the irradiance
+    # cache is kept between renders (phos_render_set_cache_file).
+    props["ic_file_mode"] = EnumProperty(
+        name="Cache File", description="Keep the irradiance cache in a file, for animations and render farms",
+        items=IC_FILE_MODE_ITEMS, default='NONE')
+    props["ic_file"] = StringProperty(
+        name="File", description="The irradiance cache file ('//' is the .blend file's folder)",
+        subtype='FILE_PATH', default="//irradiance.phosirc")
     return props
+
+
+# (identifier, name, description, core value) of scene.phos.ic_file_mode.
+IC_FILE_MODE_ITEMS = (
+    ('NONE', "Compute", "Compute the cache for this render and keep nothing", core.PHOS_CACHE_FILE_NONE),
+    ('SAVE', "Compute and Save", "Compute the cache, then write it to the file", core.PHOS_CACHE_FILE_SAVE),
+    ('LOAD', "Load", "Read the cache from the file instead of computing it (every frame of a walkthrough, "
+     "every machine of a farm reads the same records); a file made for another scene or other cache "
+     "settings is refused", core.PHOS_CACHE_FILE_LOAD),
+)
+
+
+def ic_file_mode_value(settings):
+    """The core's enum phos_cache_file_mode of scene.phos.ic_file_mode."""
+    return next(item[3] for item in IC_FILE_MODE_ITEMS if item[0] == settings.ic_file_mode)
 
 
 def setting_value(settings, setting):

@@ -115,6 +115,10 @@ class PHOS_RENDER_PT_irradiance_cache(PhosButtonsPanel, bpy.types.Panel):
         col = layout.column(align=True)
         col.prop(phos, "ic_min_spacing", text="Spacing Min")
         col.prop(phos, "ic_max_spacing", text="Max")
+        layout.prop(phos, "ic_file_mode")
+        sub = layout.column()
+        sub.active = phos.ic_file_mode != 'NONE'
+        sub.prop(phos, "ic_file")
 
 
 def _debug_passes_enabled(context):

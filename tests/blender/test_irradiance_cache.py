@@ -70,3 +70,29 @@ def test_cache_off_pass_black(scene, tmp_path):
     passes = render_passes(scene, tmp_path, "uncached")
     assert engine.last_render_seconds["cache_records"] == 0
     assert not passes["Irradiance Cache"].any()
+
+
+def test_cache_file_saved_loaded_and_refused(scene, tmp_path):
+    """scene.phos.ic_file_mode: a cache saved by one render and loaded by
+    the next (no pre-pass rays, the same records); loaded into a changed
+    scene, it is refused with a Blender error naming what differs."""
+    from phos import engine
+    cornell(scene, size=24, samples=2)
+    p = scene.phos
+    p.ic_file = str(tmp_path / "cornell.phosirc")
+    p.ic_file_mode = "SAVE"
+    pt.render_array(scene, tmp_path, name="saved")
+    saved = dict(engine.last_render_seconds)
+    assert (tmp_path / "cornell.phosirc").stat().st_size > 0
+    p.ic_file_mode = "LOAD"
+    pt.render_array(scene, tmp_path, name="loaded")
+    loaded = dict(engine.last_render_seconds)
+    assert loaded["cache_records"] == saved["cache_records"] > 0
+    light = next(o for o in scene.objects if o.type == 'LIGHT')
+    light.location.x += 0.1
+    try:
+        pt.render_array(scene, tmp_path, name="stale")
+    except RuntimeError as ex:
+        assert "lights" in str(ex), ex
+    else:
+        raise AssertionError("a cache made for another light position was used")

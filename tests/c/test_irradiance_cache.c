@@ -7,6 +7,7 @@
  */
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "indirect/irradiance_record.h"
 #include "integrators/integrator.h"
@@ -405,6 +406,110 @@ static void test_cache_is_deterministic(void)
     phos_scene_destroy(s);
 }
 
+/* Renders with a cache file (phos_render_set_cache_file); 0 if the render
+ * failed, its message in msg. */
+static int render_with_file(phos_scene *s, const phos_render_settings *rs, const char *path, uint32_t mode,
+                            render_out *out, char *msg, size_t msg_size)
+{
+    memset(out, 0, sizeof(*out));
+    out->w = rs->width;
+    out->h = rs->height;
+    msg[0] = 0;
+    phos_render *r = NULL;
+    if (phos_render_create(s, rs, &r) != PHOS_OK)
+        return 0;
+    CHECK(phos_render_set_cache_file(r, PHOS_CACHE_IRRADIANCE, path, mode) == PHOS_OK);
+    int ok = phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK &&
+             phos_render_progress(r, &out->progress) == PHOS_OK;
+    snprintf(msg, msg_size, "%s", phos_render_error(r));
+    if (ok) {
+        size_t n = (size_t)4 * out->w * out->h;
+        out->pass[0] = calloc(n, sizeof(float));
+        ok = phos_render_read(r, PHOS_PASS_COMBINED, 0, 0, out->w, out->h, out->pass[0], n) == PHOS_OK;
+    }
+    phos_render_destroy(r);
+    return ok;
+}
+
+/* A cache saved, then read back by another render of the same scene,
+ * renders the identical image, also with another camera resolution of
+ * the same view; a file made for another scene, or with another setting
+ * that shapes its records, is refused with a message saying what differs;
+ * a missing or cut file is an error, not a crash. */
+static void test_cache_file_round_trip(void)
+{
+    const char *path = "/tmp/phos_test_cache.phosirc";
+    char msg[512];
+    phos_scene *s = test_cornell_box(1);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    for (uint32_t integrator = 0; integrator < 2; integrator++) {
+        render_out saved, loaded, plain;
+        phos_render_settings rs = cache_settings(integrator, 40, 4, 9);
+        rs.global_photons = rs.caustic_photons = 30000;
+        rs.pass_mask = 1u << PHOS_PASS_COMBINED;
+        remove(path);
+        CHECK(render_with_file(s, &rs, path, PHOS_CACHE_FILE_SAVE, &saved, msg, sizeof(msg)));
+        CHECK(render_with_file(s, &rs, path, PHOS_CACHE_FILE_LOAD, &loaded, msg, sizeof(msg)));
+        CHECK(render_with_file(s, &rs, path, PHOS_CACHE_FILE_NONE, &plain, msg, sizeof(msg)));
+        if (saved.pass[0] && loaded.pass[0] && plain.pass[0]) {
+            CHECK_MSG(memcmp(saved.pass[0], loaded.pass[0], sizeof(float) * 4 * 40 * 40) == 0,
+                      "%s: the image from the loaded cache differs", integrator ? "PHOTON" : "PATH");
+            CHECK(memcmp(saved.pass[0], plain.pass[0], sizeof(float) * 4 * 40 * 40) == 0);
+            CHECK(loaded.progress.cache_records == saved.progress.cache_records && saved.progress.cache_records > 0);
+            CHECK_MSG(loaded.progress.cache_rays_traced == 0, "loading cast %llu rays",
+                      (unsigned long long)loaded.progress.cache_rays_traced);
+        }
+        render_out_free(&saved);
+        render_out_free(&loaded);
+        render_out_free(&plain);
+        /* Another image size of the same view reads the same records. */
+        render_out bigger;
+        phos_render_settings rb = rs;
+        rb.width = rb.height = 48;
+        CHECK(render_with_file(s, &rb, path, PHOS_CACHE_FILE_LOAD, &bigger, msg, sizeof(msg)));
+        render_out_free(&bigger);
+        /* Settings that shape the records are refused, by name. */
+        phos_render_settings rr = rs;
+        rr.ic_rays = rs.ic_rays / 2;
+        CHECK(!render_with_file(s, &rr, path, PHOS_CACHE_FILE_LOAD, &bigger, msg, sizeof(msg)));
+        CHECK_MSG(strstr(msg, "ic_rays") != NULL, "%s", msg);
+        render_out_free(&bigger);
+        rr = rs;
+        rr.seed = rs.seed + 1;
+        CHECK(!render_with_file(s, &rr, path, PHOS_CACHE_FILE_LOAD, &bigger, msg, sizeof(msg)));
+        CHECK_MSG(strstr(msg, "seed") != NULL, "%s", msg);
+        render_out_free(&bigger);
+    }
+    /* Another scene: the light moved, or the geometry. */
+    phos_scene *t = test_cornell_box(0);
+    render_out o;
+    phos_render_settings rs = cache_settings(PHOS_INTEGRATOR_PHOTON, 40, 4, 9);
+    rs.global_photons = rs.caustic_photons = 30000;
+    CHECK(!render_with_file(t, &rs, path, PHOS_CACHE_FILE_LOAD, &o, msg, sizeof(msg)));
+    printf("  another scene: %s\n", msg);
+    CHECK_MSG(strstr(msg, "geometry") != NULL, "%s", msg);
+    render_out_free(&o);
+    phos_scene_destroy(t);
+    /* Missing and cut files. */
+    CHECK(!render_with_file(s, &rs, "/tmp/phos_no_such_cache.phosirc", PHOS_CACHE_FILE_LOAD, &o, msg, sizeof(msg)));
+    CHECK_MSG(strstr(msg, "cannot read") != NULL, "%s", msg);
+    render_out_free(&o);
+    FILE *f = fopen(path, "r+b");
+    if (f) {
+        fseek(f, 0, SEEK_END);
+        long size = ftell(f);
+        fclose(f);
+        CHECK(truncate(path, size / 2) == 0);
+    }
+    CHECK(!render_with_file(s, &rs, path, PHOS_CACHE_FILE_LOAD, &o, msg, sizeof(msg)));
+    CHECK_MSG(strstr(msg, "ends before") != NULL || strstr(msg, "ends in") != NULL, "%s", msg);
+    render_out_free(&o);
+    remove(path);
+    phos_scene_destroy(s);
+}
+
 int main(void)
 {
     test_closed_sphere_analytic();
@@ -413,5 +518,6 @@ int main(void)
     test_record_counts();
     test_photon_with_cache_against_final_gather();
     test_cache_is_deterministic();
+    test_cache_file_round_trip();
     return test_summary("test_irradiance_cache");
 }

@@ -134,28 +134,28 @@ static void clamp_neighbour(void *ctx, uint32_t j)
     clamp_record(rj, ri->R + d);
 }
 
-int irradiance_cache_insert(irradiance_cache *c, const irradiance_record *rec)
+/* Appends the record and returns its index, UINT32_MAX when memory is
+ * exhausted. */
+static uint32_t append(irradiance_cache *c, const irradiance_record *rec)
 {
-    /* A record that cannot reach anything (a point at the camera, a
-     * numerical failure) would only deepen the tree. */
-    if (!(rec->R > 0.0f) || !(rec->R < INFINITY) || !v3_is_finite(rec->p))
-        return 1;
     if (!reserve_one((void **)&c->records, c->count, &c->capacity, sizeof(*c->records), 256))
-        return 0;
-    uint32_t i = c->count++;
-    c->records[i] = *rec;
-    c->records[i].next = NO_RECORD;
-    clamp_ctx k = {c, i};
-    for_each_record_near(c, rec->p, reach(c, &c->records[i]), clamp_neighbour, &k);
+        return UINT32_MAX;
+    c->records[c->count] = *rec;
+    c->records[c->count].next = NO_RECORD;
+    return c->count++;
+}
 
-    /* The largest node no larger than twice the (clamped) reach. */
+/* Puts record i in the largest node no larger than twice its reach. */
+static int place(irradiance_cache *c, uint32_t i)
+{
+    vec3 p = c->records[i].p;
     float rho = reach(c, &c->records[i]);
     uint32_t node = 0;
     for (uint32_t depth = 0; depth < MAX_DEPTH && c->nodes[node].half > rho; depth++) {
         const irradiance_cache_node *n = &c->nodes[node];
-        if (!near_node(n, rec->p, 0.0f))
+        if (!near_node(n, p, 0.0f))
             break; /* outside the root: kept there */
-        int o = octant(n->centre, rec->p);
+        int o = octant(n->centre, p);
         uint32_t child = n->child[o];
         if (!child) {
             float h = 0.5f * n->half;
@@ -170,6 +170,48 @@ int irradiance_cache_insert(irradiance_cache *c, const irradiance_record *rec)
     c->records[i].next = c->nodes[node].first;
     c->nodes[node].first = i;
     return 1;
+}
+
+/* A record that cannot reach anything (a point at the camera, a numerical
+ * failure) would only deepen the tree. */
+static int usable(const irradiance_record *rec)
+{
+    return rec->R > 0.0f && rec->R < INFINITY && v3_is_finite(rec->p);
+}
+
+int irradiance_cache_insert(irradiance_cache *c, const irradiance_record *rec)
+{
+    if (!usable(rec))
+        return 1;
+    uint32_t i = append(c, rec);
+    if (i == UINT32_MAX)
+        return 0;
+    clamp_ctx k = {c, i};
+    for_each_record_near(c, rec->p, reach(c, &c->records[i]), clamp_neighbour, &k);
+    return place(c, i);
+}
+
+int irradiance_cache_rebuild(irradiance_cache *c)
+{
+    irradiance_cache_node root = c->nodes[0];
+    memset(root.child, 0, sizeof(root.child));
+    root.first = NO_RECORD;
+    c->nodes[0] = root;
+    c->node_count = 1;
+    for (uint32_t i = 0; i < c->count; i++) {
+        c->records[i].next = NO_RECORD;
+        if (!place(c, i))
+            return 0;
+    }
+    return 1;
+}
+
+int irradiance_cache_place(irradiance_cache *c, const irradiance_record *rec)
+{
+    if (!usable(rec))
+        return 1;
+    uint32_t i = append(c, rec);
+    return i != UINT32_MAX && place(c, i);
 }
 
 /* --------------------------------------------------------------- lookup */

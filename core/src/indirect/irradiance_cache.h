@@ -83,6 +83,17 @@ void irradiance_cache_free(irradiance_cache *c);
  * exhausted. */
 int irradiance_cache_insert(irradiance_cache *c, const irradiance_record *r);
 
+/* Adds a record as it is, its radius already clamped against its
+ * neighbours (a cache read from a file, irradiance_cache_file.h): the
+ * cache holds exactly the records it was saved with. 0 when memory is
+ * exhausted. */
+int irradiance_cache_place(irradiance_cache *c, const irradiance_record *r);
+
+/* Places every record again, in index order, by its final radius: the
+ * tree a cache read from a file gets, so that a lookup sums the same
+ * records in the same order whether the cache was computed or read. */
+int irradiance_cache_rebuild(irradiance_cache *c);
+
 /* Interpolates at p with shading normal n; 1 if some record has w > q. */
 int irradiance_cache_lookup(const irradiance_cache *c, vec3 p, vec3 n, irradiance_estimate *out);
 

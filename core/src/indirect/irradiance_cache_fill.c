@@ -224,5 +224,7 @@ phos_status irradiance_cache_fill(irradiance_cache *c, const scene *s, const int
             return st;
         atomic_fetch_add(passes_done, 1u);
     }
-    return PHOS_OK;
+    /* Neighbour clamping has shrunk radii since their records were
+     * placed: the final tree, as a saved cache gets it. */
+    return irradiance_cache_rebuild(c) ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
 }

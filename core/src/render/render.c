@@ -19,6 +19,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "cache/irradiance_cache_file.h"
 #include "scene/embree.h"
 #include "util/parallel.h"
 
@@ -260,15 +261,30 @@ static uint64_t scratch_gather_rays(const render *r)
     return n;
 }
 
-/* The irradiance cache's pre-pass; its records' gathers read the maps. */
+/* The irradiance cache's pre-pass (its records' gathers read the maps),
+ * or the cache read from its file; written to it after the pre-pass if
+ * asked. */
 static phos_status fill_cache(render *r)
 {
+    char msg[sizeof(r->error)];
+    if (r->cache_file_mode == PHOS_CACHE_FILE_LOAD) {
+        phos_status st = irradiance_cache_load(&r->cache, r->scene, &r->settings, r->cache_path, msg, sizeof(msg));
+        if (st != PHOS_OK)
+            fail(r, st, msg);
+        atomic_store(&r->cache_passes_done, irradiance_cache_fill_passes(&r->cache_fill));
+        return st;
+    }
     if (r->use_maps)
         r->integrator.maps = &r->maps;
     uint64_t before = scratch_gather_rays(r);
     phos_status st = irradiance_cache_fill(&r->cache, r->scene, &r->integrator, &r->cache_fill, r->scratch, &r->cancel,
                                            &r->cache_passes_done, &r->cache_rays);
     atomic_fetch_add(&r->gather_rays, scratch_gather_rays(r) - before);
+    if (st == PHOS_OK && r->cache_file_mode == PHOS_CACHE_FILE_SAVE) {
+        st = irradiance_cache_save(&r->cache, r->scene, &r->settings, r->cache_path, msg, sizeof(msg));
+        if (st != PHOS_OK)
+            fail(r, st, msg);
+    }
     return st;
 }
 
