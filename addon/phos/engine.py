@@ -27,7 +27,7 @@ import bpy
 import numpy as np
 
 from . import core, export
-from .properties import PASSES, USER_SETTINGS, enabled_passes, ic_file_mode_value, setting_value
+from .properties import PASSES, USER_SETTINGS, cache_files, enabled_passes, setting_value
 
 POLL_SECONDS = 0.03
 STATS_SECONDS_BACKGROUND = 2.0
@@ -230,9 +230,9 @@ class PhosRenderEngine(bpy.types.RenderEngine):
 
             export_seconds = time.perf_counter() - t0
             with core.Render(core_scene, rs) as render:
-                mode = ic_file_mode_value(settings)
-                if mode != core.PHOS_CACHE_FILE_NONE and not self.is_preview:
-                    render.set_cache_file(core.PHOS_CACHE_IRRADIANCE, bpy.path.abspath(settings.ic_file), mode)
+                if not self.is_preview:
+                    for kind, path, mode in cache_files(settings):
+                        render.set_cache_file(kind, bpy.path.abspath(path), mode)
                 self._plan = render.stages()
                 render.start()
                 self._poll(render, rs)

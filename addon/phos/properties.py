@@ -108,30 +108,45 @@ def _scene_settings():
             props["preview_samples"] = _property(
                 s, label="Preview Samples", description="Samples per pixel of material and light previews",
                 default=16, soft_max=1024)
-    # Not numbers, so not rows of the core's table: where the irradiance
-    # cache is kept between renders (phos_render_set_cache_file).
-    props["ic_file_mode"] = EnumProperty(
-        name="Cache File", description="Keep the irradiance cache in a file, for animations and render farms",
-        items=IC_FILE_MODE_ITEMS, default='NONE')
-    props["ic_file"] = StringProperty(
-        name="File", description="The irradiance cache file ('//' is the .blend file's folder)",
-        subtype='FILE_PATH', default="//irradiance.phosirc")
+    # Not numbers, so not rows of the core's table: where the caches are
+    # kept between renders (phos_render_set_cache_file).
+    for kind, prefix, what, default in CACHE_FILES:
+        props[prefix + "_mode"] = EnumProperty(
+            name="%s File" % what,
+            description="Keep the %s in a file, for animations and render farms" % what.lower(),
+            items=CACHE_FILE_MODE_ITEMS, default='NONE')
+        props[prefix] = StringProperty(
+            name="File", description="The %s file ('//' is the .blend file's folder)" % what.lower(),
+            subtype='FILE_PATH', default=default)
     return props
 
 
-# (identifier, name, description, core value) of scene.phos.ic_file_mode.
-IC_FILE_MODE_ITEMS = (
-    ('NONE', "Compute", "Compute the cache for this render and keep nothing", core.PHOS_CACHE_FILE_NONE),
-    ('SAVE', "Compute and Save", "Compute the cache, then write it to the file", core.PHOS_CACHE_FILE_SAVE),
-    ('LOAD', "Load", "Read the cache from the file instead of computing it (every frame of a walkthrough, "
-     "every machine of a farm reads the same records); a file made for another scene or other cache "
-     "settings is refused", core.PHOS_CACHE_FILE_LOAD),
+# (core enum phos_cache_kind, scene.phos property, what it holds, default file).
+CACHE_FILES = (
+    (core.PHOS_CACHE_IRRADIANCE, "ic_file", "Irradiance Cache", "//irradiance.phosirc"),
+    (core.PHOS_CACHE_PHOTON_MAPS, "photon_map_file", "Photon Map", "//photons.phospmf"),
+)
+
+# (identifier, name, description, core value) of the *_file_mode settings.
+CACHE_FILE_MODE_ITEMS = (
+    ('NONE', "Compute", "Compute it for this render and keep nothing", core.PHOS_CACHE_FILE_NONE),
+    ('SAVE', "Compute and Save", "Compute it, then write it to the file", core.PHOS_CACHE_FILE_SAVE),
+    ('LOAD', "Load", "Read it from the file instead of computing it (every frame of a walkthrough, every "
+     "machine of a farm reads the same one); a file made for another scene or other settings is refused",
+     core.PHOS_CACHE_FILE_LOAD),
 )
 
 
-def ic_file_mode_value(settings):
-    """The core's enum phos_cache_file_mode of scene.phos.ic_file_mode."""
-    return next(item[3] for item in IC_FILE_MODE_ITEMS if item[0] == settings.ic_file_mode)
+def cache_files(settings):
+    """(enum phos_cache_kind, path as written, enum phos_cache_file_mode) of
+    each cache file the settings ask for."""
+    out = []
+    for kind, prefix, _what, _default in CACHE_FILES:
+        ident = getattr(settings, prefix + "_mode")
+        mode = next(item[3] for item in CACHE_FILE_MODE_ITEMS if item[0] == ident)
+        if mode != core.PHOS_CACHE_FILE_NONE:
+            out.append((kind, getattr(settings, prefix), mode))
+    return out
 
 
 def setting_value(settings, setting):

@@ -86,6 +86,10 @@ class PHOS_RENDER_PT_photon_mapping(PhosButtonsPanel, bpy.types.Panel):
         sub.active = phos.photon_view in {'FINAL_GATHER', 'PATH_TRACED'}
         sub.prop(phos, "final_gather_rays")
         layout.prop(phos, "max_photons_emitted")
+        layout.prop(phos, "photon_map_file_mode")
+        sub = layout.column()
+        sub.active = phos.photon_map_file_mode != 'NONE'
+        sub.prop(phos, "photon_map_file")
 
 
 def cache_used(phos):

@@ -401,20 +401,21 @@ PHOS_API void phos_render_destroy(phos_render *render);
 PHOS_API const char *phos_render_error(const phos_render *render);
 
 /* Saved caches: the irradiance cache written to a file after its pre-pass,
- * or read from one instead of the pre-pass, so that every frame of an
- * animation and every machine of a render farm reads the same records
+ * or read from one instead of the pre-pass, and the photon maps likewise
+ * around photon tracing, so that every frame of an animation and every
+ * machine of a render farm reads the same records and photons
  * (docs/cache_files.md). A file made for another scene (geometry,
- * materials, lights) or with other settings that shape the records is
- * refused: the render fails with a message naming what differs. The
- * camera and the image size may differ: records are world-space. */
-enum phos_cache_kind { PHOS_CACHE_IRRADIANCE = 0 };
+ * materials, lights) or with other settings that shape it is refused:
+ * the render fails with a message naming what differs. The camera and
+ * the image size may differ: records and photons are world-space. */
+enum phos_cache_kind { PHOS_CACHE_IRRADIANCE = 0, PHOS_CACHE_PHOTON_MAPS = 1, PHOS_CACHE_KIND_COUNT = 2 };
 enum phos_cache_file_mode {
     PHOS_CACHE_FILE_NONE = 0,  /* compute, keep nothing */
     PHOS_CACHE_FILE_SAVE = 1,  /* compute, then write the file */
     PHOS_CACHE_FILE_LOAD = 2   /* read the file instead of computing */
 };
 /* Before phos_render_start; path is copied (at most 1023 bytes). A render
- * that does not use the irradiance cache ignores it. */
+ * that does not use the cache (or the photon maps) ignores it. */
 PHOS_API phos_status phos_render_set_cache_file(phos_render *render, uint32_t kind, const char *path,
                                                 uint32_t mode);
 

@@ -73,18 +73,21 @@ def test_cache_off_pass_black(scene, tmp_path):
 
 
 def test_cache_file_saved_loaded_and_refused(scene, tmp_path):
-    """scene.phos.ic_file_mode: a cache saved by one render and loaded by
-    the next (no pre-pass rays, the same records); loaded into a changed
-    scene, it is refused with a Blender error naming what differs."""
+    """scene.phos.ic_file_mode and photon_map_file_mode: the cache and the
+    photon maps saved by one render and loaded by the next (the same
+    records); loaded into a changed scene, refused with a Blender error
+    naming what differs."""
     from phos import engine
     cornell(scene, size=24, samples=2)
     p = scene.phos
     p.ic_file = str(tmp_path / "cornell.phosirc")
-    p.ic_file_mode = "SAVE"
+    p.photon_map_file = str(tmp_path / "cornell.phospmf")
+    p.ic_file_mode = p.photon_map_file_mode = "SAVE"
     pt.render_array(scene, tmp_path, name="saved")
     saved = dict(engine.last_render_seconds)
     assert (tmp_path / "cornell.phosirc").stat().st_size > 0
-    p.ic_file_mode = "LOAD"
+    assert (tmp_path / "cornell.phospmf").stat().st_size > 20 * 20000
+    p.ic_file_mode = p.photon_map_file_mode = "LOAD"
     pt.render_array(scene, tmp_path, name="loaded")
     loaded = dict(engine.last_render_seconds)
     assert loaded["cache_records"] == saved["cache_records"] > 0

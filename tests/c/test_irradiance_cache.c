@@ -510,6 +510,64 @@ static void test_cache_file_round_trip(void)
     phos_scene_destroy(s);
 }
 
+/* The photon maps kept in a file: PHOTON with the maps read back renders
+ * the image of the render that traced them, bit for bit, and (with the
+ * irradiance cache read too) without tracing a photon or casting a
+ * pre-pass ray; maps traced with other settings are refused by name. */
+static void test_photon_map_file_round_trip(void)
+{
+    const char *maps_path = "/tmp/phos_test_maps.phospmf", *cache_path = "/tmp/phos_test_maps_cache.phosirc";
+    char msg[512];
+    phos_scene *s = test_cornell_box(1);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    phos_render_settings rs = cache_settings(PHOS_INTEGRATOR_PHOTON, 40, 4, 3);
+    rs.global_photons = rs.caustic_photons = 30000;
+    rs.pass_mask = 1u << PHOS_PASS_COMBINED;
+    render_out a, b;
+    float *img[2] = {NULL, NULL};
+    phos_progress pg[2];
+    for (int k = 0; k < 2; k++) {
+        uint32_t mode = k ? PHOS_CACHE_FILE_LOAD : PHOS_CACHE_FILE_SAVE;
+        phos_render *r = NULL;
+        CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+        if (!r)
+            break;
+        CHECK(phos_render_set_cache_file(r, PHOS_CACHE_PHOTON_MAPS, maps_path, mode) == PHOS_OK);
+        CHECK(phos_render_set_cache_file(r, PHOS_CACHE_IRRADIANCE, cache_path, mode) == PHOS_OK);
+        CHECK_MSG(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK, "%s", phos_render_error(r));
+        CHECK(phos_render_progress(r, &pg[k]) == PHOS_OK);
+        img[k] = calloc((size_t)4 * 40 * 40, sizeof(float));
+        CHECK(phos_render_read(r, PHOS_PASS_COMBINED, 0, 0, 40, 40, img[k], (size_t)4 * 40 * 40) == PHOS_OK);
+        phos_render_destroy(r);
+    }
+    if (img[0] && img[1]) {
+        CHECK_MSG(memcmp(img[0], img[1], sizeof(float) * 4 * 40 * 40) == 0, "the image from the loaded maps differs");
+        CHECK(pg[1].global_photons == pg[0].global_photons && pg[1].caustic_photons == pg[0].caustic_photons);
+        CHECK(pg[1].cache_rays_traced == 0 && pg[1].cache_records == pg[0].cache_records);
+        printf("  photon maps read back: %u global, %u caustic photons, %u records\n", pg[1].global_photons,
+               pg[1].caustic_photons, pg[1].cache_records);
+    }
+    free(img[0]);
+    free(img[1]);
+    phos_render_settings rr = rs;
+    rr.global_photons = 20000;
+    memset(&a, 0, sizeof(a));
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, &rr, &r) == PHOS_OK);
+    if (r) {
+        CHECK(phos_render_set_cache_file(r, PHOS_CACHE_PHOTON_MAPS, maps_path, PHOS_CACHE_FILE_LOAD) == PHOS_OK);
+        CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) != PHOS_OK);
+        CHECK_MSG(strstr(phos_render_error(r), "global_photons") != NULL, "%s", phos_render_error(r));
+        phos_render_destroy(r);
+    }
+    (void)b;
+    remove(maps_path);
+    remove(cache_path);
+    phos_scene_destroy(s);
+}
+
 int main(void)
 {
     test_closed_sphere_analytic();
@@ -519,5 +577,6 @@ int main(void)
     test_photon_with_cache_against_final_gather();
     test_cache_is_deterministic();
     test_cache_file_round_trip();
+    test_photon_map_file_round_trip();
     return test_summary("test_irradiance_cache");
 }

@@ -625,21 +625,21 @@ phos_status phos_render_set_cache_file(phos_render *r, uint32_t kind, const char
 {
     if (!r)
         return PHOS_ERROR_INVALID_ARGUMENT;
-    if (kind != PHOS_CACHE_IRRADIANCE)
+    if (kind >= PHOS_CACHE_KIND_COUNT)
         return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: unknown cache kind");
     if (mode > PHOS_CACHE_FILE_LOAD)
         return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: unknown mode");
     if (mode != PHOS_CACHE_FILE_NONE && (!path || !path[0]))
         return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: no file name");
-    if (path && strlen(path) >= sizeof(r->cache_path))
+    if (path && strlen(path) >= sizeof(r->cache_path[0]))
         return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: the file name is longer than 1023 bytes");
     pthread_mutex_lock(&r->lock);
     int started = r->started;
     pthread_mutex_unlock(&r->lock);
     if (started)
         return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "set_cache_file: the render has started");
-    snprintf(r->cache_path, sizeof(r->cache_path), "%s", mode != PHOS_CACHE_FILE_NONE ? path : "");
-    r->cache_file_mode = mode;
+    snprintf(r->cache_path[kind], sizeof(r->cache_path[kind]), "%s", mode != PHOS_CACHE_FILE_NONE ? path : "");
+    r->cache_file_mode[kind] = mode;
     return PHOS_OK;
 }
 

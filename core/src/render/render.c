@@ -20,6 +20,7 @@
 #include <time.h>
 
 #include "cache/irradiance_cache_file.h"
+#include "cache/photon_maps_file.h"
 #include "scene/embree.h"
 #include "util/parallel.h"
 
@@ -267,8 +268,8 @@ static uint64_t scratch_gather_rays(const render *r)
 static phos_status fill_cache(render *r)
 {
     char msg[sizeof(r->error)];
-    if (r->cache_file_mode == PHOS_CACHE_FILE_LOAD) {
-        phos_status st = irradiance_cache_load(&r->cache, r->scene, &r->settings, r->cache_path, msg, sizeof(msg));
+    if (r->cache_file_mode[PHOS_CACHE_IRRADIANCE] == PHOS_CACHE_FILE_LOAD) {
+        phos_status st = irradiance_cache_load(&r->cache, r->scene, &r->settings, r->cache_path[PHOS_CACHE_IRRADIANCE], msg, sizeof(msg));
         if (st != PHOS_OK)
             fail(r, st, msg);
         atomic_store(&r->cache_passes_done, irradiance_cache_fill_passes(&r->cache_fill));
@@ -280,11 +281,35 @@ static phos_status fill_cache(render *r)
     phos_status st = irradiance_cache_fill(&r->cache, r->scene, &r->integrator, &r->cache_fill, r->scratch, &r->cancel,
                                            &r->cache_passes_done, &r->cache_rays);
     atomic_fetch_add(&r->gather_rays, scratch_gather_rays(r) - before);
-    if (st == PHOS_OK && r->cache_file_mode == PHOS_CACHE_FILE_SAVE) {
-        st = irradiance_cache_save(&r->cache, r->scene, &r->settings, r->cache_path, msg, sizeof(msg));
+    if (st == PHOS_OK && r->cache_file_mode[PHOS_CACHE_IRRADIANCE] == PHOS_CACHE_FILE_SAVE) {
+        st = irradiance_cache_save(&r->cache, r->scene, &r->settings, r->cache_path[PHOS_CACHE_IRRADIANCE], msg, sizeof(msg));
         if (st != PHOS_OK)
             fail(r, st, msg);
     }
+    return st;
+}
+
+/* Photon tracing, or the maps read from their file instead; written to
+ * it after tracing if asked. */
+static phos_status trace_photons(render *r)
+{
+    char msg[sizeof(r->error)];
+    const char *path = r->cache_path[PHOS_CACHE_PHOTON_MAPS];
+    uint32_t mode = r->cache_file_mode[PHOS_CACHE_PHOTON_MAPS];
+    phos_status st;
+    if (mode == PHOS_CACHE_FILE_LOAD) {
+        st = photon_maps_load(&r->maps, r->scene, &r->photon_settings, path, msg, sizeof(msg));
+        atomic_store(&r->photon_progress.stored, r->maps.global.count + r->maps.caustic.count);
+        atomic_store(&r->photon_progress.emitted, r->maps.global_emitted + r->maps.caustic_emitted);
+    } else {
+        st = photon_maps_trace(r->scene, &r->photon_settings, &r->maps, &r->cancel, &r->photon_progress);
+        if (st == PHOS_OK && mode == PHOS_CACHE_FILE_SAVE)
+            st = photon_maps_save(&r->maps, r->scene, &r->photon_settings, path, msg, sizeof(msg));
+        else if (st != PHOS_OK)
+            return st;
+    }
+    if (st != PHOS_OK)
+        fail(r, st, msg);
     return st;
 }
 
@@ -293,7 +318,7 @@ static phos_status run_stage(render *r, uint32_t stage)
 {
     switch (stage) {
     case PHOS_STAGE_TRACING_PHOTONS:
-        return photon_maps_trace(r->scene, &r->photon_settings, &r->maps, &r->cancel, &r->photon_progress);
+        return trace_photons(r);
     case PHOS_STAGE_BUILDING_KDTREES:
         return photon_maps_build(&r->maps);
     case PHOS_STAGE_PRECOMPUTING_RADIANCE:

@@ -38,8 +38,8 @@ struct phos_render {
     atomic_uint_fast64_t cache_lookups, cache_hits; /* by the tiles, summed per tile */
     atomic_uint_fast64_t cache_rays;                /* cast by the pre-pass */
     atomic_uint_fast64_t gather_rays;               /* hemisphere rays of tiles and pre-pass */
-    char cache_path[1024];                          /* phos_render_set_cache_file */
-    uint32_t cache_file_mode;                       /* enum phos_cache_file_mode */
+    char cache_path[PHOS_CACHE_KIND_COUNT][1024];   /* phos_render_set_cache_file, by enum phos_cache_kind */
+    uint32_t cache_file_mode[PHOS_CACHE_KIND_COUNT]; /* enum phos_cache_file_mode */
 
     phos_tile *tiles;
     uint32_t tile_count;

@@ -1,0 +1,155 @@
+/*
+ * photon_maps_file.c — the photon maps saved as they leave photon tracing
+ * (the global and caustic photons, the radiance photons' sites, the paths
+ * emitted) and read back in its place; the kd-trees and radiance photons
+ * are then built from them as after tracing, so a render that reads the
+ * file renders the same image (photon_maps_file.h; docs/cache_files.md).
+ */
+#include "cache/photon_maps_file.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cache/file_io.h"
+
+#define PM_FILE_MAGIC "PHOSPMF\n"
+#define PM_FILE_VERSION 1u
+#define SITE_WORDS 9u   /* a radiance photon's site: position, normal, reflectance */
+
+/* What the maps depend on, in file order (the camera is not: photons aimed
+ * at one view are an unbiased map for any other, if a less dense one). */
+#define MAP_SETTINGS(U, F)                                                                        \
+    U(global_photons) U(caustic_photons) U(max_emitted_lo) U(max_emitted_hi) U(max_bounces) U(seed) \
+    U(radiance_k) F(max_radius)
+#define COUNT_SETTING(name) +1
+#define MAP_SETTING_COUNT (0 MAP_SETTINGS(COUNT_SETTING, COUNT_SETTING))
+
+static void settings_words(const photon_trace_settings *ps, uint32_t *w)
+{
+    uint32_t max_emitted_lo = (uint32_t)ps->max_emitted, max_emitted_hi = (uint32_t)(ps->max_emitted >> 32);
+    uint32_t global_photons = ps->global_photons, caustic_photons = ps->caustic_photons;
+    uint32_t max_bounces = ps->max_bounces, seed = ps->seed, radiance_k = ps->radiance_k;
+    float max_radius = ps->max_radius;
+    uint32_t n = 0;
+#define SETTING_U(name) w[n++] = name;
+#define SETTING_F(name) w[n++] = file_float_bits(name);
+    MAP_SETTINGS(SETTING_U, SETTING_F)
+#undef SETTING_U
+#undef SETTING_F
+}
+
+static const char *const setting_names[MAP_SETTING_COUNT] = {
+    "global_photons", "caustic_photons", "max_photons_emitted_millions", "max_photons_emitted_millions",
+    "max_bounces", "seed", "global_estimate_photons", "max_radius"};
+
+/* A photon as 5 words: position (3 floats), RGBE power (4 bytes, in
+ * order), direction bytes and flags (theta | phi << 8 | flags << 16). */
+static int write_photons(FILE *f, const photon_map *m)
+{
+    int ok = file_write_u32(f, m->count);
+    for (uint32_t i = 0; ok && i < m->count; i++) {
+        const photon *p = &m->photons[i];
+        const uint8_t *e = p->power;
+        ok = file_write_u32(f, file_float_bits(p->position[0])) && file_write_u32(f, file_float_bits(p->position[1])) &&
+             file_write_u32(f, file_float_bits(p->position[2])) &&
+             file_write_u32(f, (uint32_t)e[0] | (uint32_t)e[1] << 8 | (uint32_t)e[2] << 16 | (uint32_t)e[3] << 24) &&
+             file_write_u32(f, (uint32_t)p->theta | (uint32_t)p->phi << 8 | (uint32_t)p->flags << 16);
+    }
+    return ok;
+}
+
+static const char *read_photons(FILE *f, photon_map *m)
+{
+    uint32_t count;
+    if (!file_read_u32(f, &count) || count > PHOTON_MAP_MAX_PHOTONS)
+        return "it ends before its photons";
+    if (!photon_map_reserve(m, count))
+        return "out of memory for its photons";
+    for (uint32_t i = 0; i < count; i++) {
+        uint32_t w[5];
+        for (int k = 0; k < 5; k++)
+            if (!file_read_u32(f, &w[k]))
+                return "it ends before its last photon";
+        photon p;
+        for (int k = 0; k < 3; k++)
+            p.position[k] = file_bits_float(w[k]);
+        for (int k = 0; k < 4; k++)
+            p.power[k] = (uint8_t)(w[3] >> (8 * k));
+        p.theta = (uint8_t)w[4];
+        p.phi = (uint8_t)(w[4] >> 8);
+        p.flags = (uint16_t)(w[4] >> 16);
+        if (!photon_map_append(m, &p, 1))
+            return "it holds a photon that is not finite";
+    }
+    return NULL;
+}
+
+phos_status photon_maps_save(const photon_maps *maps, const scene *s, const photon_trace_settings *ps,
+                             const char *path, char *msg, size_t msg_size)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        snprintf(msg, msg_size, "cannot write the photon map file %s: %s", path, strerror(errno));
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    }
+    uint32_t settings[MAP_SETTING_COUNT];
+    settings_words(ps, settings);
+    int ok = file_write_header(f, PM_FILE_MAGIC, PM_FILE_VERSION, s, settings, MAP_SETTING_COUNT) &&
+             file_write_u64(f, maps->global_emitted) && file_write_u64(f, maps->caustic_emitted) &&
+             file_write_u32(f, maps->caustic_reused) && write_photons(f, &maps->global) &&
+             write_photons(f, &maps->caustic) && file_write_u32(f, SITE_WORDS) &&
+             file_write_u32(f, maps->radiance_site_count);
+    for (uint64_t i = 0; ok && i < (uint64_t)SITE_WORDS * maps->radiance_site_count; i++)
+        ok = file_write_u32(f, file_float_bits(maps->radiance_sites[i]));
+    if (fclose(f) != 0)
+        ok = 0;
+    if (!ok) {
+        snprintf(msg, msg_size, "could not write all of the photon map file %s", path);
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    }
+    return PHOS_OK;
+}
+
+phos_status photon_maps_load(photon_maps *maps, const scene *s, const photon_trace_settings *ps, const char *path,
+                             char *msg, size_t msg_size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(msg, msg_size, "cannot read the photon map file %s: %s", path, strerror(errno));
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    }
+    char detail[160];
+    uint32_t settings[MAP_SETTING_COUNT], words = 0, sites = 0;
+    settings_words(ps, settings);
+    const char *why = file_check_header(f, PM_FILE_MAGIC, PM_FILE_VERSION, "photon map", s, settings, setting_names,
+                                        MAP_SETTING_COUNT, detail, sizeof(detail));
+    if (!why && (!file_read_u64(f, &maps->global_emitted) || !file_read_u64(f, &maps->caustic_emitted) ||
+                 !file_read_u32(f, &maps->caustic_reused)))
+        why = "it ends in its header";
+    if (!why)
+        why = read_photons(f, &maps->global);
+    if (!why)
+        why = read_photons(f, &maps->caustic);
+    if (!why && (!file_read_u32(f, &words) || words != SITE_WORDS || !file_read_u32(f, &sites)))
+        why = "its radiance sites do not match this version";
+    if (!why && sites) {
+        maps->radiance_sites = malloc(sizeof(float) * SITE_WORDS * sites);
+        if (!maps->radiance_sites)
+            why = "out of memory for its radiance sites";
+        for (uint64_t i = 0; !why && i < (uint64_t)SITE_WORDS * sites; i++) {
+            uint32_t w;
+            if (!file_read_u32(f, &w))
+                why = "it ends before its last radiance site";
+            else
+                maps->radiance_sites[i] = file_bits_float(w);
+        }
+        maps->radiance_site_count = why ? 0 : sites;
+    }
+    fclose(f);
+    if (why) {
+        snprintf(msg, msg_size, "the photon map file %s is not used: %s", path, why);
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    }
+    return PHOS_OK;
+}
