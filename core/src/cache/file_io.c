@@ -3,6 +3,37 @@
  */
 #include "cache/file_io.h"
 
+#include <errno.h>
+
+FILE *file_open(const char *path, const char *mode, const char *what, char *msg, size_t msg_size)
+{
+    FILE *f = fopen(path, mode);
+    if (!f)
+        snprintf(msg, msg_size, "cannot %s the %s file %s: %s", mode[0] == 'w' ? "write" : "read", what, path,
+                 strerror(errno));
+    return f;
+}
+
+phos_status file_finish_write(FILE *f, int ok, const char *path, const char *what, char *msg, size_t msg_size)
+{
+    if (fclose(f) != 0)
+        ok = 0;
+    if (ok)
+        return PHOS_OK;
+    snprintf(msg, msg_size, "could not write all of the %s file %s", what, path);
+    return PHOS_ERROR_INVALID_ARGUMENT;
+}
+
+phos_status file_finish_read(FILE *f, const char *why, const char *path, const char *what, char *msg,
+                             size_t msg_size)
+{
+    fclose(f);
+    if (!why)
+        return PHOS_OK;
+    snprintf(msg, msg_size, "the %s file %s is not used: %s", what, path, why);
+    return PHOS_ERROR_INVALID_ARGUMENT;
+}
+
 int file_write_header(FILE *f, const char magic[8], uint32_t version, const scene *s, const uint32_t *settings,
                       uint32_t count)
 {

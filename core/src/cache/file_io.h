@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cache/fingerprint.h"
+#include "phos.h"
 
 static inline int file_write_u32(FILE *f, uint32_t v)
 {
@@ -56,6 +57,20 @@ static inline float file_bits_float(uint32_t v)
     memcpy(&x, &v, 4);
     return x;
 }
+
+/* Opens `path` ("wb" or "rb"); NULL with a message ("cannot write the
+ * photon map file …: No such file or directory") on failure. `what`
+ * names the file's kind. */
+FILE *file_open(const char *path, const char *mode, const char *what, char *msg, size_t msg_size);
+
+/* Closes a file written with ok = every write succeeded; PHOS_OK, or an
+ * error with a message. */
+phos_status file_finish_write(FILE *f, int ok, const char *path, const char *what, char *msg, size_t msg_size);
+
+/* Closes a file read; why is NULL if it was read whole and used, else the
+ * reason it is not, put in the message. */
+phos_status file_finish_read(FILE *f, const char *why, const char *path, const char *what, char *msg,
+                             size_t msg_size);
 
 /* The header: magic (8 bytes), version, fingerprint, then `count` setting
  * words. 1 when written whole. */

@@ -4,7 +4,6 @@
  */
 #include "cache/irradiance_cache_file.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -12,6 +11,7 @@
 
 #define IC_FILE_MAGIC "PHOSIRC\n"
 #define IC_FILE_VERSION 1u
+#define WHAT "irradiance cache"
 #define RECORD_WORDS 37u /* p, n, E, E_caustic, w_mean (3 each), grad_r, grad_t (9 each), R, R_free, R_lo, R_hi */
 
 /* The settings a cache's records depend on, in file order. The camera and
@@ -92,11 +92,9 @@ _Static_assert(RECORD_WORDS == 5 * 3 + 2 * 9 + 4, "the record layout of docs/cac
 phos_status irradiance_cache_save(const irradiance_cache *c, const scene *s, const phos_render_settings *rs,
                                   const char *path, char *msg, size_t msg_size)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        snprintf(msg, msg_size, "cannot write the irradiance cache file %s: %s", path, strerror(errno));
+    FILE *f = file_open(path, "wb", WHAT, msg, msg_size);
+    if (!f)
         return PHOS_ERROR_INVALID_ARGUMENT;
-    }
     uint32_t settings[CACHE_SETTING_COUNT];
     settings_words(rs, settings);
     int ok = file_write_header(f, IC_FILE_MAGIC, IC_FILE_VERSION, s, settings, CACHE_SETTING_COUNT);
@@ -107,27 +105,19 @@ phos_status irradiance_cache_save(const irradiance_cache *c, const scene *s, con
         for (uint32_t k = 0; ok && k < RECORD_WORDS; k++)
             ok = file_write_u32(f, w[k]);
     }
-    if (fclose(f) != 0)
-        ok = 0;
-    if (!ok) {
-        snprintf(msg, msg_size, "could not write all of the irradiance cache file %s", path);
-        return PHOS_ERROR_INVALID_ARGUMENT;
-    }
-    return PHOS_OK;
+    return file_finish_write(f, ok, path, WHAT, msg, msg_size);
 }
 
 phos_status irradiance_cache_load(irradiance_cache *c, const scene *s, const phos_render_settings *rs,
                                   const char *path, char *msg, size_t msg_size)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(msg, msg_size, "cannot read the irradiance cache file %s: %s", path, strerror(errno));
+    FILE *f = file_open(path, "rb", WHAT, msg, msg_size);
+    if (!f)
         return PHOS_ERROR_INVALID_ARGUMENT;
-    }
     char detail[160];
     uint32_t settings[CACHE_SETTING_COUNT];
     settings_words(rs, settings);
-    const char *why = file_check_header(f, IC_FILE_MAGIC, IC_FILE_VERSION, "irradiance cache", s, settings,
+    const char *why = file_check_header(f, IC_FILE_MAGIC, IC_FILE_VERSION, WHAT, s, settings,
                                         setting_names, CACHE_SETTING_COUNT, detail, sizeof(detail));
     uint32_t words = 0, count = 0;
     if (!why && (!file_read_u32(f, &words) || words != RECORD_WORDS || !file_read_u32(f, &count)))
@@ -147,10 +137,6 @@ phos_status irradiance_cache_load(irradiance_cache *c, const scene *s, const pho
             }
         }
     }
-    fclose(f);
-    if (why) {
-        snprintf(msg, msg_size, "the irradiance cache file %s is not used: %s", path, why);
-        return st != PHOS_OK ? st : PHOS_ERROR_INVALID_ARGUMENT;
-    }
-    return PHOS_OK;
+    phos_status read = file_finish_read(f, why, path, WHAT, msg, msg_size);
+    return st != PHOS_OK ? st : read;
 }

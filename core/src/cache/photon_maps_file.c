@@ -7,7 +7,6 @@
  */
 #include "cache/photon_maps_file.h"
 
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,6 +14,7 @@
 
 #define PM_FILE_MAGIC "PHOSPMF\n"
 #define PM_FILE_VERSION 1u
+#define WHAT "photon map"
 #define SITE_WORDS 9u   /* a radiance photon's site: position, normal, reflectance */
 
 /* What the maps depend on, in file order (the camera is not: photons aimed
@@ -88,11 +88,9 @@ static const char *read_photons(FILE *f, photon_map *m)
 phos_status photon_maps_save(const photon_maps *maps, const scene *s, const photon_trace_settings *ps,
                              const char *path, char *msg, size_t msg_size)
 {
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        snprintf(msg, msg_size, "cannot write the photon map file %s: %s", path, strerror(errno));
+    FILE *f = file_open(path, "wb", WHAT, msg, msg_size);
+    if (!f)
         return PHOS_ERROR_INVALID_ARGUMENT;
-    }
     uint32_t settings[MAP_SETTING_COUNT];
     settings_words(ps, settings);
     int ok = file_write_header(f, PM_FILE_MAGIC, PM_FILE_VERSION, s, settings, MAP_SETTING_COUNT) &&
@@ -102,27 +100,19 @@ phos_status photon_maps_save(const photon_maps *maps, const scene *s, const phot
              file_write_u32(f, maps->radiance_site_count);
     for (uint64_t i = 0; ok && i < (uint64_t)SITE_WORDS * maps->radiance_site_count; i++)
         ok = file_write_u32(f, file_float_bits(maps->radiance_sites[i]));
-    if (fclose(f) != 0)
-        ok = 0;
-    if (!ok) {
-        snprintf(msg, msg_size, "could not write all of the photon map file %s", path);
-        return PHOS_ERROR_INVALID_ARGUMENT;
-    }
-    return PHOS_OK;
+    return file_finish_write(f, ok, path, WHAT, msg, msg_size);
 }
 
 phos_status photon_maps_load(photon_maps *maps, const scene *s, const photon_trace_settings *ps, const char *path,
                              char *msg, size_t msg_size)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(msg, msg_size, "cannot read the photon map file %s: %s", path, strerror(errno));
+    FILE *f = file_open(path, "rb", WHAT, msg, msg_size);
+    if (!f)
         return PHOS_ERROR_INVALID_ARGUMENT;
-    }
     char detail[160];
     uint32_t settings[MAP_SETTING_COUNT], words = 0, sites = 0;
     settings_words(ps, settings);
-    const char *why = file_check_header(f, PM_FILE_MAGIC, PM_FILE_VERSION, "photon map", s, settings, setting_names,
+    const char *why = file_check_header(f, PM_FILE_MAGIC, PM_FILE_VERSION, WHAT, s, settings, setting_names,
                                         MAP_SETTING_COUNT, detail, sizeof(detail));
     if (!why && (!file_read_u64(f, &maps->global_emitted) || !file_read_u64(f, &maps->caustic_emitted) ||
                  !file_read_u32(f, &maps->caustic_reused)))
@@ -146,10 +136,5 @@ phos_status photon_maps_load(photon_maps *maps, const scene *s, const photon_tra
         }
         maps->radiance_site_count = why ? 0 : sites;
     }
-    fclose(f);
-    if (why) {
-        snprintf(msg, msg_size, "the photon map file %s is not used: %s", path, why);
-        return PHOS_ERROR_INVALID_ARGUMENT;
-    }
-    return PHOS_OK;
+    return file_finish_read(f, why, path, WHAT, msg, msg_size);
 }
