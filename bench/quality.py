@@ -274,13 +274,20 @@ def _number(text):
     return text
 
 
-def phos_tile_seconds(seconds):
-    """The time Phos's last render spent on its tiles (the add-on's stage
-    times); all of `seconds` if the add-on kept none."""
+def phos_stage_seconds(stage_name, missing=0.0):
+    """The time Phos's last render spent in a stage, by its phos.h name
+    (the add-on's stage times); `missing` if it did not run it."""
     engine = sys.modules.get(_common.ADDON_NAME + ".engine")
     core = sys.modules.get(_common.ADDON_NAME + ".core")
-    stages = getattr(engine, "last_render_seconds", {})
-    return stages.get(core.PHOS_STAGE_RENDERING, seconds) if core else seconds
+    if not engine or not core:
+        return missing
+    return getattr(engine, "last_render_seconds", {}).get(getattr(core, stage_name), missing)
+
+
+def phos_tile_seconds(seconds):
+    """The time Phos's last render spent on its tiles; all of `seconds` if
+    the add-on kept none."""
+    return phos_stage_seconds("PHOS_STAGE_RENDERING", seconds)
 
 
 def phos_measurement(scene, module, args, ref, settings, integrator):
@@ -381,13 +388,22 @@ def command_equal_time(args):
 
 # ------------------------------------------------------------------ bench
 
+CACHE_RAYS_MAX_SCALE = 16   # the most a budget multiplies the records' rays by
+
+
 def _samples_for(scene, module, args, ref, integrator, settings, budget):
     """Settings that fit `budget` seconds: a pilot at 8 samples gives the
     fixed time and the time per sample; photon counts are scaled down
-    where the maps alone would take more than a third of the budget."""
+    where the maps alone would take more than a third of the budget.
+    Where the irradiance cache's pre-pass takes less than its share, its
+    records get more rays (up to CACHE_RAYS_MAX_SCALE × the default, in
+    powers of two) until the fixed time is a third of the budget: a
+    record's noise is an error no number of samples removes, so a larger
+    budget spent on samples alone stops lowering the error."""
     settings = dict(settings)
     pilot = phos_measurement(scene, module, args, ref, dict(settings, samples=8), integrator)
     fixed = pilot["fixed_seconds"]
+    fill = phos_stage_seconds("PHOS_STAGE_FILLING_IRRADIANCE_CACHE")
     per_sample = max(pilot["seconds"] - fixed, 1e-3) / 8.0
     if integrator == "PHOTON" and fixed > budget / 3.0:
         scale = budget / 3.0 / fixed
@@ -395,8 +411,17 @@ def _samples_for(scene, module, args, ref, integrator, settings, budget):
             default = scene.phos.bl_rna.properties[name].default
             settings[name] = max(1000, int(settings.get(name, default) * scale))
         fixed *= scale
+    elif fill > 0.0:
+        rays = settings.get("ic_rays", scene.phos.bl_rna.properties["ic_rays"].default)
+        scale = 1
+        while scale < CACHE_RAYS_MAX_SCALE and fixed + fill * scale <= budget / 3.0:
+            scale *= 2
+        if scale > 1:
+            settings["ic_rays"] = rays * scale
+            fixed += fill * (scale - 1)
     settings["samples"] = max(1, int((budget - fixed) / per_sample))
     return settings
+
 
 
 def command_bench(args):
