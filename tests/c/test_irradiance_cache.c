@@ -525,7 +525,6 @@ static void test_photon_map_file_round_trip(void)
     phos_render_settings rs = cache_settings(PHOS_INTEGRATOR_PHOTON, 40, 4, 3);
     rs.global_photons = rs.caustic_photons = 30000;
     rs.pass_mask = 1u << PHOS_PASS_COMBINED;
-    render_out a, b;
     float *img[2] = {NULL, NULL};
     phos_progress pg[2];
     for (int k = 0; k < 2; k++) {
@@ -553,7 +552,6 @@ static void test_photon_map_file_round_trip(void)
     free(img[1]);
     phos_render_settings rr = rs;
     rr.global_photons = 20000;
-    memset(&a, 0, sizeof(a));
     phos_render *r = NULL;
     CHECK(phos_render_create(s, &rr, &r) == PHOS_OK);
     if (r) {
@@ -562,7 +560,6 @@ static void test_photon_map_file_round_trip(void)
         CHECK_MSG(strstr(phos_render_error(r), "global_photons") != NULL, "%s", phos_render_error(r));
         phos_render_destroy(r);
     }
-    (void)b;
     remove(maps_path);
     remove(cache_path);
     phos_scene_destroy(s);
