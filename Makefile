@@ -17,6 +17,13 @@
 #               [BENCH_SCENES=...]        references, ranked by error per second, and
 #                                         the defaults against Cycles at equal time
 #                                         (docs/benchmarks.md; about an hour)
+#   make test-asan | test-tsan            the C tests built with AddressSanitizer + UBSan, or
+#                                         ThreadSanitizer (build-asan/, build-tsan/)
+#   make valgrind                         small PATH and PHOTON renders under memcheck: no
+#                                         error, no definite leak (build-valgrind/)
+#   make fuzz [FUZZ_SECONDS=60]           libFuzzer on the C API from tests/fuzz/corpus, with
+#                                         clang, ASan and UBSan (build-fuzz/, out/fuzz/)
+#                                         (docs/reliability.md)
 #   make image-digests [DIGESTS=file]     SHA-256 of every pass of every test scene, per
 #                                         integrator (compare before/after a refactoring)
 #   make deps | build | clean
@@ -49,10 +56,11 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
+.PHONY: test-asan test-tsan valgrind fuzz
 .PHONY: deps build binding check-binding test test-blender4 bench bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
 
 help:
-	@sed -n '3,22p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,28p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -82,6 +90,47 @@ test: check-binding build
 	@echo "version: $$(python3 tools/version.py) (CMake, phos.h, bl_info and manifest agree)"
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python tests/blender/run_tests.py -- $(PYTEST_ARGS)
+
+# The C tests under the sanitizers (docs/reliability.md): RelWithDebInfo, so
+# reports have lines; a report is an error (halt_on_error, and UBSan does
+# not recover, see CMakeLists.txt). LeakSanitizer runs with ASan. Embree is
+# not instrumented; TSan's suppressions name only its threads' internals
+# (tests/sanitizers/tsan.supp).
+SANITIZER_ENV := ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:abort_on_error=1 \
+                 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+                 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/tests/sanitizers/tsan.supp
+test-asan: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPHOS_SANITIZE=address
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
+
+test-tsan: deps
+	cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPHOS_SANITIZE=thread
+	cmake --build build-tsan -j $(JOBS)
+	cd build-tsan && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
+
+# Memcheck of tests/c/test_lifetimes.c (small renders of both integrators,
+# cache files, cancels, failures): any error or definitely lost block fails.
+VALGRIND_TEST := build-valgrind/tests/c/test_lifetimes
+valgrind:
+	@tools/install-deps.sh --reliability
+	cmake -S . -B build-valgrind -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake --build build-valgrind -j $(JOBS) --target test_lifetimes
+	valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
+	  --show-leak-kinds=definite $(VALGRIND_TEST)
+
+# libFuzzer (tests/fuzz/fuzz_api.c): new inputs go to out/fuzz/corpus, the
+# seeds in tests/fuzz/corpus are only read; a crash, leak or hang is written
+# to out/fuzz/ as crash-*, leak-* or timeout-* and fails the target.
+FUZZ_SECONDS ?= 60
+fuzz:
+	@tools/install-deps.sh --reliability
+	CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPHOS_SANITIZE=address \
+	  -DPHOS_BUILD_FUZZ=ON -DPHOS_BUILD_TESTS=OFF
+	cmake --build build-fuzz -j $(JOBS) --target fuzz_api
+	mkdir -p out/fuzz/corpus
+	$(SANITIZER_ENV) build-fuzz/tests/fuzz/fuzz_api -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
+	  -rss_limit_mb=4096 -print_final_stats=1 -artifact_prefix=out/fuzz/ out/fuzz/corpus tests/fuzz/corpus
 
 # Debian 13 chroot made once with debootstrap, then reused; the build goes to
 # build-trixie/, never to build/ or addon/phos/lib. See tools/test-blender4.sh.
@@ -194,5 +243,5 @@ package: build
 	BLENDER=$(BLENDER) tools/check-addon.sh --zip dist/phos-$$(python3 tools/version.py).zip
 
 clean:
-	rm -rf $(BUILD_DIR) build-trixie out dist $(ADDON_LIB_DIR) .pytest_cache
+	rm -rf $(BUILD_DIR) build-trixie build-asan build-tsan build-valgrind build-fuzz out dist $(ADDON_LIB_DIR) .pytest_cache
 	find $(wildcard addon scenes tests tools) -name __pycache__ -type d -prune -exec rm -rf {} +

@@ -223,7 +223,7 @@ void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queri
         photon_map_reserve(&map, (uint32_t)photons.size());
         photon_map_append(&map, photons.data(), (uint32_t)photons.size());
         auto t0 = Clock::now();
-        photon_map_build(&map);
+        photon_map_build(&map, NULL);
         return seconds_since(t0);
     });
     res.bytes = photon_map_memory(&map);
@@ -232,7 +232,7 @@ void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queri
         photon_map_init(&m2);
         photon_map_reserve(&m2, (uint32_t)photons.size());
         photon_map_append(&m2, photons.data(), (uint32_t)photons.size());
-        photon_map_build(&m2);
+        photon_map_build(&m2, NULL);
     });
 
     time_queries(queries, k, res, [&](vec3 x, kdtree_query *q) { return photon_map_knn(&map, x, r2, q); });
@@ -250,13 +250,13 @@ void run_tree(const std::vector<photon> &photons, const std::vector<vec3> &queri
     res.build_s = best_of(3, [&] {
         tree = photons;
         auto t0 = Clock::now();
-        kdtree_build(tree.data(), (uint32_t)tree.size());
+        kdtree_build(tree.data(), (uint32_t)tree.size(), NULL);
         return seconds_since(t0);
     });
     res.bytes = tree.size() * sizeof(photon);
     res.peak = peak_bytes([&] {
         std::vector<photon> t2 = photons;
-        kdtree_build(t2.data(), (uint32_t)t2.size());
+        kdtree_build(t2.data(), (uint32_t)t2.size(), NULL);
     });
     time_queries(queries, k, res,
                  [&](vec3 x, kdtree_query *q) { return kdtree_knn(tree.data(), (uint32_t)tree.size(), x, r2, q); });

@@ -5,6 +5,7 @@
 #   tools/install-deps.sh            install what is missing
 #   tools/install-deps.sh --check    only list what is missing (exit 1 if any)
 #   tools/install-deps.sh --bench    also the packages of `make bench` (may be combined with --check)
+#   tools/install-deps.sh --reliability  also valgrind and clang's libFuzzer (`make valgrind`, `make fuzz`)
 set -euo pipefail
 
 PACKAGES=(
@@ -25,12 +26,20 @@ BENCH_PACKAGES=(
   python3-numpy
 )
 
+# Only for `make valgrind` and `make fuzz` (gcc's sanitizers come with gcc).
+RELIABILITY_PACKAGES=(
+  valgrind
+  clang            # libFuzzer is clang's
+  libclang-rt-dev  # its runtime libraries (libFuzzer, ASan, UBSan for clang)
+)
+
 check=0
 for arg in "$@"; do
   case "$arg" in
     --check) check=1 ;;
     --bench) PACKAGES+=("${BENCH_PACKAGES[@]}") ;;
-    *) echo "usage: $0 [--check] [--bench]" >&2; exit 2 ;;
+    --reliability) PACKAGES+=("${RELIABILITY_PACKAGES[@]}") ;;
+    *) echo "usage: $0 [--check] [--bench] [--reliability]" >&2; exit 2 ;;
   esac
 done
 

@@ -355,6 +355,7 @@ FUNCTIONS = {
     "phos_camera_desc_init": (None, [ctypes.POINTER(phos_camera_desc)]),
     "phos_scene_set_camera": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_camera_desc)]),
     "phos_scene_commit": (ctypes.c_int, [ctypes.c_void_p]),
+    "phos_scene_cancel": (None, [ctypes.c_void_p]),
     "phos_pass_channels": (ctypes.c_uint32, [ctypes.c_uint32]),
     "phos_render_settings_init": (None, [ctypes.POINTER(phos_render_settings)]),
     "phos_render_create": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_render_settings), ctypes.POINTER(ctypes.c_void_p)]),

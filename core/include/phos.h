@@ -232,8 +232,17 @@ PHOS_API void phos_camera_desc_init(phos_camera_desc *desc);
 PHOS_API phos_status phos_scene_set_camera(phos_scene *scene, const phos_camera_desc *desc);
 
 /* Builds acceleration structures and light tables. After commit the scene is
- * read-only; adding to it fails with PHOS_ERROR_INVALID_STATE. */
+ * read-only; adding to it fails with PHOS_ERROR_INVALID_STATE. A commit
+ * that fails or is cancelled leaves the scene uncommitted: it may be
+ * committed again or destroyed. */
 PHOS_API phos_status phos_scene_commit(phos_scene *scene);
+
+/* Asks a phos_scene_commit running on another thread to stop (the BVH
+ * build of a large scene takes seconds): it returns PHOS_ERROR_CANCELLED
+ * within a fraction of a second. Safe from any thread; a cancel that
+ * arrives before the commit starts cancels it, and each commit that
+ * returns clears it. */
+PHOS_API void phos_scene_cancel(phos_scene *scene);
 
 /* ----------------------------------------------------------------- render */
 
@@ -393,8 +402,11 @@ typedef struct phos_render_settings {
 PHOS_API void phos_render_settings_init(phos_render_settings *settings);
 
 /* Validates the settings against the committed scene and allocates the
- * film; the message of a failure is put on the scene. The render keeps the
- * scene alive until it is destroyed. */
+ * film; the message of a failure is put on the scene. A render that would
+ * need more memory than the machine (or the process's cgroup, on a render
+ * farm) has available is refused with PHOS_ERROR_OUT_OF_MEMORY before
+ * anything is allocated, its message saying how much it needs. The render
+ * keeps the scene alive until it is destroyed. */
 PHOS_API phos_status phos_render_create(phos_scene *scene, const phos_render_settings *settings,
                                         phos_render **out_render);
 PHOS_API void phos_render_destroy(phos_render *render);

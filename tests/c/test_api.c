@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "render/memory.h"
 #include "test_scenes.h"
 #include "test_util.h"
 
@@ -484,8 +485,62 @@ static void test_empty_scene_renders_world(void)
     phos_scene_destroy(s);
 }
 
+/* The memory a render will need, estimated before anything is allocated,
+ * and the refusal's message (render/memory.h). Against a fixed amount of
+ * available memory, so the test is the same on every machine. */
+static void test_memory_estimate(void)
+{
+    const double GiB = 1024.0 * 1024.0 * 1024.0;
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    memory_estimate e;
+    render_memory_estimate(&rs, &e);
+    /* PATH at 640×480: the Combined pass only, 4 floats a pixel. */
+    CHECK(e.film == 640u * 480u * 16u && e.photon_maps == 0 && e.irradiance_cache == 0 && e.total == e.film);
+    char msg[512];
+    CHECK(render_memory_fits(&e, 1u << 30, msg, sizeof(msg)));
+
+    /* PHOTON's photon maps and cache: the default settings need a few hundred MB. */
+    rs.integrator = PHOS_INTEGRATOR_PHOTON;
+    render_memory_estimate(&rs, &e);
+    CHECK_MSG(e.photon_maps > 0 && e.irradiance_cache > 0 && e.total < 400e6, "default PHOTON needs %.0f MB",
+              (double)e.total / 1e6);
+    /* 2^28 photons in each map: tens of GiB, refused with 16 GiB free. */
+    rs.global_photons = rs.caustic_photons = 1u << 28;
+    render_memory_estimate(&rs, &e);
+    CHECK_MSG(e.photon_maps > 30.0 * GiB, "2^28 photons a map need %.1f GiB", (double)e.photon_maps / GiB);
+    CHECK(!render_memory_fits(&e, (uint64_t)(16.0 * GiB), msg, sizeof(msg)));
+    CHECK_MSG(contains(msg, "needs about") && contains(msg, "photon maps") && contains(msg, "16.0 GiB is available"),
+              "%s", msg);
+    /* Every pass of a 65536² frame: half a terabyte of film. */
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 65536;
+    rs.pass_mask = (1u << PHOS_PASS_COUNT) - 1u;
+    render_memory_estimate(&rs, &e);
+    CHECK(e.film == (uint64_t)65536 * 65536 * 4 * (4 + 3 * (PHOS_PASS_COUNT - 1)));
+    /* A border renders only its pixels; the cache's pre-pass covers the
+     * whole frame, so a zero minimum spacing on a big frame is refused. */
+    rs.region_width = rs.region_height = 64;
+    rs.pass_mask = 1u;
+    rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_ALWAYS;
+    rs.ic_min_spacing = 0.0f;
+    render_memory_estimate(&rs, &e);
+    CHECK(e.film == 64u * 64u * 16u && e.irradiance_cache > 100.0 * GiB);
+    /* Through the API: refused before anything is allocated, with the
+     * message on the scene (this machine has less than 500 GiB). */
+    phos_scene *s = small_scene();
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_OUT_OF_MEMORY && r == NULL);
+    CHECK_MSG(contains(phos_scene_error(s), "irradiance cache") && contains(phos_scene_error(s), "GiB"), "%s",
+              phos_scene_error(s));
+    phos_scene_destroy(s);
+    CHECK(memory_available() > 0);
+}
+
 int main(void)
 {
+    test_memory_estimate();
     test_version_and_layout();
     test_null_handles();
     test_bad_meshes();

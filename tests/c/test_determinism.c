@@ -1,11 +1,20 @@
 /*
  * test_determinism.c — the same scene and seed give the same image, bit
  * for bit, whatever the thread count, tile size or render region; another
- * seed gives another image. For PATH and for PHOTON with each photon view
- * (the photon maps are traced in batches on any number of threads).
+ * seed gives another image. For PATH (without and with the irradiance
+ * cache) and for PHOTON with each photon view (the photon maps are traced
+ * in batches on any number of threads). A frame split into four regions
+ * and stitched equals the whole frame (a render farm's split); the photon
+ * maps and the irradiance cache, as their files store them, are the same
+ * bytes for 1 and 2 threads; and Embree's BVH, built with 1 build thread
+ * or with many, returns the same hits (docs/reliability.md).
  */
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
+
+#include "scene/embree.h"
+#include "scene/scene.h"
 
 #include "test_scenes.h"
 #include "test_util.h"
@@ -44,8 +53,8 @@ static phos_scene *box_with_spheres(void)
     return s;
 }
 
-/* The integrator and photon view of the renders below. */
-static uint32_t g_integrator, g_view;
+/* The integrator, photon view and cache setting of the renders below. */
+static uint32_t g_integrator, g_view, g_cache = PHOS_IRRADIANCE_CACHE_PHOTON;
 
 static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32_t seed, uint32_t rx, uint32_t ry,
                           uint32_t rw, uint32_t rh)
@@ -54,6 +63,8 @@ static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32
     phos_render_settings_init(&rs);
     rs.integrator = g_integrator;
     rs.photon_view = g_view;
+    rs.irradiance_cache = g_cache;
+    rs.ic_rays = 64;
     rs.global_photons = 20000;
     rs.caustic_photons = 5000;
     rs.final_gather_rays = 8;
@@ -100,6 +111,22 @@ static void check_deterministic(phos_scene *s, const char *name)
             same &= memcmp(r + 4 * (size_t)y * rw, a + 4 * ((size_t)(y + ry) * 48 + rx), 4 * rw * sizeof(float)) == 0;
         CHECK_MSG(same, "%s: region pixels differ from the full frame's", name);
     }
+    /* Four regions of uneven size, stitched, give the full frame. */
+    const uint32_t sx = 19, sy = 23; /* not multiples of the tile size */
+    const uint32_t qx[4] = {0, sx, 0, sx}, qy[4] = {0, 0, sy, sy};
+    const uint32_t qw[4] = {sx, 48 - sx, sx, 48 - sx}, qh[4] = {sy, sy, 40 - sy, 40 - sy};
+    float *stitched = calloc(n, sizeof(float));
+    for (int q = 0; q < 4; q++) {
+        float *part = render_with(s, 2, 16, 7, qx[q], qy[q], qw[q], qh[q]);
+        CHECK(part != NULL);
+        for (uint32_t y = 0; part && y < qh[q]; y++)
+            memcpy(stitched + 4 * ((size_t)(y + qy[q]) * 48 + qx[q]), part + 4 * (size_t)y * qw[q],
+                   4 * qw[q] * sizeof(float));
+        free(part);
+    }
+    CHECK_MSG(a && memcmp(stitched, a, n * sizeof(float)) == 0, "%s: four stitched regions differ from the frame",
+              name);
+    free(stitched);
     free(a);
     free(b);
     free(c);
@@ -107,24 +134,147 @@ static void check_deterministic(phos_scene *s, const char *name)
     free(r);
 }
 
+/* ------------------------------------------- maps and cache, as files */
+
+static unsigned char *read_file(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    unsigned char *data = malloc(n > 0 ? (size_t)n : 1);
+    *size = data ? fread(data, 1, (size_t)n, f) : 0;
+    fclose(f);
+    return data;
+}
+
+/* The photon maps and the irradiance cache a PHOTON render (and a PATH
+ * render with the cache on) writes to its files: byte for byte the same
+ * whatever the thread count and tile size. */
+static void check_caches_identical(phos_scene *s)
+{
+    static const uint32_t integrators[2] = {PHOS_INTEGRATOR_PHOTON, PHOS_INTEGRATOR_PATH};
+    for (int k = 0; k < 2; k++) {
+        unsigned char *bytes[2][2] = {{NULL, NULL}, {NULL, NULL}};
+        size_t sizes[2][2] = {{0, 0}, {0, 0}};
+        for (int t = 0; t < 2; t++) {
+            char ic[64], maps[64];
+            snprintf(ic, sizeof(ic), "/tmp/phos_test_det_%d_%d.phosirc", (int)getpid(), t);
+            snprintf(maps, sizeof(maps), "/tmp/phos_test_det_%d_%d.phospmf", (int)getpid(), t);
+            phos_render_settings rs;
+            phos_render_settings_init(&rs);
+            rs.integrator = integrators[k];
+            rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_ALWAYS;
+            rs.width = 48;
+            rs.height = 40;
+            rs.samples = 2;
+            rs.ic_rays = 64;
+            rs.global_photons = 20000;
+            rs.caustic_photons = 5000;
+            rs.threads = t ? 2 : 1;
+            rs.tile_size = t ? 8 : 32;
+            phos_render *r = NULL;
+            CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+            if (!r)
+                continue;
+            phos_render_set_cache_file(r, PHOS_CACHE_IRRADIANCE, ic, PHOS_CACHE_FILE_SAVE);
+            phos_render_set_cache_file(r, PHOS_CACHE_PHOTON_MAPS, maps, PHOS_CACHE_FILE_SAVE);
+            CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
+            phos_render_destroy(r);
+            bytes[0][t] = read_file(ic, &sizes[0][t]);
+            bytes[1][t] = k == 0 ? read_file(maps, &sizes[1][t]) : NULL;
+            remove(ic);
+            remove(maps);
+        }
+        for (int f = 0; f < (k == 0 ? 2 : 1); f++) {
+            const char *what = f ? "photon maps" : "irradiance cache";
+            CHECK_MSG(bytes[f][0] && sizes[f][0] > 64, "%s %s: no file written", k ? "PATH" : "PHOTON", what);
+            CHECK_MSG(bytes[f][0] && bytes[f][1] && sizes[f][0] == sizes[f][1] &&
+                          memcmp(bytes[f][0], bytes[f][1], sizes[f][0]) == 0,
+                      "%s: the %s differ between 1 and 2 threads", k ? "PATH" : "PHOTON", what);
+            free(bytes[f][0]);
+            free(bytes[f][1]);
+        }
+    }
+}
+
+/* ------------------------------------------------------------ Embree */
+
+/* Embree's high-quality build (spatial splits) runs on its task pool; its
+ * documentation promises nothing about the tree being the same from run
+ * to run. The hits are what the images depend on: the same rays through
+ * BVHs built with one build thread and with the default pool, and built
+ * again, must return the same t, primitive and barycentrics. */
+static void check_embree_hits(void)
+{
+    const char *configs[3] = {"threads=1", NULL, NULL};
+    ray_hit *hits[3];
+    const uint32_t rays = 200000;
+    for (int c = 0; c < 3; c++) {
+        embree_set_device_config(configs[c]);
+        phos_scene *s = box_with_spheres();
+        /* Add a dense mesh: a tessellated sphere of many small triangles. */
+        uint32_t dense = test_add_sphere_mesh(s, 0.2f, 400, 200, 0);
+        test_add_instance(s, dense, 0, 0.0f, 0.4f, 0.6f);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        hits[c] = calloc(rays, sizeof(ray_hit));
+        uint64_t state = 12345;
+        for (uint32_t i = 0; i < rays; i++) {
+            float u[4];
+            for (int k = 0; k < 4; k++) {
+                state = state * 6364136223846793005ull + 1442695040888963407ull;
+                u[k] = (float)(state >> 40) / (float)(1u << 24);
+            }
+            /* From in front of the box toward a random point inside it. */
+            vec3 o = v3(0.0f, -2.0f, 0.6f);
+            vec3 d = v3_normalize(v3_sub(v3(2.0f * u[0] - 1.0f, 2.0f * u[1] - 1.0f, u[2]), o));
+            if (!embree_intersect(((scene *)s)->bvh, o, d, 0.0f, INFINITY, 0, &hits[c][i]))
+                hits[c][i].prim = UINT32_MAX;
+        }
+        phos_scene_destroy(s);
+    }
+    embree_set_device_config(NULL);
+    uint32_t differ1 = 0, differ2 = 0, hit = 0;
+    for (uint32_t i = 0; i < rays; i++) {
+        hit += hits[0][i].prim != UINT32_MAX;
+        differ1 += memcmp(&hits[0][i], &hits[1][i], sizeof(ray_hit)) != 0;
+        differ2 += memcmp(&hits[1][i], &hits[2][i], sizeof(ray_hit)) != 0;
+    }
+    printf("Embree: %u of %u rays hit; %u differ between 1 build thread and the pool, %u between two pool builds\n",
+           hit, rays, differ1, differ2);
+    CHECK(hit > rays / 2);
+    CHECK_MSG(differ1 == 0 && differ2 == 0, "Embree's BVH changes the hits of %u and %u rays", differ1, differ2);
+    for (int c = 0; c < 3; c++)
+        free(hits[c]);
+}
+
 int main(void)
 {
     phos_scene *s = box_with_spheres();
     CHECK_MSG(phos_scene_commit(s) == PHOS_OK, "%s", phos_scene_error(s));
     static const struct {
-        uint32_t integrator, view;
+        uint32_t integrator, view, cache;
         const char *name;
     } configs[] = {
-        {PHOS_INTEGRATOR_PATH, 0, "PATH"},
-        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, "PHOTON, final gathering"},
-        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FAST, "PHOTON, fast estimate"},
-        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_PATH_TRACED, "PHOTON, path-traced gather"},
+        {PHOS_INTEGRATOR_PATH, 0, PHOS_IRRADIANCE_CACHE_OFF, "PATH"},
+        {PHOS_INTEGRATOR_PATH, 0, PHOS_IRRADIANCE_CACHE_ALWAYS, "PATH with the irradiance cache"},
+        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, PHOS_IRRADIANCE_CACHE_OFF, "PHOTON, final gathering"},
+        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FINAL_GATHER, PHOS_IRRADIANCE_CACHE_PHOTON,
+         "PHOTON, final gathering with the irradiance cache"},
+        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_FAST, PHOS_IRRADIANCE_CACHE_PHOTON, "PHOTON, fast estimate"},
+        {PHOS_INTEGRATOR_PHOTON, PHOS_PHOTON_VIEW_PATH_TRACED, PHOS_IRRADIANCE_CACHE_PHOTON,
+         "PHOTON, path-traced gather with the irradiance cache"},
     };
     for (size_t i = 0; i < sizeof(configs) / sizeof(configs[0]); i++) {
         g_integrator = configs[i].integrator;
         g_view = configs[i].view;
+        g_cache = configs[i].cache;
         check_deterministic(s, configs[i].name);
     }
+    check_caches_identical(s);
     phos_scene_destroy(s);
+    check_embree_hits();
     return test_summary("test_determinism");
 }

@@ -323,7 +323,7 @@ static void check_set(int kind, uint32_t n, int queries, int all_slots, kdtree_q
     memcpy(tree, in, sizeof(photon) * n);
     memcpy(again, in, sizeof(photon) * n);
     st->builds++;
-    if (!kdtree_build(tree, n) || !kdtree_build(again, n)) {
+    if (!kdtree_build(tree, n, NULL) || !kdtree_build(again, n, NULL)) {
         st->bad_multiset++;
         goto done;
     }
@@ -440,7 +440,7 @@ static void test_map_classes(kdtree_query qk[3])
     photon *in = make_set(SET_UNIFORM, n, 11);
     photon_map m;
     photon_map_init(&m);
-    CHECK(photon_map_append(&m, in, n) && photon_map_build(&m));
+    CHECK(photon_map_append(&m, in, n) && photon_map_build(&m, NULL));
     int ordered = 1, classed = 1;
     for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
         uint32_t start = m.class_start[c], count = m.class_start[c + 1] - start;
@@ -488,11 +488,11 @@ static void test_edge_cases(void)
     kdtree_query q0, q;
     CHECK(kdtree_query_init(&q0, 0) && kdtree_query_init(&q, 4));
     photon *p = make_set(SET_UNIFORM, 16, 5);
-    CHECK(kdtree_build(p, 16));
+    CHECK(kdtree_build(p, 16, NULL));
     CHECK(kdtree_knn(p, 16, v3s(0.5f), 1.0f, &q0) == 0 && q0.radius2 == 1.0f);
     CHECK(kdtree_knn(p, 0, v3s(0.5f), 1.0f, &q) == 0 && q.radius2 == 1.0f);
     CHECK(kdtree_knn(p, 16, v3s(0.5f), 0.0f, &q) == 0);
-    CHECK(kdtree_build(p, 0));
+    CHECK(kdtree_build(p, 0, NULL));
     /* A flatten below 1 is plain Euclidean. */
     kdtree_knn_disc(p, 16, v3s(0.5f), v3(0, 0, 1), 0.5f, 1.0f, &q);
     float disc_r2 = q.radius2;
@@ -535,7 +535,7 @@ static void test_threads(void)
 {
     const uint32_t n = 50000;
     photon *tree = make_set(SET_BOX, n, 99);
-    CHECK(kdtree_build(tree, n));
+    CHECK(kdtree_build(tree, n, NULL));
     vec3 *points = malloc(sizeof(vec3) * THREAD_QUERIES);
     uint32_t s = 1;
     for (int i = 0; i < THREAD_QUERIES; i++)

@@ -314,7 +314,7 @@ static void test_map_lifecycle(void)
         appended &= photon_map_append(&b, &src[i], 1);
     CHECK(appended);
     CHECK(b.capacity > b.count); /* slack before the build */
-    CHECK(photon_map_build(&a) && photon_map_build(&b));
+    CHECK(photon_map_build(&a, NULL) && photon_map_build(&b, NULL));
     CHECK(a.count == n && b.count == n);
     CHECK(memcmp(a.photons, b.photons, sizeof(photon) * n) == 0);
 
@@ -326,7 +326,7 @@ static void test_map_lifecycle(void)
     /* Read-only after the build. */
     CHECK(!photon_map_append(&a, src, 1));
     CHECK(!photon_map_reserve(&a, 2 * n));
-    CHECK(photon_map_build(&a));
+    CHECK(photon_map_build(&a, NULL));
     CHECK(a.count == n);
 
     /* Queries on the map agree with the raw tree. */
@@ -351,7 +351,7 @@ static void test_map_lifecycle(void)
     /* Empty map: builds, finds nothing, holds no photons. */
     photon_map e;
     photon_map_init(&e);
-    CHECK(photon_map_build(&e));
+    CHECK(photon_map_build(&e, NULL));
     CHECK(photon_map_knn(&e, v3s(0), 1.0f, &q) == 0 && q.radius2 == 1.0f);
     CHECK(photon_map_memory(&e) == sizeof(photon_map));
 

@@ -68,7 +68,7 @@ static void test_point_light_irradiance(void)
     photon_maps_init(&maps);
     atomic_int cancel = 0;
     CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
-    CHECK(photon_maps_build(&maps) == PHOS_OK);
+    CHECK(photon_maps_build(&maps, NULL) == PHOS_OK);
     /* Half the photons go up and escape: about 2 emitted per stored. */
     CHECK_MSG(maps.global.count >= 1000000 && maps.global_emitted > 1900000 && maps.global_emitted < 2100000,
               "stored %u, emitted %llu", maps.global.count, (unsigned long long)maps.global_emitted);
@@ -177,7 +177,7 @@ static void test_radiance_photons_unbiased(void)
     photon_maps_init(&maps);
     atomic_int cancel = 0;
     CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
-    CHECK(photon_maps_build(&maps) == PHOS_OK);
+    CHECK(photon_maps_build(&maps, NULL) == PHOS_OK);
     CHECK(photon_maps_precompute_radiance(s, &ps, &maps, &cancel) == PHOS_OK);
     double expected = rho / M_PI * rho / (1.0 - rho) * 4.0 * M_PI * I / sphere_mesh_area(1.0, segments, rings);
     double sum = 0.0, block_sum = 0.0, sum_blocks2 = 0.0;
@@ -235,7 +235,7 @@ static void bead_maps(int blocked, photon_maps *a, photon_maps *b)
         photon_maps_init(m);
         atomic_int cancel = 0;
         CHECK(photon_maps_trace(s, &ps, m, &cancel, NULL) == PHOS_OK);
-        CHECK(photon_maps_build(m) == PHOS_OK);
+        CHECK(photon_maps_build(m, NULL) == PHOS_OK);
     }
     CHECK(a->caustic_emitted == b->caustic_emitted && a->caustic.count == b->caustic.count);
     CHECK(a->caustic.count == 0 ||
@@ -391,7 +391,7 @@ static void test_radiance_lookup_in_a_corner(void)
             photon p = photon_make(v3(0.005f * i, 0.0f, 0.005f * j), v3s(2.0f), v3(0, 1, 0), v3(0, 1, 0), 0);
             ok &= photon_map_append(&m, &p, 1);
         }
-    CHECK(ok && photon_map_build(&m));
+    CHECK(ok && photon_map_build(&m, NULL));
     kdtree_query q, q8;
     CHECK(kdtree_query_init(&q, 1) && kdtree_query_init(&q8, 8));
     int crowded = 0, wrong = 0;
@@ -672,8 +672,8 @@ static void test_maps_deterministic(void)
     photon_maps_init(&b);
     atomic_int cancel = 0;
     photon_trace_settings p1 = trace_settings(30000, 10000, 1), p3 = trace_settings(30000, 10000, 3);
-    CHECK(photon_maps_trace(s, &p1, &a, &cancel, NULL) == PHOS_OK && photon_maps_build(&a) == PHOS_OK);
-    CHECK(photon_maps_trace(s, &p3, &b, &cancel, NULL) == PHOS_OK && photon_maps_build(&b) == PHOS_OK);
+    CHECK(photon_maps_trace(s, &p1, &a, &cancel, NULL) == PHOS_OK && photon_maps_build(&a, NULL) == PHOS_OK);
+    CHECK(photon_maps_trace(s, &p3, &b, &cancel, NULL) == PHOS_OK && photon_maps_build(&b, NULL) == PHOS_OK);
     CHECK(a.global.count == b.global.count && a.caustic.count == b.caustic.count);
     CHECK(a.global_emitted == b.global_emitted && a.caustic_emitted == b.caustic_emitted);
     CHECK(a.global.count && memcmp(a.global.photons, b.global.photons, sizeof(photon) * a.global.count) == 0);

@@ -14,6 +14,7 @@
 #include "scene/embree.h"
 #include "shading/texture.h"
 #include "render/film.h"
+#include "render/memory.h"
 #include "phos.h"
 #include "render/render.h"
 #include "render/stages.h"
@@ -200,6 +201,7 @@ phos_scene *phos_scene_create(void)
     if (!s)
         return NULL;
     atomic_init(&s->refcount, 1);
+    atomic_init(&s->cancel, 0);
     s->lights.world = -1;
     s->camera.type = PHOS_CAMERA_PERSPECTIVE;
     phos_camera_desc_init(&s->camera);
@@ -480,20 +482,37 @@ phos_status phos_scene_commit(phos_scene *s)
     scene_prepare(s);
     for (uint32_t i = 0; i < s->image_count; i++)
         s->images[i].average = image_average(&s->images[i]);
-    phos_status st = embree_bvh_build(s->meshes, s->mesh_count, s->instances, s->instance_count, &s->bvh,
-                                      s->error, sizeof(s->error));
-    if (st != PHOS_OK) {
-        if (!s->error[0])
-            scene_set_error(s, "could not build the ray-tracing acceleration structure");
-        return st;
+    phos_status st = embree_bvh_build(s->meshes, s->mesh_count, s->instances, s->instance_count, &s->cancel,
+                                      &s->bvh, s->error, sizeof(s->error));
+    if (st == PHOS_OK) {
+        st = light_table_build(s);
+        if (st != PHOS_OK)
+            scene_set_error(s, "out of memory while building the light table");
+    } else if (st == PHOS_ERROR_CANCELLED) {
+        scene_set_error(s, "commit: cancelled");
+    } else if (!s->error[0]) {
+        scene_set_error(s, "could not build the ray-tracing acceleration structure");
     }
-    st = light_table_build(s);
+    atomic_store(&s->cancel, 0);
     if (st != PHOS_OK) {
-        scene_set_error(s, "out of memory while building the light table");
+        /* Uncommitted again: what was built is freed, a commit may retry. */
+        embree_bvh_destroy(s->bvh);
+        s->bvh = NULL;
+        light_table_free(&s->lights);
+        for (uint32_t i = 0; i < s->instance_count; i++) {
+            free(s->instances[i].emitter_of_triangle);
+            s->instances[i].emitter_of_triangle = NULL;
+        }
         return st;
     }
     s->committed = 1;
     return PHOS_OK;
+}
+
+void phos_scene_cancel(phos_scene *s)
+{
+    if (s)
+        atomic_store(&s->cancel, 1);
 }
 
 /* -------------------------------------------------------------- render */
@@ -561,6 +580,11 @@ phos_status phos_render_create(phos_scene *s, const phos_render_settings *rs, ph
     phos_status st = validate_settings(s, rs);
     if (st != PHOS_OK)
         return st;
+    /* Refused before anything is allocated (render/memory.h). */
+    memory_estimate need;
+    render_memory_estimate(rs, &need);
+    if (!render_memory_fits(&need, memory_available(), s->error, sizeof(s->error)))
+        return PHOS_ERROR_OUT_OF_MEMORY;
 
     render *r = calloc(1, sizeof(render));
     if (!r)

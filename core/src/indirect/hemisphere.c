@@ -27,6 +27,10 @@ gather_estimate hemisphere_gather(const indirect_query *q, uint32_t rays, hemisp
     gather_estimate sum = GATHER_ESTIMATE_ZERO;
     uint32_t index = 0;
     for (uint32_t j = 0; j < M; j++) {
+        /* A row is at most a few hundred rays: a cancel stops the gather
+         * within one (its caller discards the sample or the record). */
+        if (q->scratch->cancel && atomic_load_explicit(q->scratch->cancel, memory_order_relaxed))
+            break;
         for (uint32_t k = 0; k < N; k++, index++) {
             vec3 local = hemisphere_stratum_direction(j, k, M, N, sampler_2d(&g, 2u * index));
             float cos_t = local.z;

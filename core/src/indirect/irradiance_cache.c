@@ -46,6 +46,20 @@ static uint32_t new_node(irradiance_cache *c, vec3 centre, float half)
     return c->node_count++;
 }
 
+uint64_t irradiance_cache_memory_estimate(uint32_t width, uint32_t height, float min_spacing)
+{
+    uint64_t pixels = (uint64_t)width * height;
+    double per_record = min_spacing > 1.0f ? (double)min_spacing * (double)min_spacing : 1.0;
+    uint64_t records = (uint64_t)((double)pixels / per_record) + 1;
+    /* The record array grows by doubling; about two octree nodes a record. */
+    uint64_t cache = 2 * records * sizeof(irradiance_record) + 2 * records * sizeof(irradiance_cache_node);
+    /* The finest pass visits a quarter of the pixels: a flag and an index
+     * each, and a record for each candidate left uncovered. */
+    uint64_t candidates = pixels / 4 + 1;
+    uint64_t pass = candidates * (2 + sizeof(uint32_t)) + records * sizeof(irradiance_record);
+    return cache + pass;
+}
+
 int irradiance_cache_init(irradiance_cache *c, vec3 bmin, vec3 bmax, float accuracy)
 {
     memset(c, 0, sizeof(*c));

@@ -72,6 +72,13 @@ typedef struct irradiance_estimate {
     uint32_t records;      /* records used */
 } irradiance_estimate;
 
+/* Bytes a cache filled over a width × height frame may take: a record
+ * keeps at least min_spacing pixels from the next, so at most one per
+ * min_spacing² pixels (one per pixel below 1), with the octree's nodes
+ * and the pre-pass's per-candidate arrays. An upper estimate for the
+ * memory check of a render (render/memory.c). */
+uint64_t irradiance_cache_memory_estimate(uint32_t width, uint32_t height, float min_spacing);
+
 /* An empty cache over the box [bmin, bmax]; 0 when memory is exhausted. */
 int irradiance_cache_init(irradiance_cache *c, vec3 bmin, vec3 bmax, float accuracy);
 void irradiance_cache_free(irradiance_cache *c);

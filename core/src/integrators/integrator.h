@@ -64,6 +64,10 @@ typedef struct integrator_settings {
 typedef struct integrator_scratch {
     kdtree_query global, caustic, radiance;
     uint64_t cache_lookups, cache_hits, gather_rays;
+    /* The render's cancel flag (NULL: none). A hemisphere of thousands of
+     * path-traced rays takes seconds, so the gathers look at it too and
+     * stop early; what they return then is discarded (render.c). */
+    const atomic_int *cancel;
 } integrator_scratch;
 
 typedef struct sample_result {

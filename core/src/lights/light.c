@@ -135,6 +135,8 @@ static phos_status add_emissive_triangles(scene *s, light_table *t, uint32_t *ca
     for (uint32_t i = 0; i < s->instance_count; i++) {
         instance *inst = &s->instances[i];
         const mesh *m = &s->meshes[inst->mesh_id];
+        if (inst->hidden)
+            continue;
         int any = 0;
         for (uint32_t k = 0; k < inst->material_count && !any; k++)
             any = s->materials[inst->materials[k]].emissive;

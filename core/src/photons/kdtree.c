@@ -80,6 +80,10 @@ static inline float median_of_3(float a, float b, float c)
     return fmaxf(fminf(a, b), fminf(fmaxf(a, b), c));
 }
 
+/* Ranges of at least this many photons look at the cancel flag first:
+ * well under a millisecond of work between two looks. */
+#define KDTREE_CANCEL_GRAIN 16384u
+
 /* Hoare's FIND (CACM 1961) in Wirth's form: afterwards a[m] holds the key
  * of rank m, everything before it ≤ a[m] ≤ everything after it. The scans
  * stop on keys equal to the pivot, so runs of equal keys (photons on an
@@ -87,10 +91,14 @@ static inline float median_of_3(float a, float b, float c)
  * median. The pivot is the median of the first, middle and last keys:
  * sorted or reverse-sorted input then partitions at the middle instead of
  * degrading to O(n²) as the last-element pivot of Jensen's median_split. */
-static void select_median(photon *a, uint32_t n, uint32_t m, int axis)
+static int select_median(photon *a, uint32_t n, uint32_t m, int axis, atomic_int *cancel)
 {
     ptrdiff_t lo = 0, hi = (ptrdiff_t)n - 1, k = (ptrdiff_t)m;
     while (lo < hi) {
+        /* One partition of millions of photons takes milliseconds. */
+        if (hi - lo >= (ptrdiff_t)KDTREE_CANCEL_GRAIN && cancel &&
+            atomic_load_explicit(cancel, memory_order_relaxed))
+            return 0;
         float pivot = median_of_3(a[lo].position[axis], a[lo + (hi - lo) / 2].position[axis],
                                   a[hi].position[axis]);
         ptrdiff_t i = lo, j = hi;
@@ -111,14 +119,17 @@ static void select_median(photon *a, uint32_t n, uint32_t m, int axis)
         if (k < i)
             hi = j;
     }
+    return 1;
 }
 
-/* Balances work[0..n) into the subtree rooted at heap node `node` of `out`. */
-static void balance(photon *work, uint32_t n, photon *out, uint32_t node, cell_box box)
+/* Balances work[0..n) into the subtree rooted at heap node `node` of `out`;
+ * 0 if cancelled. */
+static int balance(photon *work, uint32_t n, photon *out, uint32_t node, cell_box box, atomic_int *cancel)
 {
     int axis = longest_axis(&box);
     uint32_t m = kdtree_left_size(n);
-    select_median(work, n, m, axis);
+    if (!select_median(work, n, m, axis, cancel))
+        return 0;
 
     photon p = work[m];
     p.flags = (uint16_t)((p.flags & ~PHOTON_AXIS_MASK) | axis);
@@ -128,16 +139,19 @@ static void balance(photon *work, uint32_t n, photon *out, uint32_t node, cell_b
     if (m > 0) {
         cell_box left = box;
         left.hi[axis] = split;
-        balance(work, m, out, 2 * node, left);
+        if (!balance(work, m, out, 2 * node, left, cancel))
+            return 0;
     }
     if (n - m - 1 > 0) {
         cell_box right = box;
         right.lo[axis] = split;
-        balance(work + m + 1, n - m - 1, out, 2 * node + 1, right);
+        if (!balance(work + m + 1, n - m - 1, out, 2 * node + 1, right, cancel))
+            return 0;
     }
+    return 1;
 }
 
-int kdtree_build(photon *photons, uint32_t n)
+int kdtree_build(photon *photons, uint32_t n, atomic_int *cancel)
 {
     if (n == 0)
         return 1;
@@ -147,9 +161,9 @@ int kdtree_build(photon *photons, uint32_t n)
     if (!work)
         return 0;
     memcpy(work, photons, sizeof(photon) * (size_t)n);
-    balance(work, n, photons, 1, bounds_of(work, n));
+    int done = balance(work, n, photons, 1, bounds_of(work, n), cancel);
     free(work);
-    return 1;
+    return done;
 }
 
 /* ---- search -------------------------------------------------------------- */

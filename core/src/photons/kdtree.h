@@ -37,8 +37,10 @@ uint32_t kdtree_left_size(uint32_t n);
  * Temporary memory: one copy of the photons (20·n bytes) for the duration of
  * the call. The result depends only on the input array. Returns 0 if that
  * copy cannot be allocated (the photons are then unchanged), 1 otherwise;
- * n ≤ PHOTON_MAP_MAX_PHOTONS. */
-int kdtree_build(photon *photons, uint32_t n);
+ * n ≤ PHOTON_MAP_MAX_PHOTONS. cancel may be NULL; when *cancel becomes
+ * nonzero the build stops within a few milliseconds and returns 0, the
+ * array then holding no usable tree. */
+int kdtree_build(photon *photons, uint32_t n, atomic_int *cancel);
 
 /* Per-query scratch and results, one per thread, sized for k at init and
  * reused for every query. Results are unordered: index[j] and dist2[j] for

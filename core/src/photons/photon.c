@@ -452,14 +452,14 @@ static int sort_by_class(photon_map *m)
     return 1;
 }
 
-int photon_map_build(photon_map *m)
+int photon_map_build(photon_map *m, atomic_int *cancel)
 {
     if (m->built)
         return 1;
     if (!sort_by_class(m))
         return 0;
-    for (unsigned c = 0; c < PHOTON_CLASSES; c++)
-        if (!kdtree_build(m->photons + m->class_start[c], m->class_start[c + 1] - m->class_start[c]))
+    for (unsigned c = 0; c < PHOTON_CLASSES && m->count; c++) /* an empty map may have no array */
+        if (!kdtree_build(m->photons + m->class_start[c], m->class_start[c + 1] - m->class_start[c], cancel))
             return 0;
     /* Give back the growth slack: a shrinking realloc keeps the data even if
      * it fails, so failure here only means the slack stays. */

@@ -18,6 +18,14 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#ifdef __cplusplus
+/* bench/bench_kdtree.cpp (C++) includes this header: the cancel flag is
+ * the same lock-free int there. */
+#include <atomic>
+typedef std::atomic_int atomic_int;
+#else
+#include <stdatomic.h>
+#endif
 
 #include "util/vec.h"
 
@@ -149,8 +157,9 @@ int photon_map_append(photon_map *m, const photon *photons, uint32_t count);
 /* Sorts the photons into their classes (stably: the result depends
  * only on the appended sequence), balances each class's kd-tree
  * (kdtree_build) and shrinks the storage to exactly 20·count bytes. Returns 0 when memory is exhausted, in which case the map
- * keeps its photons unbuilt. Building twice is a no-op. */
-int photon_map_build(photon_map *m);
+ * keeps its photons unbuilt. Building twice is a no-op. cancel may be
+ * NULL: when *cancel becomes nonzero it returns 0 soon, the map unusable. */
+int photon_map_build(photon_map *m, atomic_int *cancel);
 /* Bytes the map occupies: sizeof(photon_map) + 20·capacity (= 20·count once built). */
 size_t photon_map_memory(const photon_map *m);
 

@@ -169,6 +169,7 @@ typedef struct wave {
     uint32_t map;
     const projection_map *aim;  /* the caustic map's emission, or NULL */
     uint64_t first_path, end_path;
+    uint32_t paths_per_batch;
     batch *batches;
     photon_trace_progress *progress;
     atomic_int *cancel;
@@ -177,8 +178,8 @@ typedef struct wave {
 static void trace_batch(void *ctx, uint32_t item, uint32_t thread)
 {
     wave *w = ctx;
-    uint64_t begin = w->first_path + (uint64_t)item * PATHS_PER_BATCH;
-    uint64_t end = begin + PATHS_PER_BATCH;
+    uint64_t begin = w->first_path + (uint64_t)item * w->paths_per_batch;
+    uint64_t end = begin + w->paths_per_batch;
     if (end > w->end_path)
         end = w->end_path;
     batch *b = &w->batches[item];
@@ -209,6 +210,22 @@ static int caustic_yield_hopeless(uint64_t emitted, uint32_t stored, uint32_t ta
            (long double)target * (long double)emitted;
 }
 
+/* Paths the next wave traces: those that fill the map at the yield seen
+ * so far (one photon a path before the first wave), a tenth more, and at
+ * most a full wave; a full wave while nothing has been kept. Tracing a
+ * full wave of 32 768 paths for a map of 500 photons, or a whole wave past
+ * the path that fills a map, would be work whose photons are never
+ * stored. The wave sizes do not change the map: paths are traced by
+ * index and merged in path order up to the one that fills it. */
+static uint64_t wave_paths(uint32_t target, uint32_t kept, uint64_t emitted, uint64_t full)
+{
+    if (emitted > 0 && kept == 0)
+        return full;
+    double per_path = emitted > 0 ? (double)kept / (double)emitted : 1.0;
+    double want = 1.1 * (double)(target - kept) / per_path + 64.0;
+    return want < (double)full ? (uint64_t)want : full;
+}
+
 /* Traces paths until `target` photons are kept; fills *kept (path order)
  * and *emitted. */
 static phos_status trace_map(const scene *s, const photon_trace_settings *ps, uint32_t map, const projection_map *aim,
@@ -229,11 +246,12 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
     uint64_t next = 0, checkpoint = CAUSTIC_PROBE_PATHS;
     int done = 0;
     while (!done) {
-        wave w = {s, ps, map, aim, next, next + (uint64_t)batches_per_wave * PATHS_PER_BATCH, batches, progress,
-                  cancel};
+        uint64_t paths = wave_paths(target, kept->count, next, (uint64_t)batches_per_wave * PATHS_PER_BATCH);
+        uint32_t per_batch = (uint32_t)((paths + batches_per_wave - 1) / batches_per_wave);
+        wave w = {s, ps, map, aim, next, next + paths, per_batch, batches, progress, cancel};
         if (w.end_path > ps->max_emitted)
             w.end_path = ps->max_emitted;
-        uint32_t nb = (uint32_t)((w.end_path - next + PATHS_PER_BATCH - 1) / PATHS_PER_BATCH);
+        uint32_t nb = (uint32_t)((w.end_path - next + per_batch - 1) / per_batch);
         for (uint32_t i = 0; i < nb; i++)
             batches[i].count = 0;
         if (!parallel_for(nb, threads, trace_batch, &w, cancel)) {
@@ -349,6 +367,19 @@ static phos_status fill_caustic_map(photon_map *m, const batch *global, uint64_t
     if (st == PHOS_OK && own->count)
         st = append_photons(m, own, (float)((1.0 - alpha) / (double)own_emitted), 0);
     return st;
+}
+
+uint64_t photon_maps_memory_estimate(uint32_t global, uint32_t caustic)
+{
+    /* A map's traced records, at most twice their count in capacity while
+     * batches double, live until the map is filled; the photons (20 bytes)
+     * stay, and the kd-tree build copies them once. */
+    uint64_t largest = global > caustic ? global : caustic;
+    uint64_t tracing = 2 * largest * sizeof(traced_photon);
+    uint64_t maps = 2 * ((uint64_t)global + caustic) * sizeof(photon);
+    uint64_t sites = ((uint64_t)global + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE;
+    uint64_t site_bytes = sites * (9 * sizeof(float) + 2 * sizeof(photon) + 2 * sizeof(traced_photon));
+    return tracing + maps + site_bytes;
 }
 
 void photon_maps_init(photon_maps *m)
@@ -551,10 +582,10 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     return st;
 }
 
-phos_status photon_maps_build(photon_maps *m)
+phos_status photon_maps_build(photon_maps *m, atomic_int *cancel)
 {
-    if (!photon_map_build(&m->global) || !photon_map_build(&m->caustic))
-        return PHOS_ERROR_OUT_OF_MEMORY;
+    if (!photon_map_build(&m->global, cancel) || !photon_map_build(&m->caustic, cancel))
+        return cancel && atomic_load(cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_OUT_OF_MEMORY;
     return PHOS_OK;
 }
 
@@ -604,7 +635,7 @@ phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_s
     if (st == PHOS_OK && !parallel_for((n + SITES_PER_ITEM - 1) / SITES_PER_ITEM, threads, precompute_sites, &pc, cancel))
         st = PHOS_ERROR_CANCELLED;
     if (st == PHOS_OK && (!photon_map_reserve(&m->radiance, n) || !photon_map_append(&m->radiance, pc.out, n) ||
-                          !photon_map_build(&m->radiance)))
+                          !photon_map_build(&m->radiance, cancel)))
         st = PHOS_ERROR_OUT_OF_MEMORY;
     for (uint32_t t = 0; pc.queries && t < threads; t++)
         kdtree_query_free(&pc.queries[t]);

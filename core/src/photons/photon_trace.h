@@ -47,6 +47,12 @@ typedef struct photon_trace_progress {
 } photon_trace_progress;
 
 void photon_maps_init(photon_maps *m);
+
+/* Bytes photon tracing and the kd-tree builds need at their peak for maps
+ * of `global` and `caustic` stored photons: the traced records (whose
+ * batches grow by doubling), the stored photons and the build's copy, and
+ * the radiance sites (render/memory.c checks it before a render starts). */
+uint64_t photon_maps_memory_estimate(uint32_t global, uint32_t caustic);
 void photon_maps_free(photon_maps *m);
 
 /* Traces both maps. Photon path i of a map takes its random numbers from
@@ -56,8 +62,9 @@ void photon_maps_free(photon_maps *m);
 phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, photon_maps *out,
                               atomic_int *cancel, photon_trace_progress *progress);
 
-/* Balances the kd-trees of the global and caustic maps. */
-phos_status photon_maps_build(photon_maps *m);
+/* Balances the kd-trees of the global and caustic maps; PHOS_ERROR_CANCELLED
+ * soon after *cancel is set (cancel may be NULL). */
+phos_status photon_maps_build(photon_maps *m, atomic_int *cancel);
 
 /* Christensen 1999: at each radiance site, the radiance the surface
  * reflects there, ρ/π·E, from the global map's photons that scattered at

@@ -69,7 +69,8 @@ static int collect_targets(const scene *s, sphere **out)
 {
     uint32_t n = 0;
     for (uint32_t i = 0; i < s->instance_count; i++)
-        n += s->meshes[s->instances[i].mesh_id].triangle_count > 0 && instance_scatters_delta(s, &s->instances[i]);
+        n += s->meshes[s->instances[i].mesh_id].triangle_count > 0 && !s->instances[i].hidden &&
+             instance_scatters_delta(s, &s->instances[i]);
     *out = NULL;
     if (n == 0)
         return 0;
@@ -79,7 +80,7 @@ static int collect_targets(const scene *s, sphere **out)
     uint32_t k = 0;
     for (uint32_t i = 0; i < s->instance_count; i++) {
         const instance *inst = &s->instances[i];
-        if (s->meshes[inst->mesh_id].triangle_count > 0 && instance_scatters_delta(s, inst))
+        if (s->meshes[inst->mesh_id].triangle_count > 0 && !inst->hidden && instance_scatters_delta(s, inst))
             t[k++] = instance_sphere(s, inst);
     }
     if (n > MAX_CONES) {

@@ -21,6 +21,15 @@ uint32_t phos_pass_channels(uint32_t pass)
     }
 }
 
+uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask)
+{
+    uint64_t floats = 0;
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++)
+        if ((pass_mask | (1u << PHOS_PASS_COMBINED)) & (1u << p))
+            floats += phos_pass_channels(p);
+    return (uint64_t)width * height * floats * sizeof(float);
+}
+
 int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, uint32_t pass_mask)
 {
     memset(f, 0, sizeof(*f));

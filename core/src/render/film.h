@@ -16,6 +16,8 @@ typedef struct film {
 } film;
 
 /* Returns 0 when memory is exhausted. */
+/* Bytes film_create allocates for these passes. */
+uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask);
 int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, uint32_t pass_mask);
 void film_free(film *f);
 

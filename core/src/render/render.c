@@ -80,8 +80,9 @@ static const uint32_t component_pass[COMPONENT_COUNT] = {PHOS_PASS_EMISSION, PHO
 
 static int pass_on(const render *r, uint32_t pass) { return r->film.planes[pass] != NULL; }
 
-/* Renders one pixel; returns 0 if cancelled part-way (checked every 64
- * samples, so even pixels of millions of samples stop at once). */
+/* Renders one pixel; returns 0 if cancelled part-way (checked before
+ * every sample, and inside its gathers, so even pixels of millions of
+ * samples stop at once). */
 static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *scratch)
 {
     const phos_render_settings *rs = &r->settings;
@@ -91,7 +92,7 @@ static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *s
     memset(comp, 0, sizeof(comp));
     memset(dbg, 0, sizeof(dbg));
     for (uint32_t i = 0; i < rs->samples; i++) {
-        if ((i & 63u) == 63u && atomic_load_explicit(&r->cancel, memory_order_relaxed))
+        if (atomic_load_explicit(&r->cancel, memory_order_relaxed))
             return 0;
         sampler smp = sampler_for_pixel(rs->seed, x, y, i);
         float2 uf = sampler_2d(&smp, DIM_FILM);
@@ -320,7 +321,7 @@ static phos_status run_stage(render *r, uint32_t stage)
     case PHOS_STAGE_TRACING_PHOTONS:
         return trace_photons(r);
     case PHOS_STAGE_BUILDING_KDTREES:
-        return photon_maps_build(&r->maps);
+        return photon_maps_build(&r->maps, &r->cancel);
     case PHOS_STAGE_PRECOMPUTING_RADIANCE:
         return photon_maps_precompute_radiance(r->scene, &r->photon_settings, &r->maps, &r->cancel);
     case PHOS_STAGE_FILLING_IRRADIANCE_CACHE:
@@ -458,6 +459,7 @@ int render_prepare(render *r)
     uint32_t k_radiance = 1; /* radiance_photon_lookup: the nearest facing record */
     for (uint32_t t = 0; t < r->threads; t++) {
         integrator_scratch *sc = &r->scratch[t];
+        sc->cancel = &r->cancel;
         if (!kdtree_query_init(&sc->global, rs->global_estimate_photons ? rs->global_estimate_photons : 1) ||
             !kdtree_query_init(&sc->caustic, rs->caustic_estimate_photons ? rs->caustic_estimate_photons : 1) ||
             !kdtree_query_init(&sc->radiance, k_radiance))

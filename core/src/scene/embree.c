@@ -9,7 +9,9 @@
  */
 #include "scene/embree.h"
 
+#include <math.h>
 #include <stdatomic.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,8 +29,24 @@ struct embree_bvh {
     RTCScene top;
     RTCScene *mesh_scenes;
     uint32_t mesh_count;
+    atomic_int *cancel;
     char error[256];
 };
+
+/* Embree calls this while it builds, many times a second; false aborts the
+ * commit with RTC_ERROR_CANCELLED. */
+static bool build_progress(void *ptr, double fraction)
+{
+    (void)fraction;
+    const struct embree_bvh *bvh = ptr;
+    return !(bvh->cancel && atomic_load_explicit(bvh->cancel, memory_order_relaxed));
+}
+
+static int cancelled(const struct embree_bvh *bvh) { return !build_progress((void *)bvh, 0.0); }
+
+static const char *device_config; /* embree_set_device_config */
+
+void embree_set_device_config(const char *config) { device_config = config; }
 
 static void error_callback(void *user, enum RTCError code, const char *str)
 {
@@ -43,6 +61,7 @@ static int build_mesh_scene(struct embree_bvh *bvh, const mesh *m, RTCScene *out
     if (!sc)
         return 0;
     rtcSetSceneBuildQuality(sc, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneProgressMonitorFunction(sc, build_progress, bvh);
     RTCGeometry g = rtcNewGeometry(bvh->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!g) {
         rtcReleaseScene(sc);
@@ -78,13 +97,15 @@ static void to_column_major(const float m[12], float out[12])
 }
 
 phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const instance *instances,
-                             uint32_t instance_count, struct embree_bvh **out, char *error, size_t error_size)
+                             uint32_t instance_count, atomic_int *cancel, struct embree_bvh **out, char *error,
+                             size_t error_size)
 {
     struct embree_bvh *bvh = calloc(1, sizeof(*bvh));
     if (!bvh)
         return PHOS_ERROR_OUT_OF_MEMORY;
     *out = bvh;
-    bvh->device = rtcNewDevice(NULL);
+    bvh->cancel = cancel;
+    bvh->device = rtcNewDevice(device_config);
     if (!bvh->device) {
         snprintf(error, error_size, "could not create the Embree device (error %d)", (int)rtcGetDeviceError(NULL));
         return PHOS_ERROR_EMBREE;
@@ -95,9 +116,13 @@ phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const inst
         return PHOS_ERROR_OUT_OF_MEMORY;
     bvh->mesh_count = mesh_count;
     for (uint32_t i = 0; i < mesh_count; i++) {
+        if (cancelled(bvh))
+            return PHOS_ERROR_CANCELLED;
         if (meshes[i].triangle_count == 0)
             continue;
-        if (!build_mesh_scene(bvh, &meshes[i], &bvh->mesh_scenes[i])) {
+        if (!build_mesh_scene(bvh, &meshes[i], &bvh->mesh_scenes[i]) || cancelled(bvh)) {
+            if (cancelled(bvh))
+                return PHOS_ERROR_CANCELLED;
             snprintf(error, error_size, "could not build the BVH of mesh %u: %s", i,
                             bvh->error[0] ? bvh->error : "out of memory");
             return PHOS_ERROR_EMBREE;
@@ -106,10 +131,13 @@ phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const inst
     bvh->top = rtcNewScene(bvh->device);
     if (!bvh->top)
         return PHOS_ERROR_EMBREE;
+    rtcSetSceneProgressMonitorFunction(bvh->top, build_progress, bvh);
     for (uint32_t i = 0; i < instance_count; i++) {
+        if ((i & 1023u) == 0 && cancelled(bvh))
+            return PHOS_ERROR_CANCELLED;
         const instance *inst = &instances[i];
         RTCScene child = bvh->mesh_scenes[inst->mesh_id];
-        if (!child)
+        if (!child || inst->hidden)
             continue;
         RTCGeometry g = rtcNewGeometry(bvh->device, RTC_GEOMETRY_TYPE_INSTANCE);
         if (!g)
@@ -123,6 +151,8 @@ phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const inst
         rtcReleaseGeometry(g);
     }
     rtcCommitScene(bvh->top);
+    if (cancelled(bvh))
+        return PHOS_ERROR_CANCELLED;
     if (bvh->error[0]) {
         snprintf(error, error_size, "%s", bvh->error);
         return PHOS_ERROR_EMBREE;
@@ -143,6 +173,20 @@ void embree_bvh_destroy(struct embree_bvh *bvh)
     if (bvh->device)
         rtcReleaseDevice(bvh->device);
     free(bvh);
+}
+
+/* Embree's own validity test of a ray (RayK::valid, asserted in Debian's
+ * build, so a bad ray aborts the process): origin and direction within
+ * ±FLT_LARGE ≈ 1.8e18 per component, no NaN bound. Scene coordinates are
+ * only checked to be finite, so a ray from a vertex at 1e30 or a camera
+ * there must be stopped here: it misses everything (intersect) or is
+ * blocked (occluded, so it brings no light). NaN fails every comparison. */
+#define EMBREE_FLT_LARGE 1.8e18f
+static int ray_is_valid(vec3 o, vec3 d, float tmin, float tmax)
+{
+    return fabsf(o.x) <= EMBREE_FLT_LARGE && fabsf(o.y) <= EMBREE_FLT_LARGE && fabsf(o.z) <= EMBREE_FLT_LARGE &&
+           fabsf(d.x) <= EMBREE_FLT_LARGE && fabsf(d.y) <= EMBREE_FLT_LARGE && fabsf(d.z) <= EMBREE_FLT_LARGE &&
+           !isnan(tmin) && !isnan(tmax);
 }
 
 static void setup_ray(struct RTCRay *r, vec3 o, vec3 d, float tmin, float tmax)
@@ -189,6 +233,8 @@ int embree_intersect(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, f
     if (!bvh->top)
         return 0;
     count_ray(o, d, tmin, tmax, coherent, 0);
+    if (!ray_is_valid(o, d, tmin, tmax))
+        return 0;
     struct RTCRayHit rh __attribute__((aligned(16)));
     setup_ray(&rh.ray, o, d, tmin, tmax);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -219,6 +265,8 @@ int embree_occluded(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, fl
     if (!bvh->top)
         return 0;
     count_ray(o, d, tmin, tmax, 0, 1);
+    if (!ray_is_valid(o, d, tmin, tmax))
+        return 1;
     struct RTCRay r __attribute__((aligned(16)));
     setup_ray(&r, o, d, tmin, tmax);
 #if PHOS_EMBREE4

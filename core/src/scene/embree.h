@@ -5,6 +5,7 @@
 #ifndef PHOS_EMBREE_H
 #define PHOS_EMBREE_H
 
+#include <stdatomic.h>
 #include <stddef.h>
 
 #include "phos.h"
@@ -22,10 +23,19 @@ struct embree_bvh;
 /* One BVH per mesh, shared by its instances, under a top-level BVH of
  * instances. *out is set before anything can fail, so that the caller frees
  * a partial build with embree_bvh_destroy; the message of a failure is
- * written to error (error_size bytes). */
+ * written to error (error_size bytes). When *cancel becomes nonzero the
+ * build stops (Embree's build progress callback says no) and returns
+ * PHOS_ERROR_CANCELLED. */
 phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const instance *instances,
-                             uint32_t instance_count, struct embree_bvh **out, char *error, size_t error_size);
+                             uint32_t instance_count, atomic_int *cancel, struct embree_bvh **out, char *error,
+                             size_t error_size);
 void embree_bvh_destroy(struct embree_bvh *bvh);
+
+/* The configuration string of the Embree devices built from now on (NULL:
+ * Embree's defaults), e.g. "threads=1": lets tests/c/test_determinism.c
+ * build the same BVH with another number of build threads. Not thread-safe;
+ * not part of the public API. */
+void embree_set_device_config(const char *config);
 
 /* Closest hit with t in (tmin, tmax); coherent marks camera rays. */
 int embree_intersect(const struct embree_bvh *bvh, vec3 o, vec3 d, float tmin, float tmax, int coherent,

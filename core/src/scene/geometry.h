@@ -23,6 +23,8 @@ typedef struct instance {
     uint32_t material_count;
     uint32_t *materials;
     int32_t *emitter_of_triangle; /* light index per triangle, or NULL if nothing emits */
+    int hidden;                 /* 1: a transform Embree cannot use (scene.c, instance_is_renderable):
+                                   nothing of the instance renders, as of an object scaled to zero */
 } instance;
 
 static inline uint32_t mesh_triangle_slot(const mesh *m, uint32_t prim)

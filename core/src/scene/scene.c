@@ -49,13 +49,35 @@ static void normal_matrix(const float m[12], float out[9])
             out[k] = -out[k];
 }
 
+/* Whether Embree can trace rays through an instance: it maps each ray
+ * into the instance's space by the inverse transform, and a ray whose
+ * origin or direction leaves ±1.8e18 there fails Embree's validity check
+ * (an assertion in Debian's build: the process aborts). A singular 3×3
+ * (an object scaled to zero on some axis, which Blender animations use to
+ * hide things; or columns that are parallel) has no inverse; columns of
+ * length outside [1e-9, 1e9] or a translation beyond 1e15 make the
+ * inverse-mapped rays exceed the range for scenes of ordinary size. The
+ * relative determinant det / (|c0| |c1| |c2|) is the sine-product of the
+ * columns' angles: 1e-6 allows any thin but well-formed placement. */
+static int instance_is_renderable(const float m[12])
+{
+    vec3 c0 = v3(m[0], m[4], m[8]), c1 = v3(m[1], m[5], m[9]), c2 = v3(m[2], m[6], m[10]);
+    float l0 = v3_length(c0), l1 = v3_length(c1), l2 = v3_length(c2);
+    if (!(l0 >= 1e-9f && l1 >= 1e-9f && l2 >= 1e-9f && l0 <= 1e9f && l1 <= 1e9f && l2 <= 1e9f))
+        return 0;
+    if (!(fabsf(m[3]) <= 1e15f && fabsf(m[7]) <= 1e15f && fabsf(m[11]) <= 1e15f))
+        return 0;
+    double det = (double)v3_dot(c0, v3_cross(c1, c2));
+    return fabs(det) >= 1e-6 * (double)l0 * (double)l1 * (double)l2;
+}
+
 static void compute_bounds(scene *s)
 {
     vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
     for (uint32_t i = 0; i < s->instance_count; i++) {
         const instance *inst = &s->instances[i];
         const mesh *m = &s->meshes[inst->mesh_id];
-        if (m->triangle_count == 0)
+        if (m->triangle_count == 0 || inst->hidden)
             continue;
         for (uint32_t v = 0; v < m->vertex_count; v++) {
             vec3 p = xform_point(inst->transform, v3_load(m->positions + 3 * (size_t)v));
@@ -81,8 +103,10 @@ static void compute_bounds(scene *s)
 
 void scene_prepare(scene *s)
 {
-    for (uint32_t i = 0; i < s->instance_count; i++)
+    for (uint32_t i = 0; i < s->instance_count; i++) {
         normal_matrix(s->instances[i].transform, s->instances[i].normal_matrix);
+        s->instances[i].hidden = !instance_is_renderable(s->instances[i].transform);
+    }
     for (uint32_t i = 0; i < s->material_count; i++) {
         material *m = &s->materials[i];
         m->emissive = m->transparent = m->transmits = 0;

@@ -35,6 +35,7 @@ struct embree_bvh;
 struct phos_scene {
     char error[512];
     atomic_int refcount;        /* the caller's reference plus one per render */
+    atomic_int cancel;          /* phos_scene_cancel: stop the commit running */
     int committed;
 
     mesh *meshes;         uint32_t mesh_count, mesh_capacity;

@@ -1,0 +1,272 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Writes the seed corpus of tests/fuzz/fuzz_api.c into tests/fuzz/corpus/.
+
+Each seed is a scene and render in the byte stream fuzz_api.c reads (its
+reader: counts as bytes, numbers through take_float / take_u32), one per
+kind of bad input the fuzzer must survive, plus valid scenes for every
+integrator so that mutations start from renders that reach every stage.
+Inputs that once crashed are kept beside them as regress_* (written by
+the fuzzer, never by this script). The seeds are committed; run this
+again after changing the stream format:
+
+    python3 tests/fuzz/make_seeds.py
+"""
+
+import math
+import os
+import re
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PHOS_H = os.path.join(HERE, "..", "..", "core", "include", "phos.h")
+
+# take_float's table (selector bytes 0xE0 + index), and take_u32's (0x40 + index).
+FLOAT_SPECIAL = ["nan", "inf", "-inf", "flt_max", "-flt_max", 1e30, -1e30, 1e-30, 1.4e-45, "-0", 1e6, -1e6,
+                 1e-6, 65536.0, 3.14159265, 0.999999, 1.000001, 1e12, 4096.0, 0.01, 100.0, 1e-3, 2.0, 0.5,
+                 1e38, -1e-38, 8192.0, 0.25, 1.5, 10.0, 1000.0]
+U32_SPECIAL = [0, 1, 2, 3, 7, 8, 9, 15, 16, 17, 31, 32, 33, 63, 64, 65, 255, 256, 1000, 1023, 1024, 1025, 4096,
+               8192, 8193, 10000, 10001, 20000, 65535, 65536, 65537, 1 << 20, 1 << 24, (1 << 24) + 1, 1 << 26,
+               1 << 28, (1 << 28) + 1, 1 << 31, 2**32 - 2, 2**32 - 1]
+
+
+def setting_names():
+    """The render settings' field names in struct order, from phos.h's table."""
+    text = open(PHOS_H).read()
+    table = text[text.index("#define PHOS_RENDER_SETTINGS"):text.index("#define PHOS_SETTING_FIELD_")]
+    return re.findall(r"(?:USER|HOST)\(\s*(?:uint32_t|float)\s*,\s*(\w+)", table)
+
+
+SETTINGS = setting_names()
+
+
+class Stream:
+    def __init__(self):
+        self.b = bytearray()
+
+    def u8(self, v):
+        self.b.append(v & 0xFF)
+
+    def f(self, v):
+        if isinstance(v, str):
+            self.u8(0xE0 + FLOAT_SPECIAL.index(v))
+            return
+        sel = v * 8 + 112
+        if sel == int(sel) and 0 <= sel < 0xE0:
+            self.u8(int(sel))
+        elif v in FLOAT_SPECIAL:
+            self.u8(0xE0 + FLOAT_SPECIAL.index(v))
+        else:
+            self.u8(0xFF)
+            self.b += struct.pack("<f", v)
+
+    def fs(self, values):
+        for v in values:
+            self.f(v)
+
+    def u32(self, v):
+        if v < 0x40:
+            self.u8(v)
+        elif v in U32_SPECIAL:
+            self.u8(0x40 + U32_SPECIAL.index(v))
+        else:
+            self.u8(0xC0)
+            self.b += struct.pack("<I", v)
+
+
+def closure(s, kind=0, weight=(0.75, 0.75, 0.75), roughness=0.5, ior=1.5):
+    s.u8(kind)
+    s.fs(weight)
+    s.u8(0)                    # weight_image −1
+    s.f(roughness)
+    s.f(ior)
+    s.u8(0)                    # no specular colour
+    s.u8(0)                    # glass_fresnel
+    s.u8(0)                    # no transmission tint
+    s.f(-1.0)                  # transmission_roughness
+    s.u8(0)                    # layered
+
+
+def materials(s, mats):
+    s.u8(len(mats))
+    for closures in mats:
+        s.u8(len(closures))
+        for c in closures:
+            closure(s, *c)
+        s.u8(0)                # closures not NULL
+
+
+def mesh(s, positions, tris, slots=None):
+    s.u8(len(positions))
+    s.u8(len(tris))
+    for p in positions:
+        s.fs(p)
+    for t in tris:
+        for i in t:
+            s.u8(i)
+    s.u8(4 if slots else 0)
+    if slots:
+        for k in slots:
+            s.u8(k)
+
+
+def instance(s, mesh_id, mats, transform=None):
+    s.u8(mesh_id)
+    s.u8(1 if transform else 0)
+    if transform:
+        s.fs(transform)
+    s.u8(len(mats))
+    for m in mats:
+        s.u8(m)
+
+
+def light(s, kind=2, color=(10, 10, 10), position=(0, 0, 1.5), direction=(0, 0, -1), u=(0.5, 0, 0),
+          v=(0, 0.5, 0), radius=0.0, spot_angle=1.0, sun_angle=0.0):
+    s.u8(kind)
+    s.fs(color)
+    s.fs(position)
+    s.fs(direction)
+    s.fs(u)
+    s.fs(v)
+    s.u8(0)                    # area shape
+    s.f(radius)
+    s.u8(0)                    # point shape
+    s.f(spot_angle)
+    s.f(0.25)                  # spot blend
+    s.u8(0)                    # spot cosine
+    s.f(sun_angle)
+    s.u8(0)                    # camera visible
+
+
+# The camera looks down −Z from z = 5 (identity transform, shifted up).
+CAMERA_TRANSFORM = (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 5)
+BOX = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0), (-1, -1, 2), (1, -1, 2), (1, 1, 2), (-1, 1, 2)]
+BOX_TRIS = [(0, 1, 2), (0, 2, 3), (4, 6, 5), (4, 7, 6), (0, 4, 5), (0, 5, 1), (1, 5, 6), (1, 6, 2),
+            (2, 6, 7), (2, 7, 3), (3, 7, 4), (3, 4, 0)]
+
+
+def world_and_camera(s, world=None, camera=True):
+    if world is None:
+        s.u8(0)
+    else:
+        s.u8(1)
+        s.fs(world)
+    if not camera:
+        s.u8(0xFF)
+        return
+    s.u8(0)
+    s.u8(0)                    # perspective
+    s.u8(1)
+    s.fs(CAMERA_TRANSFORM)
+    s.u8(0)                    # default frame
+    s.u8(0)                    # pinhole
+    s.u8(0)                    # default clipping
+
+
+def settings(s, **overrides):
+    s.u8(len(overrides))
+    for name, value in overrides.items():
+        s.u8(SETTINGS.index(name))
+        if isinstance(value, float) or (isinstance(value, str)):
+            s.f(value)
+        else:
+            s.u32(value)
+
+
+def render_tail(s, renders):
+    """commit, then each render's settings, stage query, cache-file byte and read."""
+    s.u8(0)                    # commit
+    s.u8(len(renders) - 1)
+    for overrides, file_byte in renders:
+        settings(s, **overrides)
+        s.u8(PHOS_STAGE_COUNT)
+        s.u8(file_byte)
+        for _ in range(6):     # the fuzzed read: x, y, w, h, pass, count
+            s.u8(1)
+
+
+PHOS_STAGE_COUNT = 7
+
+
+def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camera=True,
+          renders=(({}, 0),)):
+    s = Stream()
+    s.u8(0)                    # no images
+    materials(s, mats if mats is not None else [[(0, (0.75, 0.75, 0.75))]])
+    meshes = meshes if meshes is not None else [(BOX, BOX_TRIS, None)]
+    s.u8(len(meshes))
+    for m in meshes:
+        mesh(s, *m)
+    instances = instances if instances is not None else [(0, [0])]
+    s.u8(len(instances))
+    for i in instances:
+        instance(s, *i)
+    lights = lights if lights is not None else [{}]
+    s.u8(len(lights))
+    for kw in lights:
+        light(s, **kw)
+    world_and_camera(s, world, camera)
+    render_tail(s, list(renders))
+    return bytes(s.b)
+
+
+PHOTON = {"integrator": 1}
+SEEDS = {
+    "valid_path": scene(),
+    "valid_photon": scene(renders=[(PHOTON, 0)]),
+    "valid_photon_cache_always": scene(renders=[({"irradiance_cache": 2, "ic_rays": 16}, 0)]),
+    "world_light_photon": scene(world=(0.2, 0.2, 0.2), renders=[(PHOTON, 0)]),
+    "valid_two_renders": scene(renders=[(PHOTON, 0), ({"photon_view": 2, **PHOTON}, 0)]),
+    "glass_and_mirror": scene(mats=[[(0, (0.75, 0.75, 0.75))], [(5, (1, 1, 1), 0.0, 1.5)],
+                                    [(2, (1, 1, 1), 0.0, 1.5)]],
+                              instances=[(0, [0, 1, 2])],
+                              meshes=[(BOX, BOX_TRIS, [0, 0, 1, 1, 2, 2, 0, 0, 0, 0, 0, 0])],
+                              renders=[(PHOTON, 0)]),
+    "nan_vertex": scene(meshes=[([(0, 0, 0), ("nan", 0, 0), (0, 1, 0)], [(0, 1, 2)], None),
+                                (BOX, BOX_TRIS, None)], instances=[(1, [0]), (0, [0])]),
+    "inf_and_huge_vertices": scene(meshes=[([(0, 0, 0), ("inf", 0, 0), (0, 1e30, 0), (1e38, 1e38, 1e38)],
+                                            [(0, 1, 2), (0, 2, 3)], None)], instances=[(0, [0])]),
+    "degenerate_triangles": scene(meshes=[([(0, 0, 0), (0, 0, 0), (0, 0, 0), (1, 0, 0), (2, 0, 0)],
+                                           [(0, 1, 2), (0, 3, 4), (1, 1, 1)], None)], renders=[(PHOTON, 0)]),
+    "bad_indices": scene(meshes=[([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 4)], None)]),
+    "bad_material_ids": scene(instances=[(0, [3, 4])]),
+    "bad_material_slots": scene(meshes=[(BOX, BOX_TRIS, [5] * 12)], renders=[(PHOTON, 0)]),
+    "bad_mesh_id": scene(instances=[(4, [0])]),
+    "empty_mesh": scene(meshes=[([], [], None)], renders=[(PHOTON, 0)]),
+    "no_geometry": scene(meshes=[], instances=[], renders=[(PHOTON, 0)]),
+    "zero_light_power": scene(lights=[{"color": (0, 0, 0)}], renders=[(PHOTON, 0)]),
+    "negative_light_power": scene(lights=[{"color": (-10, 10, 10)}]),
+    "no_lights_photon": scene(lights=[], renders=[(PHOTON, 0)]),
+    "point_spot_sun_lights": scene(lights=[{"kind": 0, "radius": 0.1}, {"kind": 1, "spot_angle": 0.5},
+                                           {"kind": 3, "sun_angle": 0.1}], renders=[(PHOTON, 0)]),
+    "no_camera": scene(camera=False),
+    "photons_zero": scene(renders=[({"global_photons": 0, "caustic_photons": 0, **PHOTON}, 0)]),
+    "photons_2_31": scene(renders=[({"global_photons": 1 << 31, **PHOTON}, 0)]),
+    "photons_2_28": scene(renders=[({"global_photons": 1 << 28, "caustic_photons": 1 << 28, **PHOTON}, 0)]),
+    "k_zero": scene(renders=[({"global_estimate_photons": 0, "caustic_estimate_photons": 0, **PHOTON}, 0)]),
+    "radius_zero_and_negative": scene(renders=[({"max_radius": -1.0, **PHOTON}, 0), ({"max_radius": 1e-30,
+                                                                                       **PHOTON}, 0)]),
+    "resolution_0x0": scene(renders=[({"width": 0, "height": 0}, 0)]),
+    "resolution_1x1": scene(renders=[({"width": 1, "height": 1, **PHOTON}, 0)]),
+    "resolution_huge": scene(renders=[({"width": 65536, "height": 65536, "pass_mask": 1023}, 0)]),
+    "samples_absurd": scene(renders=[({"samples": 1 << 31}, 0), ({"samples": 1 << 24, "width": 1,
+                                                                  "height": 1}, 0)]),
+    "region_outside": scene(renders=[({"region_x": 7, "region_y": 7, "region_width": 2,
+                                       "region_height": 2}, 0)]),
+    "settings_nan": scene(renders=[({"filter_width": "nan", "ic_accuracy": "inf"}, 0)]),
+    "cache_file_garbage": scene(renders=[({"irradiance_cache": 2}, 1 | (2 << 1) | (0 << 3))]) + b"PHOSIRC\0garbage",
+    "photon_file_garbage": scene(renders=[(PHOTON, 1 | (2 << 1) | (1 << 3))]) + b"PHOSPMF\0\x01\x00",
+}
+
+
+def main():
+    out = os.path.join(HERE, "corpus")
+    os.makedirs(out, exist_ok=True)
+    for name, data in SEEDS.items():
+        with open(os.path.join(out, name), "wb") as f:
+            f.write(data)
+    print("wrote %d seeds to %s" % (len(SEEDS), out))
+
+
+if __name__ == "__main__":
+    main()
