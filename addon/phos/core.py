@@ -34,6 +34,9 @@ import numpy as np
 from .phos_h import *  # noqa: F401,F403
 from .phos_h import FUNCTIONS, STRUCTS
 
+# How often a commit running on its worker thread asks whether to stop (s).
+COMMIT_POLL_SECONDS = 0.05
+
 # The library version this add-on was written against: major and minor must
 # match exactly (phos.h: "The add-on refuses a library whose major or minor
 # differs from its own").
@@ -80,14 +83,25 @@ def _bind(lib):
         fn.argtypes = argtypes
 
 
-def _check(lib):
-    """Refuse a library whose version or struct layouts differ from this binding:
-    the size of every struct, and the offset and size of every field."""
-    v = lib.phos_version()
+def _check_version(lib):
+    """Refuse a library of another major.minor version. Asked before the
+    functions are bound: another version may lack some, and its version
+    is the clearer message."""
+    try:
+        version = lib.phos_version
+    except AttributeError:
+        raise PhosError("the library has no function phos_version() (not a Phos library?)")
+    version.restype, version.argtypes = ctypes.c_uint32, []
+    v = version()
     major, minor, patch = (v >> 16) & 0xFFFF, (v >> 8) & 0xFF, v & 0xFF
     if (major, minor) != EXPECTED_VERSION:
         raise PhosError("library version %d.%d.%d, but this add-on needs %d.%d.x"
                         % (major, minor, patch, EXPECTED_VERSION[0], EXPECTED_VERSION[1]))
+
+
+def _check(lib):
+    """Refuse a library whose struct layouts differ from this binding:
+    the size of every struct, and the offset and size of every field."""
     stale = "the library was built from a different phos.h"
     for struct in STRUCTS:
         name = struct.__name__
@@ -127,6 +141,7 @@ def load():
                 lib = ctypes.CDLL(path)
             except OSError as ex:
                 raise PhosError("cannot load %s: %s" % (path, ex))
+            _check_version(lib)
             _bind(lib)
             _check(lib)
         except PhosError as ex:
@@ -374,8 +389,41 @@ class Scene(_Handle):
         self._raise_on(self._lib.phos_scene_set_camera(self.handle, ctypes.byref(desc)),
                        "setting the camera")
 
-    def commit(self):
-        self._raise_on(self._lib.phos_scene_commit(self.handle), "building the scene")
+    def commit(self, cancelled=None):
+        """Build the BVH and light tables; False if `cancelled` stopped it.
+
+        A large scene's BVH takes seconds. With `cancelled` (a callable,
+        the engine's test_break), the build runs on a worker thread (ctypes
+        releases the GIL for the call) while this thread asks `cancelled`
+        every COMMIT_POLL_SECONDS and, when it says so, calls
+        phos_scene_cancel: the core then returns within a fraction of a
+        second (tests/c/test_cancel.c measures it), which bounds the join.
+        """
+        if cancelled is None:
+            self._raise_on(self._lib.phos_scene_commit(self.handle), "building the scene")
+            return True
+        result = {}
+
+        def build():
+            result["status"] = self._lib.phos_scene_commit(self.handle)
+
+        worker = threading.Thread(target=build, name="phos-commit", daemon=True)
+        worker.start()
+        asked = False
+        while worker.is_alive():
+            worker.join(COMMIT_POLL_SECONDS)
+            if worker.is_alive() and not asked and cancelled():
+                self._lib.phos_scene_cancel(self.handle)
+                asked = True
+        status = result.get("status", PHOS_ERROR_INTERNAL)
+        if status == PHOS_ERROR_CANCELLED:
+            return False
+        self._raise_on(status, "building the scene")
+        return True
+
+    def cancel(self):
+        """Stop a commit running on another thread (phos_scene_cancel)."""
+        self._lib.phos_scene_cancel(self.handle)
 
 
 # ------------------------------------------------------------------- render

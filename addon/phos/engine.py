@@ -203,7 +203,8 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             if self.test_break():
                 return
             self._stats("Phos | Building acceleration structures", force=True)
-            core_scene.commit()
+            if not core_scene.commit(cancelled=self.test_break):
+                return
             if not self.is_preview:
                 s = ctx.stats
                 print("Phos: exported %d instances of %d meshes (%d triangles), %d lights, "
@@ -262,7 +263,10 @@ class PhosRenderEngine(bpy.types.RenderEngine):
                 cancelled = True
             time.sleep(POLL_SECONDS)
 
-        # Tiles that finished between the last poll and the end.
+        # Tiles that finished between the last poll and the end. The state is
+        # final here, so this wait only joins workers that are done; the loop
+        # above ends because the core reaches a final state, and after a
+        # cancel it does so within 0.5 s (tests/blender/test_cancel.py).
         status = render.wait(-1.0)
         while True:
             tile = render.next_tile()

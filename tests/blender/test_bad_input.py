@@ -12,6 +12,9 @@ result). Expected outcomes:
 """
 
 import os
+import re
+import shutil
+import subprocess
 
 import numpy as np
 import pytest
@@ -72,19 +75,45 @@ def assert_rendered(rc, out, image):
 
 # ------------------------------------------------------------ fatal input
 
-def test_nan_vertex_is_a_clear_error(tmp_path):
-    code = r'''
-ob = pt.add_cube(sc, "Broken Cube", location=(0, 0, 0.5))
-ob.data.vertices[3].co = (float("nan"), 0.0, 0.0)
-'''
-    rc, out, image = build_and_render(tmp_path, code)
+def test_no_camera_is_a_clear_error(tmp_path):
+    rc, out, image = build_and_render(tmp_path, r'''
+cam = sc.camera
+sc.camera = None
+bpy.data.objects.remove(cam)
+''')
     assert_no_crash(rc, out)
     errors = error_lines(out)
-    assert rc == 1 and errors, "a NaN vertex must be an ERROR report (exit code 1):\n" + out[-3000:]
-    text = " ".join(errors).lower()
-    assert "nan" in text or "finite" in text, errors
-    assert "broken cube" in text, "the error should name the object: %s" % errors
-    assert "Traceback" not in out, "an error report, not a Python traceback:\n" + out[-3000:]
+    # Blender refuses a frame without a camera before the engine runs
+    # ("No camera found in scene"); Phos says the same if it gets there.
+    assert rc == 1 and errors and any("camera" in e.lower() for e in errors), out[-3000:]
+    assert "Traceback" not in out, out[-3000:]
+
+
+def _fake_library(tmp_path, major, minor):
+    """A libphos.so that exports only phos_version(), returning major.minor.0."""
+    gcc = shutil.which("gcc") or shutil.which("cc")
+    if gcc is None:
+        pytest.skip("no C compiler to build the fake library")
+    src = os.path.join(str(tmp_path), "fake.c")
+    lib = os.path.join(str(tmp_path), "fake", "libphos.so")
+    os.makedirs(os.path.dirname(lib))
+    with open(src, "w") as f:
+        f.write("unsigned int phos_version(void) { return (%du << 16) | (%du << 8); }\n" % (major, minor))
+    subprocess.run([gcc, "-shared", "-fPIC", "-o", lib, src], check=True)
+    return lib
+
+
+def test_library_of_another_version_is_a_clear_error(tmp_path):
+    from phos import core
+    major, minor = core.EXPECTED_VERSION
+    lib = _fake_library(tmp_path, major, minor + 1)
+    rc, out, image = build_and_render(tmp_path, "", env={"PHOS_LIBRARY": lib})
+    assert_no_crash(rc, out)
+    errors = error_lines(out)
+    assert rc == 1 and errors, out[-3000:]
+    wanted = ("library version %d.%d.0" % (major, minor + 1), "needs %d.%d.x" % (major, minor))
+    assert any(all(w in e for w in wanted) for e in errors), (
+        "the error should name both versions %s: %s" % (wanted, errors))
 
 
 def test_missing_library_is_a_clear_error(tmp_path):
@@ -155,6 +184,136 @@ pt.add_sphere(sc, "Ghost Sphere", location=(0, 0, 0.5), material=mat)
     assert_rendered(rc, out, image)
     assert any("Ghost" in w for w in warning_lines(out)), (
         "a missing image should be a warning naming it:\n" + out[-3000:])
+
+
+NON_FINITE_VERTEX = r'''
+import numpy as np
+ob = pt.add_cube(sc, "Broken Cube", location=(0, 0, 0.5))
+co = np.empty(len(ob.data.vertices) * 3, np.float32)
+ob.data.vertices.foreach_get("co", co)
+co[9:12] = (VALUE, 0.0, 0.0)       # vertex 3 (through foreach_set: `.co =` clamps ±inf)
+ob.data.vertices.foreach_set("co", co)
+ob.data.update()
+pt.add_sphere(sc, "Fine", location=(1.2, 0, 0.5))
+'''
+
+
+@pytest.mark.parametrize("value", ["nan", "inf"])
+def test_non_finite_vertex_skips_its_triangles(value, tmp_path):
+    """A mesh with a NaN or Inf vertex: the triangles that use it are
+    skipped (Cycles renders the rest too), one warning names the object and
+    the count, and the frame renders."""
+    rc, out, image = build_and_render(tmp_path, NON_FINITE_VERTEX.replace(
+        "VALUE", "float(%r)" % value))
+    assert_no_crash(rc, out)
+    px = assert_rendered(rc, out, image)
+    ours = [w for w in warning_lines(out) if "Broken Cube" in w]
+    assert len(ours) == 1, "one warning naming the object:\n" + out[-3000:]
+    assert re.search(r"\b[3-6] triangles with non-finite \(NaN/Inf\) vertices", ours[0]), ours[0]
+    assert px[..., :3].max() > 0.0
+
+
+def test_degenerate_triangles_warn_and_render(tmp_path):
+    rc, out, image = build_and_render(tmp_path, r'''
+me = bpy.data.meshes.new("Slivers")
+me.from_pydata([(0, 0, 1), (0, 0, 1), (0, 0, 1), (1, 0, 1), (2, 0, 1), (0, 0, 2), (1, 0, 2), (0, 1, 2)],
+               [], [(0, 1, 2), (0, 3, 4), (5, 6, 7)])
+sc.collection.objects.link(bpy.data.objects.new("Slivers", me))
+''')
+    assert_no_crash(rc, out)
+    assert_rendered(rc, out, image)
+    ours = [w for w in warning_lines(out) if "Slivers" in w]
+    assert ours == ["Warning: Phos: object 'Slivers': 2 degenerate triangles skipped"], out[-3000:]
+
+
+def test_empty_scene_warns_and_renders_the_world(tmp_path):
+    rc, out, image = build_and_render(tmp_path, r'''
+for ob in list(sc.objects):
+    if ob.type != "CAMERA":
+        bpy.data.objects.remove(ob)
+''')
+    assert_no_crash(rc, out)
+    px = assert_rendered(rc, out, image)
+    assert any("no objects or lights" in w for w in warning_lines(out)), out[-3000:]
+    assert np.allclose(px[..., :3], 0.2, atol=1e-4)
+
+
+@pytest.mark.parametrize("integrator", ["PHOTON", "PATH"])
+def test_no_light_source_warns_and_renders_black(integrator, tmp_path):
+    """Objects but no light, no emission and a black world: the core renders
+    black (PHOTON with empty photon maps); Phos says why."""
+    rc, out, image = build_and_render(tmp_path, r'''
+for ob in list(sc.objects):
+    if ob.type == "LIGHT":
+        bpy.data.objects.remove(ob)
+pt.set_world(sc, (0.0, 0.0, 0.0))
+pt.add_sphere(sc, "Ball", location=(0, 0, 0.5))
+sc.phos.integrator = "%s"
+''' % integrator)
+    assert_no_crash(rc, out)
+    px = assert_rendered(rc, out, image)
+    ours = [w for w in warning_lines(out) if "no light source" in w]
+    assert len(ours) == 1, out[-3000:]
+    if integrator == "PHOTON":
+        assert "no photons can be emitted" in ours[0] and "photon maps are empty" in ours[0], ours[0]
+    assert np.all(px[..., :3] == 0.0)
+
+
+def test_node_tree_with_a_cycle_warns_and_renders(tmp_path):
+    """Mix Shader → Mix Shader → back: Blender marks the link that closes the
+    cycle invalid; the export ignores it (as Cycles does) and names the material."""
+    rc, out, image = build_and_render(tmp_path, r'''
+mat = bpy.data.materials.new("Loop Material")
+mat.use_nodes = True
+nt = mat.node_tree
+nt.nodes.clear()
+out = nt.nodes.new("ShaderNodeOutputMaterial")
+m1, m2 = nt.nodes.new("ShaderNodeMixShader"), nt.nodes.new("ShaderNodeMixShader")
+d = nt.nodes.new("ShaderNodeBsdfDiffuse")
+nt.links.new(m1.outputs[0], out.inputs["Surface"])
+nt.links.new(m2.outputs[0], m1.inputs[1])
+nt.links.new(d.outputs[0], m1.inputs[2])
+nt.links.new(m1.outputs[0], m2.inputs[1])   # closes the cycle
+pt.add_sphere(sc, "Looped", location=(0, 0, 0.5), material=mat)
+''')
+    assert_no_crash(rc, out)
+    assert_rendered(rc, out, image)
+    ours = [w for w in warning_lines(out) if "Loop Material" in w]
+    assert ours and any("cycle" in w for w in ours), out[-3000:]
+
+
+def test_unsupported_node_warns_with_its_type_and_renders(tmp_path):
+    rc, out, image = build_and_render(tmp_path, r'''
+mat = pt.node_material("Toon Material", "ShaderNodeBsdfToon", {"Color": (0.2, 0.6, 0.2)})
+mat.node_tree.nodes["Toon BSDF"].name = "Cel Shading"
+pt.add_sphere(sc, "Toon Ball", location=(0, 0, 0.5), material=mat)
+''')
+    assert_no_crash(rc, out)
+    px = assert_rendered(rc, out, image)
+    ours = [w for w in warning_lines(out) if "Toon Material" in w]
+    assert len(ours) == 1, out[-3000:]
+    assert "'Cel Shading' (Toon BSDF) is not supported" in ours[0] and "diffuse" in ours[0], ours[0]
+    # The fallback, a diffuse of the node's colour, is lit: the ball is green.
+    r, g, b = px[6:12, 9:15, :3].reshape(-1, 3).mean(axis=0)
+    assert g > r and g > b, (r, g, b)
+
+
+@pytest.mark.parametrize("crop", [False, True])
+def test_zero_area_border(crop, tmp_path):
+    """A border with min == max: Blender itself refuses the frame ("Image too
+    small", for Cycles too) before the engine runs. No crash, an error."""
+    rc, out, image = build_and_render(tmp_path, r'''
+r = sc.render
+r.use_border, r.use_crop_to_border = True, %r
+r.border_min_x = r.border_max_x = 0.5
+r.border_min_y = r.border_max_y = 0.5
+''' % crop)
+    assert_no_crash(rc, out)
+    if os.path.isfile(image):  # a Blender that renders it must give finite pixels
+        assert np.all(np.isfinite(pt.load_image_array(image)))
+    else:
+        assert error_lines(out), out[-3000:]
+    assert "Traceback" not in out, out[-3000:]
 
 
 # ------------------------------------------------------ harmless oddities

@@ -599,6 +599,7 @@ def test_unsupported_node_warns_once_in_export(scene):
     mat = pt.node_material("Cartoon Paint", "ShaderNodeBsdfToon", {"Color": (0.2, 0.6, 0.2)})
     pt.add_sphere(scene, "A", material=mat, location=(-0.6, 0, 0))
     pt.add_sphere(scene, "B", material=mat, location=(0.6, 0, 0))
+    pt.add_light(scene, "SUN", 3.0)  # else the scene's lack of light is a warning too
     warnings = export(scene).warnings
     assert len(warnings) == 1, warnings
     assert "Cartoon Paint" in warnings[0] and "Toon BSDF" in warnings[0]

@@ -27,16 +27,31 @@ def _check_render_settings(ctx):
         ctx.warn("Phos: stereoscopy / multi-view is not supported; only the first view is rendered")
 
 
+def _check_contents(ctx):
+    """Say so when nothing but the world can show up, or nothing gives light."""
+    s = ctx.stats
+    if s["instances"] == 0 and s["lights"] == 0:
+        ctx.warn("Phos: the scene has no objects or lights to render; the image shows only the world")
+    elif s["lights"] == 0 and s["emissive_materials"] == 0 and not ctx.world_emits:
+        photon = getattr(ctx.scene.phos, "integrator", None) == 'PHOTON'
+        ctx.warn("Phos: the scene has no light source (no lights, no emissive materials, a black "
+                 "world): %sthe image is black" % (
+                     "no photons can be emitted, the photon maps are empty and " if photon else ""))
+
+
 def export_scene(depsgraph, core_scene, camera_object, camera_matrix, is_preview=False,
                  progress=None, cancelled=None):
     """Fill `core_scene` (a core.Scene, not yet committed) from an evaluated depsgraph.
 
     Returns the ExportContext, whose `warnings` and `stats` the engine
-    reports. Raises core.PhosError if the core rejects something.
+    reports (`cancelled` is True when `cancelled()` stopped the export).
+    Raises core.PhosError if the core rejects something.
     """
     ctx = ExportContext(depsgraph.scene, core_scene, is_preview)
     _check_render_settings(ctx)
     camera.export_camera(camera_object, camera_matrix, ctx)
     world.export_world(ctx)
-    instances.export_instances(depsgraph, ctx, progress, cancelled)
+    ctx.cancelled = not instances.export_instances(depsgraph, ctx, progress, cancelled)
+    if not ctx.cancelled:
+        _check_contents(ctx)
     return ctx

@@ -16,6 +16,7 @@ class ExportContext:
         self.scene = scene                  # evaluated bpy.types.Scene
         self.core = core_scene              # core.Scene being filled
         self.is_preview = is_preview
+        self.cancelled = False              # set when the export was stopped early
         self.version = tuple(bpy.app.version)
         self._warnings = {}                 # message → None, ordered and deduplicated
         # Caches: Blender datablock → core id, so each is added once per frame.
@@ -24,8 +25,9 @@ class ExportContext:
         self.images = {}                    # (image pointer, interpolation, extension) → image id or None
         self.image_pixels = {}              # image pointer → (pixels, width, height) or None
         self.default_material = None        # id of the grey default, added on first use
+        self.world_emits = False            # the world's colour is not black
         self.stats = {"objects": 0, "instances": 0, "meshes": 0, "triangles": 0,
-                      "lights": 0, "materials": 0, "images": 0}
+                      "lights": 0, "materials": 0, "images": 0, "emissive_materials": 0}
 
     def at_least(self, major, minor=0):
         """True when the running Blender is version major.minor or later."""

@@ -15,10 +15,21 @@ while an object with modifiers gets its own evaluated mesh, so the key
 tells them apart without comparing modifier stacks.
 """
 
+import time
+
 import numpy as np
 
 from .. import core
 from . import light, material, mesh
+
+# How often (wall time, s) the export asks `cancelled` and reports progress.
+# Counted over every depsgraph instance, not over objects: one object can
+# scatter 10^5 geometry-nodes or particle instances, and an export that
+# asked once per 16 objects could not be cancelled at all there. A clock
+# read per instance costs ~0.1 µs against the several µs the instance
+# itself takes, so cancel returns within about CANCEL_CHECK_SECONDS plus
+# one instance (a single huge mesh conversion cannot be interrupted).
+CANCEL_CHECK_SECONDS = 0.02
 
 # Object types whose geometry arrives as a MESH instance, or that do not render.
 _SILENT_TYPES = {'CURVE', 'FONT', 'SURFACE', 'META', 'EMPTY', 'CAMERA', 'ARMATURE',
@@ -51,22 +62,31 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
     """Add every visible mesh and light instance of the depsgraph.
 
     `progress(done, total)` is called now and then with the number of
-    objects handled; `cancelled()` returning True stops the export early.
+    objects handled; `cancelled()` returning True stops the export early
+    (both at most every CANCEL_CHECK_SECONDS). Returns False when cancelled.
     """
     total = len(depsgraph.objects)
     done = 0
     material_lists = {}  # (object, mesh) → material ids: instances share them
+    clock = time.monotonic
+    next_check = clock() + CANCEL_CHECK_SECONDS
     for inst in depsgraph.object_instances:
+        if clock() >= next_check:
+            if progress is not None:
+                progress(done, total)
+            if cancelled is not None and cancelled():
+                return False
+            next_check = clock() + CANCEL_CHECK_SECONDS
         ob = inst.object
         if not inst.is_instance:
             done += 1
-            if progress is not None and done % 16 == 0:
-                progress(done, total)
-                if cancelled is not None and cancelled():
-                    return
         kind = ob.type
         if kind == 'LIGHT':
-            light.add_light(ob, np.array(inst.matrix_world, dtype=np.float64), ctx)
+            matrix = np.array(inst.matrix_world, dtype=np.float64)
+            if np.isfinite(matrix).all():
+                light.add_light(ob, matrix, ctx)
+            else:
+                ctx.warn("Phos: light '%s': its transform is not finite (NaN/Inf); skipped" % ob.name)
             continue
         if kind != 'MESH':
             if kind not in _SILENT_TYPES:
@@ -78,6 +98,9 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
         if not inst.show_self:
             continue  # an emitter whose particles render but not itself
         matrix = np.array(inst.matrix_world, dtype=np.float64)
+        if not np.isfinite(matrix).all():
+            ctx.warn("Phos: object '%s': its transform is not finite (NaN/Inf); skipped" % ob.name)
+            continue
 
         key = ob.data.as_pointer()
         if key not in ctx.meshes:
@@ -98,3 +121,4 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
     ctx.stats["objects"] = total
     if progress is not None:
         progress(total, total)
+    return True

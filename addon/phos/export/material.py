@@ -206,11 +206,19 @@ class NodeTreeWalker:
         self.glass_fresnel = (core.PHOS_GLASS_FRESNEL_MICROFACET if ctx.at_least(4, 0)
                               else core.PHOS_GLASS_FRESNEL_MACRO)
         self.stack = ()  # group nodes around the node being translated
+        # Shader nodes being translated, with their group stack: a node met
+        # again while its own inputs are read is a cycle. Blender marks the
+        # link that closes a cycle invalid as soon as it is made (3.4, also
+        # from Python) and _first_link skips it, so this only guards against
+        # a tree Blender has not validated: the walk must end whatever the
+        # tree, never recurse until Python's stack overflows.
+        self._active = set()
 
     # -------------------------------------------------------------- warnings
 
     def unsupported(self, node, consequence="using its default input"):
-        self.ctx.warn("Phos: %s: node '%s' is not supported; %s" % (self.owner, node.name, consequence))
+        self.ctx.warn("Phos: %s: node '%s'%s is not supported; %s"
+                      % (self.owner, node.name, _node_type(node), consequence))
 
     def note(self, node, what):
         self.ctx.warn("Phos: %s: node '%s': %s" % (self.owner, node.name, what))
@@ -327,11 +335,18 @@ class NodeTreeWalker:
         return self.node_closures(src.node, src.output, src.stack)
 
     def node_closures(self, node, output, stack):
+        key = (node.as_pointer(),) + tuple(group.as_pointer() for group in stack)
+        if key in self._active:
+            self.ctx.warn("Phos: %s: the node tree has a cycle through node '%s'; "
+                          "the cycle is cut there (renders black)" % (self.owner, node.name))
+            return []
         handler = _HANDLERS.get(node.bl_idname, NodeTreeWalker._fallback_handler)
         outer, self.stack = self.stack, stack
+        self._active.add(key)
         try:
             return handler(self, node, stack)
         finally:
+            self._active.discard(key)
             self.stack = outer
 
     def _fallback_handler(self, node, stack):
@@ -466,6 +481,12 @@ class NodeTreeWalker:
         if self.world:
             return self._fallback(node)
         return principled(self, node)
+
+
+def _node_type(node):
+    """" (Toon BSDF)": the node's type, when its name does not already say it."""
+    label = getattr(node, "bl_label", "") or node.bl_idname
+    return "" if node.name == label else " (%s)" % label
 
 
 def _pretty(identifier):
@@ -670,6 +691,13 @@ def material_closures(mat, ctx):
     if out is None:
         ctx.warn("Phos: %s has no Material Output node; it renders black" % owner)
         return []
+    for link in mat.node_tree.links:
+        if not link.is_valid:
+            # Blender marks a link that closes a cycle (or joins sockets that
+            # cannot be joined) invalid and draws it red; Cycles ignores it.
+            ctx.warn("Phos: %s: the link from node '%s' to node '%s' is invalid (it closes a "
+                     "cycle or joins incompatible sockets); ignored" % (
+                         owner, link.from_node.name, link.to_node.name))
     walker = NodeTreeWalker(ctx, owner)
     closures = walker.closures(out.inputs['Surface'])
     for name in ('Volume', 'Displacement'):
@@ -698,6 +726,8 @@ def add_material(mat, ctx):
         raise core.PhosError("material '%s': %s" % (mat.name, ex), ex.status) from None
     ctx.materials[key] = mat_id
     ctx.stats["materials"] += 1
+    if any(c.type == core.PHOS_CLOSURE_EMISSION for c in closures):
+        ctx.stats["emissive_materials"] += 1
     return mat_id
 
 

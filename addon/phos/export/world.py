@@ -38,5 +38,7 @@ def world_color(world, ctx):
 
 def export_world(ctx):
     desc = core.new_world()
-    desc.color[:] = [float(c) for c in world_color(ctx.scene.world, ctx)]
+    color = world_color(ctx.scene.world, ctx)
+    ctx.world_emits = bool(np.any(color > 0.0))
+    desc.color[:] = [float(c) for c in color]
     ctx.core.set_world(desc)
