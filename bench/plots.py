@@ -119,9 +119,12 @@ def plot_scaling(rows, photon_rows, out_dir):
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.8))
     if rows:
         for engine, colour in (("PHOS", COLOURS["PATH"]), ("CYCLES", COLOURS["CYCLES"])):
-            pts = sorted((num(r, "triangles"), num(r, "sync_seconds")) for r in rows if r["engine"] == engine)
-            if pts:
-                axes[0].loglog(*zip(*pts), "o-", color=colour, label="%s export + BVH" % engine.title())
+            for shading, style in (("flat", "o-"), ("smooth", "s--")):
+                pts = sorted((num(r, "triangles"), num(r, "sync_seconds")) for r in rows
+                             if r["engine"] == engine and r.get("shading", "flat") == shading)
+                if pts:
+                    axes[0].loglog(*zip(*pts), style, color=colour,
+                                   label="%s export + BVH, %s" % (engine.title(), shading))
         axes[0].set_xlabel("triangles")
         axes[0].set_ylabel("seconds")
         axes[0].legend()

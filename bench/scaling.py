@@ -6,7 +6,9 @@ process (`make bench`; docs/benchmarks.md).
 
 The scene: a rippled grid of N triangles (a bmesh grid with a sine
 displacement, so the BVH is not trivially flat) under a sun, seen from
-above. Per engine and size:
+above, shaded flat and shaded smooth (most production meshes are smooth;
+their vertex normals cost the export more, docs/reliability.md). Per
+engine, shading and size:
 
 - sync_seconds: Phos's export and BVH build (the add-on's "export"
   stage); Cycles' time to its first sample, the render time of 1 sample
@@ -55,7 +57,7 @@ def reset_peak():
         return False
 
 
-def build(triangles):
+def build(triangles, smooth=False):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     side = max(2, int(math.sqrt(triangles / 2.0)))
@@ -66,6 +68,8 @@ def build(triangles):
     mesh = bpy.data.meshes.new("Grid")
     bm.to_mesh(mesh)
     bm.free()
+    if smooth:
+        mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
     ob = bpy.data.objects.new("Grid", mesh)
     scene.collection.objects.link(ob)
     sun = bpy.data.lights.new("Sun", "SUN")
@@ -121,11 +125,12 @@ def measure(scene, engine, samples):
 def main():
     p = argparse.ArgumentParser(prog="scaling.py")
     p.add_argument("--triangles", type=int, nargs="+", default=[10000, 100000, 1000000, 5000000])
+    p.add_argument("--shading", nargs="+", choices=("flat", "smooth"), default=["flat", "smooth"])
     p.add_argument("--csv", default=os.path.join(REPO_DIR, "out", "bench", "scaling.csv"))
     args = p.parse_args(_common.script_argv())
     rows = []
-    for n in args.triangles:
-        scene, count = build(n)
+    for n, shading in [(n, sh) for n in args.triangles for sh in args.shading]:
+        scene, count = build(n, smooth=shading == "smooth")
         for engine in ("PHOS", "CYCLES"):
             one, peak = measure(scene, engine, 1)
             phos_one = dict(phos_stage_seconds())
@@ -142,7 +147,7 @@ def main():
                 per_sample = max(nine - one, 0.0) / 8.0
                 sync = one - per_sample
             peak = max(peak, peak9)
-            row = {"engine": engine, "triangles": count, "sync_seconds": round(sync, 4),
+            row = {"engine": engine, "shading": shading, "triangles": count, "sync_seconds": round(sync, 4),
                    "seconds_per_sample": round(per_sample, 5), "peak_bytes": peak,
                    "bytes_per_triangle": round(peak / count, 1) if peak > 0 else ""}
             log(" ".join("%s=%s" % kv for kv in row.items()))

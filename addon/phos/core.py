@@ -426,6 +426,28 @@ class Scene(_Handle):
         self._lib.phos_scene_cancel(self.handle)
 
 
+def vertex_normals(positions, loop_starts, loop_totals, polygon_normals, loop_vertices):
+    """Angle-weighted vertex normals (V*3 float32) of a polygon mesh, the
+    same for the same input (phos_vertex_normals): positions V*3, per
+    polygon its first loop, corner count and unit normal (P*3), and each
+    loop's vertex. Raises PhosError for an invalid mesh."""
+    pos = np.ascontiguousarray(positions, dtype=np.float32).reshape(-1)
+    starts = np.ascontiguousarray(loop_starts, dtype=np.uint32).reshape(-1)
+    totals = np.ascontiguousarray(loop_totals, dtype=np.uint32).reshape(-1)
+    normals = np.ascontiguousarray(polygon_normals, dtype=np.float32).reshape(-1)
+    loops = np.ascontiguousarray(loop_vertices, dtype=np.uint32).reshape(-1)
+    if pos.size % 3 or starts.size != totals.size or normals.size != 3 * starts.size:
+        raise PhosError("vertex normals: arrays of mismatched sizes", PHOS_ERROR_INVALID_ARGUMENT)
+    out = np.empty(pos.size, dtype=np.float32)
+    status = lib().phos_vertex_normals(pos.size // 3, _ptr(pos, ctypes.c_float), starts.size,
+                                       _ptr(starts, ctypes.c_uint32), _ptr(totals, ctypes.c_uint32),
+                                       _ptr(normals, ctypes.c_float), loops.size,
+                                       _ptr(loops, ctypes.c_uint32), _ptr(out, ctypes.c_float))
+    if status != PHOS_OK:
+        raise PhosError("vertex normals: %s" % _decode(lib().phos_status_string(status)), status)
+    return out
+
+
 # ------------------------------------------------------------------- render
 
 class Render(_Handle):

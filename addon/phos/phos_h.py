@@ -346,6 +346,7 @@ FUNCTIONS = {
     "phos_scene_add_material": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_material_desc), ctypes.POINTER(ctypes.c_uint32)]),
     "phos_mesh_desc_init": (None, [ctypes.POINTER(phos_mesh_desc)]),
     "phos_scene_add_mesh": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_mesh_desc), ctypes.POINTER(ctypes.c_uint32)]),
+    "phos_vertex_normals": (ctypes.c_int, [ctypes.c_uint32, ctypes.POINTER(ctypes.c_float), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint32), ctypes.POINTER(ctypes.c_uint32), ctypes.POINTER(ctypes.c_float), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint32), ctypes.POINTER(ctypes.c_float)]),
     "phos_instance_desc_init": (None, [ctypes.POINTER(phos_instance_desc)]),
     "phos_scene_add_instance": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_instance_desc), ctypes.POINTER(ctypes.c_uint32)]),
     "phos_light_desc_init": (None, [ctypes.POINTER(phos_light_desc)]),

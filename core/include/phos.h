@@ -160,6 +160,24 @@ PHOS_API void phos_mesh_desc_init(phos_mesh_desc *desc);
 PHOS_API phos_status phos_scene_add_mesh(phos_scene *scene, const phos_mesh_desc *desc,
                                          uint32_t *out_mesh_id);
 
+/* Angle-weighted vertex normals of a polygon mesh (Thürmer & Wüthrich
+ * 1998): each vertex sums the normals of the polygons around it, each
+ * weighted by the polygon's angle at the vertex, in polygon order and in
+ * double precision, so the result depends only on the input. Blender 3.4
+ * computes the same sum with atomic adds on several threads, whose order,
+ * and so the last bits of every smooth normal, change from one evaluation
+ * to the next; the add-on takes these instead (docs/reliability.md).
+ * Polygon i has loop_totals[i] >= 3 corners, loop_vertices[loop_starts[i]
+ * ...], and the unit normal polygon_normals[3i..3i+2]; out_normals gets
+ * vertex_count*3 floats (0,0,0 for a vertex no polygon uses, or whose
+ * polygons' weighted normals cancel). PHOS_ERROR_INVALID_ARGUMENT for
+ * NULL arrays, a corner outside loop_count or a vertex outside
+ * vertex_count; non-finite positions give non-finite normals there. */
+PHOS_API phos_status phos_vertex_normals(uint32_t vertex_count, const float *positions, uint32_t polygon_count,
+                                         const uint32_t *loop_starts, const uint32_t *loop_totals,
+                                         const float *polygon_normals, uint32_t loop_count,
+                                         const uint32_t *loop_vertices, float *out_normals);
+
 /* A placement of a mesh. Instances of one mesh share its acceleration
  * structure. Slot i of the mesh renders with materials[i]; a slot beyond
  * material_count renders with the default grey material. */

@@ -492,6 +492,45 @@ static void test_empty_scene_renders_world(void)
     phos_scene_destroy(s);
 }
 
+/* Angle-weighted vertex normals: a cube's corners point along the
+ * diagonals (three right angles of three faces); a vertex on a flat grid
+ * of quads and triangles has the plane's normal; bad input is refused. */
+static void test_vertex_normals(void)
+{
+    const float pos[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    const uint32_t loops[24] = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
+    const float face_n[6][3] = {{0, 0, -1}, {0, 0, 1}, {0, -1, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}};
+    const uint32_t starts[6] = {0, 4, 8, 12, 16, 20}, totals[6] = {4, 4, 4, 4, 4, 4};
+    float out[8][3];
+    CHECK(phos_vertex_normals(8, &pos[0][0], 6, starts, totals, &face_n[0][0], 24, loops, &out[0][0]) == PHOS_OK);
+    int diagonal = 1;
+    for (int v = 0; v < 8; v++)
+        for (int k = 0; k < 3; k++) {
+            float expect = (pos[v][k] > 0.5f ? 1.0f : -1.0f) / sqrtf(3.0f);
+            diagonal &= fabsf(out[v][k] - expect) < 1e-6f;
+        }
+    CHECK_MSG(diagonal, "cube corner 0: %g %g %g", (double)out[0][0], (double)out[0][1], (double)out[0][2]);
+    /* A triangle and a quad side by side on z = 0, and an unused vertex. */
+    const float flat[6][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {2, 0, 0}, {2, 1, 0}, {5, 5, 5}};
+    const uint32_t fl[7] = {0, 1, 2, 1, 3, 4, 2};
+    const float fn[2][3] = {{0, 0, 1}, {0, 0, 1}};
+    const uint32_t fs[2] = {0, 3}, ft[2] = {3, 4};
+    float fo[6][3];
+    CHECK(phos_vertex_normals(6, &flat[0][0], 2, fs, ft, &fn[0][0], 7, fl, &fo[0][0]) == PHOS_OK);
+    CHECK(fo[1][0] == 0.0f && fo[1][1] == 0.0f && fo[1][2] == 1.0f && fo[2][2] == 1.0f);
+    CHECK(fo[5][0] == 0.0f && fo[5][1] == 0.0f && fo[5][2] == 0.0f && !signbit(fo[5][0]));
+    /* Refused: a corner beyond the loops, a vertex beyond the vertices, a
+     * face of two corners, NULL arrays. */
+    const uint32_t far_start[2] = {0, 5};
+    CHECK(phos_vertex_normals(6, &flat[0][0], 2, far_start, ft, &fn[0][0], 7, fl, &fo[0][0]) ==
+          PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_vertex_normals(4, &flat[0][0], 2, fs, ft, &fn[0][0], 7, fl, &fo[0][0]) == PHOS_ERROR_INVALID_ARGUMENT);
+    const uint32_t two[2] = {2, 4};
+    CHECK(phos_vertex_normals(6, &flat[0][0], 2, fs, two, &fn[0][0], 7, fl, &fo[0][0]) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_vertex_normals(6, NULL, 2, fs, ft, &fn[0][0], 7, fl, &fo[0][0]) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_vertex_normals(0, NULL, 0, NULL, NULL, NULL, 0, NULL, NULL) == PHOS_OK);
+}
+
 /* Instances Embree cannot trace through (an object scaled to zero, a
  * rank-one matrix, a translation of 1e20) render as nothing; an emissive
  * one emits nothing; the rest of the scene renders as without them. */
@@ -604,6 +643,7 @@ int main(void)
 {
     test_memory_estimate();
     test_singular_instances_render_nothing();
+    test_vertex_normals();
     test_version_and_layout();
     test_null_handles();
     test_bad_meshes();

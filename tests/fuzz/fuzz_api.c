@@ -229,6 +229,25 @@ static void fuzz_meshes(reader *r, phos_scene *s)
     }
 }
 
+/* phos_vertex_normals on a fuzzed polygon soup (a few polygons of up to
+ * 6 corners, starts and totals anywhere). */
+static void fuzz_vertex_normals(reader *r)
+{
+    uint32_t v = take_u8(r) % 9, p = take_u8(r) % 5, l = take_u8(r) % 25;
+    float pos[3 * 8], fn[3 * 4], out[3 * 8];
+    uint32_t starts[4], totals[4], loops[24];
+    take_floats(r, pos, 3 * v);
+    for (uint32_t i = 0; i < p; i++) {
+        starts[i] = take_u8(r) % 26;
+        totals[i] = take_u8(r) % 7;
+        take_floats(r, fn + 3 * i, 3);
+    }
+    for (uint32_t i = 0; i < l; i++)
+        loops[i] = take_u8(r) % 10;
+    phos_status st = phos_vertex_normals(v, pos, p, starts, totals, fn, l, loops, out);
+    SAY("vertex normals of %u polygons: %s\n", p, phos_status_string(st));
+}
+
 static void fuzz_lights(reader *r, phos_scene *s)
 {
     uint32_t n = take_u8(r) % 4;
@@ -425,6 +444,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fuzz_images(&r, s);
     fuzz_materials(&r, s);
     fuzz_meshes(&r, s);
+    if (take_u8(&r) == 0x5A)
+        fuzz_vertex_normals(&r);
     fuzz_lights(&r, s);
     uint8_t commit = take_u8(&r);
     if (commit == 0xFE)

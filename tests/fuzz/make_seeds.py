@@ -6,9 +6,9 @@ Each seed is a scene and render in the byte stream fuzz_api.c reads (its
 reader: counts as bytes, numbers through take_float / take_u32), one per
 kind of bad input the fuzzer must survive, plus valid scenes for every
 integrator so that mutations start from renders that reach every stage.
-Inputs that once crashed are kept beside them as regress_* (written by
-the fuzzer, never by this script). The seeds are committed; run this
-again after changing the stream format:
+Inputs that once crashed are among them as regress_* scenes. The seeds
+are committed; run this again after changing the stream format (it
+removes the corpus's old files first):
 
     python3 tests/fuzz/make_seeds.py
 """
@@ -189,7 +189,7 @@ PHOS_STAGE_COUNT = 7
 
 
 def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camera=True,
-          renders=(({}, 0),)):
+          renders=(({}, 0),), vertex_normals=None):
     s = Stream()
     s.u8(0)                    # no images
     materials(s, mats if mats is not None else [[(0, (0.75, 0.75, 0.75))]])
@@ -201,6 +201,22 @@ def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camer
     s.u8(len(instances))
     for i in instances:
         instance(s, *i)
+    if vertex_normals is None:
+        s.u8(0)
+    else:
+        s.u8(0x5A)
+        positions, polygons, loops = vertex_normals
+        s.u8(len(positions))
+        s.u8(len(polygons))
+        s.u8(len(loops))
+        for p in positions:
+            s.fs(p)
+        for start, total, normal in polygons:
+            s.u8(start)
+            s.u8(total)
+            s.fs(normal)
+        for v in loops:
+            s.u8(v)
     lights = lights if lights is not None else [{}]
     s.u8(len(lights))
     for kw in lights:
@@ -254,6 +270,16 @@ SEEDS = {
     "region_outside": scene(renders=[({"region_x": 7, "region_y": 7, "region_width": 2,
                                        "region_height": 2}, 0)]),
     "settings_nan": scene(renders=[({"filter_width": "nan", "ic_accuracy": "inf"}, 0)]),
+    "vertex_normals_cube": scene(vertex_normals=(BOX, [(4 * i, 4, (0, 0, 1)) for i in range(4)],
+                                                 [0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5])),
+    "vertex_normals_bad": scene(vertex_normals=(BOX[:3], [(0, 2, (0, 0, 1)), (20, 3, ("nan", 0, 1))],
+                                                [0, 1, 9, 2])),
+    # Inputs that once crashed, as scenes (docs/reliability.md, "The fuzzer").
+    "regress_rank_one_instance": scene(instances=[(0, [0], (-13.875, -13.875, -13.875, -14, -14, -14, -14, -14,
+                                                             -14, -14, -14, -14))]),
+    "regress_zero_scale_instance": scene(instances=[(0, [0], (1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0)),
+                                                    (0, [0])]),
+    "regress_far_instance": scene(instances=[(0, [0], (1, 0, 0, 1e20, 0, 1, 0, 0, 0, 0, 1, 0))]),
     "cache_file_garbage": scene(renders=[({"irradiance_cache": 2}, 1 | (2 << 1) | (0 << 3))]) + b"PHOSIRC\0garbage",
     "photon_file_garbage": scene(renders=[(PHOTON, 1 | (2 << 1) | (1 << 3))]) + b"PHOSPMF\0\x01\x00",
 }
@@ -262,6 +288,8 @@ SEEDS = {
 def main():
     out = os.path.join(HERE, "corpus")
     os.makedirs(out, exist_ok=True)
+    for name in os.listdir(out):
+        os.remove(os.path.join(out, name))
     for name, data in SEEDS.items():
         with open(os.path.join(out, name), "wb") as f:
             f.write(data)
