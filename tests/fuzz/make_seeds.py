@@ -280,6 +280,8 @@ SEEDS = {
     "regress_zero_scale_instance": scene(instances=[(0, [0], (1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0)),
                                                     (0, [0])]),
     "regress_far_instance": scene(instances=[(0, [0], (1, 0, 0, 1e20, 0, 1, 0, 0, 0, 0, 1, 0))]),
+    # A 10 GB film that fits this machine: allocated lazily, cancelled, freed.
+    "regress_large_film": scene(renders=[({"width": 65536, "height": 10001, "pass_mask": 1023}, 0)]),
     "cache_file_garbage": scene(renders=[({"irradiance_cache": 2}, 1 | (2 << 1) | (0 << 3))]) + b"PHOSIRC\0garbage",
     "photon_file_garbage": scene(renders=[(PHOTON, 1 | (2 << 1) | (1 << 3))]) + b"PHOSPMF\0\x01\x00",
 }
