@@ -42,11 +42,11 @@ def triangle_soup(core, triangles, seed=1):
 
 
 def test_commit_cancel_returns_quickly(core):
-    s = triangle_soup(core, 3_000_000)
+    s = triangle_soup(core, 1_500_000)  # as tests/c/test_cancel.c: Embree answers sooner
     asked = {}
 
     def cancelled():
-        if time.monotonic() - start > 0.2:
+        if time.monotonic() - start > 0.1:
             asked.setdefault("at", time.monotonic())
             return True
         return False

@@ -83,6 +83,8 @@ static inline float median_of_3(float a, float b, float c)
 /* Ranges of at least this many photons look at the cancel flag first:
  * well under a millisecond of work between two looks. */
 #define KDTREE_CANCEL_GRAIN 16384u
+/* Photons copied between two looks at it (5 MB, a few milliseconds). */
+#define KDTREE_COPY_SLICE (1u << 18)
 
 /* Hoare's FIND (CACM 1961) in Wirth's form: afterwards a[m] holds the key
  * of rank m, everything before it ≤ a[m] ≤ everything after it. The scans
@@ -160,8 +162,16 @@ int kdtree_build(photon *photons, uint32_t n, atomic_int *cancel)
     photon *work = malloc(sizeof(photon) * (size_t)n);
     if (!work)
         return 0;
-    memcpy(work, photons, sizeof(photon) * (size_t)n);
-    int done = balance(work, n, photons, 1, bounds_of(work, n), cancel);
+    /* The copy into fresh pages takes tens of milliseconds for millions
+     * of photons: it is made in slices, with a look at the cancel flag
+     * between them. */
+    int done = 1;
+    for (uint32_t i = 0; i < n && done; i += KDTREE_COPY_SLICE) {
+        uint32_t m = n - i < KDTREE_COPY_SLICE ? n - i : KDTREE_COPY_SLICE;
+        memcpy(work + i, photons + i, sizeof(photon) * (size_t)m);
+        done = !(cancel && atomic_load_explicit(cancel, memory_order_relaxed));
+    }
+    done = done && balance(work, n, photons, 1, bounds_of(work, n), cancel);
     free(work);
     return done;
 }

@@ -429,26 +429,53 @@ unsigned photon_class(const photon *p)
            (photon_is_caustic(p) ? 2u : 0u);
 }
 
-/* Counting sort by class, stable. */
-static int sort_by_class(photon_map *m)
+/* Photons handled between two looks at the cancel flag (a few ms). */
+#define SORT_CANCEL_SLICE (1u << 18)
+
+static int cancelled(atomic_int *cancel) { return cancel && atomic_load_explicit(cancel, memory_order_relaxed); }
+
+/* Counting sort by class, stable; each photon's class (which decodes its
+ * normal) is computed once. The sorted copy replaces the array, which
+ * also drops the growth slack. 0 when memory is exhausted or cancelled
+ * (the map then keeps its photons in their order). */
+static int sort_by_class(photon_map *m, atomic_int *cancel)
 {
     uint32_t count[PHOTON_CLASSES] = {0};
-    for (uint32_t i = 0; i < m->count; i++)
-        count[photon_class(&m->photons[i])]++;
+    uint8_t *cls = malloc(m->count ? m->count : 1);
+    if (!cls)
+        return 0;
+    for (uint32_t i = 0; i < m->count; i++) {
+        if ((i & (SORT_CANCEL_SLICE - 1)) == 0 && cancelled(cancel)) {
+            free(cls);
+            return 0;
+        }
+        cls[i] = (uint8_t)photon_class(&m->photons[i]);
+        count[cls[i]]++;
+    }
     m->class_start[0] = 0;
     for (unsigned c = 0; c < PHOTON_CLASSES; c++)
         m->class_start[c + 1] = m->class_start[c] + count[c];
-    if (m->count == 0)
-        return 1;
-    photon *sorted = malloc(sizeof(photon) * (size_t)m->count);
-    if (!sorted)
+    photon *sorted = m->count ? malloc(sizeof(photon) * (size_t)m->count) : NULL;
+    if (m->count && !sorted) {
+        free(cls);
         return 0;
+    }
     uint32_t next[PHOTON_CLASSES];
     memcpy(next, m->class_start, sizeof(next));
-    for (uint32_t i = 0; i < m->count; i++)
-        sorted[next[photon_class(&m->photons[i])]++] = m->photons[i];
-    memcpy(m->photons, sorted, sizeof(photon) * (size_t)m->count);
-    free(sorted);
+    for (uint32_t i = 0; i < m->count; i++) {
+        if ((i & (SORT_CANCEL_SLICE - 1)) == 0 && cancelled(cancel)) {
+            free(cls);
+            free(sorted);
+            return 0;
+        }
+        sorted[next[cls[i]]++] = m->photons[i];
+    }
+    free(cls);
+    if (m->count) {
+        free(m->photons);
+        m->photons = sorted;
+        m->capacity = m->count;
+    }
     return 1;
 }
 
@@ -456,11 +483,16 @@ int photon_map_build(photon_map *m, atomic_int *cancel)
 {
     if (m->built)
         return 1;
-    if (!sort_by_class(m))
+    if (!sort_by_class(m, cancel))
         return 0;
-    for (unsigned c = 0; c < PHOTON_CLASSES && m->count; c++) /* an empty map may have no array */
+    /* The sort and each class's tree take tens of milliseconds for
+     * millions of photons: a cancel is looked at between them too. */
+    for (unsigned c = 0; c < PHOTON_CLASSES && m->count; c++) { /* an empty map may have no array */
+        if (cancelled(cancel))
+            return 0;
         if (!kdtree_build(m->photons + m->class_start[c], m->class_start[c + 1] - m->class_start[c], cancel))
             return 0;
+    }
     /* Give back the growth slack: a shrinking realloc keeps the data even if
      * it fails, so failure here only means the slack stays. */
     photon_map_resize(m, m->count);
