@@ -6,7 +6,7 @@ The core estimates what a render needs before it allocates anything
 (core/src/render/memory.c) and refuses when that exceeds what the machine,
 or the process's cgroup, has available; the estimate against fixed
 amounts is tested in tests/c/test_api.c. Here: through Blender, 2²⁸
-photons in each map (the settings' maximum), about 66 GiB, on a machine
+photons in each map (the settings' maximum), about 75 GiB, on a machine
 that has less.
 """
 
