@@ -338,7 +338,7 @@ static void fuzz_settings(reader *r, phos_render_settings *rs)
 }
 
 /* Every delivered tile's pixels, and a read of a fuzzed rectangle. */
-static void read_tiles(reader *r, phos_render *render, const phos_render_settings *rs)
+static void read_tiles(reader *r, phos_render *render)
 {
     phos_tile t;
     uint32_t count;
@@ -367,7 +367,6 @@ static void read_tiles(reader *r, phos_render *render, const phos_render_setting
     free(buf);
     float small[64];
     uint32_t x = take_u32(r), y = take_u32(r), w = take_u8(r) % 5, h = take_u8(r) % 5;
-    (void)rs;
     phos_render_read(render, take_u8(r) % (PHOS_PASS_COUNT + 1), x, y, w, h, small, take_u8(r) % 65);
 }
 
@@ -408,7 +407,6 @@ static void fuzz_render(reader *r, phos_scene *s)
         if (st == PHOS_ERROR_TIMEOUT) {
             phos_progress p;
             phos_render_progress(render, &p);
-            double t0 = now_seconds();
             phos_render_cancel(render);
             st = phos_render_wait(render, CANCEL_LIMIT_S);
             if (st == PHOS_ERROR_TIMEOUT) {
@@ -416,12 +414,11 @@ static void fuzz_render(reader *r, phos_scene *s)
                         CANCEL_LIMIT_S);
                 abort();
             }
-            (void)t0;
         }
         SAY("  ended: %s %s\n", phos_status_string(st), phos_render_error(render));
         if (st != PHOS_OK && st != PHOS_ERROR_CANCELLED && !phos_render_error(render)[0])
             abort();
-        read_tiles(r, render, &rs);
+        read_tiles(r, render);
     }
     phos_progress p;
     phos_render_progress(render, &p);
