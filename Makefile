@@ -6,6 +6,9 @@
 #   make binding                          regenerate addon/phos/phos_h.py from phos.h
 #   make test-blender4                    the same under Blender 4.3 / Embree 4 in a
 #               [PHOS_CHROOT_DIR=dir]     Debian 13 chroot (root; default /var/tmp/...)
+#   make test-blender-latest              the Blender tests against the official builds of
+#                                         tools/bpy-versions.txt (4.5 LTS, newest 5.x: bpy
+#                                         from PyPI), the add-on installed as an extension
 #   make install | uninstall              add-on into the user's Blender
 #   make package                          dist/phos-<version>.zip
 #   make bench [QUICK=1]                  Phos against Cycles, raw Embree and nanoflann in one
@@ -57,10 +60,10 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
 .PHONY: test-asan test-tsan valgrind fuzz
-.PHONY: deps build binding check-binding test test-blender4 bench bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
+.PHONY: deps build binding check-binding test test-blender4 test-blender-latest bench bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
 
 help:
-	@sed -n '3,28p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,32p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -143,6 +146,13 @@ fuzz:
 # build-trixie/, never to build/ or addon/phos/lib. See tools/test-blender4.sh.
 test-blender4:
 	PHOS_CHROOT_DIR=$(PHOS_CHROOT_DIR) JOBS=$(JOBS) tools/test-blender4.sh $(PYTEST_ARGS)
+
+# The official Blender builds artists run (tools/bpy-versions.txt): each one's
+# Python virtual environment under build/bpy/ (or the chroot's build folder),
+# the extension zip installed as a user installs it, the whole Blender suite
+# with that release's own Cycles as the reference (tools/test-bpy.sh).
+test-blender-latest: build
+	PHOS_CHROOT_DIR=$(PHOS_CHROOT_DIR) JOBS=$(JOBS) tools/test-bpy.sh $(PYTEST_ARGS)
 
 # Release build of bench/ in its own folder, so that PHOS_BUILD_BENCH=ON never
 # lands in $(BUILD_DIR)'s cache (and C++ never in `make build` or `make test`).

@@ -19,7 +19,8 @@ hands over to :func:`finish`, which applies the command-line options:
                            photons stored in Phos's photon maps (PHOTON)
 
 The add-on is imported from this source tree (<repo>/addon), not from an
-installed copy, so a script always renders with the code beside it.
+installed copy, so a script always renders with the code beside it (unless
+PHOS_ADDON_MODULE names an installed one: the tests of an extension).
 Cycles is configured for parity with Phos whatever the engine: same samples,
 bounces, seed and pixel filter, no clamping, no glossy blur, no denoising,
 no adaptive sampling, caustics on.
@@ -35,7 +36,9 @@ import bpy
 
 REPO_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ADDON_DIR = os.path.join(REPO_DIR, "addon")
-ADDON_NAME = "phos"
+# The add-on's module: "phos" from this source tree, or an installed copy's
+# (PHOS_ADDON_MODULE, e.g. "bl_ext.user_default.phos" for the extension).
+ADDON_NAME = os.environ.get("PHOS_ADDON_MODULE", "phos")
 ENGINES = ("PHOS", "CYCLES")
 
 
@@ -46,8 +49,9 @@ def log(msg):
 # ------------------------------------------------------------------ add-on
 
 def enable_addon():
-    """Import the add-on from the source tree and enable it; True on success."""
-    if ADDON_DIR not in sys.path:
+    """Import the add-on from the source tree (or the installed ADDON_NAME)
+    and enable it; True on success."""
+    if ADDON_NAME == "phos" and ADDON_DIR not in sys.path:
         sys.path.insert(0, ADDON_DIR)
     _default, loaded = addon_utils.check(ADDON_NAME)
     if not loaded:

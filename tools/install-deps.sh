@@ -6,6 +6,7 @@
 #   tools/install-deps.sh --check    only list what is missing (exit 1 if any)
 #   tools/install-deps.sh --bench    also the packages of `make bench` (may be combined with --check)
 #   tools/install-deps.sh --reliability  also valgrind and clang's libFuzzer (`make valgrind`, `make fuzz`)
+#   tools/install-deps.sh --bpy      also what Blender as a Python module needs (tools/bpy-env.sh)
 set -euo pipefail
 
 PACKAGES=(
@@ -26,6 +27,14 @@ BENCH_PACKAGES=(
   python3-numpy
 )
 
+# Only for Blender as a Python module (`bpy` from PyPI, tools/bpy-env.sh):
+# a virtual environment, and the X11 client libraries the module links
+# although it never opens a window.
+BPY_PACKAGES=(
+  python3-venv
+  libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 libxt6 libsm6 libice6 libgl1
+)
+
 # Only for `make valgrind` and `make fuzz` (gcc's sanitizers come with gcc).
 RELIABILITY_PACKAGES=(
   valgrind
@@ -39,7 +48,8 @@ for arg in "$@"; do
     --check) check=1 ;;
     --bench) PACKAGES+=("${BENCH_PACKAGES[@]}") ;;
     --reliability) PACKAGES+=("${RELIABILITY_PACKAGES[@]}") ;;
-    *) echo "usage: $0 [--check] [--bench] [--reliability]" >&2; exit 2 ;;
+    --bpy) PACKAGES+=("${BPY_PACKAGES[@]}") ;;
+    *) echo "usage: $0 [--check] [--bench] [--reliability] [--bpy]" >&2; exit 2 ;;
   esac
 done
 

@@ -4,6 +4,11 @@
 #
 #   tools/test-blender4.sh [pytest args]   build, ctest, Blender tests (default args: -q),
 #                                          then the extension check (below)
+#   tools/test-blender4.sh --bpy VERSION [pytest args]
+#                                          build, then the Blender tests against the official
+#                                          Blender VERSION as a Python module (bpy, Python 3.13)
+#                                          in the chroot: tools/test-bpy.sh --here (make
+#                                          test-blender-latest runs this for 5.1 and later)
 #   tools/test-blender4.sh --shell         interactive shell in the chroot, same mounts
 #   tools/test-blender4.sh --remove        delete the chroot
 #
@@ -35,8 +40,11 @@ set -euo pipefail
 PACKAGES=(
   blender          # 4.3 in trixie
   libembree-dev    # Embree 4
-  cmake gcc g++ libc6-dev make
+  cmake gcc g++ libc6-dev make pkg-config zip
   python3-numpy python3-pytest
+  # bpy (--bpy): tools/install-deps.sh --bpy's list, so that it finds them all
+  python3-venv
+  libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 libxt6 libsm6 libice6 libgl1
 )
 SUITE=trixie
 STAMP=var/lib/phos-chroot/ready   # inside the chroot: written once every package is in
@@ -291,6 +299,11 @@ if [[ "${1:-}" == "--shell" ]]; then
   exit "$rc"
 fi
 
+bpy_version=""
+if [[ "${1:-}" == "--bpy" ]]; then
+  bpy_version=${2:?usage: test-blender4.sh --bpy VERSION [pytest args]}
+  shift 2
+fi
 [[ $# -gt 0 ]] || set -- -q   # pytest args
 # Inside: Embree-4 build in /phos-build; libphos.so goes to /phos-build/lib
 # (not the checkout's addon/phos/lib, which belongs to the host's build), and
@@ -309,6 +322,16 @@ cmake --build /phos-build -j "$JOBS" || { say "build failed"; exit 1; }
 /phos-src/tools/check-exports.sh /phos-build/lib/libphos.so || exit 1
 say "build: $(dur $t)"
 rc=0
+if [[ -n "$BPY_VERSION" ]]; then
+  # The official Blender as a Python module (tools/test-bpy.sh), with the
+  # add-on folder of this build (its Embree-4 libphos.so).
+  stage=/phos-build/bpy-addon
+  rm -rf "$stage" && mkdir -p "$stage" && cp -r /phos-src/addon/phos "$stage/phos" \
+    && rm -rf "$stage/phos/lib" && mkdir "$stage/phos/lib" && cp /phos-build/lib/libphos.so "$stage/phos/lib/" \
+    || { say "staging the add-on failed"; exit 1; }
+  cd /phos-src && PHOS_BPY_DIR=/phos-build/bpy tools/test-bpy.sh --here "$BPY_VERSION" "$stage/phos" "$@"
+  exit $?
+fi
 t=$(now)
 (cd /phos-build && ctest --output-on-failure -j "$JOBS") || { rc=1; say "C tests FAILED"; }
 say "C tests: $(dur $t)"
@@ -334,10 +357,12 @@ rm -rf "$stage"
 say "extension install check: $(dur $t)"
 exit $rc'
 rc=0
-in_chroot "$repo" "$build_dir" /bin/bash -c "$inner" inner "$@" || rc=$?
+in_chroot "$repo" "$build_dir" /usr/bin/env BPY_VERSION="$bpy_version" /bin/bash -c "$inner" inner "$@" || rc=$?
 check_no_mounts "$chroot_dir"
+what="Blender 4.3"
+[[ -z "$bpy_version" ]] || what="Blender $bpy_version (bpy)"
 if [[ $rc -eq 0 ]]; then
-  say "passed under Blender 4.3 / Embree 4 (total $(elapsed "$t_start"); no mounts left in $chroot_dir)"
+  say "passed under $what / Embree 4 (total $(elapsed "$t_start"); no mounts left in $chroot_dir)"
 else
   say "FAILED (exit $rc; total $(elapsed "$t_start"); no mounts left in $chroot_dir)"
 fi

@@ -22,9 +22,19 @@ from mathutils import Vector
 TESTS_DIR = os.path.dirname(os.path.abspath(__file__))
 REPO_DIR = os.path.dirname(os.path.dirname(TESTS_DIR))
 ADDON_DIR = os.path.join(REPO_DIR, "addon")
-ADDON_NAME = "phos"
+# The add-on's module: "phos" from this source tree, or with PHOS_ADDON_MODULE
+# the module of an installed copy, e.g. "bl_ext.user_default.phos" for the
+# 4.2+ extension installed as a user installs it (run_tests.py --extension).
+# Tests import it as `phos` either way (alias_addon_modules).
+ADDON_NAME = os.environ.get("PHOS_ADDON_MODULE", "phos")
+FROM_SOURCE_TREE = ADDON_NAME == "phos"
 ENGINE = "PHOS"
-BLENDER = bpy.app.binary_path or "blender"
+# The command that starts a background Blender like this one: the binary, or
+# for Blender as a Python module (the official `bpy` builds, which have no
+# binary) this interpreter with tools/bpy_blender.py, which reads Blender's
+# command line.
+BLENDER_COMMAND = ([bpy.app.binary_path] if bpy.app.binary_path else
+                   [sys.executable, os.path.join(REPO_DIR, "tools", "bpy_blender.py")])
 
 # Rows of the parity table, filled by test_parity.py, printed by conftest.py.
 PARITY_ROWS = []
@@ -41,13 +51,30 @@ def engine_ids():
 
 
 def enable_addon():
-    """Import the add-on from <repo>/addon and enable it; returns the module or None."""
-    if ADDON_DIR not in sys.path:
+    """Enable the add-on (from <repo>/addon, or the installed ADDON_NAME);
+    returns the module or None."""
+    if FROM_SOURCE_TREE and ADDON_DIR not in sys.path:
         sys.path.insert(0, ADDON_DIR)
     _default, loaded = addon_utils.check(ADDON_NAME)
     if loaded and ENGINE in engine_ids():
-        return sys.modules.get(ADDON_NAME)
-    return addon_utils.enable(ADDON_NAME, default_set=True)
+        return alias_addon_modules(sys.modules.get(ADDON_NAME))
+    return alias_addon_modules(addon_utils.enable(ADDON_NAME, default_set=True))
+
+
+def alias_addon_modules(module):
+    """Make `import phos` and `from phos.export import ...` reach an installed
+    add-on whose module has another name (an extension's bl_ext.<repo>.phos),
+    so the tests read the same whichever copy they test. Returns module."""
+    if module is not None and not FROM_SOURCE_TREE:
+        for name, mod in list(sys.modules.items()):
+            if name == ADDON_NAME or name.startswith(ADDON_NAME + "."):
+                sys.modules["phos" + name[len(ADDON_NAME):]] = mod
+    return module
+
+
+def addon_module_of(cls):
+    """Whether a class comes from the add-on (its module is the add-on's)."""
+    return cls.__module__ == ADDON_NAME or cls.__module__.startswith(ADDON_NAME + ".")
 
 
 def addon_enabled():
@@ -372,7 +399,7 @@ def run_blender(args, env=None, timeout=300, cwd=None):
     """
     full_env = dict(os.environ)
     full_env.update(env or {})
-    cmd = [BLENDER, "-b", "--factory-startup"] + list(args)
+    cmd = BLENDER_COMMAND + ["-b", "--factory-startup"] + list(args)
     proc = subprocess.run(cmd, env=full_env, cwd=cwd, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, timeout=timeout)
     return proc.returncode, proc.stdout.decode("utf-8", "replace")
@@ -400,8 +427,9 @@ def user_scripts_dir(tmp_dir):
 
 
 def render_blend_cli(blend, tmp_dir, output_base, file_format="OPEN_EXR", env=None, timeout=300):
-    """`blender -b --addons phos FILE -E PHOS -o OUT -F FMT -f 1` as a render farm runs it."""
-    full_env = {"BLENDER_USER_SCRIPTS": user_scripts_dir(tmp_dir)}
+    """`blender -b --addons phos FILE -E PHOS -o OUT -F FMT -f 1` as a render farm runs it
+    (an installed extension: from the user folders this process uses)."""
+    full_env = {"BLENDER_USER_SCRIPTS": user_scripts_dir(tmp_dir)} if FROM_SOURCE_TREE else {}
     full_env.update(env or {})
     return run_blender(["--addons", ADDON_NAME, blend, "-E", ENGINE, "-o", output_base + "####",
                         "-F", file_format, "-x", "1", "-f", "1"], env=full_env, timeout=timeout)

@@ -30,7 +30,7 @@ def _enable(name=pt.ADDON_NAME):
     mod = addon_utils.enable(name, default_set=True, handle_error=errors.append)
     assert not errors, "enable raised: %r" % errors
     assert mod is not None
-    return mod
+    return pt.alias_addon_modules(mod)
 
 
 def _disable(name=pt.ADDON_NAME):
@@ -129,7 +129,7 @@ def test_enum_items_have_explicit_indices(scene):
     settings_cls = type(scene.phos)
     checked = 0
     for cls in [settings_cls] + [c for c in bpy.types.PropertyGroup.__subclasses__()
-                                 if c.__module__.startswith(pt.ADDON_NAME)]:
+                                 if pt.addon_module_of(c)]:
         for name, prop in getattr(cls, "__annotations__", {}).items():
             if getattr(prop, "function", None) is not bpy.props.EnumProperty:
                 continue
@@ -230,7 +230,7 @@ def test_phos_panels_draw(scene):
                 drawn = []
                 fake = _fake_panel(cls, drawn)
                 for method in ("draw_header", "draw"):
-                    if method in vars(cls) or any(method in vars(b) for b in cls.__mro__[1:] if b.__module__.startswith("phos")):
+                    if method in vars(cls) or any(method in vars(b) for b in cls.__mro__[1:] if pt.addon_module_of(b)):
                         getattr(cls, method)(fake, context)
                 names.update(drawn)
     assert {"irradiance_cache", "ic_accuracy", "ic_rays", "use_pass_irradiance_cache"} <= names, sorted(names)
