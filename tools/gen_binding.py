@@ -8,9 +8,9 @@
 it differs from the committed one). The output holds what ctypes needs to
 know of phos.h: the #define and enum constants, the structs as
 ctypes.Structure classes, the functions' (restype, argtypes), and the render
-settings table PHOS_RENDER_SETTINGS as plain data, from which the add-on
-declares its Blender properties (docs/architecture.md, "One table of render
-settings").
+settings table PHOS_RENDER_SETTINGS and the pass table PHOS_PASSES as plain
+data, from which the add-on declares its Blender properties (docs/architecture.md,
+"One table of render settings", "One table of passes").
 
 This parses phos.h's own style, not C at large: declarations at file scope,
 no nested structs, and among function-like macros only X-macro tables (a
@@ -40,6 +40,7 @@ CTYPES = {
 SETTING_KINDS = ("NUMBER", "PIXELS", "LENGTH")
 SETTING_FIELDS = ("name", "ctype", "default", "min", "max", "user", "prop", "kind", "enum",
                   "soft_max", "label", "description")
+PASS_FIELDS = ("id", "ident", "name", "channels", "group", "kind", "description")
 
 
 class HeaderError(Exception):
@@ -145,6 +146,7 @@ class Header:
         self.tables = {}           # X-macro name -> (row macros, [(row macro, arguments)])
         code = self._preprocessor(strip_comments(text))
         self._enums(code)
+        self.passes = self._passes_table()
         self.settings = self._settings_table()
         self._types(code)
         self._functions(code)
@@ -173,7 +175,11 @@ class Header:
     def _enums(self, code):
         for m in re.finditer(r"(typedef\s+)?enum\s+(\w+)\s*\{(.*?)\}\s*(\w*)\s*;", code, re.S):
             members, value = [], -1
-            for item in filter(None, (s.strip() for s in m.group(3).split(","))):
+            # enum phos_pass is the pass table's ids: PHOS_PASSES(PHOS_PASS_ENUM_).
+            body = re.sub(r"\bPHOS_PASSES\s*\(\s*\w+\s*\)",
+                          lambda _m: "".join("PHOS_PASS_%s," % args[0] for _mac, args in self._pass_rows()),
+                          m.group(3))
+            for item in filter(None, (s.strip() for s in body.split(","))):
                 e = re.fullmatch(r"(\w+)(?:\s*=\s*(.+))?", item, re.S)
                 if not e:
                     raise HeaderError("enum %s: cannot read %r" % (m.group(2), item))
@@ -183,6 +189,23 @@ class Header:
             self.enums.append((m.group(2), members))
             if m.group(1):
                 self.enum_typedefs.add(m.group(4) or m.group(2))
+
+    def _pass_rows(self):
+        if len(self.tables.get("PHOS_PASSES", ((),))[0]) != 1:
+            raise HeaderError("no PHOS_PASSES(PASS) table")
+        return self.tables["PHOS_PASSES"][1]
+
+    def _passes_table(self):
+        out = []
+        for index, (_macro, args) in enumerate(self._pass_rows()):
+            if len(args) != 6:
+                raise HeaderError("PASS(%s): wrong number of columns" % ", ".join(args))
+            out.append(dict(id=index, ident=args[0], name=string_literal(args[1]),
+                            channels=evaluate(args[2], self.constants), group=evaluate(args[3], self.constants),
+                            kind=evaluate(args[4], self.constants), description=string_literal(args[5])))
+            if self.constants.get("PHOS_PASS_" + args[0]) != index:
+                raise HeaderError("pass %s is not enum value %d" % (args[0], index))
+        return out
 
     def _settings_table(self):
         if len(self.tables.get("PHOS_RENDER_SETTINGS", ((),))[0]) != 2:
@@ -336,8 +359,14 @@ def render(h):
         out.append("        %s," % ", ".join("%s=%r" % (k, s[k]) for k in SETTING_FIELDS[5:10]))
         out.append("        label=%r," % s["label"])
         out.append("        description=%r)," % s["description"])
+    out += [")", "", "# PHOS_PASSES, in enum phos_pass order.",
+            'Pass = collections.namedtuple("Pass", "%s")' % " ".join(PASS_FIELDS),
+            "PASSES = ("]
+    for p in h.passes:
+        out.append("    Pass(%s," % ", ".join("%s=%r" % (k, p[k]) for k in PASS_FIELDS[:-1]))
+        out.append("         description=%r)," % p["description"])
     out += [")", ""]
-    names += ["ENUMS", "HANDLES", "STRUCTS", "FUNCTIONS", "RenderSetting", "RENDER_SETTINGS"]
+    names += ["ENUMS", "HANDLES", "STRUCTS", "FUNCTIONS", "RenderSetting", "RENDER_SETTINGS", "Pass", "PASSES"]
     out += ["__all__ = ("] + ["    %r," % n for n in names] + [")", ""]
     return "\n".join(out)
 

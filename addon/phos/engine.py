@@ -56,7 +56,10 @@ def _write_rect(render_pass, pixels):
 
 # Render pass name → core pass, for every pass Phos can deliver.
 PASS_IDS = {"Combined": core.PHOS_PASS_COMBINED}
-PASS_IDS.update((label, pass_id) for _prop, label, pass_id, _d in PASSES)
+PASS_IDS.update((p.name, p.pass_id) for p in PASSES)
+
+# How Blender is told what a pass holds (channel names, type), by kind.
+PASS_REGISTRATION = {core.PHOS_PASS_KIND_COLOR: ("RGB", 'COLOR'), core.PHOS_PASS_KIND_VECTOR: ("XYZ", 'VECTOR')}
 
 
 def _stage_text(progress, stage_id, name, samples):
@@ -128,8 +131,9 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         """Declare the passes of a view layer (Blender calls this for renders
         and for the compositor's Render Layers node)."""
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", 'COLOR')
-        for label, _pass_id in enabled_passes(renderlayer):
-            self.register_pass(scene, renderlayer, label, 3, "RGB", 'COLOR')
+        for p in enabled_passes(renderlayer):
+            chan_id, kind = PASS_REGISTRATION[p.kind]
+            self.register_pass(scene, renderlayer, p.name, p.channels, chan_id, kind)
 
     # ------------------------------------------------------------- geometry
 
@@ -226,8 +230,8 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             rs.transparent_background = 1 if scene.render.film_transparent else 0
             rs.pass_mask = 1 << core.PHOS_PASS_COMBINED
             if not self.is_preview:
-                for _label, pass_id in enabled_passes(depsgraph.view_layer):
-                    rs.pass_mask |= 1 << pass_id
+                for p in enabled_passes(depsgraph.view_layer):
+                    rs.pass_mask |= 1 << p.pass_id
 
             export_seconds = time.perf_counter() - t0
             with core.Render(core_scene, rs) as render:
@@ -300,8 +304,9 @@ class PhosRenderEngine(bpy.types.RenderEngine):
     def _stats(self, text, force=False):
         """update_stats with changed text only, and sparingly in background mode.
 
-        `blender -b` prints every stats update as a line, so there it is
-        limited to one line per STATS_SECONDS_BACKGROUND unless forced.
+        `blender -b` prints every stats update as a line (Blender 5: Phos
+        prints it), so there it is limited to one line per
+        STATS_SECONDS_BACKGROUND unless forced.
         """
         if text == self._stats_text:
             return
@@ -310,6 +315,10 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             return
         self._stats_text, self._stats_time = text, now
         self.update_stats("", text)
+        if bpy.app.background and bpy.app.version >= (5, 0, 0):
+            # Blender 5 prints stats lines only with its render log on;
+            # a farm's log should still show each stage.
+            print(text, flush=True)
 
     def _deliver_tile(self, render, tile, buffers):
         """Copy one finished tile into a render result (relative to the border).

@@ -43,11 +43,19 @@ PHOS_CLOSURE_REFRACTION = 4
 PHOS_CLOSURE_GLASS = 5
 PHOS_CLOSURE_TRANSPARENT = 6
 PHOS_CLOSURE_EMISSION = 7
-PHOS_CLOSURE_TYPE_COUNT = 8
+PHOS_CLOSURE_METAL = 8
+PHOS_CLOSURE_OREN_NAYAR = 9
+PHOS_CLOSURE_SHEEN = 10
+PHOS_CLOSURE_TYPE_COUNT = 11
 
 # enum phos_glass_fresnel
 PHOS_GLASS_FRESNEL_MACRO = 0
 PHOS_GLASS_FRESNEL_MICROFACET = 1
+
+# enum phos_microfacet
+PHOS_MICROFACET_GGX_SEPARABLE = 0
+PHOS_MICROFACET_GGX = 1
+PHOS_MICROFACET_GGX_MULTISCATTER = 2
 
 # enum phos_light_type
 PHOS_LIGHT_POINT = 0
@@ -81,6 +89,17 @@ PHOS_PHOTON_VIEW_FINAL_GATHER = 0
 PHOS_PHOTON_VIEW_FAST = 1
 PHOS_PHOTON_VIEW_PATH_TRACED = 2
 
+# enum phos_pass_group
+PHOS_PASS_GROUP_COMBINED = 0
+PHOS_PASS_GROUP_LIGHT = 1
+PHOS_PASS_GROUP_DENOISING = 2
+PHOS_PASS_GROUP_PHOTONS = 3
+PHOS_PASS_GROUP_CACHE = 4
+
+# enum phos_pass_kind
+PHOS_PASS_KIND_COLOR = 0
+PHOS_PASS_KIND_VECTOR = 1
+
 # enum phos_pass
 PHOS_PASS_COMBINED = 0
 PHOS_PASS_EMISSION = 1
@@ -92,7 +111,9 @@ PHOS_PASS_PHOTON_MAP = 6
 PHOS_PASS_CAUSTIC_MAP = 7
 PHOS_PASS_PHOTONS = 8
 PHOS_PASS_IRRADIANCE_CACHE = 9
-PHOS_PASS_COUNT = 10
+PHOS_PASS_DENOISING_ALBEDO = 10
+PHOS_PASS_DENOISING_NORMAL = 11
+PHOS_PASS_COUNT = 12
 
 # enum phos_cache_kind
 PHOS_CACHE_IRRADIANCE = 0
@@ -129,8 +150,9 @@ ENUMS = {
     'phos_status': {'PHOS_OK': 0, 'PHOS_ERROR_INVALID_ARGUMENT': 1, 'PHOS_ERROR_INVALID_STATE': 2, 'PHOS_ERROR_OUT_OF_MEMORY': 3, 'PHOS_ERROR_EMBREE': 4, 'PHOS_ERROR_CANCELLED': 5, 'PHOS_ERROR_TIMEOUT': 6, 'PHOS_ERROR_INTERNAL': 7},
     'phos_image_interpolation': {'PHOS_INTERP_LINEAR': 0, 'PHOS_INTERP_CLOSEST': 1},
     'phos_image_extension': {'PHOS_EXTEND_REPEAT': 0, 'PHOS_EXTEND_EXTEND': 1, 'PHOS_EXTEND_CLIP': 2},
-    'phos_closure_type': {'PHOS_CLOSURE_DIFFUSE': 0, 'PHOS_CLOSURE_PRINCIPLED_DIFFUSE': 1, 'PHOS_CLOSURE_REFLECTION': 2, 'PHOS_CLOSURE_REFLECTION_FRESNEL': 3, 'PHOS_CLOSURE_REFRACTION': 4, 'PHOS_CLOSURE_GLASS': 5, 'PHOS_CLOSURE_TRANSPARENT': 6, 'PHOS_CLOSURE_EMISSION': 7, 'PHOS_CLOSURE_TYPE_COUNT': 8},
+    'phos_closure_type': {'PHOS_CLOSURE_DIFFUSE': 0, 'PHOS_CLOSURE_PRINCIPLED_DIFFUSE': 1, 'PHOS_CLOSURE_REFLECTION': 2, 'PHOS_CLOSURE_REFLECTION_FRESNEL': 3, 'PHOS_CLOSURE_REFRACTION': 4, 'PHOS_CLOSURE_GLASS': 5, 'PHOS_CLOSURE_TRANSPARENT': 6, 'PHOS_CLOSURE_EMISSION': 7, 'PHOS_CLOSURE_METAL': 8, 'PHOS_CLOSURE_OREN_NAYAR': 9, 'PHOS_CLOSURE_SHEEN': 10, 'PHOS_CLOSURE_TYPE_COUNT': 11},
     'phos_glass_fresnel': {'PHOS_GLASS_FRESNEL_MACRO': 0, 'PHOS_GLASS_FRESNEL_MICROFACET': 1},
+    'phos_microfacet': {'PHOS_MICROFACET_GGX_SEPARABLE': 0, 'PHOS_MICROFACET_GGX': 1, 'PHOS_MICROFACET_GGX_MULTISCATTER': 2},
     'phos_light_type': {'PHOS_LIGHT_POINT': 0, 'PHOS_LIGHT_SPOT': 1, 'PHOS_LIGHT_AREA': 2, 'PHOS_LIGHT_SUN': 3},
     'phos_area_shape': {'PHOS_AREA_RECTANGLE': 0, 'PHOS_AREA_ELLIPSE': 1},
     'phos_point_shape': {'PHOS_POINT_DISK': 0, 'PHOS_POINT_SPHERE': 1},
@@ -138,7 +160,9 @@ ENUMS = {
     'phos_integrator': {'PHOS_INTEGRATOR_PATH': 0, 'PHOS_INTEGRATOR_PHOTON': 1},
     'phos_irradiance_cache': {'PHOS_IRRADIANCE_CACHE_OFF': 0, 'PHOS_IRRADIANCE_CACHE_PHOTON': 1, 'PHOS_IRRADIANCE_CACHE_ALWAYS': 2},
     'phos_photon_view': {'PHOS_PHOTON_VIEW_FINAL_GATHER': 0, 'PHOS_PHOTON_VIEW_FAST': 1, 'PHOS_PHOTON_VIEW_PATH_TRACED': 2},
-    'phos_pass': {'PHOS_PASS_COMBINED': 0, 'PHOS_PASS_EMISSION': 1, 'PHOS_PASS_DIRECT': 2, 'PHOS_PASS_SPECULAR': 3, 'PHOS_PASS_CAUSTICS': 4, 'PHOS_PASS_INDIRECT': 5, 'PHOS_PASS_PHOTON_MAP': 6, 'PHOS_PASS_CAUSTIC_MAP': 7, 'PHOS_PASS_PHOTONS': 8, 'PHOS_PASS_IRRADIANCE_CACHE': 9, 'PHOS_PASS_COUNT': 10},
+    'phos_pass_group': {'PHOS_PASS_GROUP_COMBINED': 0, 'PHOS_PASS_GROUP_LIGHT': 1, 'PHOS_PASS_GROUP_DENOISING': 2, 'PHOS_PASS_GROUP_PHOTONS': 3, 'PHOS_PASS_GROUP_CACHE': 4},
+    'phos_pass_kind': {'PHOS_PASS_KIND_COLOR': 0, 'PHOS_PASS_KIND_VECTOR': 1},
+    'phos_pass': {'PHOS_PASS_COMBINED': 0, 'PHOS_PASS_EMISSION': 1, 'PHOS_PASS_DIRECT': 2, 'PHOS_PASS_SPECULAR': 3, 'PHOS_PASS_CAUSTICS': 4, 'PHOS_PASS_INDIRECT': 5, 'PHOS_PASS_PHOTON_MAP': 6, 'PHOS_PASS_CAUSTIC_MAP': 7, 'PHOS_PASS_PHOTONS': 8, 'PHOS_PASS_IRRADIANCE_CACHE': 9, 'PHOS_PASS_DENOISING_ALBEDO': 10, 'PHOS_PASS_DENOISING_NORMAL': 11, 'PHOS_PASS_COUNT': 12},
     'phos_cache_kind': {'PHOS_CACHE_IRRADIANCE': 0, 'PHOS_CACHE_PHOTON_MAPS': 1, 'PHOS_CACHE_KIND_COUNT': 2},
     'phos_cache_file_mode': {'PHOS_CACHE_FILE_NONE': 0, 'PHOS_CACHE_FILE_SAVE': 1, 'PHOS_CACHE_FILE_LOAD': 2},
     'phos_render_state': {'PHOS_STATE_IDLE': 0, 'PHOS_STATE_RUNNING': 1, 'PHOS_STATE_DONE': 2, 'PHOS_STATE_CANCELLED': 3, 'PHOS_STATE_FAILED': 4},
@@ -171,7 +195,15 @@ class phos_closure_desc(ctypes.Structure):
         ("glass_fresnel", ctypes.c_uint32),
         ("transmission_tint", ctypes.c_float * 3),
         ("transmission_roughness", ctypes.c_float),
-        ("layered", ctypes.c_uint32),
+        ("microfacet", ctypes.c_uint32),
+        ("multiscatter_fresnel", ctypes.c_float * 3),
+        ("specular_tint", ctypes.c_float * 3),
+        ("thin_film_thickness", ctypes.c_float),
+        ("thin_film_ior", ctypes.c_float),
+        ("layer_span", ctypes.c_uint32),
+        ("layer_weight", ctypes.c_float * 3),
+        ("layer_tint", ctypes.c_float * 3),
+        ("layer_tint_weight", ctypes.c_float),
     ]
 
 
@@ -446,7 +478,7 @@ RENDER_SETTINGS = (
         label=None,
         description='1: the world is not seen by camera rays, alpha = coverage'),
     RenderSetting(
-        name='pass_mask', ctype='uint32_t', default=1, min=0, max=1023,
+        name='pass_mask', ctype='uint32_t', default=1, min=0, max=4095,
         user=False, prop=None, kind=None, enum=None, soft_max=None,
         label=None,
         description='Bit (1 << pass) per enabled pass; COMBINED is always on'),
@@ -517,6 +549,35 @@ RENDER_SETTINGS = (
         description='Largest reach of a record, in pixels: records never spread further'),
 )
 
+# PHOS_PASSES, in enum phos_pass order.
+Pass = collections.namedtuple("Pass", "id ident name channels group kind description")
+PASSES = (
+    Pass(id=0, ident='COMBINED', name='Combined', channels=4, group=0, kind=0,
+         description='The image: every light component, and alpha'),
+    Pass(id=1, ident='EMISSION', name='Emission', channels=3, group=1, kind=0,
+         description='Emitters seen directly (lights, emissive surfaces, the world)'),
+    Pass(id=2, ident='DIRECT', name='Direct', channels=3, group=1, kind=0,
+         description='Light from the emitters after one diffuse scattering'),
+    Pass(id=3, ident='SPECULAR', name='Specular', channels=3, group=1, kind=0,
+         description='Light seen through a specular or glossy first bounce (mirrors, glass)'),
+    Pass(id=4, ident='CAUSTICS', name='Caustics', channels=3, group=1, kind=0,
+         description='Light focused onto diffuse surfaces by specular bounces (L S+ D E)'),
+    Pass(id=5, ident='INDIRECT', name='Indirect', channels=3, group=1, kind=0,
+         description='Diffuse interreflection: light after further non-specular bounces'),
+    Pass(id=6, ident='PHOTON_MAP', name='Photon Map', channels=3, group=3, kind=0,
+         description="Debug: the global photon map's radiance estimate at the first diffuse surface seen"),
+    Pass(id=7, ident='CAUSTIC_MAP', name='Caustic Map', channels=3, group=3, kind=0,
+         description="Debug: the caustic photon map's radiance estimate at the first diffuse surface seen"),
+    Pass(id=8, ident='PHOTONS', name='Photons', channels=3, group=3, kind=0,
+         description='Debug: every stored photon drawn as a dot where it lies in the image'),
+    Pass(id=9, ident='IRRADIANCE_CACHE', name='Irradiance Cache', channels=3, group=4, kind=0,
+         description='Debug: every irradiance-cache record drawn as a dot where it lies in the image (needs the cache on)'),
+    Pass(id=10, ident='DENOISING_ALBEDO', name='Denoising Albedo', channels=3, group=2, kind=0,
+         description='Albedo of the first surface that is not mostly specular, for the Denoise node'),
+    Pass(id=11, ident='DENOISING_NORMAL', name='Denoising Normal', channels=3, group=2, kind=1,
+         description='Normal (camera space) of the first surface that is not mostly specular, for the Denoise node'),
+)
+
 __all__ = (
     'PHOS_VERSION_MAJOR',
     'PHOS_VERSION_MINOR',
@@ -544,9 +605,15 @@ __all__ = (
     'PHOS_CLOSURE_GLASS',
     'PHOS_CLOSURE_TRANSPARENT',
     'PHOS_CLOSURE_EMISSION',
+    'PHOS_CLOSURE_METAL',
+    'PHOS_CLOSURE_OREN_NAYAR',
+    'PHOS_CLOSURE_SHEEN',
     'PHOS_CLOSURE_TYPE_COUNT',
     'PHOS_GLASS_FRESNEL_MACRO',
     'PHOS_GLASS_FRESNEL_MICROFACET',
+    'PHOS_MICROFACET_GGX_SEPARABLE',
+    'PHOS_MICROFACET_GGX',
+    'PHOS_MICROFACET_GGX_MULTISCATTER',
     'PHOS_LIGHT_POINT',
     'PHOS_LIGHT_SPOT',
     'PHOS_LIGHT_AREA',
@@ -565,6 +632,13 @@ __all__ = (
     'PHOS_PHOTON_VIEW_FINAL_GATHER',
     'PHOS_PHOTON_VIEW_FAST',
     'PHOS_PHOTON_VIEW_PATH_TRACED',
+    'PHOS_PASS_GROUP_COMBINED',
+    'PHOS_PASS_GROUP_LIGHT',
+    'PHOS_PASS_GROUP_DENOISING',
+    'PHOS_PASS_GROUP_PHOTONS',
+    'PHOS_PASS_GROUP_CACHE',
+    'PHOS_PASS_KIND_COLOR',
+    'PHOS_PASS_KIND_VECTOR',
     'PHOS_PASS_COMBINED',
     'PHOS_PASS_EMISSION',
     'PHOS_PASS_DIRECT',
@@ -575,6 +649,8 @@ __all__ = (
     'PHOS_PASS_CAUSTIC_MAP',
     'PHOS_PASS_PHOTONS',
     'PHOS_PASS_IRRADIANCE_CACHE',
+    'PHOS_PASS_DENOISING_ALBEDO',
+    'PHOS_PASS_DENOISING_NORMAL',
     'PHOS_PASS_COUNT',
     'PHOS_CACHE_IRRADIANCE',
     'PHOS_CACHE_PHOTON_MAPS',
@@ -615,4 +691,6 @@ __all__ = (
     'FUNCTIONS',
     'RenderSetting',
     'RENDER_SETTINGS',
+    'Pass',
+    'PASSES',
 )

@@ -14,6 +14,7 @@ row, so the add-on cannot offer a value the core refuses. Only the enum
 items' texts and preview_samples are written here.
 """
 
+import collections
 import os
 import textwrap
 
@@ -157,32 +158,22 @@ def setting_value(settings, setting):
     return value
 
 
-# View layer pass toggles: (property, render pass name, core pass, description).
-# Order = the order the passes are registered and listed in.
-PASSES = (
-    ("use_pass_emission", "Emission", core.PHOS_PASS_EMISSION,
-     "Emitters seen directly (lights, emissive surfaces, the world)"),
-    ("use_pass_direct", "Direct", core.PHOS_PASS_DIRECT,
-     "Light from the emitters after one diffuse scattering"),
-    ("use_pass_specular", "Specular", core.PHOS_PASS_SPECULAR,
-     "Light seen through a specular or glossy first bounce (mirrors, glass)"),
-    ("use_pass_caustics", "Caustics", core.PHOS_PASS_CAUSTICS,
-     "Light focused onto diffuse surfaces by specular bounces (L S+ D E)"),
-    ("use_pass_indirect", "Indirect", core.PHOS_PASS_INDIRECT,
-     "Diffuse interreflection: light after further non-specular bounces"),
-    ("use_pass_photon_map", "Photon Map", core.PHOS_PASS_PHOTON_MAP,
-     "Debug: the global photon map's radiance estimate at the first diffuse surface seen"),
-    ("use_pass_caustic_map", "Caustic Map", core.PHOS_PASS_CAUSTIC_MAP,
-     "Debug: the caustic photon map's radiance estimate at the first diffuse surface seen"),
-    ("use_pass_photons", "Photons", core.PHOS_PASS_PHOTONS,
-     "Debug: every stored photon drawn as a dot where it lies in the image"),
-    ("use_pass_irradiance_cache", "Irradiance Cache", core.PHOS_PASS_IRRADIANCE_CACHE,
-     "Debug: every irradiance-cache record drawn as a dot where it lies in the image (needs the "
-     "cache on)"),
-)
-LIGHT_PASSES = PASSES[:5]
-DEBUG_PASSES = PASSES[5:8]   # they build the photon maps, whatever the integrator
-CACHE_PASSES = PASSES[8:]
+# The passes a view layer can add to Combined, from the core's pass table
+# (phos.h, PHOS_PASSES), in its order; each has a toggle view_layer.phos.<prop>.
+PassToggle = collections.namedtuple("PassToggle", "prop name pass_id group kind channels description")
+PASSES = tuple(PassToggle("use_pass_" + p.ident.lower(), p.name, p.id, p.group, p.kind, p.channels,
+                          p.description)
+               for p in core.PASSES if p.group != core.PHOS_PASS_GROUP_COMBINED)
+
+
+def passes_of_group(group):
+    return tuple(p for p in PASSES if p.group == group)
+
+
+LIGHT_PASSES = passes_of_group(core.PHOS_PASS_GROUP_LIGHT)
+DENOISING_PASSES = passes_of_group(core.PHOS_PASS_GROUP_DENOISING)
+DEBUG_PASSES = passes_of_group(core.PHOS_PASS_GROUP_PHOTONS)   # they build the photon maps, whatever the integrator
+CACHE_PASSES = passes_of_group(core.PHOS_PASS_GROUP_CACHE)
 
 
 class PhosSceneSettings(bpy.types.PropertyGroup):
@@ -204,34 +195,21 @@ def _update_render_passes(self, context):
         view_layer.update_render_passes()
 
 
-_PASS_DESCRIPTIONS = {label: description for _p, label, _i, description in PASSES}
-
-
-def _pass_property(label):
-    return BoolProperty(name=label, description=_PASS_DESCRIPTIONS[label], default=False,
-                        update=_update_render_passes)
-
-
 class PhosViewLayerSettings(bpy.types.PropertyGroup):
-    """Render passes of a view layer, `view_layer.phos`."""
+    """Render passes of a view layer, `view_layer.phos`: a toggle per pass
+    of the core's table (PASSES)."""
 
-    use_pass_emission: _pass_property("Emission")
-    use_pass_direct: _pass_property("Direct")
-    use_pass_specular: _pass_property("Specular")
-    use_pass_caustics: _pass_property("Caustics")
-    use_pass_indirect: _pass_property("Indirect")
-    use_pass_photon_map: _pass_property("Photon Map")
-    use_pass_caustic_map: _pass_property("Caustic Map")
-    use_pass_photons: _pass_property("Photons")
-    use_pass_irradiance_cache: _pass_property("Irradiance Cache")
+    __annotations__ = {p.prop: BoolProperty(name=p.name, description=p.description, default=False,
+                                            update=_update_render_passes)
+                       for p in PASSES}
 
 
 def enabled_passes(view_layer):
-    """(render pass name, core pass) of the passes enabled on a view layer, in PASSES order."""
+    """The PASSES enabled on a view layer, in their order."""
     settings = getattr(view_layer, "phos", None)
     if settings is None:
         return []
-    return [(label, pass_id) for prop, label, pass_id, _d in PASSES if getattr(settings, prop, False)]
+    return [p for p in PASSES if getattr(settings, p.prop, False)]
 
 
 class PhosPreferences(bpy.types.AddonPreferences):

@@ -13,7 +13,8 @@ object, so adding to one of them would show all of them.
 import bpy
 
 from . import core
-from .properties import CACHE_PASSES, DEBUG_PASSES, LIGHT_PASSES
+from .export.material import uses_nodes
+from .properties import CACHE_PASSES, DEBUG_PASSES, DENOISING_PASSES, LIGHT_PASSES
 
 ENGINE = 'PHOS'
 
@@ -127,7 +128,7 @@ class PHOS_RENDER_PT_irradiance_cache(PhosButtonsPanel, bpy.types.Panel):
 
 def _debug_passes_enabled(context):
     settings = getattr(context.view_layer, "phos", None)
-    return settings is not None and any(getattr(settings, prop) for prop, *_ in DEBUG_PASSES)
+    return settings is not None and any(getattr(settings, p.prop) for p in DEBUG_PASSES)
 
 
 class PHOS_RENDER_PT_light_paths(PhosButtonsPanel, bpy.types.Panel):
@@ -197,8 +198,8 @@ class PhosPassGroupPanel(PhosButtonsPanel):
         layout.use_property_decorate = False
         settings = context.view_layer.phos
         col = layout.column(heading="Include", align=True)
-        for prop, label, _pass_id, _d in self.passes:
-            col.prop(settings, prop, text=label)
+        for p in self.passes:
+            col.prop(settings, p.prop, text=p.name)
         self.draw_note(context, layout)
 
     def draw_note(self, context, layout):
@@ -210,6 +211,14 @@ class PHOS_VIEW_LAYER_PT_passes_light(PhosPassGroupPanel, bpy.types.Panel):
 
     bl_label = "Light"
     passes = LIGHT_PASSES
+
+
+class PHOS_VIEW_LAYER_PT_passes_denoising(PhosPassGroupPanel, bpy.types.Panel):
+    """Features for a denoiser (the compositor's Denoise node takes them as
+    its Albedo and Normal)."""
+
+    bl_label = "Denoising Data"
+    passes = DENOISING_PASSES
 
 
 class PHOS_VIEW_LAYER_PT_passes_photon_debug(PhosPassGroupPanel, bpy.types.Panel):
@@ -278,7 +287,7 @@ class PHOS_MATERIAL_PT_context_material(PhosButtonsPanel, bpy.types.Panel):
 
     @classmethod
     def poll(cls, context):
-        if context.active_object and context.active_object.type == 'GPENCIL':
+        if context.active_object and context.active_object.type in {'GPENCIL', 'GREASEPENCIL'}:
             return False
         return (context.material or context.object) and super().poll(context)
 
@@ -331,8 +340,9 @@ class PHOS_MATERIAL_PT_surface(PhosButtonsPanel, bpy.types.Panel):
     def draw(self, context):
         layout = self.layout
         mat = context.material
-        if not mat.use_nodes or mat.node_tree is None:
-            layout.prop(mat, "use_nodes", icon='NODETREE')
+        if not uses_nodes(mat):
+            if mat.node_tree is None or bpy.app.version < (5, 0, 0):
+                layout.prop(mat, "use_nodes", icon='NODETREE')
             layout.separator()
             layout.use_property_split = True
             layout.prop(mat, "diffuse_color", text="Color")
@@ -421,8 +431,9 @@ class PHOS_WORLD_PT_surface(PhosButtonsPanel, bpy.types.Panel):
     def draw(self, context):
         layout = self.layout
         world = context.world
-        if not world.use_nodes or world.node_tree is None:
-            layout.prop(world, "use_nodes", icon='NODETREE')
+        if not uses_nodes(world):
+            if world.node_tree is None or bpy.app.version < (5, 0, 0):
+                layout.prop(world, "use_nodes", icon='NODETREE')
             layout.separator()
             layout.use_property_split = True
             layout.prop(world, "color")
@@ -439,6 +450,7 @@ classes = (
     PHOS_RENDER_PT_performance,
     PHOS_VIEW_LAYER_PT_passes,
     PHOS_VIEW_LAYER_PT_passes_light,
+    PHOS_VIEW_LAYER_PT_passes_denoising,
     PHOS_VIEW_LAYER_PT_passes_photon_debug,
     PHOS_VIEW_LAYER_PT_passes_cache_debug,
     PHOS_MATERIAL_PT_preview,

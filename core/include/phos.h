@@ -113,7 +113,14 @@ enum phos_closure_type {
     PHOS_CLOSURE_GLASS = 5,              /* dielectric: reflection + refraction split by Fresnel */
     PHOS_CLOSURE_TRANSPARENT = 6,        /* straight pass-through */
     PHOS_CLOSURE_EMISSION = 7,           /* radiance weight W/(m²·sr), both faces */
-    PHOS_CLOSURE_TYPE_COUNT = 8
+    PHOS_CLOSURE_METAL = 8,              /* GGX reflection with the F82-tint Fresnel: specular_color at
+                                            normal incidence, specular_tint near grazing (Principled metallic,
+                                            Metallic BSDF; Cycles 4+) */
+    PHOS_CLOSURE_OREN_NAYAR = 9,         /* energy-preserving Oren-Nayar diffuse of roughness (Fujii 2012,
+                                            with the OpenPBR multiple-scattering term; Cycles 4.3+) */
+    PHOS_CLOSURE_SHEEN = 10,             /* microfiber sheen of roughness (Zeltner et al. 2022, an LTC
+                                            lobe; its weight is scaled by the lobe's albedo) */
+    PHOS_CLOSURE_TYPE_COUNT = 11
 };
 
 /* How GLASS splits reflection and refraction. */
@@ -122,18 +129,47 @@ enum phos_glass_fresnel {
     PHOS_GLASS_FRESNEL_MICROFACET = 1 /* Fresnel per sampled microfacet (Cycles 4.0+) */
 };
 
+/* The GGX model of a microfacet closure (REFLECTION, REFLECTION_FRESNEL,
+ * REFRACTION, GLASS, METAL), as the Cycles of each Blender defines it. */
+enum phos_microfacet {
+    PHOS_MICROFACET_GGX_SEPARABLE = 0,   /* Smith G1(wo)·G1(wi): Cycles up to 3.x */
+    PHOS_MICROFACET_GGX = 1,             /* height-correlated Smith G (Heitz 2014): Cycles 4+ */
+    PHOS_MICROFACET_GGX_MULTISCATTER = 2 /* GGX with the light that scatters between microfacets
+                                            restored by albedo scaling (Kulla & Conty 2017): Cycles 4+'s
+                                            Multiscatter GGX; not for REFRACTION */
+};
+
 typedef struct phos_closure_desc {
     uint32_t type;             /* enum phos_closure_type */
     float weight[3];           /* linear RGB weight (colour × mix factors); radiance for EMISSION */
     int32_t weight_image;      /* image id multiplied into weight (RGB), -1 for none */
     float roughness;           /* Blender roughness in [0,1]; GGX alpha = roughness² */
     float ior;                 /* index of refraction, > 0 (GLASS, REFRACTION, REFLECTION_FRESNEL) */
-    float specular_color[3];   /* REFLECTION_FRESNEL: reflectance at normal incidence */
+    float specular_color[3];   /* REFLECTION_FRESNEL, METAL: reflectance at normal incidence;
+                                  OREN_NAYAR: the albedo of its multiple-scattering term (its colour) */
     uint32_t glass_fresnel;    /* enum phos_glass_fresnel */
     float transmission_tint[3];/* GLASS: extra colour of the refracted light only (Principled: base colour) */
     float transmission_roughness; /* GLASS with MACRO Fresnel: roughness of the refraction lobe; < 0 = roughness */
-    uint32_t layered;          /* 1: lies under the material's first REFLECTION_FRESNEL closure and is
-                                  scaled by 1 − that layer's directional albedo (Principled v2, Cycles 4) */
+    uint32_t microfacet;       /* enum phos_microfacet */
+    float multiscatter_fresnel[3]; /* GGX_MULTISCATTER: the lobe's mean single-scattering Fresnel
+                                      F_ss = ∫ F(μ) 2μ dμ (Glossy and Glass BSDF: their colour) */
+    float specular_tint[3];    /* METAL: the F82 tint, reflectance at μ = 1/7 (about 82°) relative to Schlick's;
+                                  GLASS (MICROFACET): f0 = F0(ior)·tint (Principled Specular Tint); in [0,1] */
+    float thin_film_thickness; /* nm; above 0.1 a thin film on REFLECTION_FRESNEL and GLASS (MICROFACET)
+                                  reflects with interference colours (Belcour & Barla 2017) */
+    float thin_film_ior;       /* the film's index of refraction */
+    /* Layering (Cycles 4's Principled BSDF): this closure lies over the next
+     * layer_span closures of the material, whose weights are scaled by
+     * 1 − max over channels of layer_weight × this closure's directional
+     * albedo toward the viewer, and, when layer_tint is not white, by
+     * mix(1, layer_tint^(1/cos θt), layer_tint_weight) with θt the view
+     * direction refracted into the layer (a coat's absorption, Beer's law
+     * through a unit thickness). */
+    uint32_t layer_span;
+    float layer_weight[3];     /* the closure's weight relative to those under it (Coat Weight, Sheen
+                                  Weight × Sheen Tint, 1 for the Principled specular) */
+    float layer_tint[3];       /* colour of light crossing the layer once at normal incidence */
+    float layer_tint_weight;   /* how much of the tint applies (Coat Weight) */
 } phos_closure_desc;
 PHOS_API void phos_closure_desc_init(phos_closure_desc *desc);
 
@@ -299,21 +335,63 @@ enum phos_photon_view {
  * passes build the photon maps for either integrator. IRRADIANCE_CACHE:
  * each irradiance-cache record drawn as a dot (colour = its irradiance's
  * hue), over black; it needs the cache on.
+ * Denoising passes, as Cycles defines them for denoisers (OpenImageDenoise
+ * through Blender's Denoise node): the albedo and the normal of the first
+ * surface that is not mostly specular, followed through mirrors, glass and
+ * transparency (and the emitters seen on the way).
  */
-enum phos_pass {
-    PHOS_PASS_COMBINED = 0,   /* RGBA */
-    PHOS_PASS_EMISSION = 1,   /* RGB, W/(m²·sr) */
-    PHOS_PASS_DIRECT = 2,
-    PHOS_PASS_SPECULAR = 3,
-    PHOS_PASS_CAUSTICS = 4,
-    PHOS_PASS_INDIRECT = 5,
-    PHOS_PASS_PHOTON_MAP = 6,
-    PHOS_PASS_CAUSTIC_MAP = 7,
-    PHOS_PASS_PHOTONS = 8,
-    PHOS_PASS_IRRADIANCE_CACHE = 9,
-    PHOS_PASS_COUNT = 10
+enum phos_pass_group {
+    PHOS_PASS_GROUP_COMBINED = 0,  /* the image */
+    PHOS_PASS_GROUP_LIGHT = 1,     /* the light components, whose sum is Combined */
+    PHOS_PASS_GROUP_DENOISING = 2, /* features for a denoiser */
+    PHOS_PASS_GROUP_PHOTONS = 3,   /* debug: the photon maps (built for either integrator) */
+    PHOS_PASS_GROUP_CACHE = 4      /* debug: the irradiance cache's records (needs the cache on) */
 };
-/* Channels of a pass (4 for COMBINED, 3 for the others), 0 for an unknown pass. */
+
+/* What a pass's values are. */
+enum phos_pass_kind {
+    PHOS_PASS_KIND_COLOR = 0,      /* RGB(A): radiance, or an albedo */
+    PHOS_PASS_KIND_VECTOR = 1      /* XYZ: a direction in camera space (x right, y up, z along the view, as Cycles) */
+};
+
+/* The passes: one table, from which enum phos_pass, phos_pass_channels
+ * and the add-on's view-layer toggles and pass registration are made
+ * (tools/gen_binding.py). One row per pass, in enum order:
+ *   PASS(id, name, channels, group, kind, description)
+ * name is the render pass's name in Blender. */
+#define PHOS_PASSES(PASS)                                                                         \
+    PASS(COMBINED, "Combined", 4, PHOS_PASS_GROUP_COMBINED, PHOS_PASS_KIND_COLOR,                \
+         "The image: every light component, and alpha")                                         \
+    PASS(EMISSION, "Emission", 3, PHOS_PASS_GROUP_LIGHT, PHOS_PASS_KIND_COLOR,                    \
+         "Emitters seen directly (lights, emissive surfaces, the world)")                       \
+    PASS(DIRECT, "Direct", 3, PHOS_PASS_GROUP_LIGHT, PHOS_PASS_KIND_COLOR,                        \
+         "Light from the emitters after one diffuse scattering")                                \
+    PASS(SPECULAR, "Specular", 3, PHOS_PASS_GROUP_LIGHT, PHOS_PASS_KIND_COLOR,                    \
+         "Light seen through a specular or glossy first bounce (mirrors, glass)")               \
+    PASS(CAUSTICS, "Caustics", 3, PHOS_PASS_GROUP_LIGHT, PHOS_PASS_KIND_COLOR,                    \
+         "Light focused onto diffuse surfaces by specular bounces (L S+ D E)")                  \
+    PASS(INDIRECT, "Indirect", 3, PHOS_PASS_GROUP_LIGHT, PHOS_PASS_KIND_COLOR,                    \
+         "Diffuse interreflection: light after further non-specular bounces")                   \
+    PASS(PHOTON_MAP, "Photon Map", 3, PHOS_PASS_GROUP_PHOTONS, PHOS_PASS_KIND_COLOR,              \
+         "Debug: the global photon map's radiance estimate at the first diffuse surface seen")  \
+    PASS(CAUSTIC_MAP, "Caustic Map", 3, PHOS_PASS_GROUP_PHOTONS, PHOS_PASS_KIND_COLOR,            \
+         "Debug: the caustic photon map's radiance estimate at the first diffuse surface seen") \
+    PASS(PHOTONS, "Photons", 3, PHOS_PASS_GROUP_PHOTONS, PHOS_PASS_KIND_COLOR,                    \
+         "Debug: every stored photon drawn as a dot where it lies in the image")                \
+    PASS(IRRADIANCE_CACHE, "Irradiance Cache", 3, PHOS_PASS_GROUP_CACHE, PHOS_PASS_KIND_COLOR,    \
+         "Debug: every irradiance-cache record drawn as a dot where it lies in the image "      \
+         "(needs the cache on)")                                                                \
+    PASS(DENOISING_ALBEDO, "Denoising Albedo", 3, PHOS_PASS_GROUP_DENOISING, PHOS_PASS_KIND_COLOR, \
+         "Albedo of the first surface that is not mostly specular, for the Denoise node")      \
+    PASS(DENOISING_NORMAL, "Denoising Normal", 3, PHOS_PASS_GROUP_DENOISING, PHOS_PASS_KIND_VECTOR, \
+         "Normal (camera space) of the first surface that is not mostly specular, for the "     \
+         "Denoise node")
+
+#define PHOS_PASS_ENUM_(id, ...) PHOS_PASS_##id,
+enum phos_pass { PHOS_PASSES(PHOS_PASS_ENUM_) PHOS_PASS_COUNT };
+#undef PHOS_PASS_ENUM_
+
+/* Channels of a pass (from PHOS_PASSES), 0 for an unknown pass. */
 PHOS_API uint32_t phos_pass_channels(uint32_t pass);
 
 /*

@@ -159,7 +159,19 @@ static void fuzz_materials(reader *r, phos_scene *s)
             if (take_u8(r) & 1)
                 take_floats(r, c[k].transmission_tint, 3);
             c[k].transmission_roughness = take_float(r);
-            c[k].layered = take_u8(r) % 3;
+            c[k].microfacet = take_u8(r) % 4;
+            if (take_u8(r) & 1)
+                take_floats(r, c[k].multiscatter_fresnel, 3);
+            if (take_u8(r) & 1)
+                take_floats(r, c[k].specular_tint, 3);
+            c[k].thin_film_thickness = take_float(r);
+            c[k].thin_film_ior = take_float(r);
+            c[k].layer_span = take_u8(r) % (PHOS_MAX_CLOSURES + 2);
+            if (take_u8(r) & 1)
+                take_floats(r, c[k].layer_weight, 3);
+            if (take_u8(r) & 1)
+                take_floats(r, c[k].layer_tint, 3);
+            c[k].layer_tint_weight = take_float(r);
         }
         phos_material_desc m;
         phos_material_desc_init(&m);

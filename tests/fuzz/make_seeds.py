@@ -74,7 +74,8 @@ class Stream:
             self.b += struct.pack("<I", v)
 
 
-def closure(s, kind=0, weight=(0.75, 0.75, 0.75), roughness=0.5, ior=1.5):
+def closure(s, kind=0, weight=(0.75, 0.75, 0.75), roughness=0.5, ior=1.5, microfacet=0, film=0.0,
+            layer_span=0):
     s.u8(kind)
     s.fs(weight)
     s.u8(0)                    # weight_image −1
@@ -84,7 +85,15 @@ def closure(s, kind=0, weight=(0.75, 0.75, 0.75), roughness=0.5, ior=1.5):
     s.u8(0)                    # glass_fresnel
     s.u8(0)                    # no transmission tint
     s.f(-1.0)                  # transmission_roughness
-    s.u8(0)                    # layered
+    s.u8(microfacet)           # enum phos_microfacet
+    s.u8(0)                    # no multiscatter Fresnel (white)
+    s.u8(0)                    # no specular tint (white)
+    s.f(film)                  # thin film thickness, nm
+    s.f(1.33)                  # thin film IOR
+    s.u8(layer_span)           # closures under this one
+    s.u8(0)                    # layer weight 1
+    s.u8(0)                    # no layer tint
+    s.f(0.0)                   # layer tint weight
 
 
 def materials(s, mats):
@@ -238,6 +247,15 @@ SEEDS = {
                               instances=[(0, [0, 1, 2])],
                               meshes=[(BOX, BOX_TRIS, [0, 0, 1, 1, 2, 2, 0, 0, 0, 0, 0, 0])],
                               renders=[(PHOTON, 0)]),
+    # Cycles 4's closures: a coat layered over an F82 metal and Oren-Nayar,
+    # sheen, a Multiscatter glass with a thin film; every pass, the
+    # denoising ones included.
+    "cycles4_closures": scene(mats=[[(3, (1, 1, 1), 0.1, 1.5, 2, 0.0, 2), (8, (0.5, 0.5, 0.5), 0.3, 1.5, 2),
+                                     (9, (0.5, 0.4, 0.3), 0.5, 1.5)],
+                                    [(10, (1, 1, 1), 0.5, 1.5), (5, (1, 1, 1), 0.3, 1.5, 2, 400.0)]],
+                              instances=[(0, [0, 1])],
+                              meshes=[(BOX, BOX_TRIS, [0] * 6 + [1] * 6)],
+                              renders=[({"pass_mask": (1 << 10) | (1 << 11), **PHOTON}, 0), ({"pass_mask": 4095}, 0)]),
     "nan_vertex": scene(meshes=[([(0, 0, 0), ("nan", 0, 0), (0, 1, 0)], [(0, 1, 2)], None),
                                 (BOX, BOX_TRIS, None)], instances=[(1, [0]), (0, [0])]),
     "inf_and_huge_vertices": scene(meshes=[([(0, 0, 0), ("inf", 0, 0), (0, 1e30, 0), (1e38, 1e38, 1e38)],

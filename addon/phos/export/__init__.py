@@ -14,6 +14,8 @@ Everything here runs on the thread that called RenderEngine.render() and
 never touches bpy.context.
 """
 
+import bpy
+
 from .context import ExportContext
 from . import camera, instances, world
 
@@ -25,6 +27,11 @@ def _check_render_settings(ctx):
         ctx.warn("Phos: motion blur is not supported; rendering the frame without it")
     if r.use_multiview:
         ctx.warn("Phos: stereoscopy / multi-view is not supported; only the first view is rendered")
+    # Blender 5.0's working colour space of a file: Phos's colours are Rec. 709.
+    working = getattr(getattr(bpy.data, "colorspace", None), "working_space", "Linear Rec.709")
+    if working != "Linear Rec.709":
+        ctx.warn("Phos: the file's working colour space is %s; Phos renders as if it were Linear Rec.709"
+                 % working)
 
 
 def _check_contents(ctx):

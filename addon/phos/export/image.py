@@ -22,10 +22,27 @@ EXTENSION = {
     'CLIP': core.PHOS_EXTEND_CLIP,
 }
 
-# Colour spaces whose stored values are already linear.
+# Colour spaces whose stored values are already linear: Blender 3.x's
+# names, then those of 4.x and 5.x (whose configuration renamed them).
 LINEAR_COLORSPACES = {'Linear', 'Linear ACES', 'Linear ACEScg', 'Non-Color', 'Raw', 'XYZ',
-                      'Linear Rec.709', 'Linear Rec.2020', 'Linear CIE-XYZ E'}
+                      'Linear Rec.709', 'Linear Rec.2020', 'Linear CIE-XYZ E', 'Linear CIE-XYZ D65',
+                      'ACEScg', 'ACES2065-1', 'Linear DCI-P3 D65', 'Linear FilmLight E-Gamut'}
 SRGB_COLORSPACES = {'sRGB', 'sRGB 2.1'}
+
+
+def _encoding(settings):
+    """'linear', 'srgb' or None (another encoding) of an image's colour
+    space: its data flag, Blender 5.3's interoperability id, then its name."""
+    if getattr(settings, "is_data", False):
+        return 'linear'
+    interop = getattr(settings, "interop_id", "") or ""
+    if interop == "data" or interop.startswith("lin_"):
+        return 'linear'
+    if interop.startswith("srgb_"):
+        return 'srgb'
+    if settings.name in SRGB_COLORSPACES:
+        return 'srgb'
+    return 'linear' if settings.name in LINEAR_COLORSPACES else None
 
 
 def srgb_to_linear(c):
@@ -63,9 +80,10 @@ def _read_pixels(image, ctx, owner):
     space = image.colorspace_settings.name
     if not image.is_float:
         # 8-bit buffers come back as stored: encoded values for sRGB images.
-        if space in SRGB_COLORSPACES:
+        encoding = _encoding(image.colorspace_settings)
+        if encoding == 'srgb':
             rgba[:, :3] = srgb_to_linear(rgba[:, :3])
-        elif space not in LINEAR_COLORSPACES:
+        elif encoding is None:
             ctx.warn("Phos: %s: image '%s' uses colour space '%s', which Phos reads as linear"
                      % (owner, image.name, space))
     # Float buffers are converted to scene-linear by Blender on load.

@@ -21,6 +21,12 @@ S = colour × power:
   area        radiance L = S/(4A) before 4.0, S/(πA) from 4.0, with A the
               world-space area (object scale included, ×π/4 for disk and
               ellipse); one-sided, emitting along the object's −Z.
+
+From 4.5 (Cycles' light sync): S = colour × temperature colour (when
+use_temperature) × power × 2^exposure, and with Normalize off the power
+is not spread over the emitter: Cycles then multiplies it by the area it
+would have divided by (4πr² for a point or spot, 4 for a radius of 0; the
+world-space area of an area light; π sin²(α/2) for a sun of angle α).
 """
 
 import math
@@ -41,11 +47,13 @@ def add_light(ob, matrix_world, ctx):
     cycles = getattr(light, "cycles", None)
     if cycles is not None and getattr(cycles, "is_portal", False):
         return None  # portals only guide Cycles' sampling; they emit nothing
-    strength = np.array(light.color[:], dtype=np.float64) * light.energy
+    m = np.array(matrix_world, dtype=np.float64).reshape(4, 4)
+    strength = light_strength(light, m)
     if not np.any(strength):
         return None
+    if not _neutral_node_tree(light):
+        ctx.warn("Phos: light '%s': its shader nodes are not supported; rendered without them" % ob.name)
 
-    m = np.array(matrix_world, dtype=np.float64).reshape(4, 4)
     desc = core.new_light()
     # Object > Visibility > Camera; off by default for lights, as in Cycles.
     desc.camera_visible = 1 if getattr(ob, "visible_camera", False) else 0
@@ -95,6 +103,48 @@ def add_light(ob, matrix_world, ctx):
         raise core.PhosError("light '%s': %s" % (ob.name, ex), ex.status) from None
     ctx.stats["lights"] += 1
     return light_id
+
+
+def light_strength(light, m):
+    """S = colour × power, as Cycles takes it from the light (RGB, W)."""
+    color = np.array(light.color[:], dtype=np.float64)
+    if getattr(light, "use_temperature", False):
+        color = color * np.array(light.temperature_color[:], dtype=np.float64)
+    strength = color * light.energy * 2.0 ** getattr(light, "exposure", 0.0)
+    if not getattr(light, "normalize", True):
+        strength = strength * unnormalized_area(light, m)
+    return strength
+
+
+def unnormalized_area(light, m):
+    """The area Cycles divides a light's power by when Normalize is on."""
+    if light.type in {'POINT', 'SPOT'}:
+        r = max(light.shadow_soft_size, 0.0)
+        return 4.0 * math.pi * r * r if r > 0.0 else 4.0
+    if light.type == 'SUN':
+        half = 0.5 * light.angle
+        return math.pi * math.sin(half) ** 2 if half > 0.0 else 1.0
+    if light.type == 'AREA':
+        size_v = light.size_y if light.shape in {'RECTANGLE', 'ELLIPSE'} else light.size
+        area = float(np.linalg.norm(m[:3, 0] * light.size) * np.linalg.norm(m[:3, 1] * size_v))
+        return area * (math.pi / 4.0 if light.shape in {'DISK', 'ELLIPSE'} else 1.0)
+    return 1.0
+
+
+def _neutral_node_tree(light):
+    """No node tree, or the one Blender 5.3 gives every new light: a white
+    Emission of strength 1 into the Light Output, which changes nothing."""
+    tree = getattr(light, "node_tree", None)
+    if tree is None or not getattr(light, "use_nodes", False):
+        return True
+    outputs = [n for n in tree.nodes if n.bl_idname == 'ShaderNodeOutputLight' and n.is_active_output]
+    if not outputs or not outputs[0].inputs['Surface'].is_linked:
+        return True
+    source = outputs[0].inputs['Surface'].links[0].from_node
+    if source.bl_idname != 'ShaderNodeEmission' or any(i.is_linked for i in source.inputs):
+        return False
+    color = tuple(source.inputs['Color'].default_value)[:3]
+    return color == (1.0, 1.0, 1.0) and source.inputs['Strength'].default_value == 1.0
 
 
 def sun_disc_mean_cosine(angle):

@@ -28,10 +28,12 @@ version, GGX is used with one warning naming the distribution.
 
 import math
 
+import bpy
 import numpy as np
 
 from .. import core
 from . import image as image_export
+from .microfacet import conductor_as_f82, f82_fss, microfacet_model, unit_rgb
 
 # Closures whose weight is below this are dropped (Cycles: CLOSURE_WEIGHT_CUTOFF).
 WEIGHT_CUTOFF = 1e-5
@@ -45,25 +47,41 @@ _GROUP_OUTPUT = 'NodeGroupOutput'
 _LUMA = np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)  # colour → float, as Blender's rgb_to_bw
 
 
+def _rgb(value):
+    return np.asarray(value, dtype=np.float32).reshape(3).copy()
+
+
 class Closure:
-    """One weighted closure before it becomes a core.phos_closure_desc."""
+    """One weighted closure before it becomes a core.phos_closure_desc.
 
-    __slots__ = ("type", "weight", "image", "roughness", "ior", "specular_color", "glass_fresnel",
-                 "transmission_tint", "transmission_roughness", "layered")
+    Parameters beyond the first three are keyword arguments named as the
+    desc's fields (phos.h); `layer_children`, when set, lists the closures
+    this one lies over (Principled v2's sheen, coat and specular layers),
+    which must follow it in the material's list.
+    """
 
-    def __init__(self, type, weight, image=None, roughness=0.0, ior=1.45,
-                 specular_color=(0.0, 0.0, 0.0), glass_fresnel=core.PHOS_GLASS_FRESNEL_MACRO,
-                 transmission_tint=(1.0, 1.0, 1.0), transmission_roughness=-1.0, layered=False):
+    _FIELDS = dict(roughness=0.0, ior=1.45, specular_color=(0.0, 0.0, 0.0),
+                   glass_fresnel=core.PHOS_GLASS_FRESNEL_MACRO, transmission_tint=(1.0, 1.0, 1.0),
+                   transmission_roughness=-1.0, microfacet=core.PHOS_MICROFACET_GGX_SEPARABLE,
+                   multiscatter_fresnel=(1.0, 1.0, 1.0), specular_tint=(1.0, 1.0, 1.0),
+                   thin_film_thickness=0.0, thin_film_ior=1.33, layer_weight=(1.0, 1.0, 1.0),
+                   layer_tint=(1.0, 1.0, 1.0), layer_tint_weight=0.0)
+    _VECTORS = {"specular_color", "transmission_tint", "multiscatter_fresnel", "specular_tint",
+                "layer_weight", "layer_tint"}
+
+    __slots__ = ("type", "weight", "image", "layer_children") + tuple(_FIELDS)
+
+    def __init__(self, type, weight, image=None, layer_children=None, **fields):
+        unknown = set(fields) - set(self._FIELDS)
+        if unknown:
+            raise TypeError("Closure: unknown fields %s" % sorted(unknown))
         self.type = type
-        self.weight = np.asarray(weight, dtype=np.float32).reshape(3).copy()
+        self.weight = _rgb(weight)
         self.image = image
-        self.roughness = float(roughness)
-        self.ior = float(ior)
-        self.specular_color = np.asarray(specular_color, dtype=np.float32).reshape(3)
-        self.glass_fresnel = glass_fresnel
-        self.transmission_tint = np.asarray(transmission_tint, dtype=np.float32).reshape(3)
-        self.transmission_roughness = float(transmission_roughness)
-        self.layered = bool(layered)
+        self.layer_children = layer_children
+        for name, default in self._FIELDS.items():
+            value = fields.get(name, default)
+            setattr(self, name, _rgb(value) if name in self._VECTORS else value)
 
     def scale(self, factor):
         self.weight *= factor
@@ -72,19 +90,41 @@ class Closure:
     def negligible(self):
         return float(np.max(np.abs(self.weight))) <= WEIGHT_CUTOFF
 
-    def to_desc(self):
+    def to_desc(self, layer_span=0):
         d = core.new_closure()
         d.type = self.type
         d.weight[:] = [float(x) for x in self.weight]
         d.weight_image = -1 if self.image is None else int(self.image)
-        d.roughness = min(max(self.roughness, 0.0), 1.0)
-        d.ior = max(self.ior, 1e-5)
-        d.specular_color[:] = [float(x) for x in self.specular_color]
+        d.roughness = min(max(float(self.roughness), 0.0), 1.0)
+        d.ior = max(float(self.ior), 1e-5)
+        d.specular_color[:] = [max(float(x), 0.0) for x in self.specular_color]
         d.glass_fresnel = self.glass_fresnel
         d.transmission_tint[:] = [max(float(x), 0.0) for x in self.transmission_tint]
-        d.transmission_roughness = min(self.transmission_roughness, 1.0)
-        d.layered = 1 if self.layered else 0
+        d.transmission_roughness = min(float(self.transmission_roughness), 1.0)
+        d.microfacet = self.microfacet
+        d.multiscatter_fresnel[:] = [min(max(float(x), 0.0), 1.0) for x in self.multiscatter_fresnel]
+        d.specular_tint[:] = [min(max(float(x), 0.0), 1.0) for x in self.specular_tint]
+        d.thin_film_thickness = min(max(float(self.thin_film_thickness), 0.0), 1e6)
+        d.thin_film_ior = max(float(self.thin_film_ior), 1e-5)
+        d.layer_span = layer_span
+        d.layer_weight[:] = [max(float(x), 0.0) for x in self.layer_weight]
+        d.layer_tint[:] = [max(float(x), 0.0) for x in self.layer_tint]
+        d.layer_tint_weight = max(float(self.layer_tint_weight), 0.0)
         return d
+
+
+def closure_descs(closures):
+    """core descs of a material's final closure list, with each layer's span
+    counted among the closures that remain (filtering only removes, so a
+    layer's surviving children still follow it)."""
+    descs = []
+    for i, c in enumerate(closures):
+        span = 0
+        if c.layer_children:
+            children = {id(k) for k in c.layer_children}
+            span = sum(1 for k in closures[i + 1:] if id(k) in children)
+        descs.append(c.to_desc(span))
+    return descs
 
 
 class _Source:
@@ -385,27 +425,32 @@ class NodeTreeWalker:
             return self._fallback(node)
         consumed = set()
         rgb, img, _ = self.color(node, 'Color', consumed)
-        roughness = self.value(node, 'Roughness', 0.0, consumed)
-        if roughness > 0.0:
-            self.note(node, "Oren-Nayar roughness is not supported; rendered as Lambertian")
+        roughness = _clamp01(self.value(node, 'Roughness', 0.0, consumed))
         self.check_unused_links(node, consumed)
+        if roughness >= 1e-5:
+            if self.ctx.at_least(4, 3):
+                # Cycles 4.3+: the energy-preserving Oren-Nayar, its colour
+                # also the albedo of its multiple-scattering term.
+                return [Closure(core.PHOS_CLOSURE_OREN_NAYAR, rgb, img, roughness=roughness,
+                                specular_color=np.clip(rgb, 0.0, 1.0))]
+            self.note(node, "Oren-Nayar roughness before Blender 4.3 is not supported; rendered as Lambertian")
         return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, img)]
 
-    def _distribution(self, node, allowed):
-        """Roughness override (0 for Sharp) and a warning for unsupported distributions.
-
-        From 4.0 Multiscatter GGX is the default of the Glossy, Glass and
-        Principled nodes: it is rendered as GGX without a warning there.
-        """
+    def distribution(self, node, allowed=('GGX', 'MULTI_GGX')):
+        """(microfacet model, roughness override) of a node's distribution:
+        'SHARP' (3.x) is GGX of roughness 0; one warning names any other
+        distribution the core does not have, rendered as GGX."""
         dist = getattr(node, "distribution", 'GGX')
         if dist == 'SHARP':
-            return 0.0
-        if dist == 'MULTI_GGX' and self.ctx.at_least(4, 0):
-            return None
+            return microfacet_model(self.ctx, 'GGX'), 0.0
         if dist not in allowed:
             self.note(node, "%s distribution is not supported; using GGX"
                       % _enum_name(node, "distribution", dist))
-        return None
+            dist = 'GGX'
+        elif dist == 'MULTI_GGX' and not self.ctx.at_least(4, 0):
+            self.note(node, "Multiscatter GGX is rendered with Blender 4's energy compensation, not 3.x's "
+                            "random walk: the same brightness, slightly different highlights")
+        return microfacet_model(self.ctx, dist), None
 
     def _glossy(self, node, stack, anisotropy_note="anisotropy is not supported; ignored"):
         if self.world:
@@ -413,13 +458,22 @@ class NodeTreeWalker:
         consumed = set()
         rgb, img, _ = self.color(node, 'Color', consumed)
         roughness = self.value(node, 'Roughness', 0.5, consumed)
-        override = self._distribution(node, {'GGX'})
+        model, override = self.distribution(node)
         if override is not None:
             roughness = override
         if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:
             self.note(node, anisotropy_note)
         self.check_unused_links(node, consumed)
-        return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, img, roughness=roughness)]
+        # Multiscatter: its colour is the mean Fresnel of the multiply
+        # scattered light (Cycles' constant-Fresnel Glossy).
+        fss = unit_rgb(image_export.average_color(self._image_node(node, 'Color'), self.ctx) if img is not None
+                       else rgb)
+        return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, img, roughness=roughness, microfacet=model,
+                        multiscatter_fresnel=fss)]
+
+    def _image_node(self, node, name):
+        src = _resolve(find_input(node, name), self.stack)
+        return src.node
 
     def _anisotropic(self, node, stack):
         """The 3.x Anisotropic BSDF: a Glossy BSDF whose anisotropy Phos ignores."""
@@ -432,12 +486,21 @@ class NodeTreeWalker:
         rgb, img, _ = self.color(node, 'Color', consumed)
         roughness = self.value(node, 'Roughness', 0.0, consumed)
         ior = self.value(node, 'IOR', 1.45, consumed)
-        override = self._distribution(node, {'GGX'})
+        model, override = self.distribution(node)
         if override is not None:
             roughness = override
+        film = thin_film(self, node, consumed)
+        if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:  # Blender 5.3's glass
+            self.note(node, "anisotropy is not supported; ignored")
         self.check_unused_links(node, consumed)
+        fss = unit_rgb(image_export.average_color(self._image_node(node, 'Color'), self.ctx) if img is not None
+                       else rgb)
+        # Multiscatter glass splits by the Fresnel of each microfacet in every
+        # version (3.x's random walk does too).
+        fresnel = core.PHOS_GLASS_FRESNEL_MICROFACET if model == core.PHOS_MICROFACET_GGX_MULTISCATTER \
+            else self.glass_fresnel
         return [Closure(core.PHOS_CLOSURE_GLASS, rgb, img, roughness=roughness, ior=ior,
-                        glass_fresnel=self.glass_fresnel)]
+                        glass_fresnel=fresnel, microfacet=model, multiscatter_fresnel=fss, **film)]
 
     def _refraction(self, node, stack):
         if self.world:
@@ -446,11 +509,46 @@ class NodeTreeWalker:
         rgb, img, _ = self.color(node, 'Color', consumed)
         roughness = self.value(node, 'Roughness', 0.0, consumed)
         ior = self.value(node, 'IOR', 1.45, consumed)
-        override = self._distribution(node, {'GGX'})
+        model, override = self.distribution(node)
         if override is not None:
             roughness = override
+        if model == core.PHOS_MICROFACET_GGX_MULTISCATTER:
+            model = microfacet_model(self.ctx, 'GGX')  # Cycles never compensates refraction
         self.check_unused_links(node, consumed)
-        return [Closure(core.PHOS_CLOSURE_REFRACTION, rgb, img, roughness=roughness, ior=ior)]
+        return [Closure(core.PHOS_CLOSURE_REFRACTION, rgb, img, roughness=roughness, ior=ior, microfacet=model)]
+
+    def _metallic(self, node, stack):
+        """The Metallic BSDF (4.3+): F82-tint, or a physical conductor's
+        complex IOR fitted by F82 at 0° and 82° (Cycles fits it the same
+        way for its F_ss; the reflectance in between differs by under 1 %)."""
+        if self.world:
+            return self._fallback(node)
+        consumed = set()
+        roughness = self.value(node, 'Roughness', 0.5, consumed)
+        model, override = self.distribution(node)
+        if override is not None:
+            roughness = override
+        if getattr(node, "fresnel_type", 'F82') == 'PHYSICAL_CONDUCTOR':
+            n, _, _ = self.color(node, 'IOR', consumed, allow_image=False)
+            k, _, _ = self.color(node, 'Extinction', consumed, allow_image=False)
+            f0, tint = conductor_as_f82(n, k)
+            img = None
+        else:
+            base, img, base_node = self.color(node, 'Base Color', consumed)
+            edge, _, _ = self.color(node, 'Edge Tint', consumed, allow_image=False)
+            f0 = unit_rgb(image_export.average_color(base_node, self.ctx) if img is not None else base)
+            tint = unit_rgb(edge)
+            if img is not None:
+                self.note(node, "an image Base Color uses the image's average colour")
+                img = None
+        if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:
+            self.note(node, "anisotropy is not supported; ignored")
+        if self.value(node, 'Thin Film Thickness', 0.0, consumed) > 0.1:
+            self.note(node, "a thin film on a metal is not supported; ignored")
+        consumed |= {sk.identifier for sk in node.inputs if sk.name.startswith("Thin Film")}
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_METAL, (1.0, 1.0, 1.0), img, roughness=roughness, microfacet=model,
+                        specular_color=f0, specular_tint=tint, multiscatter_fresnel=f82_fss(f0, tint))]
 
     def _emission(self, node, stack):
         consumed = set()
@@ -480,6 +578,7 @@ class NodeTreeWalker:
     def _principled(self, node, stack):
         if self.world:
             return self._fallback(node)
+        from .principled import principled
         return principled(self, node)
 
 
@@ -520,144 +619,21 @@ def _socket_color(socket):
         return np.full(3, float(value), dtype=np.float32)
 
 
-def principled(walker, node):
-    """Principled BSDF → closures, after Cycles 3.4's svm_closure.h.
-
-    diffuse_weight = (1 − metallic)(1 − transmission); the specular layer
-    has weight 1 − final_transmission, f0 = mix(specular·0.08·tint, base,
-    metallic) and the IOR Cycles derives from Specular; the transmission
-    layer is a glass of weight final_transmission, where final_transmission =
-    transmission·(1 − metallic), whose refracted light is tinted by the base
-    colour and whose refraction roughness is 1 − (1 − Roughness)(1 −
-    Transmission Roughness), as in Cycles 3.4 (which also tints the glass's
-    reflection by mix(white, base, specular_tint): that tint is left out).
-    With an image base colour the image tints the whole glass. On 4.x the sockets are found by their new
-    names and mapped onto the same closures, the diffuse base layered under
-    the specular (`layered`: scaled by 1 − the specular layer's directional
-    albedo, docs/algorithms.md §8; Multiscatter GGX is rendered as GGX); the 4.x glass tints
-    each refraction by √(base colour) and uses the microfacet Fresnel.
-    """
-    w = walker
-    consumed = set()
-    base, base_img, base_node = w.color(node, ('Base Color',), consumed)
-    metallic = _clamp01(w.value(node, ('Metallic',), 0.0, consumed))
-    roughness = _clamp01(w.value(node, ('Roughness',), 0.5, consumed))
-    ior = max(w.value(node, ('IOR',), 1.45, consumed), 1e-5)
-    transmission = _clamp01(w.value(node, ('Transmission Weight', 'Transmission'), 0.0, consumed))
-    alpha = _clamp01(w.value(node, ('Alpha',), 1.0, consumed))
-    emission, emission_img, _ = w.color(node, ('Emission Color', 'Emission'), consumed)
-    emission_strength = w.value(node, ('Emission Strength',), 1.0, consumed)
-    v4 = w.ctx.at_least(4, 0)
-
-    spec_socket = find_input(node, 'Specular IOR Level', 'Specular')
-    specular = max(w.value(node, (spec_socket.name,), 0.5, consumed), 0.0) if spec_socket else 0.5
-    tint_socket = find_input(node, 'Specular Tint')
-    if tint_socket is not None and tint_socket.type == 'RGBA':
-        tint_rgb, _, _ = w.color(node, ('Specular Tint',), consumed, allow_image=False)
-        tint_scalar = None
-    else:
-        tint_scalar = _clamp01(w.value(node, ('Specular Tint',), 0.0, consumed))
-        tint_rgb = None
-
-    # Parts of the Principled BSDF the core does not have: named once.
-    ignored = []
-    subsurface = w.value(node, ('Subsurface Weight', 'Subsurface'), 0.0, consumed)
-    if subsurface > WEIGHT_CUTOFF:
-        ignored.append("Subsurface")
-    sheen = w.value(node, ('Sheen Weight', 'Sheen'), 0.0, consumed)
-    if sheen > WEIGHT_CUTOFF:
-        ignored.append("Sheen")
-    coat = w.value(node, ('Coat Weight', 'Clearcoat'), 0.0, consumed)
-    if coat > WEIGHT_CUTOFF:
-        ignored.append("Clearcoat" if not v4 else "Coat")
-    if w.value(node, ('Anisotropic',), 0.0, consumed) > WEIGHT_CUTOFF:
-        ignored.append("Anisotropic")
-    distribution = getattr(node, "distribution", 'GGX')
-    if distribution != 'GGX' and not (distribution == 'MULTI_GGX' and v4):
-        ignored.append("%s distribution (GGX used)" % _enum_name(node, "distribution", distribution))
-    transmission_roughness = w.value(node, ('Transmission Roughness',), 0.0, consumed) \
-        if find_input(node, 'Transmission Roughness') is not None else 0.0
-    final_transmission = transmission * (1.0 - metallic)
-    # Inputs that only matter for ignored features: not worth a second warning.
-    consumed |= {s.identifier for s in node.inputs
-                 if s.name.startswith(("Subsurface", "Sheen", "Coat", "Clearcoat", "Anisotropic",
-                                       "Thin Film"))}
-    if ignored:
-        w.note(node, "%s not supported; ignored" % ", ".join(ignored))
-    w.check_unused_links(node, consumed)
-
-    # Colour used where the core needs a constant (specular f0, tint): the
-    # image's average when the base colour is an image.
-    base_const = image_export.average_color(base_node, w.ctx) if base_img is not None else base
-    if base_img is not None and (metallic > WEIGHT_CUTOFF or (tint_scalar or 0.0) > 0.0):
-        w.note(node, "metallic/tinted specular with an image Base Color uses the image's average colour")
-
-    closures = []
-    diffuse_weight = (1.0 - metallic) * (1.0 - transmission)
-    specular_weight = 1.0 - final_transmission
-
-    if diffuse_weight > WEIGHT_CUTOFF:
-        color, img = base, base_img
-        if subsurface > WEIGHT_CUTOFF and not v4:
-            # Closest to Cycles' subsurface albedo: the mixed subsurface colour.
-            ss_color, _, _ = w.color(node, ('Subsurface Color',), consumed, allow_image=False)
-            s = _clamp01(subsurface)
-            if img is None:
-                color = ss_color * s + base * (1.0 - s)
-        if v4:
-            # Principled v2 (Cycles 4): a Lambertian base under the
-            # dielectric specular, scaled by 1 − the specular's albedo
-            # toward the viewer (the core's `layered` closures).
-            closures.append(Closure(core.PHOS_CLOSURE_DIFFUSE, color * diffuse_weight, img, layered=True))
-        else:
-            closures.append(Closure(core.PHOS_CLOSURE_PRINCIPLED_DIFFUSE, color * diffuse_weight, img,
-                                    roughness=roughness))
-
-    if specular_weight > WEIGHT_CUTOFF and (specular > WEIGHT_CUTOFF or metallic > WEIGHT_CUTOFF):
-        if not v4:
-            # Cycles 3.4: IOR from Specular, f0 tinted towards the base hue.
-            spec_ior = 2.0 / (1.0 - math.sqrt(min(0.08 * specular, 0.999999))) - 1.0
-            lum = 0.3 * base_const[0] + 0.6 * base_const[1] + 0.1 * base_const[2]
-            ctint = base_const / lum if lum > 0.0 else np.ones(3, dtype=np.float32)
-            t = tint_scalar or 0.0
-            tmp = (1.0 - t) + ctint * t
-            f0 = (specular * 0.08 * tmp) * (1.0 - metallic) + base_const * metallic
-        else:
-            # 4.x: f0 from IOR scaled by 2·Specular IOR Level, tinted by the colour tint.
-            f0_ior = ((ior - 1.0) / (ior + 1.0)) ** 2
-            f0_d = min(f0_ior * 2.0 * specular, 1.0)
-            sqrt_f0 = math.sqrt(min(f0_d, 0.999999))
-            spec_ior = (1.0 + sqrt_f0) / (1.0 - sqrt_f0)
-            tint = tint_rgb if tint_rgb is not None else np.ones(3, dtype=np.float32)
-            f0 = f0_d * tint * (1.0 - metallic) + base_const * metallic
-        closures.append(Closure(core.PHOS_CLOSURE_REFLECTION_FRESNEL, np.full(3, specular_weight),
-                                roughness=roughness, ior=spec_ior, specular_color=f0))
-
-    if final_transmission > WEIGHT_CUTOFF:
-        refraction_roughness = -1.0
-        if not v4:
-            refraction_roughness = 1.0 - (1.0 - roughness) * (1.0 - _clamp01(transmission_roughness))
-        if base_img is None:
-            # 3.x tints each refraction by the base colour; 4.x by its square
-            # root (clamped to 1), so that light through a closed object
-            # (in and out) takes the base colour (Cycles 4.x svm closure.h).
-            tint = base if not v4 else np.sqrt(np.clip(base, 0.0, 1.0))
-            weight = np.full(3, final_transmission)
-        else:
-            weight, tint = base * final_transmission, (1.0, 1.0, 1.0)
-        closures.append(Closure(core.PHOS_CLOSURE_GLASS, weight, base_img, roughness=roughness,
-                                ior=ior, glass_fresnel=w.glass_fresnel, transmission_tint=tint,
-                                transmission_roughness=refraction_roughness))
-
-    emitted = emission * emission_strength
-    if emission_img is not None or float(np.max(np.abs(emitted))) > 0.0:
-        closures.append(Closure(core.PHOS_CLOSURE_EMISSION, emitted, emission_img))
-
-    if alpha < 1.0:
-        # Cycles mixes the whole node (emission included) with a transparent BSDF.
-        closures = [c.scale(alpha) for c in closures]
-        closures.append(Closure(core.PHOS_CLOSURE_TRANSPARENT, np.full(3, 1.0 - alpha)))
-    return closures
+def thin_film(walker, node, consumed):
+    """The Closure fields of a node's thin film (Principled 4.2+, Glass 5.0+):
+    thickness (nm) and IOR, the IOR faded toward 1 below the thickness at
+    which Cycles fades the film in (30 nm before 5.0, 1 nm from 5.0)."""
+    if find_input(node, 'Thin Film Thickness') is None:
+        return {}
+    d = max(walker.value(node, ('Thin Film Thickness',), 0.0, consumed), 0.0)
+    n = max(walker.value(node, ('Thin Film IOR',), 1.33, consumed), 1e-5)
+    if d <= 0.1:
+        return {}
+    fade = 1.0 if walker.ctx.at_least(5, 0) else 30.0
+    if d < fade:
+        t = d / fade
+        n = 1.0 + (n - 1.0) * t * t * (3.0 - 2.0 * t)
+    return dict(thin_film_thickness=d, thin_film_ior=n)
 
 
 def _clamp01(x):
@@ -676,15 +652,25 @@ _HANDLERS = {
     'ShaderNodeBackground': NodeTreeWalker._background,
     'ShaderNodeBsdfTransparent': NodeTreeWalker._transparent,
     'ShaderNodeBsdfPrincipled': NodeTreeWalker._principled,
+    'ShaderNodeBsdfMetallic': NodeTreeWalker._metallic,
 }
 
 
 # ------------------------------------------------------------------ materials
 
+def uses_nodes(id_data):
+    """Whether Cycles renders a material's or world's node tree: always from
+    5.0, which deprecated `use_nodes` (it reads True and cannot be cleared,
+    and files saved without nodes get an equivalent tree when loaded)."""
+    if id_data.node_tree is None:
+        return False
+    return bpy.app.version >= (5, 0, 0) or id_data.use_nodes
+
+
 def material_closures(mat, ctx):
     """The closure list of a material (before truncation and conversion)."""
     owner = "material '%s'" % mat.name
-    if not mat.use_nodes or mat.node_tree is None:
+    if not uses_nodes(mat):
         # What Cycles renders for a material without nodes: a diffuse of its colour.
         return [Closure(core.PHOS_CLOSURE_DIFFUSE, mat.diffuse_color[:3])]
     out = active_output(mat.node_tree, 'ShaderNodeOutputMaterial')
@@ -721,7 +707,7 @@ def add_material(mat, ctx):
                  % (mat.name, len(closures), core.PHOS_MAX_CLOSURES))
         closures = closures[:core.PHOS_MAX_CLOSURES]
     try:
-        mat_id = ctx.core.add_material([c.to_desc() for c in closures])
+        mat_id = ctx.core.add_material(closure_descs(closures))
     except core.PhosError as ex:
         raise core.PhosError("material '%s': %s" % (mat.name, ex), ex.status) from None
     ctx.materials[key] = mat_id

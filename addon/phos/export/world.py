@@ -12,13 +12,13 @@ colour their Background node would have unlinked, with a warning.
 import numpy as np
 
 from .. import core
-from .material import NodeTreeWalker, active_output
+from .material import NodeTreeWalker, active_output, uses_nodes
 
 
 def world_color(world, ctx):
     if world is None:
         return np.zeros(3, dtype=np.float32)
-    if not world.use_nodes or world.node_tree is None:
+    if not uses_nodes(world):
         return np.array(world.color[:3], dtype=np.float32)
     out = active_output(world.node_tree, 'ShaderNodeOutputWorld')
     owner = "world '%s'" % world.name

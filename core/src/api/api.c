@@ -116,6 +116,14 @@ void phos_closure_desc_init(phos_closure_desc *d)
     d->glass_fresnel = PHOS_GLASS_FRESNEL_MACRO;
     d->transmission_tint[0] = d->transmission_tint[1] = d->transmission_tint[2] = 1.0f;
     d->transmission_roughness = -1.0f;
+    d->microfacet = PHOS_MICROFACET_GGX_SEPARABLE;
+    for (int k = 0; k < 3; k++) {
+        d->multiscatter_fresnel[k] = 1.0f;
+        d->specular_tint[k] = 1.0f;
+        d->layer_weight[k] = 1.0f;
+        d->layer_tint[k] = 1.0f;
+    }
+    d->thin_film_ior = 1.33f;
 }
 
 void phos_material_desc_init(phos_material_desc *d)
@@ -249,6 +257,14 @@ static int closure_needs_ior(uint32_t type)
     return type == PHOS_CLOSURE_GLASS || type == PHOS_CLOSURE_REFRACTION || type == PHOS_CLOSURE_REFLECTION_FRESNEL;
 }
 
+static int all_finite_in(const float *v, int n, float lo, float hi)
+{
+    for (int k = 0; k < n; k++)
+        if (!isfinite(v[k]) || v[k] < lo || v[k] > hi)
+            return 0;
+    return 1;
+}
+
 static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32_t i)
 {
     if (c->type >= PHOS_CLOSURE_TYPE_COUNT)
@@ -270,8 +286,23 @@ static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32
     if (!isfinite(c->transmission_roughness) || c->transmission_roughness > 1.0f)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u transmission roughness %g must be <= 1", i,
              (double)c->transmission_roughness);
-    if (c->layered > 1)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u layered flag %u must be 0 or 1", i, c->layered);
+    if (c->microfacet > PHOS_MICROFACET_GGX_MULTISCATTER)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown microfacet model %u", i,
+             c->microfacet);
+    if (!all_finite_in(c->multiscatter_fresnel, 3, 0.0f, 1.0f))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u multiscatter Fresnel must be in [0, 1]", i);
+    if (!all_finite_in(c->specular_tint, 3, 0.0f, 1.0f))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u specular tint must be in [0, 1]", i);
+    if (!isfinite(c->thin_film_thickness) || c->thin_film_thickness < 0.0f || c->thin_film_thickness > 1e6f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u thin film thickness %g nm must be in [0, 1e6]",
+             i, (double)c->thin_film_thickness);
+    if (!isfinite(c->thin_film_ior) || c->thin_film_ior <= 0.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u thin film IOR %g must be finite and > 0", i,
+             (double)c->thin_film_ior);
+    if (!all_finite_nonnegative(c->layer_weight, 3) || !all_finite_nonnegative(c->layer_tint, 3) ||
+        !isfinite(c->layer_tint_weight) || c->layer_tint_weight < 0.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u layer weight and tint must be finite and >= 0",
+             i);
     if (c->glass_fresnel > PHOS_GLASS_FRESNEL_MICROFACET)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown glass Fresnel mode %u", i,
              c->glass_fresnel);
@@ -290,6 +321,9 @@ phos_status phos_scene_add_material(phos_scene *s, const phos_material_desc *d, 
         phos_status st = validate_closure(s, &d->closures[i], i);
         if (st != PHOS_OK)
             return st;
+        if (d->closures[i].layer_span > d->closure_count - 1 - i)
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u lies over %u closures, but only %u follow it",
+                 i, d->closures[i].layer_span, d->closure_count - 1 - i);
     }
     if (!grow((void **)&s->materials, s->material_count, &s->material_capacity, sizeof(material)))
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "material: out of memory");

@@ -25,7 +25,11 @@ static const layout_field fields[] = {
     FIELD(phos_closure_desc, type) FIELD(phos_closure_desc, weight) FIELD(phos_closure_desc, weight_image)
     FIELD(phos_closure_desc, roughness) FIELD(phos_closure_desc, ior) FIELD(phos_closure_desc, specular_color)
     FIELD(phos_closure_desc, glass_fresnel) FIELD(phos_closure_desc, transmission_tint)
-    FIELD(phos_closure_desc, transmission_roughness) FIELD(phos_closure_desc, layered)
+    FIELD(phos_closure_desc, transmission_roughness) FIELD(phos_closure_desc, microfacet)
+    FIELD(phos_closure_desc, multiscatter_fresnel) FIELD(phos_closure_desc, specular_tint)
+    FIELD(phos_closure_desc, thin_film_thickness) FIELD(phos_closure_desc, thin_film_ior)
+    FIELD(phos_closure_desc, layer_span) FIELD(phos_closure_desc, layer_weight)
+    FIELD(phos_closure_desc, layer_tint) FIELD(phos_closure_desc, layer_tint_weight)
 
     FIELD(phos_material_desc, closure_count) FIELD(phos_material_desc, closures)
 

@@ -44,6 +44,28 @@ void camera_path_add_diffuse(camera_path *p, int caustic, vec3 L)
     add_to(p->res, component, p->beta, L, 1.0f);
 }
 
+/* The denoising features (Cycles' film denoising features, 4.5): the
+ * first surface on the camera path that is more than a quarter
+ * diffuse-like gives its albedo and normal; the specular surfaces before it
+ * (mirrors, glass, sharp coats, transparency) pass them on, scaled by
+ * their own albedo. Returns whether later surfaces still count. */
+static int record_features(sample_result *res, const integrator_settings *is, const bsdf *b, vec3 wo,
+                           vec3 *feature_beta)
+{
+    bsdf_features f;
+    bsdf_denoising_features(b, wo, &f);
+    if (f.weight_total > 0.0f && !(4.0f * f.weight_diffuse > f.weight_total)) {
+        *feature_beta = v3_mul(*feature_beta, f.albedo_specular);
+        return !v3_is_zero(*feature_beta);
+    }
+    res->denoising_albedo = v3_add(res->denoising_albedo, v3_mul(*feature_beta, f.albedo_diffuse));
+    /* The closures' normal weighted by their sampling weights: all of Phos's
+     * share the shading normal; a surface with none (an emitter) has none. */
+    if (f.weight_total > 0.0f)
+        res->denoising_normal = camera_direction_to_camera_space(is->camera, b->shading.n);
+    return 0;
+}
+
 /* MIS weight of emission found by the ray that left the previous vertex
  * with BSDF pdf prev_pdf, against that vertex's next-event estimate. */
 static float emission_weight(int prev_delta, float prev_pdf, float light_pdf)
@@ -82,6 +104,18 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
     light_context prev = {v3s(0.0f), v3s(0.0f), v3s(0.0f), 0, 1, 0}; /* the vertex the ray left */
     if (start->from)
         prev = *start->from;
+    int features = start->from_camera && is->denoising_features; /* record_features still pending */
+    vec3 feature_beta = v3s(1.0f);
+/* Emission found while the features are pending also shows in their albedo
+ * (lamps and the world seen directly or through mirrors), as in Cycles. */
+#define ADD_EMISSION(L, w)                                                                          \
+    do {                                                                                            \
+        vec3 L_ = (L);                                                                              \
+        float w_ = (w);                                                                             \
+        add_to(&res, emission_component, p.beta, L_, w_);                                           \
+        if (features)                                                                               \
+            res.denoising_albedo = v3_madd(res.denoising_albedo, v3_mul(feature_beta, v3_mul(p.beta, L_)), w_); \
+    } while (0)
 
     for (;;) {
         ray_hit h;
@@ -99,11 +133,11 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
 
         light_hit lh;
         if (lights_intersect(s, prev_delta ? NULL : &prev, o, d, tmin, t_hit, camera_segment, &lh))
-            add_to(&res, emission_component, p.beta, lh.radiance, emission_weight(prev_delta, prev_pdf, lh.pdf));
+            ADD_EMISSION(lh.radiance, emission_weight(prev_delta, prev_pdf, lh.pdf));
         if (!hit) {
             if (!(camera_segment && is->transparent_background))
-                add_to(&res, emission_component, p.beta, lights_escape(s, prev_delta ? NULL : &prev, d, prev_pdf, prev_delta, camera_segment),
-                       1.0f);
+                ADD_EMISSION(lights_escape(s, prev_delta ? NULL : &prev, d, prev_pdf, prev_delta, camera_segment),
+                             1.0f);
             if (camera_segment && !is->transparent_background)
                 res.alpha = 1.0f;
             break;
@@ -119,13 +153,15 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
                 int32_t li = inst->emitter_of_triangle ? inst->emitter_of_triangle[sf.prim] : -1;
                 w = emission_weight(prev_delta, prev_pdf, light_pdf_triangle(s, li, &prev, sf.p, sf.ng));
             }
-            add_to(&res, emission_component, p.beta, material_emission(s, &sf), w);
+            ADD_EMISSION(material_emission(s, &sf), w);
         }
         if (emission_only)
             break;
 
         bsdf b, storage;
         material_bsdf(s, &sf, &b);
+        if (features)
+            features = record_features(&res, is, &b, v3_neg(d), &feature_beta);
         if (b.count == 0) {
             if (camera_segment)
                 res.alpha = 1.0f;
@@ -182,6 +218,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         }
     }
     return res;
+#undef ADD_EMISSION
 }
 
 sample_result camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,

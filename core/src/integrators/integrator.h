@@ -56,6 +56,9 @@ typedef struct integrator_settings {
      * emitters through specular surfaces only (PATH with the irradiance
      * cache): the gathers' rays count it, apart (indirect_diffuse.h). */
     int gathers_find_caustics;
+    /* 1: camera paths also record the denoising features (a Denoising pass is on). */
+    int denoising_features;
+    const phos_camera_desc *camera; /* for the features' camera-space normal */
 } integrator_settings;
 
 /* Per-thread scratch: photon-map queries, and counts render.c sums per
@@ -74,6 +77,8 @@ typedef struct sample_result {
     vec3 component[COMPONENT_COUNT]; /* W/(m²·sr) along the camera ray */
     vec3 photon_map;               /* debug: global-map estimate at the first diffuse hit */
     vec3 caustic_map;              /* debug: caustic-map estimate there */
+    vec3 denoising_albedo;         /* the denoising features (integrator_settings.denoising_features) */
+    vec3 denoising_normal;         /* camera space, unit (0 if the ray hit nothing) */
     float alpha;                   /* 1 where the ray hit something opaque */
     float first_distance;          /* how far the ray went to the first surface it hit (INFINITY: none) */
 } sample_result;

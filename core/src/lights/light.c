@@ -264,9 +264,9 @@ static int sample_point(const light *l, vec3 p, float2 u, light_sample *out)
         out->distance = fmaxf(t, 0.0f);
         out->pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - cos_max));
         out->delta = 0;
-        vec3 x = v3_madd(p, wi, out->distance);
-        float a = l->kind == LIGHT_SPOT ? light_spot_attenuation(l, v3_normalize(v3_sub(p, l->position))) : 1.0f;
-        (void)x;
+        /* A sphere spot (Cycles 4) shapes its beam by the direction of each
+         * ray leaving it, not by where p lies from its centre. */
+        float a = l->kind == LIGHT_SPOT ? light_spot_attenuation(l, v3_neg(wi)) : 1.0f;
         out->radiance = v3_scale(L, a);
         return a > 0.0f && out->pdf > 0.0f && isfinite(out->pdf);
     }
@@ -610,7 +610,7 @@ static int intersect_point(const light *l, vec3 o, vec3 d, float tmax, light_hit
         t = b - sqrtf(disc);
         float cos_max = safe_sqrtf(1.0f - r * r / dist2);
         pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - cos_max));
-        dir_from_light = v3_normalize(v3_neg(oc));
+        dir_from_light = v3_neg(d); /* as sample_point: the ray's own direction */
     } else {
         /* Disk through the centre, facing the ray origin. */
         float dist = sqrtf(dist2);

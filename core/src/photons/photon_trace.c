@@ -71,13 +71,16 @@ static void batch_push(batch *b, const traced_photon *p)
     b->items[b->count++] = *p;
 }
 
-/* Diffuse reflectance of the BSDF, for radiance photons. */
+/* Diffuse reflectance of the BSDF, for radiance photons: its diffuse
+ * closures' weights under their layers, seen along the normal (the
+ * radiance photon is a Lambertian's, docs/algorithms.md §5.3). */
 static vec3 diffuse_albedo(const bsdf *b)
 {
     vec3 rho = v3s(0.0f);
     for (uint32_t i = 0; i < b->count; i++)
-        if (b->closures[i].type == PHOS_CLOSURE_DIFFUSE || b->closures[i].type == PHOS_CLOSURE_PRINCIPLED_DIFFUSE)
-            rho = v3_add(rho, b->closures[i].weight);
+        if (closure_is_diffuse(&b->closures[i]))
+            rho = v3_add(rho, v3_mul(b->closures[i].weight,
+                                     bsdf_layer_scale(b, b->closures[i].under_layers, b->shading.n)));
     return v3_min(rho, v3s(1.0f));
 }
 

@@ -11,14 +11,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define PASS_CHANNELS_(id, name, channels, ...) channels,
+static const uint32_t pass_channels[PHOS_PASS_COUNT] = {PHOS_PASSES(PASS_CHANNELS_)};
+#undef PASS_CHANNELS_
+
 uint32_t phos_pass_channels(uint32_t pass)
 {
-    switch (pass) {
-    case PHOS_PASS_COMBINED:
-        return 4;
-    default:
-        return pass < PHOS_PASS_COUNT ? 3 : 0;
-    }
+    return pass < PHOS_PASS_COUNT ? pass_channels[pass] : 0;
 }
 
 uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask)

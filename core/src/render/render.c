@@ -88,9 +88,10 @@ static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *s
     const phos_render_settings *rs = &r->settings;
     const scene *s = r->scene;
     int debug = pass_on(r, PHOS_PASS_PHOTON_MAP) || pass_on(r, PHOS_PASS_CAUSTIC_MAP);
-    double comp[COMPONENT_COUNT][3], alpha = 0.0, dbg[2][3];
+    double comp[COMPONENT_COUNT][3], alpha = 0.0, dbg[2][3], features[2][3];
     memset(comp, 0, sizeof(comp));
     memset(dbg, 0, sizeof(dbg));
+    memset(features, 0, sizeof(features));
     for (uint32_t i = 0; i < rs->samples; i++) {
         if (atomic_load_explicit(&r->cancel, memory_order_relaxed))
             return 0;
@@ -120,6 +121,11 @@ static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *s
             dbg[0][0] += sr.photon_map.x, dbg[0][1] += sr.photon_map.y, dbg[0][2] += sr.photon_map.z;
             dbg[1][0] += sr.caustic_map.x, dbg[1][1] += sr.caustic_map.y, dbg[1][2] += sr.caustic_map.z;
         }
+        if (v3_is_finite(sr.denoising_albedo) && v3_is_finite(sr.denoising_normal)) {
+            const vec3 f[2] = {sr.denoising_albedo, sr.denoising_normal};
+            for (int k = 0; k < 2; k++)
+                features[k][0] += f[k].x, features[k][1] += f[k].y, features[k][2] += f[k].z;
+        }
         alpha += sr.alpha;
     }
     double inv = 1.0 / (double)rs->samples;
@@ -143,6 +149,16 @@ static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *s
             float *p = film_pixel(&r->film, pass, x, y);
             for (int ch = 0; ch < 3; ch++)
                 p[ch] = (float)(dbg[k][ch] * inv);
+        }
+    }
+    /* The features' means over the samples: the normal is not renormalised,
+     * so a pixel straddling an edge holds the mean direction (Cycles). */
+    for (int k = 0; k < 2; k++) {
+        uint32_t pass = k == 0 ? PHOS_PASS_DENOISING_ALBEDO : PHOS_PASS_DENOISING_NORMAL;
+        if (pass_on(r, pass)) {
+            float *p = film_pixel(&r->film, pass, x, y);
+            for (int ch = 0; ch < 3; ch++)
+                p[ch] = (float)(features[k][ch] * inv);
         }
     }
     return 1;
@@ -430,6 +446,9 @@ int render_prepare(render *r)
     is->indirect = r->use_cache ? &indirect_irradiance_cache : (photon ? is->cache_inner : NULL);
     is->cache = NULL;
     is->gathers_find_caustics = !photon;
+    is->denoising_features = (rs->pass_mask & ((1u << PHOS_PASS_DENOISING_ALBEDO) |
+                                               (1u << PHOS_PASS_DENOISING_NORMAL))) != 0;
+    is->camera = &r->scene->camera;
     irradiance_cache_fill_settings *fs = &r->cache_fill;
     fs->width = rs->width;
     fs->height = rs->height;

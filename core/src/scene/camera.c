@@ -41,3 +41,14 @@ camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, fl
     r.tmax = c->clip_end * depth_scale * world_per_cam;
     return r;
 }
+
+/* The transform's columns are the camera axes in world space (scaled, if
+ * the camera object is): project on each, then normalise. Cycles' camera
+ * space looks down +z, Blender's down −z. */
+vec3 camera_direction_to_camera_space(const phos_camera_desc *c, vec3 d)
+{
+    const float *m = c->transform;
+    vec3 x = v3_normalize(v3(m[0], m[4], m[8])), y = v3_normalize(v3(m[1], m[5], m[9]));
+    vec3 back = v3_normalize(v3(m[2], m[6], m[10]));
+    return v3_normalize(v3(v3_dot(d, x), v3_dot(d, y), -v3_dot(d, back)));
+}

@@ -18,4 +18,8 @@ typedef struct camera_ray {
  * bottom-left corner), lens sample in [0,1)². */
 camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, float2 lens);
 
+/* A world direction in Cycles' camera space (x right, y up, z along the
+ * view), unit length: what the Denoising Normal pass holds, as in Cycles. */
+vec3 camera_direction_to_camera_space(const phos_camera_desc *c, vec3 d);
+
 #endif /* PHOS_CAMERA_H */

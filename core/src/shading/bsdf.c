@@ -16,11 +16,17 @@
  *                       MICROFACET: Walter et al. 2007 dielectric with the
  *                       Fresnel of each sampled microfacet (Cycles 4).
  *   TRANSPARENT         straight pass-through.
+ *   METAL               GGX reflection with the F82-tint Fresnel (Cycles 4).
+ *   OREN_NAYAR          energy-preserving Oren-Nayar (Fujii 2012 with the
+ *                       OpenPBR multiple-scattering term), cosine sampling.
+ *   SHEEN               microfiber sheen, an LTC lobe (sheen.c).
  *
- * Cycles up to 3.4 uses the separable Smith G1(wo)·G1(wi) for GGX; the
- * Cycles 4 glass uses the height-correlated G (Heitz 2014 eq. 99), and so
- * does the MICROFACET glass here. Microfacet lobes sample the visible
- * normals (Heitz 2018), see microfacet.c.
+ * Cycles up to 3.4 uses the separable Smith G1(wo)·G1(wi) for GGX; Cycles 4
+ * uses the height-correlated G (Heitz 2014 eq. 99) for every GGX lobe
+ * (microfacet GGX and GGX_MULTISCATTER here, and the MICROFACET glass), and
+ * its Multiscatter GGX scales a lobe by 1 + F_ms (1 − E(μo))/E(μo)
+ * (ggx_albedo.h). Microfacet lobes sample the visible normals (Heitz 2018),
+ * see microfacet.c.
  *
  * Mixture: a closure is picked with probability sample_weight / sum; a
  * non-delta pick is weighted by the whole non-delta mixture (one-sample
@@ -33,7 +39,11 @@
  */
 #include "shading/bsdf.h"
 
+#include <string.h>
+
+#include "shading/ggx_albedo.h"
 #include "shading/microfacet.h"
+#include "shading/sheen.h"
 #include "sampling/warp.h"
 
 /* One evaluation query in the shading frame. */
@@ -52,53 +62,12 @@ typedef struct lobe_sample {
 
 /* ------------------------------------------------------------ helpers */
 
-/* Exact unpolarised Fresnel reflectance of a dielectric interface in the
- * form with g = √(η² − 1 + c²) (Walter 2007 eq. 22; Cycles'
- * fresnel_dielectric_cos): F = ½ ((g−c)/(g+c))² (1 + ((c(g+c)−1)/(c(g−c)+1))²). */
-float fresnel_dielectric(float cos_theta_i, float eta)
-{
-    float c = fabsf(cos_theta_i);
-    float g2 = eta * eta - 1.0f + c * c;
-    if (!(g2 > 0.0f))
-        return 1.0f; /* total internal reflection */
-    float g = sqrtf(g2);
-    float a = (g - c) / (g + c);
-    float b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
-    return clampf(0.5f * a * a * (1.0f + b * b), 0.0f, 1.0f);
-}
-
-/* 1 − F without the cancellation of subtracting F ≈ 1 at grazing angles:
- * with g = η cos θt, T_s = 4cg / (c + g)² and T_p = 4η²cg / (η²c + g)²
- * (Hecht, Optics §4.6.2), T = (T_s + T_p) / 2. */
-static float fresnel_dielectric_transmittance(float cos_theta_i, float eta)
-{
-    float c = fabsf(cos_theta_i);
-    float g2 = eta * eta - 1.0f + c * c;
-    if (!(g2 > 0.0f))
-        return 0.0f;
-    float g = sqrtf(g2), e2c = eta * eta * c;
-    float ts = 4.0f * c * g / sqr(c + g);
-    float tp = 4.0f * e2c * g / sqr(e2c + g);
-    return clampf(0.5f * (ts + tp), 0.0f, 1.0f);
-}
-
 /* Schlick's weight (1 − cos)⁵ with cos clamped to [0,1] (Burley 2012). */
 static float schlick_weight(float cos_theta)
 {
     float m = clampf(1.0f - cos_theta, 0.0f, 1.0f);
     float m2 = m * m;
     return m2 * m2 * m;
-}
-
-/* Principled (v1) specular colour: the dielectric Fresnel of eta remapped
- * from [F(0°), 1] to [f0, 1] (Cycles' interpolate_fresnel_color), so that
- * f0 sets normal incidence and every colour goes white at grazing. */
-static vec3 fresnel_blend_f0(vec3 f0, float eta, float cos_theta)
-{
-    float F0 = fresnel_dielectric(1.0f, eta);
-    float F = fresnel_dielectric(cos_theta, eta);
-    float t = F0 < 1.0f - 1e-6f ? (F - F0) / (1.0f - F0) : 1.0f;
-    return v3_add(v3_scale(f0, 1.0f - t), v3s(t));
 }
 
 /* Mirror of wo about the unit normal m. */
@@ -124,6 +93,10 @@ static int reflection_side(const query *q) { return q->wi.z > 0.0f && q->ng_wi >
 static int transmission_side(const query *q) { return q->wi.z < 0.0f && q->ng_wi < 0.0f; }
 
 static int closure_is_sharp(const closure *c) { return c->alpha < BSDF_SHARP_ALPHA; }
+/* Cycles 4's GGX (height-correlated G) rather than 3.x's (separable). */
+static int closure_correlated(const closure *c) { return c->microfacet != PHOS_MICROFACET_GGX_SEPARABLE; }
+static int closure_has_thin_film(const closure *c) { return c->film_thickness > THIN_FILM_MIN_THICKNESS; }
+static int is_white(vec3 v) { return v.x == 1.0f && v.y == 1.0f && v.z == 1.0f; }
 /* The refraction lobe of a MACRO glass has its own roughness (Cycles 3.4
  * Principled: 1 − (1 − roughness)(1 − transmission roughness)). */
 static int refraction_is_sharp(const closure *c) { return c->alpha_t < BSDF_SHARP_ALPHA; }
@@ -174,6 +147,194 @@ static float ggx_refraction(const query *q, float alpha, float eta, int correlat
     return v3_dot(q->wo, *h) * D * G / q->wo.z * jacobian;
 }
 
+/* -------------------------------------------------------- Fresnel */
+
+/* Reflectance of a reflection closure at a microfacet seen at cos θ = wo·h. */
+static vec3 reflection_fresnel(const closure *c, float cos_theta)
+{
+    switch (c->type) {
+    case PHOS_CLOSURE_REFLECTION_FRESNEL:
+        if (closure_has_thin_film(c))
+            return fresnel_thin_film_blend(c->f0, c->eta, cos_theta, c->film_ior, c->film_thickness);
+        return fresnel_blend_f0(c->f0, c->eta, cos_theta);
+    case PHOS_CLOSURE_METAL:
+        return fresnel_f82(c->f0, fresnel_f82_b(c->f0, c->specular_tint), cos_theta);
+    default:
+        return v3s(1.0f);
+    }
+}
+
+/* Reflectance of a MICROFACET glass at wo·h (its transmittance is 1 − it):
+ * the dielectric Fresnel, or, tinted or with a thin film, the Principled
+ * form with f0 = F0(η)·tint (Cycles 4's transmission lobe). */
+static vec3 glass_reflectance(const closure *c, float cos_oh)
+{
+    if (!closure_has_thin_film(c) && is_white(c->specular_tint))
+        return v3s(fresnel_dielectric(cos_oh, c->eta));
+    vec3 f0 = v3_scale(c->specular_tint, fresnel_f0_from_ior(c->eta));
+    if (closure_has_thin_film(c))
+        return fresnel_thin_film_blend(f0, c->eta, cos_oh, c->film_ior, c->film_thickness);
+    return fresnel_blend_f0(f0, c->eta, cos_oh);
+}
+
+static vec3 glass_transmittance(const closure *c, float cos_oh, vec3 R)
+{
+    if (!closure_has_thin_film(c) && is_white(c->specular_tint))
+        return v3s(fresnel_dielectric_transmittance(cos_oh, c->eta)); /* without cancellation */
+    return v3_sub(v3s(1.0f), R);
+}
+
+/* Multiscatter GGX: the factor 1 + F_ms (1 − E(μo))/E(μo) by which the lobe
+ * is scaled (ggx_albedo.h); 1 for other models and for sharp lobes. */
+static vec3 multiscatter_scale(const closure *c, float mu)
+{
+    if (c->microfacet != PHOS_MICROFACET_GGX_MULTISCATTER || closure_is_sharp(c))
+        return v3s(1.0f);
+    if (c->type == PHOS_CLOSURE_GLASS)
+        return ggx_multiscatter_scale(ggx_glass_albedo(mu, c->roughness, c->eta),
+                                      ggx_glass_albedo_average(c->roughness, c->eta), c->fss);
+    return ggx_multiscatter_scale(ggx_albedo(mu, c->roughness), ggx_albedo_average(c->roughness), c->fss);
+}
+
+/* ------------------------------------------------------------ layers */
+
+/* The share of light at μ = cos θo that a layer returns toward the viewer
+ * relative to its weight, as Cycles 4 estimates it for layering
+ * (bsdf_albedo): a dielectric f0 + (1 − f0)·s(μ) with s the mean Fresnel
+ * interpolation over the visible microfacets (the Fresnel at μ itself when
+ * a thin film makes it coloured), times the Multiscatter darkening
+ * E + F_ms (1 − E), which is 1 when F_ss = 1; the sheen's albedo R(μ). */
+static vec3 layer_albedo(const bsdf_layer *l, float mu)
+{
+    if (l->type == PHOS_CLOSURE_SHEEN)
+        return v3s(sheen_albedo(mu, l->roughness));
+    vec3 F;
+    if (l->film_thickness > THIN_FILM_MIN_THICKNESS)
+        F = fresnel_thin_film_blend(l->f0, l->eta, mu, l->film_ior, l->film_thickness);
+    else
+        F = v3_add(l->f0, v3_scale(v3_sub(v3s(1.0f), l->f0), ggx_fresnel_blend_average(mu, l->roughness, l->eta)));
+    if (l->microfacet == PHOS_MICROFACET_GGX_MULTISCATTER && l->roughness * l->roughness >= BSDF_SHARP_ALPHA) {
+        float E = ggx_albedo(mu, l->roughness);
+        F = v3_mul(F, v3_scale(ggx_multiscatter_scale(E, ggx_albedo_average(l->roughness), l->fss), E));
+    }
+    return F;
+}
+
+/* Cycles' closure_layering_weight: 1 − max over channels of the layer's
+ * albedo; then a coat's absorption, tint^(1/cos θt) through a unit
+ * thickness along the refracted view direction, mixed in by tint_weight. */
+static vec3 layer_scale(const bsdf_layer *l, float mu)
+{
+    float over = v3_max_component(v3_mul(l->weight, layer_albedo(l, mu)));
+    vec3 scale = v3s(clampf(1.0f - over, 0.0f, 1.0f));
+    if (l->type != PHOS_CLOSURE_SHEEN && !(l->tint.x == 1.0f && l->tint.y == 1.0f && l->tint.z == 1.0f)) {
+        float cos_t = safe_sqrtf(1.0f - (1.0f - mu * mu) / (l->eta * l->eta));
+        float depth = 1.0f / fmaxf(cos_t, 1e-4f);
+        vec3 absorbed = v3(powf(l->tint.x, depth), powf(l->tint.y, depth), powf(l->tint.z, depth));
+        scale = v3_mul(scale, v3_add(v3s(1.0f - l->tint_weight), v3_scale(absorbed, l->tint_weight)));
+    }
+    return scale;
+}
+
+/* Scales of every layer for wo (local), so a mixture evaluates each once. */
+static void layer_scales(const bsdf *b, float mu, vec3 *out)
+{
+    for (uint32_t j = 0; j < b->layer_count; j++)
+        out[j] = layer_scale(&b->layers[j], clampf(mu, 0.0f, 1.0f));
+}
+
+static vec3 scale_under(const vec3 *scales, uint32_t under_layers)
+{
+    vec3 s = v3s(1.0f);
+    for (uint32_t j = 0; under_layers; j++, under_layers >>= 1)
+        if (under_layers & 1u)
+            s = v3_mul(s, scales[j]);
+    return s;
+}
+
+vec3 bsdf_layer_scale(const bsdf *b, uint32_t under_layers, vec3 wo)
+{
+    if (!under_layers)
+        return v3s(1.0f);
+    vec3 scales[BSDF_MAX_LAYERS];
+    layer_scales(b, v3_dot(wo, b->shading.n), scales);
+    return scale_under(scales, under_layers);
+}
+
+/* The share of light a closure returns toward μ = cos θo, relative to its
+ * weight (its directional albedo, estimated as Cycles does for its passes:
+ * a smooth surface's Fresnel, the Principled layers' tables). */
+static vec3 closure_albedo_estimate(const closure *c, float mu)
+{
+    switch (c->type) {
+    case PHOS_CLOSURE_SHEEN:
+        return v3s(sheen_albedo(mu, c->roughness));
+    case PHOS_CLOSURE_REFLECTION:
+    case PHOS_CLOSURE_REFLECTION_FRESNEL: {
+        bsdf_layer l = {c->type, c->roughness, c->eta, c->microfacet, c->f0, c->fss, c->film_thickness,
+                        c->film_ior, v3s(1.0f), v3s(1.0f), 0.0f};
+        return c->type == PHOS_CLOSURE_REFLECTION ? v3s(1.0f) : layer_albedo(&l, mu);
+    }
+    case PHOS_CLOSURE_METAL:
+        return reflection_fresnel(c, mu);
+    case PHOS_CLOSURE_GLASS: {
+        float F = fresnel_dielectric(mu, c->eta);
+        return v3_add(v3s(F), v3_scale(c->transmission_tint, 1.0f - F));
+    }
+    default:
+        return v3s(1.0f);
+    }
+}
+
+/* Cycles' cut between the closures a denoiser's features stop at and
+ * those it looks through: α above 0.075 for a microfacet lobe. */
+static int closure_diffuse_like(const closure *c)
+{
+    switch (c->type) {
+    case PHOS_CLOSURE_TRANSPARENT:
+        return 0;
+    case PHOS_CLOSURE_REFLECTION:
+    case PHOS_CLOSURE_REFLECTION_FRESNEL:
+    case PHOS_CLOSURE_METAL:
+    case PHOS_CLOSURE_REFRACTION:
+    case PHOS_CLOSURE_GLASS:
+        return c->alpha > 0.075f;
+    default:
+        return 1;
+    }
+}
+
+void bsdf_denoising_features(const bsdf *b, vec3 wo, bsdf_features *out)
+{
+    memset(out, 0, sizeof(*out));
+    float mu = clampf(v3_dot(wo, b->shading.n), 0.0f, 1.0f);
+    vec3 scales[BSDF_MAX_LAYERS];
+    if (b->layer_count)
+        layer_scales(b, mu, scales);
+    for (uint32_t k = 0; k < b->count; k++) {
+        const closure *c = &b->closures[k];
+        vec3 albedo = v3_mul(c->weight, closure_albedo_estimate(c, mu));
+        if (c->under_layers)
+            albedo = v3_mul(albedo, scale_under(scales, c->under_layers));
+        float w = c->sample_weight * v3_average(closure_albedo_estimate(c, mu));
+        out->weight_total += w;
+        if (closure_diffuse_like(c)) {
+            out->albedo_diffuse = v3_add(out->albedo_diffuse, albedo);
+            out->weight_diffuse += w;
+        } else {
+            out->albedo_specular = v3_add(out->albedo_specular, albedo);
+        }
+    }
+}
+
+int bsdf_add_layer(bsdf *b, const bsdf_layer *layer)
+{
+    if (b->layer_count >= BSDF_MAX_LAYERS)
+        return -1;
+    b->layers[b->layer_count] = *layer;
+    return (int)b->layer_count++;
+}
+
 /* -------------------------------------------------------- evaluation */
 
 static vec3 eval_diffuse(const closure *c, const query *q, float *pdf)
@@ -200,18 +361,65 @@ static vec3 eval_principled_diffuse(const closure *c, const query *q, float *pdf
     return v3_scale(c->weight, f * q->wi.z * PHOS_INV_PI);
 }
 
+/* Energy-preserving Oren-Nayar (Fujii 2012, "A tiny improvement of
+ * Oren-Nayar reflectance model", with the multiple-scattering term of the
+ * OpenPBR "EON" diffuse; Cycles 4.3's Diffuse Roughness):
+ * f = A + B·s + E_ms (1 − E(μi))(1 − E(μo)), s = wo·wi − μo μi (divided by
+ * max(μo, μi) where positive), A = 1/(π + σ(π/2 − 2/3)), B = σA,
+ * E(μ) = Aπ + B·G(μ) its directional albedo, E_ms the albedo's missing
+ * energy, ρ²(E_avg/(1 − E_avg))/(π(1 − ρ(1 − E_avg))) for the colour ρ. */
+static float oren_nayar_G(float mu)
+{
+    if (mu < 1e-6f)
+        return (0.5f * PHOS_PI - 2.0f / 3.0f) - mu;
+    float sin_t = safe_sqrtf(1.0f - mu * mu), theta = acosf(mu);
+    return sin_t * (theta - 2.0f / 3.0f - sin_t * mu) + (2.0f / 3.0f) * (sin_t / mu) * (1.0f - sin_t * sin_t * sin_t);
+}
+
+static vec3 eval_oren_nayar(const closure *c, const query *q, float *pdf)
+{
+    if (!reflection_side(q))
+        return v3s(0.0f);
+    float sigma = c->roughness;
+    float A = 1.0f / (PHOS_PI + sigma * (0.5f * PHOS_PI - 2.0f / 3.0f)), B = sigma * A;
+    float mo = q->wo.z, mi = q->wi.z;
+    float t = v3_dot(q->wo, q->wi) - mo * mi;
+    if (t > 0.0f)
+        t /= fmaxf(mo, mi);
+    float E_o = A * PHOS_PI + B * oren_nayar_G(fmaxf(mo, 0.0f)), E_i = A * PHOS_PI + B * oren_nayar_G(mi);
+    vec3 f = v3s(A + B * t);
+    if (sigma > 0.0f) { /* roughness 0 is Lambert: nothing is missing */
+        float E_avg = A * PHOS_PI + B * (2.0f * PHOS_PI - 5.6f) / 3.0f;
+        vec3 rho = v3_min(v3_max(c->f0, v3s(0.0f)), v3s(1.0f));
+        vec3 E_ms = v3_scale(v3_div(v3_scale(v3_mul(rho, rho), E_avg / (1.0f - E_avg)),
+                                    v3_sub(v3s(1.0f), v3_scale(rho, 1.0f - E_avg))),
+                             PHOS_INV_PI);
+        f = v3_add(f, v3_scale(E_ms, (1.0f - E_i) * (1.0f - E_o)));
+    }
+    *pdf = mi * PHOS_INV_PI;
+    return v3_scale(v3_mul(c->weight, f), mi);
+}
+
+/* The sheen lobe times its albedo R(μo); it samples the lobe itself. */
+static vec3 eval_sheen(const closure *c, const query *q, float *pdf)
+{
+    if (!reflection_side(q) || q->wo.z <= 0.0f)
+        return v3s(0.0f);
+    float lobe = sheen_eval(q->wo, q->wi, c->roughness);
+    *pdf = lobe;
+    return v3_scale(c->weight, lobe * sheen_albedo(q->wo.z, c->roughness));
+}
+
 static vec3 eval_glossy(const closure *c, const query *q, float *pdf)
 {
     if (closure_is_sharp(c))
         return v3s(0.0f);
     vec3 h;
-    float v = ggx_reflection(q, c->alpha, 0, &h, pdf);
+    float v = ggx_reflection(q, c->alpha, closure_correlated(c), &h, pdf);
     if (v == 0.0f)
         return v3s(0.0f);
-    vec3 colour = c->weight;
-    if (c->type == PHOS_CLOSURE_REFLECTION_FRESNEL)
-        colour = v3_mul(colour, fresnel_blend_f0(c->f0, c->eta, v3_dot(q->wi, h)));
-    return v3_scale(colour, v);
+    vec3 colour = v3_mul(c->weight, reflection_fresnel(c, v3_dot(q->wi, h)));
+    return v3_scale(v3_mul(colour, multiscatter_scale(c, q->wo.z)), v);
 }
 
 static vec3 eval_refraction(const closure *c, const query *q, float *pdf)
@@ -219,7 +427,7 @@ static vec3 eval_refraction(const closure *c, const query *q, float *pdf)
     if (closure_is_sharp(c) || closure_index_matched(c))
         return v3s(0.0f);
     vec3 h;
-    return v3_scale(c->weight, ggx_refraction(q, c->alpha, c->eta, 0, &h, pdf));
+    return v3_scale(c->weight, ggx_refraction(q, c->alpha, c->eta, closure_correlated(c), &h, pdf));
 }
 
 /* The probability with which a MACRO glass picks its reflection lobe: F at
@@ -240,16 +448,22 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
     if (glass_per_microfacet(c)) {
         if (closure_is_sharp(c))
             return v3s(0.0f);
-        /* Walter 2007 eq. 20/21 with F(wo·h); sampling picks the lobe with F(wo·h). */
-        if (q->wi.z > 0.0f)
+        /* Walter 2007 eq. 20/21 with F(wo·h); sampling picks the lobe with
+         * the mean over the channels of F(wo·h). */
+        int reflect = q->wi.z > 0.0f;
+        if (reflect)
             v = ggx_reflection(q, c->alpha, 1, &h, pdf);
         else
             v = ggx_refraction(q, c->alpha, c->eta, 1, &h, pdf);
         if (v == 0.0f)
             return v3s(0.0f);
         float cos_oh = v3_dot(q->wo, h);
-        lobe = q->wi.z > 0.0f ? fresnel_dielectric(cos_oh, c->eta)
-                              : fresnel_dielectric_transmittance(cos_oh, c->eta);
+        vec3 R = glass_reflectance(c, cos_oh);
+        vec3 T = glass_transmittance(c, cos_oh, R);
+        float pick_r = v3_average(R) / fmaxf(v3_average(R) + v3_average(T), 1e-12f);
+        *pdf *= reflect ? pick_r : 1.0f - pick_r;
+        vec3 colour = reflect ? v3_mul(c->weight, R) : v3_mul(v3_mul(c->weight, c->transmission_tint), T);
+        return v3_scale(v3_mul(colour, multiscatter_scale(c, q->wo.z)), v);
     } else {
         /* Cycles 3.4: two closures weighted F and 1 − F, F at the shading
          * normal; sampling picks them with macro_reflect_pick. */
@@ -270,15 +484,8 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
             return v3s(0.0f);
         }
         vec3 colour = q->wi.z > 0.0f ? c->weight : v3_mul(c->weight, c->transmission_tint);
-        return v3_scale(colour, v * lobe);
+        return v3_scale(v3_mul(colour, multiscatter_scale(c, q->wo.z)), v * lobe);
     }
-    if (v == 0.0f) {
-        *pdf = 0.0f;
-        return v3s(0.0f);
-    }
-    *pdf *= lobe;
-    vec3 colour = q->wi.z > 0.0f ? c->weight : v3_mul(c->weight, c->transmission_tint);
-    return v3_scale(colour, v * lobe);
 }
 
 /* f·|cos θi| of one closure (weight applied) and its own sampling density;
@@ -289,8 +496,11 @@ static vec3 closure_eval(const closure *c, const query *q, float *pdf)
     switch (c->type) {
     case PHOS_CLOSURE_DIFFUSE: return eval_diffuse(c, q, pdf);
     case PHOS_CLOSURE_PRINCIPLED_DIFFUSE: return eval_principled_diffuse(c, q, pdf);
+    case PHOS_CLOSURE_OREN_NAYAR: return eval_oren_nayar(c, q, pdf);
+    case PHOS_CLOSURE_SHEEN: return eval_sheen(c, q, pdf);
     case PHOS_CLOSURE_REFLECTION:
-    case PHOS_CLOSURE_REFLECTION_FRESNEL: return eval_glossy(c, q, pdf);
+    case PHOS_CLOSURE_REFLECTION_FRESNEL:
+    case PHOS_CLOSURE_METAL: return eval_glossy(c, q, pdf);
     case PHOS_CLOSURE_REFRACTION: return eval_refraction(c, q, pdf);
     case PHOS_CLOSURE_GLASS: return eval_glass(c, q, pdf);
     default: return v3s(0.0f);
@@ -310,12 +520,8 @@ static int sample_delta(lobe_sample *s, vec3 wi, uint32_t flags, vec3 value, flo
 
 static int sample_glossy(const closure *c, vec3 wo, float2 u, lobe_sample *s)
 {
-    if (closure_is_sharp(c)) {
-        vec3 value = c->weight;
-        if (c->type == PHOS_CLOSURE_REFLECTION_FRESNEL)
-            value = v3_mul(value, fresnel_blend_f0(c->f0, c->eta, wo.z));
-        return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, value, 1.0f);
-    }
+    if (closure_is_sharp(c))
+        return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_mul(c->weight, reflection_fresnel(c, wo.z)), 1.0f);
     vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
     if (v3_dot(wo, h) <= 0.0f)
         return 0;
@@ -344,14 +550,25 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
 {
     const vec3 n = v3(0.0f, 0.0f, 1.0f);
     vec3 wi;
-    if (glass_per_microfacet(c) && !closure_is_sharp(c)) {
+    if (glass_per_microfacet(c)) {
         /* Walter 2007 §5.3 with visible normals: pick h, then reflect with
-         * probability F(wo·h), otherwise refract through h. */
-        vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+         * probability F(wo·h) (the channels' mean), otherwise refract
+         * through h; a sharp glass has h = n. */
+        vec3 h = closure_is_sharp(c) ? n : ggx_sample_visible_normal(wo, c->alpha, u);
         float cos_oh = v3_dot(wo, h);
         if (cos_oh <= 0.0f)
             return 0;
-        if (u_lobe < fresnel_dielectric(cos_oh, c->eta)) {
+        vec3 R = glass_reflectance(c, cos_oh), T = glass_transmittance(c, cos_oh, R);
+        float pick_r = v3_average(R) / fmaxf(v3_average(R) + v3_average(T), 1e-12f);
+        if (closure_is_sharp(c)) {
+            if (u_lobe < pick_r)
+                return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_mul(c->weight, R), pick_r);
+            if (!refract_about(wo, n, c->eta, &wi))
+                return 0;
+            return sample_delta(s, wi, BSDF_TRANSMISSION, v3_mul(v3_mul(c->weight, c->transmission_tint), T),
+                                1.0f - pick_r);
+        }
+        if (u_lobe < pick_r) {
             s->wi = reflect_about(wo, h);
             s->flags = BSDF_GLOSSY;
             return 1;
@@ -363,7 +580,7 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
         return 1;
     }
 
-    /* Fresnel at the shading normal (MACRO, or any sharp glass). */
+    /* Fresnel at the shading normal (MACRO, or an index-matched glass). */
     float F = fresnel_dielectric(wo.z, c->eta);
     if (u_lobe < macro_reflect_pick(c, F)) {
         if (closure_is_sharp(c))
@@ -376,8 +593,7 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
         return 1;
     }
     vec3 tinted = v3_mul(c->weight, c->transmission_tint);
-    int sharp_refraction = glass_per_microfacet(c) ? closure_is_sharp(c) : refraction_is_sharp(c);
-    if (sharp_refraction || closure_index_matched(c)) {
+    if (refraction_is_sharp(c) || closure_index_matched(c)) {
         if (!refract_about(wo, n, c->eta, &wi))
             return 0;
         float T = fresnel_dielectric_transmittance(wo.z, c->eta);
@@ -397,7 +613,12 @@ static int closure_sample(const closure *c, vec3 wo, float u_lobe, float2 u, lob
     switch (c->type) {
     case PHOS_CLOSURE_DIFFUSE:
     case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
+    case PHOS_CLOSURE_OREN_NAYAR:
         s->wi = warp_cosine_hemisphere(u);
+        s->flags = BSDF_DIFFUSE;
+        return s->wi.z > 0.0f;
+    case PHOS_CLOSURE_SHEEN:
+        s->wi = sheen_sample(wo, c->roughness, u);
         s->flags = BSDF_DIFFUSE;
         return s->wi.z > 0.0f;
     case PHOS_CLOSURE_TRANSPARENT:
@@ -410,7 +631,8 @@ static int closure_sample(const closure *c, vec3 wo, float u_lobe, float2 u, lob
         return 0;
     switch (c->type) {
     case PHOS_CLOSURE_REFLECTION:
-    case PHOS_CLOSURE_REFLECTION_FRESNEL: return sample_glossy(c, wo, u, s);
+    case PHOS_CLOSURE_REFLECTION_FRESNEL:
+    case PHOS_CLOSURE_METAL: return sample_glossy(c, wo, u, s);
     case PHOS_CLOSURE_REFRACTION: return sample_refraction(c, wo, u, s);
     case PHOS_CLOSURE_GLASS: return sample_glass(c, wo, u_lobe, u, s);
     default: return 0;
@@ -428,14 +650,21 @@ static query make_query(const bsdf *b, vec3 wo, vec3 wi)
     return q;
 }
 
-/* Σ f·|cos θi| over the closures and Σ (sample_weight_k / sum) pdf_k. */
+/* Σ f·|cos θi| over the closures (each scaled by the layers over it) and
+ * Σ (sample_weight_k / sum) pdf_k. */
 static vec3 eval_mixture(const bsdf *b, const query *q, float *pdf)
 {
     vec3 value = v3s(0.0f);
     float p = 0.0f;
+    vec3 scales[BSDF_MAX_LAYERS];
+    if (b->layer_count)
+        layer_scales(b, q->wo.z, scales);
     for (uint32_t k = 0; k < b->count; k++) {
         float pk;
-        value = v3_add(value, closure_eval(&b->closures[k], q, &pk));
+        vec3 v = closure_eval(&b->closures[k], q, &pk);
+        if (b->closures[k].under_layers)
+            v = v3_mul(v, scale_under(scales, b->closures[k].under_layers));
+        value = v3_add(value, v);
         p += b->closures[k].sample_weight * pk;
     }
     *pdf = b->sample_weight_sum > 0.0f ? p / b->sample_weight_sum : 0.0f;
@@ -452,6 +681,7 @@ void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric)
     b->ng = n_geometric;
     b->count = 0;
     b->sample_weight_sum = 0.0f;
+    b->layer_count = 0;
 }
 
 /* Splits b's closures into those `in_first` accepts and the others. */
@@ -461,6 +691,9 @@ static void split_closures(const bsdf *b, int (*in_first)(const closure *), bsdf
     first->ng = second->ng = b->ng;
     first->count = second->count = 0;
     first->sample_weight_sum = second->sample_weight_sum = 0.0f;
+    first->layer_count = second->layer_count = b->layer_count;
+    for (uint32_t j = 0; j < b->layer_count; j++)
+        first->layers[j] = second->layers[j] = b->layers[j];
     for (uint32_t i = 0; i < b->count; i++) {
         const closure *c = &b->closures[i];
         bsdf *dst = in_first(c) ? first : second;
@@ -469,9 +702,10 @@ static void split_closures(const bsdf *b, int (*in_first)(const closure *), bsdf
     }
 }
 
-static int closure_is_diffuse(const closure *c)
+int closure_is_diffuse(const closure *c)
 {
-    return c->type == PHOS_CLOSURE_DIFFUSE || c->type == PHOS_CLOSURE_PRINCIPLED_DIFFUSE;
+    return c->type == PHOS_CLOSURE_DIFFUSE || c->type == PHOS_CLOSURE_PRINCIPLED_DIFFUSE ||
+           c->type == PHOS_CLOSURE_OREN_NAYAR || c->type == PHOS_CLOSURE_SHEEN;
 }
 
 void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other)
@@ -486,6 +720,8 @@ static int closure_has_non_delta(const closure *c)
     switch (c->type) {
     case PHOS_CLOSURE_DIFFUSE:
     case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
+    case PHOS_CLOSURE_OREN_NAYAR:
+    case PHOS_CLOSURE_SHEEN:
         return 1;
     case PHOS_CLOSURE_TRANSPARENT:
         return 0;
@@ -535,6 +771,8 @@ int bsdf_add_closure(bsdf *b, const closure *c)
     k.roughness = k.roughness > 0.0f ? fminf(k.roughness, 1.0f) : 0.0f;
     k.eta = (k.eta > 0.0f && isfinite(k.eta)) ? fmaxf(k.eta, 1e-5f) : 1.0f;
     k.f0 = v3_min(v3_max(k.f0, v3s(0.0f)), v3s(1.0f));
+    k.specular_tint = v3_min(v3_max(k.specular_tint, v3s(0.0f)), v3s(1.0f));
+    k.fss = v3_min(v3_max(k.fss, v3s(0.0f)), v3s(1.0f));
     /* Cycles: sample weight = average |weight| over the channels. */
     k.sample_weight = (fabsf(k.weight.x) + fabsf(k.weight.y) + fabsf(k.weight.z)) * (1.0f / 3.0f);
     if (!(k.sample_weight > 0.0f))
@@ -594,8 +832,8 @@ static void bsdf_other_side(const bsdf *b, bsdf *out)
     *out = *b;
     out->shading = frame_from_normal(v3_neg(b->shading.n));
     out->ng = v3_neg(b->ng);
-    for (uint32_t i = 0; i < out->count; i++)
-        if (out->closures[i].type != PHOS_CLOSURE_REFLECTION_FRESNEL) /* its IOR is the coating's, outside */
+    for (uint32_t i = 0; i < out->count; i++) /* a coating's IOR is seen from outside only */
+        if (out->closures[i].type == PHOS_CLOSURE_GLASS || out->closures[i].type == PHOS_CLOSURE_REFRACTION)
             out->closures[i].eta = 1.0f / out->closures[i].eta;
 }
 
@@ -664,7 +902,8 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
             ((s.flags & BSDF_TRANSMISSION) ? ng_wi >= 0.0f : ng_wi <= 0.0f))
             return 0;
         float p = pick * s.prob;
-        vec3 weight = v3_scale(s.value, 1.0f / p);
+        vec3 value = c->under_layers ? v3_mul(s.value, bsdf_layer_scale(b, c->under_layers, wo)) : s.value;
+        vec3 weight = v3_scale(value, 1.0f / p);
         if (!(p > 0.0f) || !v3_is_finite(weight))
             return 0;
         out->wi = wi;

@@ -17,6 +17,7 @@
 
 #include "phos.h"
 #include "sampling/sampler.h"
+#include "shading/fresnel.h"
 #include "util/vec.h"
 
 enum bsdf_flags {
@@ -41,11 +42,35 @@ typedef struct closure {
     float alpha_t;          /* GLASS (MACRO): GGX alpha of the refraction lobe */
     vec3 transmission_tint; /* GLASS: colour applied to refracted light only */
     float eta;              /* relative IOR across the surface as seen from wo's side */
-    vec3 f0;                /* REFLECTION_FRESNEL: reflectance at normal incidence */
+    vec3 f0;                /* REFLECTION_FRESNEL, METAL: reflectance at normal incidence;
+                               OREN_NAYAR: the albedo of its multiple-scattering term */
+    vec3 specular_tint;     /* METAL: F82 tint; GLASS (MICROFACET): f0 = F0(η)·tint */
     uint32_t glass_fresnel; /* enum phos_glass_fresnel */
+    uint32_t microfacet;    /* enum phos_microfacet */
+    vec3 fss;               /* GGX_MULTISCATTER: mean single-scattering Fresnel */
+    float film_thickness;   /* nm, thin film when > THIN_FILM_MIN_THICKNESS */
+    float film_ior;         /* the film's IOR (relative to the outside) */
+    uint32_t under_layers;  /* bit j: lies under the bsdf's layers[j] */
     float sample_weight;    /* probability mass for picking this closure when sampling */
     uint32_t adjoint;       /* 1: sampled for photons (bsdf_set_adjoint); set by bsdf_add_closure to 0 */
 } closure;
+
+/* A layer over other closures of the BSDF (Cycles 4's Principled BSDF):
+ * those under it are scaled by 1 − max over channels of weight × its
+ * directional albedo toward the viewer, and by a coat's tint raised to the
+ * optical depth 1/cos θt (bsdf_layer_scale). A copy of the layer closure's
+ * parameters, kept apart so that bsdf_split's parts keep their layers. */
+typedef struct bsdf_layer {
+    uint32_t type;          /* REFLECTION_FRESNEL (a dielectric: specular or coat) or SHEEN */
+    float roughness, eta;
+    uint32_t microfacet;    /* enum phos_microfacet */
+    vec3 f0, fss;
+    float film_thickness, film_ior;
+    vec3 weight;            /* the layer's weight relative to those under it */
+    vec3 tint;              /* a coat's colour at normal incidence; white: none */
+    float tint_weight;
+} bsdf_layer;
+#define BSDF_MAX_LAYERS 6
 
 typedef struct bsdf {
     frame shading;          /* shading normal frame, normal on the side of wo */
@@ -53,6 +78,8 @@ typedef struct bsdf {
     uint32_t count;
     closure closures[PHOS_MAX_CLOSURES];
     float sample_weight_sum;
+    uint32_t layer_count;
+    bsdf_layer layers[BSDF_MAX_LAYERS];
 } bsdf;
 
 typedef struct bsdf_sample {
@@ -70,6 +97,13 @@ void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric);
 /* Adds a closure (weight and parameters set; sample_weight is computed
  * here). Closures with zero weight are dropped; returns 0 when full. */
 int bsdf_add_closure(bsdf *b, const closure *c);
+
+/* Adds a layer; returns its index, or -1 when full (BSDF_MAX_LAYERS). */
+int bsdf_add_layer(bsdf *b, const bsdf_layer *layer);
+
+/* How much of a closure under the layers `under_layers` (bit j: layers[j])
+ * reaches the viewer at wo (world): the product of the layers' scales. */
+vec3 bsdf_layer_scale(const bsdf *b, uint32_t under_layers, vec3 wo);
 
 /* Σ over non-delta closures of f·|cos θi| (1/sr), and the mixture pdf of
  * sampling wi (solid angle), where pdf may be NULL. */
@@ -117,10 +151,28 @@ vec3 bsdf_photon_weight(const bsdf *b, vec3 w_from, const bsdf_sample *bs, float
 #define BSDF_ADJOINT_MAX_REFLECT 0.75f
 void bsdf_set_adjoint(bsdf *b);
 
-/* Splits b into its diffuse closures (Lambert, Principled diffuse) and all
- * others (glossy, specular, glass, transparent): the split of Jensen's
- * rendering equation into f_r,d and f_r,s (course notes 2002). */
+/* Splits b into its diffuse closures (Lambert, Principled diffuse,
+ * Oren-Nayar, sheen) and all others (glossy, specular, glass,
+ * transparent): the split of Jensen's rendering equation into f_r,d and
+ * f_r,s (course notes 2002). The layering between the closures is kept
+ * (each part still sees the layers over it). */
 void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other);
+
+/* Whether a closure is one of bsdf_split's diffuse ones. */
+int closure_is_diffuse(const closure *c);
+
+/* What a denoiser is told about a surface (Cycles' denoising features,
+ * Blender 4.5 and 5.0): each closure's albedo toward wo — its weight times
+ * the share of light it returns, under its layers — summed apart for the
+ * diffuse-like closures (Lambert, Oren-Nayar, sheen, and microfacet lobes
+ * rougher than α = 0.075) and the specular rest, and the closures'
+ * sampling weights (each times its albedo estimate, as Cycles weighs
+ * closures), all and diffuse-like. */
+typedef struct bsdf_features {
+    vec3 albedo_diffuse, albedo_specular;
+    float weight_total, weight_diffuse;
+} bsdf_features;
+void bsdf_denoising_features(const bsdf *b, vec3 wo, bsdf_features *out);
 
 /* Whether some closure has a non-delta lobe (next-event estimation helps). */
 int bsdf_has_non_delta(const bsdf *b);
@@ -139,9 +191,5 @@ int bsdf_transmits(const bsdf *b);
  * through (used by shadow rays). */
 vec3 bsdf_transparency(const bsdf *b);
 
-/* Dielectric Fresnel reflectance for cos θ of the incident direction to the
- * normal and relative IOR eta (transmitted side over incident side); 1 under
- * total internal reflection. */
-float fresnel_dielectric(float cos_theta_i, float eta);
 
 #endif /* PHOS_BSDF_H */

@@ -5,16 +5,13 @@
  */
 #include "shading/material.h"
 
-#include "shading/layering.h"
 #include "shading/texture.h"
 
 const material scene_default_material = {
-    1,
-    {{PHOS_CLOSURE_DIFFUSE, {0.8f, 0.8f, 0.8f}, -1, 0.5f, 1.45f, {0.0f, 0.0f, 0.0f}, PHOS_GLASS_FRESNEL_MACRO,
-      {1.0f, 1.0f, 1.0f}, -1.0f, 0}},
-    0,
-    0,
-    0,
+    .closure_count = 1,
+    .closures = {{.type = PHOS_CLOSURE_DIFFUSE, .weight = {0.8f, 0.8f, 0.8f}, .weight_image = -1,
+                  .roughness = 0.5f, .ior = 1.45f, .transmission_tint = {1.0f, 1.0f, 1.0f},
+                  .transmission_roughness = -1.0f}},
 };
 
 static vec3 normal_to_world(const instance *inst, vec3 n)
@@ -70,52 +67,67 @@ static vec3 closure_weight(const scene *s, const phos_closure_desc *c, float u, 
     return w;
 }
 
-/* Weight of the closures layered under the material's specular layer (its
- * first REFLECTION_FRESNEL closure): 1 − the layer's directional albedo
- * toward the viewer, the largest channel (Cycles' closure_layering_weight). */
-static float base_layer_scale(const material *m, const surface *sf)
+/* A layer closure's parameters as bsdf.c's layering reads them. */
+static bsdf_layer layer_of(const phos_closure_desc *d, float eta)
 {
-    int any = 0;
-    for (uint32_t i = 0; i < m->closure_count; i++)
-        any |= m->closures[i].layered != 0;
-    if (!any)
-        return 1.0f;
-    for (uint32_t i = 0; i < m->closure_count; i++) {
-        const phos_closure_desc *d = &m->closures[i];
-        if (d->type != PHOS_CLOSURE_REFLECTION_FRESNEL || d->layered)
-            continue;
-        vec3 E = specular_layer_albedo(v3_dot(sf->wo, sf->ns), clampf(d->roughness, 0.0f, 1.0f), d->ior,
-                                       v3_load(d->specular_color));
-        return clampf(1.0f - v3_max_component(E), 0.0f, 1.0f);
-    }
-    return 1.0f;
+    bsdf_layer l;
+    l.type = d->type;
+    l.roughness = clampf(d->roughness, 0.0f, 1.0f);
+    l.eta = eta;
+    l.microfacet = d->microfacet;
+    l.f0 = v3_load(d->specular_color);
+    l.fss = v3_load(d->multiscatter_fresnel);
+    l.film_thickness = d->thin_film_thickness;
+    l.film_ior = d->thin_film_ior;
+    l.weight = v3_load(d->layer_weight);
+    l.tint = v3_load(d->layer_tint);
+    l.tint_weight = d->layer_tint_weight;
+    return l;
 }
 
 void material_bsdf(const scene *s, const surface *sf, bsdf *out)
 {
     bsdf_init(out, sf->ns, sf->ng);
     const material *m = sf->mat;
-    float base_scale = base_layer_scale(m, sf);
+    /* under[i]: the layers over closure i (bit j: the bsdf's layers[j]). */
+    uint32_t under[PHOS_MAX_CLOSURES] = {0};
     for (uint32_t i = 0; i < m->closure_count; i++) {
         const phos_closure_desc *d = &m->closures[i];
+        /* The Principled specular IOR describes the coating from outside
+         * only; dielectric interfaces invert it when hit from inside. */
+        int interface = d->type == PHOS_CLOSURE_GLASS || d->type == PHOS_CLOSURE_REFRACTION;
+        float eta = (sf->backfacing && interface) ? 1.0f / d->ior : d->ior;
+        if (d->layer_span) {
+            bsdf_layer layer = layer_of(d, eta);
+            int j = bsdf_add_layer(out, &layer);
+            for (uint32_t k = i + 1; j >= 0 && k <= i + d->layer_span && k < m->closure_count; k++)
+                under[k] |= 1u << j;
+        }
         if (d->type == PHOS_CLOSURE_EMISSION)
             continue;
         closure c;
         c.type = d->type;
         c.weight = closure_weight(s, d, sf->u, sf->v);
-        if (d->layered)
-            c.weight = v3_scale(c.weight, base_scale);
         c.roughness = clampf(d->roughness, 0.0f, 1.0f);
         c.alpha = c.roughness * c.roughness;
         float rt = d->transmission_roughness < 0.0f ? c.roughness : d->transmission_roughness;
         c.alpha_t = rt * rt;
         c.transmission_tint = v3_load(d->transmission_tint);
-        /* The Principled specular IOR describes the coating from outside
-         * only; dielectric interfaces invert it when hit from inside. */
-        c.eta = (sf->backfacing && d->type != PHOS_CLOSURE_REFLECTION_FRESNEL) ? 1.0f / d->ior : d->ior;
+        c.eta = eta;
         c.f0 = v3_load(d->specular_color);
+        if (d->type == PHOS_CLOSURE_OREN_NAYAR && d->weight_image >= 0 && (uint32_t)d->weight_image < s->image_count)
+            c.f0 = v3_mul(c.f0, image_lookup(&s->images[d->weight_image], sf->u, sf->v)); /* a textured colour */
+        c.specular_tint = v3_load(d->specular_tint);
         c.glass_fresnel = d->glass_fresnel;
+        c.microfacet = d->microfacet;
+        c.fss = v3_load(d->multiscatter_fresnel);
+        c.film_thickness = d->thin_film_thickness;
+        /* The film's IOR is relative to the outside; seen from inside a
+         * glass, the outside medium is the glass (Cycles). */
+        c.film_ior = (sf->backfacing && interface) ? d->thin_film_ior / d->ior : d->thin_film_ior;
+        c.under_layers = under[i];
         c.sample_weight = 0.0f;
+        c.adjoint = 0;
         bsdf_add_closure(out, &c);
     }
 }
@@ -189,6 +201,7 @@ int material_can_scatter_delta(const material *m)
         switch (d->type) {
         case PHOS_CLOSURE_REFLECTION:
         case PHOS_CLOSURE_REFLECTION_FRESNEL:
+        case PHOS_CLOSURE_METAL:
             if (sharp)
                 return 1;
             break;

@@ -43,6 +43,7 @@ static inline float v3_max_component(vec3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)
 static inline float v3_average(vec3 a) { return (a.x + a.y + a.z) * (1.0f / 3.0f); }
 static inline int v3_is_zero(vec3 a) { return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f; }
 static inline int v3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+static inline vec3 v3_div(vec3 a, vec3 b) { return v3(a.x / b.x, a.y / b.y, a.z / b.z); }
 static inline vec3 v3_min(vec3 a, vec3 b) { return v3(fminf(a.x, b.x), fminf(a.y, b.y), fminf(a.z, b.z)); }
 static inline vec3 v3_max(vec3 a, vec3 b) { return v3(fmaxf(a.x, b.x), fmaxf(a.y, b.y), fmaxf(a.z, b.z)); }
 static inline float v3_component(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }

@@ -1,0 +1,103 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The microfacet model of each Blender version, and the Fresnel averages
+Multiscatter GGX needs (docs/algorithms.md §8).
+
+Cycles changed its GGX in 4.0: the masking-shadowing term became the
+height-correlated one, and Multiscatter GGX (the default distribution of
+Glossy, Glass, Metallic and Principled from 4.0) became albedo scaling of
+that single-scattering lobe. Phos's core renders each; the exporter picks
+the one of the Blender it runs in. Cycles 3.x's Multiscatter GGX is a
+random walk between microfacets (Heitz et al. 2016) that the core does not
+have; it is rendered with the 4.x albedo scaling, which restores the same
+energy with a slightly different lobe shape.
+
+F_ss, the mean single-scattering Fresnel ∫ F(μ) 2μ dμ, sets how coloured
+the multiply scattered light is (Kulla & Conty 2017): the colour for the
+Glossy BSDF, their fit for a dielectric, the closed form for F82 metals.
+"""
+
+import math
+
+import numpy as np
+
+from .. import core
+
+# Cycles' lower bound of a microfacet closure's weight.
+WEIGHT_CUTOFF = 1e-5
+
+
+def microfacet_model(ctx, distribution):
+    """The core's enum phos_microfacet for a node's distribution ('GGX',
+    'MULTI_GGX', ...) in the running Blender; other distributions are GGX
+    (the caller warns)."""
+    if distribution == 'MULTI_GGX':
+        return core.PHOS_MICROFACET_GGX_MULTISCATTER
+    return core.PHOS_MICROFACET_GGX if ctx.at_least(4, 0) else core.PHOS_MICROFACET_GGX_SEPARABLE
+
+
+def f0_from_ior(ior):
+    return ((ior - 1.0) / (ior + 1.0)) ** 2
+
+
+def ior_from_f0(f0):
+    """The IOR whose normal reflectance is f0 (f0 clamped below 1, as Cycles)."""
+    s = math.sqrt(min(max(f0, 0.0), 0.99))
+    return (1.0 + s) / (1.0 - s)
+
+
+def dielectric_fss(eta):
+    """Mean Fresnel of a dielectric of relative IOR eta: Kulla & Conty's fit
+    (2017, the one Cycles uses), within 0.3 % of the integral."""
+    if eta < 1.0:
+        return 0.997118 + eta * (0.1014 - eta * (0.965241 + 0.130607 * eta))
+    return (eta - 1.0) / (4.08567 + 1.00071 * eta)
+
+
+def fresnel_blend_fss(f0, eta):
+    """F_ss of the Principled specular colour: f0 blended to white by the
+    dielectric Fresnel of eta, averaged (the blend is linear in its factor)."""
+    F0 = f0_from_ior(eta)
+    s = 1.0 if F0 >= 1.0 - 1e-6 else min(max((dielectric_fss(eta) - F0) / (1.0 - F0), 0.0), 1.0)
+    return np.asarray(f0, dtype=np.float64) * (1.0 - s) + s
+
+
+def f82_b(f0, tint):
+    """F82-tint's b: at μ = 1/7 the reflectance is Schlick's times tint."""
+    f0 = np.asarray(f0, dtype=np.float64)
+    schlick = f0 + (1.0 - f0) * (6.0 / 7.0) ** 5
+    return schlick * (1.0 - np.asarray(tint, dtype=np.float64)) * 7.0 / (6.0 / 7.0) ** 6
+
+
+def f82_fss(f0, tint):
+    """∫ F82(μ) 2μ dμ = f0 + (1 − f0)/21 − b/126 (the clamp to [0,1] aside)."""
+    f0 = np.asarray(f0, dtype=np.float64)
+    return np.clip(f0 + (1.0 - f0) / 21.0 - f82_b(f0, tint) / 126.0, 0.0, 1.0)
+
+
+def unit_rgb(c):
+    """A colour clamped to [0, 1] per channel (Fresnel colours and tints)."""
+    return np.clip(np.asarray(c, dtype=np.float64).reshape(3), 0.0, 1.0)
+
+
+def conductor_fresnel(n, k, mu):
+    """Unpolarised reflectance of a conductor of complex IOR n + ik from air
+    at cos θ = mu (Born & Wolf), per channel."""
+    n, k = np.asarray(n, dtype=np.float64), np.asarray(k, dtype=np.float64)
+    c2 = mu * mu
+    t1 = n * n - k * k - (1.0 - c2)
+    t2 = np.sqrt(t1 * t1 + 4.0 * n * n * k * k)
+    u2, v2 = np.maximum((t2 + t1) / 2.0, 0.0), np.maximum((t2 - t1) / 2.0, 0.0)
+    u, v = np.sqrt(u2), np.sqrt(v2)
+    rs = ((mu - u) ** 2 + v2) / ((mu + u) ** 2 + v2)
+    t3, t4 = (n * n - k * k) * mu, 2.0 * n * k * mu
+    rp = ((t3 - u) ** 2 + (t4 - v) ** 2) / ((t3 + u) ** 2 + (t4 + v) ** 2)
+    return (rs + rp) / 2.0
+
+
+def conductor_as_f82(n, k):
+    """(f0, tint) of the F82-tint curve through a conductor's reflectance at
+    normal incidence and at μ = 1/7."""
+    f0 = np.clip(conductor_fresnel(n, k, 1.0), 0.0, 1.0)
+    f82 = conductor_fresnel(n, k, 1.0 / 7.0)
+    schlick = f0 + (1.0 - f0) * (6.0 / 7.0) ** 5
+    return f0, np.clip(np.where(schlick > 0.0, f82 / np.maximum(schlick, 1e-12), 1.0), 0.0, 1.0)
