@@ -67,6 +67,14 @@ def _engine_ids():
             if getattr(cls, "is_registered", True)} - {None}
 
 
+def use_nodes(id_data):
+    """Give a material or world its node tree (Blender 5.0 deprecated
+    use_nodes: there every new one has a tree already); returns the tree."""
+    if bpy.app.version < (5, 0, 0):
+        id_data.use_nodes = True
+    return id_data.node_tree
+
+
 # --------------------------------------------------------------- arguments
 
 def script_argv(argv=None):

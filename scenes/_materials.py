@@ -14,7 +14,7 @@ import _common
 
 def _single_node_material(name, node_type):
     mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
+    _common.use_nodes(mat)
     nt = mat.node_tree
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
@@ -96,7 +96,7 @@ def camera(scene, location, target, lens=50.0, name="Camera"):
 def world(scene, color=(0.0, 0.0, 0.0), strength=1.0, name="World"):
     w = bpy.data.worlds.new(name)
     w.color = color
-    w.use_nodes = True
+    _common.use_nodes(w)
     bg = w.node_tree.nodes.get("Background")
     bg.inputs["Color"].default_value = (*color, 1.0)
     bg.inputs["Strength"].default_value = strength

@@ -89,7 +89,7 @@ def to_blender(p, scale):
 
 def diffuse_material(name, color):
     mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
+    _common.use_nodes(mat)
     nt = mat.node_tree
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
@@ -103,7 +103,7 @@ def diffuse_material(name, color):
 
 def glass_material(name, ior=1.5):
     mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
+    _common.use_nodes(mat)
     nt = mat.node_tree
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
@@ -117,7 +117,7 @@ def glass_material(name, ior=1.5):
 
 def mirror_material(name):
     mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
+    _common.use_nodes(mat)
     nt = mat.node_tree
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
@@ -209,7 +209,7 @@ def build(scene, scale=DEFAULT_SCALE):
     # Nothing outside the box: a black world.
     world = bpy.data.worlds.new("Black")
     world.color = (0.0, 0.0, 0.0)
-    world.use_nodes = True
+    _common.use_nodes(world)
     bg = world.node_tree.nodes.get("Background")
     bg.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
     bg.inputs["Strength"].default_value = 1.0

@@ -89,6 +89,16 @@ def _render_frame(frame):
     return True
 
 
+def _set_file_format(image_settings, name):
+    """-F: Blender 5 chooses a multilayer EXR by media type, and single-layer
+    formats only when the media type is an image."""
+    if hasattr(image_settings, "media_type"):
+        image_settings.media_type = 'MULTI_LAYER_IMAGE' if name == 'OPEN_EXR_MULTILAYER' else 'IMAGE'
+        if name == 'OPEN_EXR_MULTILAYER':
+            return
+    image_settings.file_format = name
+
+
 def _enable_addons(names):
     import addon_utils
     for name in names.split(","):
@@ -162,7 +172,7 @@ def main(argv):
             _scene().render.filepath = _take(own, i, a)
             i += 1
         elif a == "-F":
-            _scene().render.image_settings.file_format = _take(own, i, a)
+            _set_file_format(_scene().render.image_settings, _take(own, i, a))
             i += 1
         elif a == "-x":
             _scene().render.use_file_extension = bool(int(_take(own, i, a)))

@@ -82,6 +82,15 @@ if [[ "${1:-}" == "--in-namespace" ]]; then
     if [[ -L "$root/etc/$f" ]]; then rm -f "$root/etc/$f"; fi   # never follow a link out
     touch "$root/etc/$f" && mount --bind -o ro "/etc/$f" "$root/etc/$f"
   done
+  # The host's TLS trust and pip configuration, read-only, so that pip in
+  # the chroot (bpy for --bpy) reaches the package index the way the host
+  # does, through a proxy's own certificate authority included.
+  for f in /etc/pip.conf "${PIP_CERT:-}" "${SSL_CERT_FILE:-}" "${REQUESTS_CA_BUNDLE:-}"; do
+    [[ -n "$f" && "$f" == /* && -f "$f" ]] || continue
+    target=$root$f
+    [[ -L "$target" ]] && rm -f "$target"
+    mkdir -p "$(dirname "$target")" && touch "$target" && mount --bind -o ro "$f" "$target"
+  done
   if [[ -n "$src" ]]; then
     mkdir -p "$root/phos-src"
     mount --bind "$src" "$root/phos-src"
@@ -93,7 +102,9 @@ if [[ "${1:-}" == "--in-namespace" ]]; then
   fi
   envs=(HOME=/root LANG=C.UTF-8 TMPDIR=/tmp DEBIAN_FRONTEND=noninteractive
         PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin)
-  for v in TERM JOBS http_proxy https_proxy no_proxy; do
+  for v in TERM JOBS http_proxy https_proxy no_proxy HTTP_PROXY HTTPS_PROXY NO_PROXY \
+           PIP_CERT PIP_INDEX_URL PIP_EXTRA_INDEX_URL PIP_TRUSTED_HOST PIP_DEFAULT_TIMEOUT \
+           SSL_CERT_FILE REQUESTS_CA_BUNDLE; do
     [[ -n "${!v:-}" ]] && envs+=("$v=${!v}")
   done
   rc=0

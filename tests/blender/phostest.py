@@ -90,6 +90,14 @@ def reset_file():
 
 # ---------------------------------------------------------------- building
 
+def use_nodes(id_data):
+    """Give a material or world its node tree (Blender 5.0 deprecated
+    use_nodes: every new one has a tree); returns the tree."""
+    if bpy.app.version < (5, 0, 0):
+        id_data.use_nodes = True
+    return id_data.node_tree
+
+
 def link(scene, ob):
     scene.collection.objects.link(ob)
     return ob
@@ -186,7 +194,7 @@ def add_light(scene, kind, energy, location=(0, 0, 3), target=(0, 0, 0), name=No
 
 def set_world(scene, color=(0.0, 0.0, 0.0), strength=1.0):
     world = bpy.data.worlds.new("World")
-    world.use_nodes = True
+    use_nodes(world)
     bg = world.node_tree.nodes["Background"]
     bg.inputs["Color"].default_value = (*color, 1.0)
     bg.inputs["Strength"].default_value = strength
@@ -246,7 +254,7 @@ def setup_node(node, inputs=None, props=None):
 def node_material(name, node_type, inputs=None, props=None):
     """A material whose surface is one shader node (type name, input values, properties)."""
     mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
+    use_nodes(mat)
     nt = mat.node_tree
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
@@ -320,11 +328,55 @@ def configure_output(scene, width, height, percentage=100):
     r.film_transparent = False
     r.use_compositing = False
     r.use_sequencer = False
-    img = r.image_settings
-    img.file_format = "OPEN_EXR"
-    img.color_mode = "RGBA"
-    img.color_depth = "32"
-    img.exr_codec = "ZIP"  # lossless
+    set_single_exr(r.image_settings)  # lossless
+    r.image_settings.color_mode = "RGBA"
+
+
+def set_multilayer_exr(image_settings):
+    """Multilayer OpenEXR (32-bit float, lossless) in every Blender: 5.0
+    chooses it by media type, and writes single-part files (which exrread
+    reads) only with use_exr_interleave."""
+    if hasattr(image_settings, "media_type"):
+        image_settings.media_type = 'MULTI_LAYER_IMAGE'
+        if hasattr(image_settings, "use_exr_interleave"):
+            image_settings.use_exr_interleave = True
+    else:
+        image_settings.file_format = 'OPEN_EXR_MULTILAYER'
+    image_settings.color_depth, image_settings.exr_codec = '32', 'ZIP'
+
+
+def set_single_exr(image_settings):
+    if hasattr(image_settings, "media_type"):
+        image_settings.media_type = 'IMAGE'
+    image_settings.file_format = 'OPEN_EXR'
+    image_settings.color_depth, image_settings.exr_codec = '32', 'ZIP'
+
+
+def compositor_tree(scene):
+    """The scene's compositor node tree, made if needed: scene.node_tree
+    before 5.0, a node group in scene.compositing_node_group from 5.0."""
+    if hasattr(scene, "compositing_node_group"):
+        if scene.compositing_node_group is None:
+            scene.compositing_node_group = bpy.data.node_groups.new("Compositing", "CompositorNodeTree")
+        if hasattr(scene.render, "compositor_device"):
+            scene.render.compositor_device = 'CPU'   # 5.3 defaults to the GPU, which this has not
+        return scene.compositing_node_group
+    scene.use_nodes = True
+    return scene.node_tree
+
+
+def compositor_output(tree):
+    """The input the render writes out: the Composite node's (before 5.0) or
+    the node group's output (5.0)."""
+    if hasattr(bpy.types, "CompositorNodeComposite"):
+        node = next((n for n in tree.nodes if n.bl_idname == "CompositorNodeComposite"), None) \
+            or tree.nodes.new("CompositorNodeComposite")
+        return node.inputs["Image"]
+    if not any(getattr(i, "in_out", None) == 'OUTPUT' for i in tree.interface.items_tree):
+        tree.interface.new_socket(name="Image", in_out='OUTPUT', socket_type='NodeSocketColor')
+    node = next((n for n in tree.nodes if n.bl_idname == "NodeGroupOutput"), None) \
+        or tree.nodes.new("NodeGroupOutput")
+    return node.inputs[0]
 
 
 # --------------------------------------------------------------- rendering
@@ -359,8 +411,7 @@ def render_array(scene, out_dir, engine=None, name=None):
         os.remove(path)
     scene.render.filepath = path
     scene.render.use_file_extension = False
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
+    set_single_exr(scene.render.image_settings)
     bpy.ops.render.render(write_still=True, scene=scene.name)
     assert os.path.isfile(path), "the render wrote no %s" % path
     return load_image_array(path)

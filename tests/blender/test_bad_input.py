@@ -172,7 +172,7 @@ img = bpy.data.images.new("Ghost", 4, 4)
 img.source = "FILE"
 img.filepath = "/nonexistent/ghost.png"
 mat = bpy.data.materials.new("Ghost Material")
-mat.use_nodes = True
+pt.use_nodes(mat)
 nt = mat.node_tree
 tex = nt.nodes.new("ShaderNodeTexImage")
 tex.image = img
@@ -264,7 +264,7 @@ def test_node_tree_with_a_cycle_warns_and_renders(tmp_path):
     cycle invalid; the export ignores it (as Cycles does) and names the material."""
     rc, out, image = build_and_render(tmp_path, r'''
 mat = bpy.data.materials.new("Loop Material")
-mat.use_nodes = True
+pt.use_nodes(mat)
 nt = mat.node_tree
 nt.nodes.clear()
 out = nt.nodes.new("ShaderNodeOutputMaterial")

@@ -441,19 +441,24 @@ def test_principled_closures(scene):
     closures = closures_of(scene, mat)[0]
     types = _closure_types(closures)
     # Principled v1 (3.x): Burley diffuse beside the specular. Principled v2
-    # (4.x): a Lambertian base layered under the specular.
+    # (4.x): a Lambertian base under the specular layer.
     v4 = bpy.app.version >= (4, 0, 0)
     base_type = C.PHOS_CLOSURE_DIFFUSE if v4 else C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE
     assert base_type in types
-    assert next(c for c in closures if c.type == base_type).layered == v4
-    assert C.PHOS_CLOSURE_REFLECTION_FRESNEL in types
+    spec = next(c for c in closures if c.type == C.PHOS_CLOSURE_REFLECTION_FRESNEL)
+    base = next(c for c in closures if c.type == base_type)
+    assert (base in (spec.layer_children or [])) == v4
     assert C.PHOS_CLOSURE_GLASS not in types
+    # The default distribution: Multiscatter GGX from 4.0, GGX before.
+    assert spec.microfacet == (C.PHOS_MICROFACET_GGX_MULTISCATTER if v4 else C.PHOS_MICROFACET_GGX_SEPARABLE)
 
     metal = pt.node_material("M", "ShaderNodeBsdfPrincipled",
                              {"Base Color": (0.9, 0.6, 0.3), "Metallic": 1.0})
     closures = closures_of(scene, metal)[0]
     assert base_type not in _closure_types(closures)
-    spec = [c for c in closures if c.type == C.PHOS_CLOSURE_REFLECTION_FRESNEL]
+    # 4.x: an F82-tint metal; 3.x: the Fresnel-blended specular of f0 = base.
+    metal_type = C.PHOS_CLOSURE_METAL if v4 else C.PHOS_CLOSURE_REFLECTION_FRESNEL
+    spec = [c for c in closures if c.type == metal_type]
     assert spec and tuple(spec[0].specular_color) == pytest.approx((0.9, 0.6, 0.3), abs=1e-3)
 
     glass = pt.node_material("T", "ShaderNodeBsdfPrincipled",
@@ -473,7 +478,7 @@ def test_principled_closures(scene):
 _DISTRIBUTIONS = {
     "SHARP": (0.0, False),
     "GGX": (None, False),
-    "MULTI_GGX": (None, not pt.BLENDER_4),  # the 4.x default: GGX without a warning
+    "MULTI_GGX": (None, not pt.BLENDER_4),  # GGX with its energy compensation; 3.x: noted (a random walk there)
     "BECKMANN": (None, True),
     "ASHIKHMIN_SHIRLEY": (None, True),
 }
@@ -487,7 +492,7 @@ def test_distributions(node_type, scene):
     by their UI name."""
     from phos import core as C
     probe = bpy.data.materials.new("probe")
-    probe.use_nodes = True
+    pt.use_nodes(probe)
     items = probe.node_tree.nodes.new(node_type).bl_rna.properties["distribution"].enum_items
     assert {i.identifier for i in items} <= set(_DISTRIBUTIONS), "a distribution the add-on does not know"
     assert ("SHARP" in items) == (not pt.BLENDER_4)
@@ -499,6 +504,8 @@ def test_distributions(node_type, scene):
         assert len(closures) == 1 and closures[0].type != C.PHOS_CLOSURE_DIFFUSE, item.identifier
         expected = 0.25 if roughness is None else roughness
         assert closures[0].roughness == pytest.approx(expected), item.identifier
+        multiscatter = item.identifier == "MULTI_GGX" and node_type != "ShaderNodeBsdfRefraction"
+        assert (closures[0].microfacet == C.PHOS_MICROFACET_GGX_MULTISCATTER) == multiscatter, item.identifier
         if warned:
             assert len(warnings) == 1 and item.name in warnings[0], (item.identifier, warnings)
         else:
@@ -517,11 +524,23 @@ def test_ggx_roughness_zero_is_sharp(node_type, scene):
         assert closures[0].to_desc().roughness == 0.0
 
 
+BLENDER_5 = bpy.app.version >= (5, 0, 0)
+
+
 def test_material_without_nodes(scene):
+    """Before 5.0, a material without nodes renders as a diffuse of its
+    colour; 5.0 removed use_nodes (setting it False does nothing), and
+    Cycles renders the node tree every new material has."""
     from phos import core as C
     mat = bpy.data.materials.new("Plain")
-    mat.use_nodes = False
     mat.diffuse_color = (0.2, 0.4, 0.6, 1.0)
+    if BLENDER_5:
+        closures, warnings = closures_of(scene, mat)   # the default Principled BSDF
+        assert C.PHOS_CLOSURE_DIFFUSE in _closure_types(closures)
+        diffuse = next(c for c in closures if c.type == C.PHOS_CLOSURE_DIFFUSE)
+        assert tuple(diffuse.weight) == pytest.approx((0.8, 0.8, 0.8), abs=1e-3)
+        return
+    mat.use_nodes = False
     closures, warnings = closures_of(scene, mat)
     assert _closure_types(closures) == [C.PHOS_CLOSURE_DIFFUSE]
     assert tuple(closures[0].weight) == pytest.approx((0.2, 0.4, 0.6))
@@ -530,11 +549,13 @@ def test_material_without_nodes(scene):
 
 @pytest.mark.parametrize("use_nodes", [True, False], ids=["nodes", "no_nodes"])
 def test_world_background(use_nodes, scene, tmp_path):
-    """The camera sees the world colour × strength (nodes) or world.color (no nodes)."""
+    """The camera sees the world colour × strength (nodes) or world.color
+    (no nodes, before 5.0; from 5.0 the node tree is always used)."""
     pt.add_camera(scene)
     world = pt.set_world(scene, (0.3, 0.4, 0.5), strength=2.0)
-    world.use_nodes = use_nodes
-    expected = (0.6, 0.8, 1.0) if use_nodes else (0.3, 0.4, 0.5)
+    if not BLENDER_5:
+        world.use_nodes = use_nodes
+    expected = (0.6, 0.8, 1.0) if use_nodes or BLENDER_5 else (0.3, 0.4, 0.5)
     pt.configure_output(scene, 8, 8)
     pt.configure_phos(scene, 2, max_bounces=0)
     pt.configure_cycles(scene, 2, max_bounces=0)
@@ -551,7 +572,7 @@ def test_mesh_without_uv_map_samples_texture_at_origin(scene, tmp_path):
     img = pt.checker_image(os.path.join(str(tmp_path), "chk.png"), size=16, squares=4,
                            colors=((1.0, 0.0, 0.0), (0.0, 0.0, 1.0)))
     mat = bpy.data.materials.new("Tex Emission")
-    mat.use_nodes = True
+    pt.use_nodes(mat)
     nt = mat.node_tree
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")

@@ -158,6 +158,12 @@ def test_cycles_and_eevee_panels_do_not_list_phos(scene):
     eevee = [n for n in EEVEE_ONLY_PANELS if hasattr(bpy.types, n)
              and "PHOS" in getattr(bpy.types, n).COMPAT_ENGINES]
     assert not eevee, "EEVEE-only panels list PHOS: %s" % eevee
+    # Whatever this Blender calls them (EEVEE's panels and engine id were
+    # renamed in 4.2 and again in 5.0): no panel only EEVEE uses lists PHOS.
+    eevee_ids = {"BLENDER_EEVEE", "BLENDER_EEVEE_NEXT"}
+    eevee = [c.__name__ for c in _panels_with("PHOS")
+             if c.COMPAT_ENGINES - {"PHOS"} and c.COMPAT_ENGINES - {"PHOS"} <= eevee_ids]
+    assert not eevee, "EEVEE-only panels list PHOS: %s" % eevee
 
 
 def test_light_settings_drawn_once(scene):

@@ -284,7 +284,7 @@ def test_shader_cycle_is_cut(scene, monkeypatch):
     revalidated), the walk still ends, with a warning naming the material."""
     from phos.export import material
     mat = bpy.data.materials.new("Ouroboros")
-    mat.use_nodes = True
+    pt.use_nodes(mat)
     nt = mat.node_tree
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
