@@ -80,6 +80,16 @@ static const uint32_t component_pass[COMPONENT_COUNT] = {PHOS_PASS_EMISSION, PHO
 
 static int pass_on(const render *r, uint32_t pass) { return r->film.planes[pass] != NULL; }
 
+/* An RGB pass's pixel: the mean of its samples' sum, if the pass is on. */
+static void write_pass_mean(render *r, uint32_t pass, uint32_t x, uint32_t y, const double sum[3], double inv)
+{
+    if (!pass_on(r, pass))
+        return;
+    float *p = film_pixel(&r->film, pass, x, y);
+    for (int ch = 0; ch < 3; ch++)
+        p[ch] = (float)(sum[ch] * inv);
+}
+
 /* Renders one pixel; returns 0 if cancelled part-way (checked before
  * every sample, and inside its gathers, so even pixels of millions of
  * samples stop at once). */
@@ -138,29 +148,13 @@ static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *s
     }
     px[3] = (float)(alpha * inv);
     for (int c = 0; c < COMPONENT_COUNT; c++)
-        if (pass_on(r, component_pass[c])) {
-            float *p = film_pixel(&r->film, component_pass[c], x, y);
-            for (int ch = 0; ch < 3; ch++)
-                p[ch] = (float)(comp[c][ch] * inv);
-        }
-    for (int k = 0; k < 2; k++) {
-        uint32_t pass = k == 0 ? PHOS_PASS_PHOTON_MAP : PHOS_PASS_CAUSTIC_MAP;
-        if (pass_on(r, pass)) {
-            float *p = film_pixel(&r->film, pass, x, y);
-            for (int ch = 0; ch < 3; ch++)
-                p[ch] = (float)(dbg[k][ch] * inv);
-        }
-    }
+        write_pass_mean(r, component_pass[c], x, y, comp[c], inv);
+    write_pass_mean(r, PHOS_PASS_PHOTON_MAP, x, y, dbg[0], inv);
+    write_pass_mean(r, PHOS_PASS_CAUSTIC_MAP, x, y, dbg[1], inv);
     /* The features' means over the samples: the normal is not renormalised,
      * so a pixel straddling an edge holds the mean direction (Cycles). */
-    for (int k = 0; k < 2; k++) {
-        uint32_t pass = k == 0 ? PHOS_PASS_DENOISING_ALBEDO : PHOS_PASS_DENOISING_NORMAL;
-        if (pass_on(r, pass)) {
-            float *p = film_pixel(&r->film, pass, x, y);
-            for (int ch = 0; ch < 3; ch++)
-                p[ch] = (float)(features[k][ch] * inv);
-        }
-    }
+    write_pass_mean(r, PHOS_PASS_DENOISING_ALBEDO, x, y, features[0], inv);
+    write_pass_mean(r, PHOS_PASS_DENOISING_NORMAL, x, y, features[1], inv);
     return 1;
 }
 
