@@ -67,12 +67,63 @@ def _engine_ids():
             if getattr(cls, "is_registered", True)} - {None}
 
 
+# ------------------------------------------------------- Blender versions
+# What Blender 5.0 changed, done the way each version needs; the tests and
+# the benchmark use these too.
+
 def use_nodes(id_data):
     """Give a material or world its node tree (Blender 5.0 deprecated
     use_nodes: there every new one has a tree already); returns the tree."""
     if bpy.app.version < (5, 0, 0):
         id_data.use_nodes = True
     return id_data.node_tree
+
+
+def set_multilayer_exr(image_settings):
+    """Multilayer OpenEXR (32-bit float, lossless) in every Blender: 5.0
+    chooses it by media type, and writes single-part files (which exrread
+    reads) only with use_exr_interleave."""
+    if hasattr(image_settings, "media_type"):
+        image_settings.media_type = 'MULTI_LAYER_IMAGE'
+        if hasattr(image_settings, "use_exr_interleave"):
+            image_settings.use_exr_interleave = True
+    else:
+        image_settings.file_format = 'OPEN_EXR_MULTILAYER'
+    image_settings.color_depth, image_settings.exr_codec = '32', 'ZIP'
+
+
+def set_single_exr(image_settings):
+    if hasattr(image_settings, "media_type"):
+        image_settings.media_type = 'IMAGE'
+    image_settings.file_format = 'OPEN_EXR'
+    image_settings.color_depth, image_settings.exr_codec = '32', 'ZIP'
+
+
+def compositor_tree(scene):
+    """The scene's compositor node tree, made if needed: scene.node_tree
+    before 5.0, a node group in scene.compositing_node_group from 5.0."""
+    if hasattr(scene, "compositing_node_group"):
+        if scene.compositing_node_group is None:
+            scene.compositing_node_group = bpy.data.node_groups.new("Compositing", "CompositorNodeTree")
+        if hasattr(scene.render, "compositor_device"):
+            scene.render.compositor_device = 'CPU'   # 5.3 defaults to the GPU, which this has not
+        return scene.compositing_node_group
+    scene.use_nodes = True
+    return scene.node_tree
+
+
+def compositor_output(tree):
+    """The input the render writes out: the Composite node's (before 5.0) or
+    the node group's output (5.0)."""
+    if hasattr(bpy.types, "CompositorNodeComposite"):
+        node = next((n for n in tree.nodes if n.bl_idname == "CompositorNodeComposite"), None) \
+            or tree.nodes.new("CompositorNodeComposite")
+        return node.inputs["Image"]
+    if not any(getattr(i, "in_out", None) == 'OUTPUT' for i in tree.interface.items_tree):
+        tree.interface.new_socket(name="Image", in_out='OUTPUT', socket_type='NodeSocketColor')
+    node = next((n for n in tree.nodes if n.bl_idname == "NodeGroupOutput"), None) \
+        or tree.nodes.new("NodeGroupOutput")
+    return node.inputs[0]
 
 
 # --------------------------------------------------------------- arguments
@@ -209,8 +260,8 @@ def render_and_save(scene, output_base):
         % (r.resolution_x * r.resolution_percentage // 100,
            r.resolution_y * r.resolution_percentage // 100,
            engine, samples_of(scene), output_base))
-    # In background mode Blender prints the engine's progress and stats
-    # lines ("Fra:1 ... | Path tracing | 12/40 tiles") while it renders.
+    # In background mode Blender (up to 4.x; Phos itself on 5.x) prints the
+    # engine's progress and stats lines ("Phos | Rendering ... | Tile 3/16").
     t0 = time.time()
     bpy.ops.render.render()
     log("render finished in %.1f s" % (time.time() - t0))

@@ -21,6 +21,12 @@ from mathutils import Vector
 
 TESTS_DIR = os.path.dirname(os.path.abspath(__file__))
 REPO_DIR = os.path.dirname(os.path.dirname(TESTS_DIR))
+if os.path.join(REPO_DIR, "scenes") not in sys.path:
+    sys.path.insert(0, os.path.join(REPO_DIR, "scenes"))
+# What every Blender version needs done its own way (5.0's node trees,
+# multilayer EXR, compositor): one copy, in scenes/_common.py.
+from _common import (compositor_output, compositor_tree, set_multilayer_exr,  # noqa: E402,F401
+                     set_single_exr, use_nodes)
 ADDON_DIR = os.path.join(REPO_DIR, "addon")
 # The add-on's module: "phos" from this source tree, or with PHOS_ADDON_MODULE
 # the module of an installed copy, e.g. "bl_ext.user_default.phos" for the
@@ -89,14 +95,6 @@ def reset_file():
 
 
 # ---------------------------------------------------------------- building
-
-def use_nodes(id_data):
-    """Give a material or world its node tree (Blender 5.0 deprecated
-    use_nodes: every new one has a tree); returns the tree."""
-    if bpy.app.version < (5, 0, 0):
-        id_data.use_nodes = True
-    return id_data.node_tree
-
 
 def link(scene, ob):
     scene.collection.objects.link(ob)
@@ -330,53 +328,6 @@ def configure_output(scene, width, height, percentage=100):
     r.use_sequencer = False
     set_single_exr(r.image_settings)  # lossless
     r.image_settings.color_mode = "RGBA"
-
-
-def set_multilayer_exr(image_settings):
-    """Multilayer OpenEXR (32-bit float, lossless) in every Blender: 5.0
-    chooses it by media type, and writes single-part files (which exrread
-    reads) only with use_exr_interleave."""
-    if hasattr(image_settings, "media_type"):
-        image_settings.media_type = 'MULTI_LAYER_IMAGE'
-        if hasattr(image_settings, "use_exr_interleave"):
-            image_settings.use_exr_interleave = True
-    else:
-        image_settings.file_format = 'OPEN_EXR_MULTILAYER'
-    image_settings.color_depth, image_settings.exr_codec = '32', 'ZIP'
-
-
-def set_single_exr(image_settings):
-    if hasattr(image_settings, "media_type"):
-        image_settings.media_type = 'IMAGE'
-    image_settings.file_format = 'OPEN_EXR'
-    image_settings.color_depth, image_settings.exr_codec = '32', 'ZIP'
-
-
-def compositor_tree(scene):
-    """The scene's compositor node tree, made if needed: scene.node_tree
-    before 5.0, a node group in scene.compositing_node_group from 5.0."""
-    if hasattr(scene, "compositing_node_group"):
-        if scene.compositing_node_group is None:
-            scene.compositing_node_group = bpy.data.node_groups.new("Compositing", "CompositorNodeTree")
-        if hasattr(scene.render, "compositor_device"):
-            scene.render.compositor_device = 'CPU'   # 5.3 defaults to the GPU, which this has not
-        return scene.compositing_node_group
-    scene.use_nodes = True
-    return scene.node_tree
-
-
-def compositor_output(tree):
-    """The input the render writes out: the Composite node's (before 5.0) or
-    the node group's output (5.0)."""
-    if hasattr(bpy.types, "CompositorNodeComposite"):
-        node = next((n for n in tree.nodes if n.bl_idname == "CompositorNodeComposite"), None) \
-            or tree.nodes.new("CompositorNodeComposite")
-        return node.inputs["Image"]
-    if not any(getattr(i, "in_out", None) == 'OUTPUT' for i in tree.interface.items_tree):
-        tree.interface.new_socket(name="Image", in_out='OUTPUT', socket_type='NodeSocketColor')
-    node = next((n for n in tree.nodes if n.bl_idname == "NodeGroupOutput"), None) \
-        or tree.nodes.new("NodeGroupOutput")
-    return node.inputs[0]
 
 
 # --------------------------------------------------------------- rendering

@@ -90,6 +90,17 @@ def _render_pair(scene, tmp_path, engine, seed):
     return img[..., :3].astype(np.float64), time.time() - t0
 
 
+def difference_and_noise(P, C):
+    """(b)'s statistics of two renders per engine (P1, P2) and (C1, C2),
+    the same image: D, the mean squared difference of the matched pairs,
+    and V = Var_P + Var_C from the differences between seeds (module
+    docstring); also Var_P and Var_C."""
+    D = 0.5 * (np.mean((P[0] - C[0]) ** 2) + np.mean((P[1] - C[1]) ** 2))
+    var_p = 0.5 * np.mean((P[0] - P[1]) ** 2)
+    var_c = 0.5 * np.mean((C[0] - C[1]) ** 2)
+    return float(D), float(var_p + var_c), float(var_p), float(var_c)
+
+
 def compare(name, scene, tmp_path):
     pt.configure_output(scene, *RESOLUTION)
     pt.configure_threads(scene, None)
@@ -112,10 +123,7 @@ def compare(name, scene, tmp_path):
     rel = (mean_p - mean_c) / denom
 
     # (b) per-pixel squared differences against the noise
-    D = 0.5 * (np.mean((P[0] - C[0]) ** 2) + np.mean((P[1] - C[1]) ** 2))
-    var_p = 0.5 * np.mean((P[0] - P[1]) ** 2)
-    var_c = 0.5 * np.mean((C[0] - C[1]) ** 2)
-    V = var_p + var_c
+    D, V, var_p, var_c = difference_and_noise(P, C)
     bound = NOISE_FACTOR * V + ABS_FLOOR * float(mean_c.mean()) ** 2
     ratio = D / V if V > 0 else float("inf")
 
