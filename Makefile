@@ -15,6 +15,7 @@
 #               [BENCH_SCENES_ALL=...]    run: out/bench/ (CSV, plots, summary.md); cached
 #                                         references (docs/benchmarks.md; 36 min from a
 #                                         fresh clone, QUICK=1 a few minutes)
+#   make bench-official                   the part against official Cycles (guiding, OIDN) alone
 #   make bench-kdtree [BENCH_ARGS=...]    the kd-tree benchmark alone
 #   make bench-defaults                   PHOTON settings swept against cached Cycles
 #               [BENCH_SCENES=...]        references, ranked by error per second, and
@@ -60,10 +61,10 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
 .PHONY: test-asan test-tsan valgrind fuzz
-.PHONY: deps build binding check-binding test test-blender4 test-blender-latest bench bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
+.PHONY: deps build binding check-binding test test-blender4 test-blender-latest bench bench-official bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
 
 help:
-	@sed -n '3,32p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,33p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -227,7 +228,24 @@ bench: bench-programs build
 	done
 	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python bench/scaling.py -- --triangles $(BENCH_TRIANGLES) \
 	  --csv $(BENCH_OUT)/scaling.csv | $(BENCH_QUIET)
+	$(MAKE) bench-official BENCH_OUT=$(BENCH_OUT)
 	/usr/bin/python3 bench/plots.py $(BENCH_OUT)
+
+# Cycles as artists run it: the newest official build of tools/bpy-versions.txt
+# (path guiding, OpenImageDenoise), each scene against a reference of that
+# Cycles kept with the build (tools/bpy-run.sh: here or in the Debian 13
+# chroot); Phos raw and through the Denoise node at the same time.
+BENCH_OFFICIAL ?= $(shell tools/bpy-run.sh --newest)
+BENCH_BPY_RUN  := tools/bpy-run.sh $(BENCH_OFFICIAL) $(BENCH_OUT) -- -b --factory-startup --python-exit-code 1 \
+                  --python bench/quality.py --
+bench-official: build
+	mkdir -p $(BENCH_OUT)
+	for s in $(BENCH_SCENES_ALL); do \
+	  $(BENCH_BPY_RUN) reference --scene $$s --resolution $(BENCH_RESOLUTION) --chunks $(BENCH_REF_CHUNKS) \
+	    --reference-dir {cache}/references | $(BENCH_QUIET); \
+	  $(BENCH_BPY_RUN) bench --scene $$s --resolution $(BENCH_RESOLUTION) --reference-dir {cache}/references \
+	    --parts official --csv {out}/official_$$s.csv | $(BENCH_QUIET); \
+	done
 
 # Not a test: digests depend on the compiler, Embree and the CPU, so two runs
 # are compared on one machine (tools/image-digests.py).

@@ -8,7 +8,8 @@ matplotlib; not inside Blender).
 Reads   bench_<scene>.csv and bench_<scene>.npz (bench/quality.py bench;
         budgets_<scene>.csv, from --parts budgets, replaces its budget rows),
         rays.csv, threads.csv, photons.csv (bench_core), kdtree.csv
-        (bench_kdtree), scaling.csv (bench/scaling.py), when present.
+        (bench_kdtree), scaling.csv (bench/scaling.py), official_<scene>.csv
+        (quality.py bench --parts official, under an official Blender), when present.
 Writes  quality_vs_time.png (relative MSE against render time, log-log,
         a panel per scene), strip_<scene>.png (reference, Phos, Cycles and
         each one's error), scaling.png, and summary.md.
@@ -197,6 +198,21 @@ def main():
             if os.path.exists(npz):
                 engine = rows[0].get("reference_engine", "CYCLES") if rows else "CYCLES"
                 md += ["![%s](%s)" % (scene, os.path.basename(plot_strip(scene, npz, out_dir, engine))), ""]
+    official = [r for path in sorted(glob.glob(os.path.join(out_dir, "official_*.csv"))) for r in read_csv(path)]
+    if official:
+        def config(r):
+            return ("Phos " + r["integrator"]) if r["engine"] == "PHOS" else {
+                "cycles": "Cycles", "cycles_guiding": "Cycles, path guiding",
+                "cycles_oidn": "Cycles, OpenImageDenoise"}.get(r["integrator"], r["integrator"])
+        phos_error = {r["scene"]: num(r, "relative_mse") for r in official
+                      if r["engine"] == "PHOS" and r["integrator"] == "PHOTON"}
+        md += ["## Against Cycles as artists run it (Blender %s)" % official[0].get("blender"), "",
+               "At the time Phos PHOTON takes at its defaults; the error of each, and Phos PHOTON's "
+               "(raw) divided by it.", "",
+               table(official, ["scene", config, lambda r: g(num(r, "seconds"), "%.1f"),
+                                lambda r: g(num(r, "relative_mse")),
+                                lambda r: g(phos_error.get(r["scene"], float("nan")) / num(r, "relative_mse"))],
+                     ["scene", "configuration", "seconds", "relative MSE", "Phos PHOTON / this"]), ""]
     rays = read_csv(os.path.join(out_dir, "rays.csv"))
     if rays:
         md += ["## Ray throughput", "", table(rays, ["threads", "phos_mrays_s", "raw_mrays_s", "ratio"],

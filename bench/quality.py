@@ -24,7 +24,10 @@ Commands (each takes --scene NAME, a script in scenes/, and --resolution W H):
                 the maps alone would overrun, to fit each), and the path
                 tracer's time and variance per sample against Cycles' at
                 equal samples. Writes --csv and, beside it, the images
-                (bench_<scene>.npz) for bench/plots.py.
+                (bench_<scene>.npz) for bench/plots.py. --parts official
+                (for the official builds): at the time Phos PHOTON takes,
+                Phos raw and through the Denoise node, Cycles plain, with
+                path guiding, and with OpenImageDenoise.
 
 Relative MSE (Rousselle et al. 2011): the mean over pixels and RGB channels
 of (x - r)^2 / (r^2 + 0.01), minus the reference's own share, the same sum
@@ -331,6 +334,76 @@ def cycles_measurement(scene, module, args, ref, seconds):
             "mean_ratio": float(image.mean() / ref.mean.mean())}
 
 
+# Cycles as artists run it: the blender.org and PyPI builds have path
+# guiding and OpenImageDenoise (Debian's have neither). scene.cycles
+# settings on top of the reference configuration (_common.configure_cycles).
+CYCLES_CONFIGS = {
+    "cycles": {},
+    "cycles_guiding": {"use_guiding": True, "use_surface_guiding": True, "use_volume_guiding": False},
+    "cycles_oidn": {"use_denoising": True, "denoiser": "OPENIMAGEDENOISE",
+                    "denoising_input_passes": "RGB_ALBEDO_NORMAL", "denoising_prefilter": "ACCURATE"},
+}
+
+
+def _apply_cycles_config(scene, config):
+    for name, value in CYCLES_CONFIGS[config].items():
+        setattr(scene.cycles, name, value)
+
+
+def cycles_config_measurement(scene, module, args, ref, seconds, config):
+    """Cycles in configuration `config` (CYCLES_CONFIGS) given `seconds` in
+    all: its time limit is what is left after its fixed cost and, when it
+    denoises, the denoiser's time (measured by a pilot), so that the image
+    it delivers took the same wall time as Phos's."""
+    configure(scene, module, "CYCLES", (16, 16), 1, args.seed)
+    _apply_cycles_config(scene, config)
+    _, fixed = render(scene)
+    overhead = 0.0
+    if CYCLES_CONFIGS[config].get("use_denoising"):
+        configure(scene, module, "CYCLES", args.resolution, 1 << 20, args.seed)
+        _apply_cycles_config(scene, config)
+        scene.cycles.time_limit = 0.5
+        _, pilot = render(scene)
+        overhead = max(pilot - 0.5 - fixed, 0.0)
+    configure(scene, module, "CYCLES", args.resolution, 1 << 20, args.seed)
+    _apply_cycles_config(scene, config)
+    scene.cycles.time_limit = max(seconds - fixed - overhead, 0.1)
+    image, measured = render(scene)
+    scene.cycles.time_limit = 0.0
+    _apply_cycles_config(scene, "cycles")
+    for name in CYCLES_CONFIGS[config]:
+        setattr(scene.cycles, name, type(getattr(scene.cycles, name))(
+            scene.cycles.bl_rna.properties[name].default))
+    rel, own = ref.relative_mse(image)
+    return {"scene": args.scene, "engine": "CYCLES", "integrator": config, "samples": "",
+            "seconds": measured, "fixed_seconds": fixed, "relative_mse": rel, "reference_share": own,
+            "mean_ratio": float(image.mean() / ref.mean.mean())}
+
+
+def phos_denoised_measurement(scene, module, args, ref, integrator):
+    """Phos at its defaults, through the compositor's Denoise node fed with
+    its Denoising Albedo and Denoising Normal passes (the time includes the
+    compositing)."""
+    vl = scene.view_layers[0]
+    vl.phos.use_pass_denoising_albedo = vl.phos.use_pass_denoising_normal = True
+    tree = _common.compositor_tree(scene)
+    tree.nodes.clear()
+    layers = tree.nodes.new("CompositorNodeRLayers")
+    denoise = tree.nodes.new("CompositorNodeDenoise")
+    tree.links.new(layers.outputs["Image"], denoise.inputs["Image"])
+    tree.links.new(layers.outputs["Denoising Albedo"], denoise.inputs["Albedo"])
+    tree.links.new(layers.outputs["Denoising Normal"], denoise.inputs["Normal"])
+    tree.links.new(denoise.outputs["Image"], _common.compositor_output(tree))
+    scene.render.use_compositing = True
+    try:
+        row = phos_measurement(scene, module, args, ref, {}, integrator)
+    finally:
+        scene.render.use_compositing = False
+        vl.phos.use_pass_denoising_albedo = vl.phos.use_pass_denoising_normal = False
+    row["integrator"] = integrator + " + Denoise node"
+    return row
+
+
 def write_rows(path, rows):
     if not rows:
         return
@@ -478,6 +551,14 @@ def command_bench(args):
         row.update(seconds_per_sample=per_sample,
                    variance_per_sample=row["relative_mse"] * int(row["samples"]))
         add(row, "path_speed")
+    # Cycles as artists run it (the official builds), and Phos through the
+    # same denoiser, all at the time Phos PHOTON takes at its defaults.
+    if "official" in args.parts:
+        row = phos_measurement(scene, module, args, ref, {}, "PHOTON")
+        add(row, "official")
+        add(phos_denoised_measurement(scene, module, args, ref, "PHOTON"), "official")
+        for config in CYCLES_CONFIGS:
+            add(cycles_config_measurement(scene, module, args, ref, row["seconds"], config), "official")
     if "equal" in args.parts:
         np.savez_compressed(os.path.join(os.path.dirname(os.path.abspath(args.csv)), "bench_%s.npz" % args.scene),
                             **{k.replace(" ", "_"): v.astype(np.float32) for k, v in images.items()})
@@ -488,8 +569,10 @@ def main():
     p.add_argument("command", choices=("reference", "sweep", "equal-time", "bench"))
     p.add_argument("--budgets", type=float, nargs="+", default=[4.0, 16.0, 64.0])
     p.add_argument("--path-samples", type=int, default=64)
-    p.add_argument("--parts", nargs="+", default=["equal", "budgets", "path"], choices=("equal", "budgets", "path"),
-                   help="bench: which measurements to make")
+    p.add_argument("--parts", nargs="+", default=["equal", "budgets", "path"],
+                   choices=("equal", "budgets", "path", "official"),
+                   help="bench: which measurements to make (official: Cycles with path guiding and "
+                        "OpenImageDenoise, and Phos through the Denoise node, for the official builds)")
     p.add_argument("--scene", required=True)
     p.add_argument("--resolution", type=int, nargs=2, default=(128, 128), metavar=("W", "H"))
     p.add_argument("--reference-dir", default=os.path.join(os.path.expanduser("~"), ".cache", "phos-bench"))

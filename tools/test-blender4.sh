@@ -9,6 +9,10 @@
 #                                          Blender VERSION as a Python module (bpy, Python 3.13)
 #                                          in the chroot: tools/test-bpy.sh --here (make
 #                                          test-blender-latest runs this for 5.1 and later)
+#   tools/test-blender4.sh --bpy-run VERSION ARGS...
+#                                          build, then `blender ARGS...` under the official
+#                                          Blender VERSION (bpy) in the chroot, in /phos-src
+#                                          with this build's library (tools/bpy-run.sh)
 #   tools/test-blender4.sh --shell         interactive shell in the chroot, same mounts
 #   tools/test-blender4.sh --remove        delete the chroot
 #
@@ -310,12 +314,13 @@ if [[ "${1:-}" == "--shell" ]]; then
   exit "$rc"
 fi
 
-bpy_version=""
-if [[ "${1:-}" == "--bpy" ]]; then
-  bpy_version=${2:?usage: test-blender4.sh --bpy VERSION [pytest args]}
+bpy_version="" bpy_run=""
+if [[ "${1:-}" == "--bpy" || "${1:-}" == "--bpy-run" ]]; then
+  [[ "$1" == "--bpy-run" ]] && bpy_run=1
+  bpy_version=${2:?usage: test-blender4.sh --bpy VERSION [pytest args] | --bpy-run VERSION ARGS...}
   shift 2
 fi
-[[ $# -gt 0 ]] || set -- -q   # pytest args
+[[ $# -gt 0 || -n "$bpy_run" ]] || set -- -q   # pytest args
 # Inside: Embree-4 build in /phos-build; libphos.so goes to /phos-build/lib
 # (not the checkout's addon/phos/lib, which belongs to the host's build), and
 # the add-on from the checkout loads it through PHOS_LIBRARY.
@@ -333,6 +338,13 @@ cmake --build /phos-build -j "$JOBS" || { say "build failed"; exit 1; }
 /phos-src/tools/check-exports.sh /phos-build/lib/libphos.so || exit 1
 say "build: $(dur $t)"
 rc=0
+if [[ -n "$BPY_RUN" ]]; then
+  # A command line for the official Blender (tools/bpy-run.sh): the add-on
+  # from the checkout, with the Embree-4 library of this build.
+  PHOS_BPY_DIR=/phos-build/bpy /phos-src/tools/bpy-env.sh "$BPY_VERSION" "/phos-build/bpy/$BPY_VERSION" >&2 || exit 1
+  cd /phos-src && PHOS_LIBRARY=/phos-build/lib/libphos.so "/phos-build/bpy/$BPY_VERSION/blender" "$@"
+  exit $?
+fi
 if [[ -n "$BPY_VERSION" ]]; then
   # The official Blender as a Python module (tools/test-bpy.sh), with the
   # add-on folder of this build (its Embree-4 libphos.so).
@@ -368,7 +380,8 @@ rm -rf "$stage"
 say "extension install check: $(dur $t)"
 exit $rc'
 rc=0
-in_chroot "$repo" "$build_dir" /usr/bin/env BPY_VERSION="$bpy_version" /bin/bash -c "$inner" inner "$@" || rc=$?
+in_chroot "$repo" "$build_dir" /usr/bin/env BPY_VERSION="$bpy_version" BPY_RUN="$bpy_run" \
+  /bin/bash -c "$inner" inner "$@" || rc=$?
 check_no_mounts "$chroot_dir"
 what="Blender 4.3"
 [[ -z "$bpy_version" ]] || what="Blender $bpy_version (bpy)"
