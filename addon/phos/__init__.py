@@ -18,7 +18,7 @@ Works as a legacy add-on (bl_info, Blender 3.4+) and as a 4.2+ extension
 bl_info = {
     "name": "Phos",
     "author": "Phos developers",
-    "version": (0, 1, 0),
+    "version": (0, 2, 0),
     "blender": (3, 4, 0),
     "location": "Properties › Render › Render Engine › Phos",
     "description": "Photon-mapping render engine with Cycles-compatible materials and lights",

@@ -40,7 +40,7 @@ extern "C" {
 /* Version: major.minor.patch packed as (major << 16) | (minor << 8) | patch.
  * The add-on refuses a library whose major or minor differs from its own. */
 #define PHOS_VERSION_MAJOR 0
-#define PHOS_VERSION_MINOR 1
+#define PHOS_VERSION_MINOR 2
 #define PHOS_VERSION_PATCH 0
 #define PHOS_VERSION \
     ((PHOS_VERSION_MAJOR << 16) | (PHOS_VERSION_MINOR << 8) | PHOS_VERSION_PATCH)
