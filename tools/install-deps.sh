@@ -29,10 +29,12 @@ BENCH_PACKAGES=(
 
 # Only for Blender as a Python module (`bpy` from PyPI, tools/bpy-env.sh):
 # a virtual environment, and the X11 client libraries the module links
-# although it never opens a window.
+# although it never opens a window. A|B: either is enough (Debian 13
+# renamed libxt6 to libxt6t64 in its 64-bit time_t transition; apt
+# installs the virtual name A).
 BPY_PACKAGES=(
   python3-venv
-  libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 libxt6 libsm6 libice6 libgl1
+  libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 "libxt6|libxt6t64" libsm6 libice6 libgl1
 )
 
 # Only for `make valgrind` and `make fuzz` (gcc's sanitizers come with gcc).
@@ -53,12 +55,17 @@ for arg in "$@"; do
   esac
 done
 
+installed() {
+  [[ "$(dpkg-query -W -f='${db:Status-Status}' "$1" 2>/dev/null || true)" == "installed" ]]
+}
 missing=()
-for pkg in "${PACKAGES[@]}"; do
-  status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
-  if [[ "$status" != "installed" ]]; then
-    missing+=("$pkg")
-  fi
+for entry in "${PACKAGES[@]}"; do
+  found=0
+  IFS='|' read -r -a alternatives <<<"$entry"
+  for pkg in "${alternatives[@]}"; do
+    if installed "$pkg"; then found=1; break; fi
+  done
+  [[ $found -eq 1 ]] || missing+=("${alternatives[0]}")
 done
 
 if [[ ${#missing[@]} -eq 0 ]]; then

@@ -117,7 +117,9 @@ enum phos_closure_type {
                                             normal incidence, specular_tint near grazing (Principled metallic,
                                             Metallic BSDF; Cycles 4+) */
     PHOS_CLOSURE_OREN_NAYAR = 9,         /* energy-preserving Oren-Nayar diffuse of roughness (Fujii 2012,
-                                            with the OpenPBR multiple-scattering term; Cycles 4.3+) */
+                                            with the OpenPBR multiple-scattering term; Cycles 4.3+):
+                                            specular_color the albedo of that term, specular_tint
+                                            an extra colour of it (Cycles 4.3-5.0: the albedo again) */
     PHOS_CLOSURE_SHEEN = 10,             /* microfiber sheen of roughness (Zeltner et al. 2022, an LTC
                                             lobe; its weight is scaled by the lobe's albedo) */
     PHOS_CLOSURE_TYPE_COUNT = 11
@@ -154,7 +156,8 @@ typedef struct phos_closure_desc {
     float multiscatter_fresnel[3]; /* GGX_MULTISCATTER: the lobe's mean single-scattering Fresnel
                                       F_ss = ∫ F(μ) 2μ dμ (Glossy and Glass BSDF: their colour) */
     float specular_tint[3];    /* METAL: the F82 tint, reflectance at μ = 1/7 (about 82°) relative to Schlick's;
-                                  GLASS (MICROFACET): f0 = F0(ior)·tint (Principled Specular Tint); in [0,1] */
+                                  GLASS (MICROFACET): f0 = F0(ior)·tint (Principled Specular Tint);
+                                  OREN_NAYAR: colour of the multiple-scattering term; in [0,1] */
     float thin_film_thickness; /* nm; above 0.1 a thin film on REFLECTION_FRESNEL and GLASS (MICROFACET)
                                   reflects with interference colours (Belcour & Barla 2017) */
     float thin_film_ior;       /* the film's index of refraction */

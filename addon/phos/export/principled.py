@@ -38,7 +38,8 @@ import numpy as np
 
 from .. import core
 from . import image as image_export
-from .material import (WEIGHT_CUTOFF, Closure, _clamp01, _enum_name, find_input, thin_film)
+from .material import (WEIGHT_CUTOFF, Closure, _clamp01, _enum_name, find_input, oren_nayar_tint,
+                       thin_film)
 from .microfacet import (dielectric_fss, f0_from_ior, f82_fss, fresnel_blend_fss, ior_from_f0,
                          microfacet_model, unit_rgb)
 
@@ -179,7 +180,8 @@ def principled_v2(walker, node):
         if diffuse_roughness >= 1e-5:
             albedo = np.ones(3) if base_img is not None else np.clip(base, 0.0, 1.0)
             top.append(Closure(core.PHOS_CLOSURE_OREN_NAYAR, base * diffuse_weight, base_img,
-                               roughness=diffuse_roughness, specular_color=albedo))
+                               roughness=diffuse_roughness, specular_color=albedo,
+                               specular_tint=oren_nayar_tint(ctx, base_const)))
         else:
             top.append(Closure(core.PHOS_CLOSURE_DIFFUSE, base * diffuse_weight, base_img))
 

@@ -367,7 +367,10 @@ static vec3 eval_principled_diffuse(const closure *c, const query *q, float *pdf
  * f = A + B·s + E_ms (1 − E(μi))(1 − E(μo)), s = wo·wi − μo μi (divided by
  * max(μo, μi) where positive), A = 1/(π + σ(π/2 − 2/3)), B = σA,
  * E(μ) = Aπ + B·G(μ) its directional albedo, E_ms the albedo's missing
- * energy, ρ²(E_avg/(1 − E_avg))/(π(1 − ρ(1 − E_avg))) for the colour ρ. */
+ * energy, τρ(E_avg/(1 − E_avg))/(π(1 − ρ(1 − E_avg))) for the colour ρ
+ * (f0), which the closure's weight carries once more: with τ = 1 (the
+ * specular_tint) the term is ρ² as in OpenPBR's EON and Cycles 5.1+;
+ * Cycles 4.3-5.0 tint it by ρ again (τ = ρ, docs/algorithms.md §8.6). */
 static float oren_nayar_G(float mu)
 {
     if (mu < 1e-6f)
@@ -391,7 +394,7 @@ static vec3 eval_oren_nayar(const closure *c, const query *q, float *pdf)
     if (sigma > 0.0f) { /* roughness 0 is Lambert: nothing is missing */
         float E_avg = A * PHOS_PI + B * (2.0f * PHOS_PI - 5.6f) / 3.0f;
         vec3 rho = v3_min(v3_max(c->f0, v3s(0.0f)), v3s(1.0f));
-        vec3 E_ms = v3_scale(v3_div(v3_scale(v3_mul(rho, rho), E_avg / (1.0f - E_avg)),
+        vec3 E_ms = v3_scale(v3_div(v3_scale(v3_mul(c->specular_tint, rho), E_avg / (1.0f - E_avg)),
                                     v3_sub(v3s(1.0f), v3_scale(rho, 1.0f - E_avg))),
                              PHOS_INV_PI);
         f = v3_add(f, v3_scale(E_ms, (1.0f - E_i) * (1.0f - E_o)));
