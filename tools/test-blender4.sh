@@ -89,8 +89,10 @@ if [[ "${1:-}" == "--in-namespace" ]]; then
   # The host's TLS trust and pip configuration, read-only, so that pip in
   # the chroot (bpy for --bpy) reaches the package index the way the host
   # does, through a proxy's own certificate authority included.
+  declare -A mounted=()   # SSL_CERT_FILE and REQUESTS_CA_BUNDLE often name one file
   for f in /etc/pip.conf "${PIP_CERT:-}" "${SSL_CERT_FILE:-}" "${REQUESTS_CA_BUNDLE:-}"; do
-    [[ -n "$f" && "$f" == /* && -f "$f" ]] || continue
+    [[ -n "$f" && "$f" == /* && -f "$f" && -z "${mounted[$f]:-}" ]] || continue
+    mounted[$f]=1
     target=$root$f
     [[ -L "$target" ]] && rm -f "$target"
     mkdir -p "$(dirname "$target")" && touch "$target" && mount --bind -o ro "$f" "$target"
