@@ -346,8 +346,11 @@ CYCLES_CONFIGS = {
 
 
 def _apply_cycles_config(scene, config):
+    """Sets `config`'s Cycles settings; returns the values they replaced."""
+    before = {name: getattr(scene.cycles, name) for name in CYCLES_CONFIGS[config]}
     for name, value in CYCLES_CONFIGS[config].items():
         setattr(scene.cycles, name, value)
+    return before
 
 
 def cycles_config_measurement(scene, module, args, ref, seconds, config):
@@ -356,7 +359,7 @@ def cycles_config_measurement(scene, module, args, ref, seconds, config):
     denoises, the denoiser's time (measured by a pilot), so that the image
     it delivers took the same wall time as Phos's."""
     configure(scene, module, "CYCLES", (16, 16), 1, args.seed)
-    _apply_cycles_config(scene, config)
+    before = _apply_cycles_config(scene, config)
     _, fixed = render(scene)
     overhead = 0.0
     if CYCLES_CONFIGS[config].get("use_denoising"):
@@ -370,10 +373,8 @@ def cycles_config_measurement(scene, module, args, ref, seconds, config):
     scene.cycles.time_limit = max(seconds - fixed - overhead, 0.1)
     image, measured = render(scene)
     scene.cycles.time_limit = 0.0
-    _apply_cycles_config(scene, "cycles")
-    for name in CYCLES_CONFIGS[config]:
-        setattr(scene.cycles, name, type(getattr(scene.cycles, name))(
-            scene.cycles.bl_rna.properties[name].default))
+    for name, value in before.items():
+        setattr(scene.cycles, name, value)
     rel, own = ref.relative_mse(image)
     return {"scene": args.scene, "engine": "CYCLES", "integrator": config, "samples": "",
             "seconds": measured, "fixed_seconds": fixed, "relative_mse": rel, "reference_share": own,

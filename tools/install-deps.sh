@@ -7,6 +7,7 @@
 #   tools/install-deps.sh --bench    also the packages of `make bench` (may be combined with --check)
 #   tools/install-deps.sh --reliability  also valgrind and clang's libFuzzer (`make valgrind`, `make fuzz`)
 #   tools/install-deps.sh --bpy      also what Blender as a Python module needs (tools/bpy-env.sh)
+#   tools/install-deps.sh --chroot   also debootstrap, for the Debian 13 chroot (tools/test-blender4.sh)
 set -euo pipefail
 
 PACKAGES=(
@@ -37,6 +38,13 @@ BPY_PACKAGES=(
   libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 "libxt6|libxt6t64" libsm6 libice6 libgl1
 )
 
+# Only for the Debian 13 chroot of `make test-blender4` (tools/test-blender4.sh):
+# debootstrap, and Debian's archive keys that verify trixie's Release file.
+CHROOT_PACKAGES=(
+  debootstrap
+  debian-archive-keyring
+)
+
 # Only for `make valgrind` and `make fuzz` (gcc's sanitizers come with gcc).
 RELIABILITY_PACKAGES=(
   valgrind
@@ -51,7 +59,8 @@ for arg in "$@"; do
     --bench) PACKAGES+=("${BENCH_PACKAGES[@]}") ;;
     --reliability) PACKAGES+=("${RELIABILITY_PACKAGES[@]}") ;;
     --bpy) PACKAGES+=("${BPY_PACKAGES[@]}") ;;
-    *) echo "usage: $0 [--check] [--bench] [--reliability] [--bpy]" >&2; exit 2 ;;
+    --chroot) PACKAGES+=("${CHROOT_PACKAGES[@]}") ;;
+    *) echo "usage: $0 [--check] [--bench] [--reliability] [--bpy] [--chroot]" >&2; exit 2 ;;
   esac
 done
 

@@ -13,6 +13,10 @@
 #                                          build, then `blender ARGS...` under the official
 #                                          Blender VERSION (bpy) in the chroot, in /phos-src
 #                                          with this build's library (tools/bpy-run.sh)
+#   tools/test-blender4.sh --prepare [VERSION...]
+#                                          only make the chroot ready (and the official
+#                                          Blender VERSION's environment in its build folder,
+#                                          tools/bpy-env.sh): downloads, no build, no test
 #   tools/test-blender4.sh --shell         interactive shell in the chroot, same mounts
 #   tools/test-blender4.sh --remove        delete the chroot
 #
@@ -46,9 +50,11 @@ PACKAGES=(
   libembree-dev    # Embree 4
   cmake gcc g++ libc6-dev make pkg-config zip
   python3-numpy python3-pytest
-  # bpy (--bpy): tools/install-deps.sh --bpy's list, so that it finds them all
+  # bpy (--bpy): tools/install-deps.sh --bpy's list, so that it finds them all,
+  # with trixie's names (libxt6 is libxt6t64 there: named as libxt6, it never
+  # reads as installed, and every run would call apt again)
   python3-venv
-  libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 libxt6 libsm6 libice6 libgl1
+  libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 libxt6t64 libsm6 libice6 libgl1
 )
 SUITE=trixie
 STAMP=var/lib/phos-chroot/ready   # inside the chroot: written once every package is in
@@ -242,14 +248,8 @@ else
 fi
 
 if [[ $ready -eq 0 && ! -d "$chroot_dir" ]]; then
-  # debootstrap on the host, installed like tools/install-deps.sh does.
-  if ! command -v debootstrap >/dev/null; then
-    say "installing debootstrap on the host"
-    if ! { DEBIAN_FRONTEND=noninteractive apt-get update -q &&
-           DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends debootstrap; }; then
-      die "could not install debootstrap: apt-get install debootstrap, then retry"
-    fi
-  fi
+  # debootstrap and Debian's keys on the host, like every other package.
+  "$repo/tools/install-deps.sh" --chroot || die "could not install debootstrap on the host"
   [[ -e /usr/share/debootstrap/scripts/$SUITE ]] \
     || die "this debootstrap does not know $SUITE: update it (apt-get install debootstrap)"
   keyring=/usr/share/keyrings/debian-archive-keyring.gpg
@@ -308,6 +308,17 @@ fi
 say "chroot ready ($(elapsed "$t_start"))"
 
 mkdir -p "$build_dir"
+
+if [[ "${1:-}" == "--prepare" ]]; then
+  shift
+  for version in "$@"; do
+    in_chroot "$repo" "$build_dir" /bin/sh -ec "cd /phos-src
+      PHOS_BPY_DIR=/phos-build/bpy tools/bpy-env.sh '$version' '/phos-build/bpy/$version'" \
+      || die "Blender $version (bpy) could not be set up in the chroot"
+  done
+  check_no_mounts "$chroot_dir"
+  exit 0
+fi
 
 if [[ "${1:-}" == "--shell" ]]; then
   say "shell in $chroot_dir: checkout (read-only) at /phos-src, build folder at /phos-build"

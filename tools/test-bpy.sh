@@ -7,6 +7,9 @@
 #   tools/test-bpy.sh [pytest args]           every release of tools/bpy-versions.txt,
 #                                             each where its Python is (debian12: here;
 #                                             debian13: the chroot of tools/test-blender4.sh)
+#   tools/test-bpy.sh --prepare               only set up every release's environment
+#                                             (downloads; no build, no test): .ci/run does
+#                                             it while `make test` runs
 #   tools/test-bpy.sh --here VERSION ADDON_DIR [pytest args]
 #                                             one release on this system, with the add-on
 #                                             folder ADDON_DIR (phos/ with lib/libphos.so)
@@ -59,6 +62,17 @@ fi
 
 # ----------------------------------------------- every release, where it runs
 [[ -f "$versions_file" ]] || die "$versions_file is missing"
+if [[ "${1:-}" == "--prepare" ]]; then
+  while read -r series version where _; do
+    case "$series" in ''|'#'*) continue ;; esac
+    case "$where" in
+      debian12) tools/bpy-env.sh "$version" "${PHOS_BPY_DIR:-$repo/build/bpy}/$version" </dev/null ;;
+      debian13) tools/test-blender4.sh --prepare "$version" </dev/null ;;
+      *) die "$versions_file: unknown place '$where' for $version" ;;
+    esac
+  done <"$versions_file"
+  exit 0
+fi
 t_start=$(date +%s)
 rc=0
 ran=()
