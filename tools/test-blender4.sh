@@ -94,9 +94,16 @@ if [[ "${1:-}" == "--in-namespace" ]]; then
   done
   # The host's TLS trust and pip configuration, read-only, so that pip in
   # the chroot (bpy for --bpy) reaches the package index the way the host
-  # does, through a proxy's own certificate authority included.
+  # does, through a proxy's own certificate authority included. Only for
+  # runs with a build folder, never while apt installs packages: the
+  # post-installation script of ca-certificates replaces
+  # /etc/ssl/certs/ca-certificates.crt, which a bind mount pins (EBUSY).
   declare -A mounted=()   # SSL_CERT_FILE and REQUESTS_CA_BUNDLE often name one file
-  for f in /etc/pip.conf "${PIP_CERT:-}" "${SSL_CERT_FILE:-}" "${REQUESTS_CA_BUNDLE:-}"; do
+  tls_files=()
+  if [[ -n "$build" ]]; then
+    tls_files=(/etc/pip.conf "${PIP_CERT:-}" "${SSL_CERT_FILE:-}" "${REQUESTS_CA_BUNDLE:-}")
+  fi
+  for f in "${tls_files[@]}"; do
     [[ -n "$f" && "$f" == /* && -f "$f" && -z "${mounted[$f]:-}" ]] || continue
     mounted[$f]=1
     target=$root$f
