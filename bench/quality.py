@@ -381,26 +381,18 @@ def cycles_config_measurement(scene, module, args, ref, seconds, config):
             "mean_ratio": float(image.mean() / ref.mean.mean())}
 
 
-def phos_denoised_measurement(scene, module, args, ref, integrator):
-    """Phos at its defaults, through the compositor's Denoise node fed with
+def phos_denoised_measurement(scene, module, args, ref, settings, integrator):
+    """Phos at `settings`, through the compositor's Denoise node fed with
     its Denoising Albedo and Denoising Normal passes (the time includes the
     compositing)."""
     vl = scene.view_layers[0]
-    vl.phos.use_pass_denoising_albedo = vl.phos.use_pass_denoising_normal = True
-    tree = _common.compositor_tree(scene)
-    tree.nodes.clear()
-    layers = tree.nodes.new("CompositorNodeRLayers")
-    denoise = tree.nodes.new("CompositorNodeDenoise")
-    tree.links.new(layers.outputs["Image"], denoise.inputs["Image"])
-    tree.links.new(layers.outputs["Denoising Albedo"], denoise.inputs["Albedo"])
-    tree.links.new(layers.outputs["Denoising Normal"], denoise.inputs["Normal"])
-    tree.links.new(denoise.outputs["Image"], _common.compositor_output(tree))
-    scene.render.use_compositing = True
+    _common.denoise_in_compositor(scene)
     try:
-        row = phos_measurement(scene, module, args, ref, {}, integrator)
+        row = phos_measurement(scene, module, args, ref, settings, integrator)
     finally:
         scene.render.use_compositing = False
         vl.phos.use_pass_denoising_albedo = vl.phos.use_pass_denoising_normal = False
+        vl.cycles.denoising_store_passes = False
     row["integrator"] = integrator + " + Denoise node"
     return row
 
@@ -553,11 +545,13 @@ def command_bench(args):
                    variance_per_sample=row["relative_mse"] * int(row["samples"]))
         add(row, "path_speed")
     # Cycles as artists run it (the official builds), and Phos through the
-    # same denoiser, all at the time Phos PHOTON takes at its defaults.
+    # same denoiser, all at the time Phos PHOTON takes at its defaults, or
+    # at the settings --grid gives (the first value of each).
     if "official" in args.parts:
-        row = phos_measurement(scene, module, args, ref, {}, "PHOTON")
+        settings = {name: values[0] for name, values in parse_grid(args.grid)}
+        row = phos_measurement(scene, module, args, ref, settings, "PHOTON")
         add(row, "official")
-        add(phos_denoised_measurement(scene, module, args, ref, "PHOTON"), "official")
+        add(phos_denoised_measurement(scene, module, args, ref, settings, "PHOTON"), "official")
         for config in CYCLES_CONFIGS:
             add(cycles_config_measurement(scene, module, args, ref, row["seconds"], config), "official")
     if "equal" in args.parts:

@@ -126,6 +126,23 @@ def compositor_output(tree):
     return node.inputs[0]
 
 
+def denoise_in_compositor(scene):
+    """Compositor: Render Layers → Denoise (image, Denoising Albedo and
+    Denoising Normal) → the output, with both passes enabled for Phos and
+    Cycles. The Denoise node is OpenImageDenoise where Blender has it."""
+    vl = scene.view_layers[0]
+    vl.phos.use_pass_denoising_albedo = vl.phos.use_pass_denoising_normal = True
+    vl.cycles.denoising_store_passes = True
+    tree = compositor_tree(scene)
+    tree.nodes.clear()
+    layers = tree.nodes.new("CompositorNodeRLayers")
+    denoise = tree.nodes.new("CompositorNodeDenoise")
+    for output, input in (("Image", "Image"), ("Denoising Albedo", "Albedo"), ("Denoising Normal", "Normal")):
+        tree.links.new(layers.outputs[output], denoise.inputs[input])
+    tree.links.new(denoise.outputs["Image"], compositor_output(tree))
+    scene.render.use_compositing = True
+
+
 # --------------------------------------------------------------- arguments
 
 def script_argv(argv=None):

@@ -119,14 +119,7 @@ def test_denoise_node_lowers_the_error(scene, tmp_path):
     _enable_features(scene)
     raw = pt.render_array(scene, tmp_path, engine="PHOS", name="raw")[..., :3]
 
-    tree = pt.compositor_tree(scene)
-    layers = tree.nodes.new("CompositorNodeRLayers")
-    denoise = tree.nodes.new("CompositorNodeDenoise")
-    tree.links.new(layers.outputs["Image"], denoise.inputs["Image"])
-    tree.links.new(layers.outputs["Denoising Albedo"], denoise.inputs["Albedo"])
-    tree.links.new(layers.outputs["Denoising Normal"], denoise.inputs["Normal"])
-    tree.links.new(denoise.outputs["Image"], pt.compositor_output(tree))
-    scene.render.use_compositing = True
+    pt.denoise_in_compositor(scene)
     denoised = pt.render_array(scene, tmp_path, engine="PHOS", name="denoised")[..., :3]
 
     e_raw, e_den = _relmse(raw, reference), _relmse(denoised, reference)
