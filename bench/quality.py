@@ -25,9 +25,10 @@ Commands (each takes --scene NAME, a script in scenes/, and --resolution W H):
                 tracer's time and variance per sample against Cycles' at
                 equal samples. Writes --csv and, beside it, the images
                 (bench_<scene>.npz) for bench/plots.py. --parts official
-                (for the official builds): at the time Phos PHOTON takes,
-                Phos raw and through the Denoise node, Cycles plain, with
-                path guiding, and with OpenImageDenoise.
+                (for the official builds): at the time Phos PHOTON takes
+                at its defaults (or at the first value of each --grid
+                setting), Phos raw and through the Denoise node, Cycles
+                plain, with path guiding, and with OpenImageDenoise.
 
 Relative MSE (Rousselle et al. 2011): the mean over pixels and RGB channels
 of (x - r)^2 / (r^2 + 0.01), minus the reference's own share, the same sum
