@@ -28,7 +28,7 @@ bl_info = {
 if "bpy" in locals():
     # Re-running this file (F8 / script reload): reload the submodules in dependency order.
     import importlib
-    for _name in ("phos_h", "core", "properties", "export.context", "export.image", "export.material",
+    for _name in ("phos_h", "core", "properties", "export.context", "export.image", "export.program", "export.nodes", "export.material",
                   "export.mesh", "export.light", "export.camera", "export.world",
                   "export.instances", "export", "engine", "ui"):
         importlib.reload(importlib.import_module("." + _name, __package__))

@@ -321,20 +321,25 @@ class Scene(_Handle):
                        "adding an image")
         return out.value
 
-    def add_material(self, closures):
-        """Add a material from a sequence of phos_closure_desc; returns its id."""
+    def add_material(self, closures, program=None):
+        """Add a material from a sequence of phos_closure_desc and, when its
+        closures vary over the surface, the shader program that sets them
+        (a phos_shader_program_desc whose arrays the caller keeps alive);
+        returns its id."""
         n = len(closures)
         arr = (phos_closure_desc * max(n, 1))(*closures)
         d = phos_material_desc()
         self._lib.phos_material_desc_init(ctypes.byref(d))
         d.closure_count = n
         d.closures = ctypes.cast(arr, ctypes.POINTER(phos_closure_desc)) if n else None
+        d.program = ctypes.pointer(program) if program is not None else None
         out = _u32()
         self._raise_on(self._lib.phos_scene_add_material(self.handle, ctypes.byref(d), ctypes.byref(out)),
                        "adding a material")
         return out.value
 
-    def add_mesh(self, positions, indices, normals=None, uvs=None, material_slots=None):
+    def add_mesh(self, positions, indices, normals=None, uvs=None, material_slots=None, tangents=None,
+                 texspace=None):
         """Add a triangle mesh in object space; returns the mesh id.
 
         positions (V*3), indices (T*3), per-corner normals (T*9) and UVs (T*6),
@@ -349,6 +354,7 @@ class Scene(_Handle):
         uv = _as_array(uvs, np.float32, t * 6, "uvs") if uvs is not None else None
         slots = _as_array(material_slots, np.uint32, t, "material slots") \
             if material_slots is not None else None
+        tan = _as_array(tangents, np.float32, t * 12, "tangents") if tangents is not None else None
         d = phos_mesh_desc()
         self._lib.phos_mesh_desc_init(ctypes.byref(d))
         d.vertex_count, d.positions = v, _ptr(pos, ctypes.c_float)
@@ -356,13 +362,18 @@ class Scene(_Handle):
         d.normals = _ptr(nrm, ctypes.c_float)
         d.uvs = _ptr(uv, ctypes.c_float)
         d.material_slots = _ptr(slots, ctypes.c_uint32)
+        d.tangents = _ptr(tan, ctypes.c_float)
+        if texspace is not None:
+            d.texspace_location[:] = [float(x) for x in texspace[0]]
+            d.texspace_size[:] = [float(x) for x in texspace[1]]
         out = _u32()
         self._raise_on(self._lib.phos_scene_add_mesh(self.handle, ctypes.byref(d), ctypes.byref(out)),
                        "adding a mesh")
         return out.value
 
-    def add_instance(self, mesh_id, transform, materials):
-        """Place a mesh with a row-major 3x4 transform and per-slot material ids."""
+    def add_instance(self, mesh_id, transform, materials, random=0.0, pass_index=0.0):
+        """Place a mesh with a row-major 3x4 transform and per-slot material ids
+        (random and pass_index: what Object Info reads)."""
         mats = np.ascontiguousarray(materials, dtype=np.uint32).reshape(-1)
         d = phos_instance_desc()
         self._lib.phos_instance_desc_init(ctypes.byref(d))
@@ -370,6 +381,7 @@ class Scene(_Handle):
         d.transform[:] = [float(x) for x in transform]
         d.material_count = mats.size
         d.materials = _ptr(mats, ctypes.c_uint32) if mats.size else None
+        d.random, d.pass_index = float(random), float(pass_index)
         out = _u32()
         self._raise_on(self._lib.phos_scene_add_instance(self.handle, ctypes.byref(d), ctypes.byref(out)),
                        "adding an instance")

@@ -176,9 +176,235 @@ typedef struct phos_closure_desc {
 } phos_closure_desc;
 PHOS_API void phos_closure_desc_init(phos_closure_desc *desc);
 
+/*
+ * Shader programs (docs/architecture.md, "Shader programs"). The add-on
+ * compiles a Cycles node tree into a flat list of instructions over a
+ * register file of floats; a colour or vector operand is three consecutive
+ * registers. Registers [0, constant_count) hold the constants; every other
+ * register is written by an instruction before any instruction reads it.
+ * The core evaluates the program at each shading point (camera paths and
+ * photon hits alike) and the bindings overwrite fields of the material's
+ * closures with registers. An instruction is one node: `op` its type,
+ * `mode` its enum settings, `flags` its switches, `param` its float
+ * settings, `table` an image id or an offset into the program's table,
+ * `inputs` and `outputs` its sockets in the order each op's comment lists
+ * (PHOS_SHADER_NO_REGISTER for an output nobody reads). The core folds
+ * instructions whose inputs are all constants when the material is added,
+ * and a program that folds away entirely costs nothing at render time.
+ */
+#define PHOS_SHADER_NO_REGISTER 0xFFFFFFFFu
+#define PHOS_SHADER_MAX_INPUTS 12
+#define PHOS_SHADER_MAX_OUTPUTS 5
+#define PHOS_SHADER_MAX_REGISTERS 2048
+#define PHOS_SHADER_MAX_INSTRUCTIONS 4096
+#define PHOS_SHADER_MAX_TABLE 65536
+
+/* Ops. in/out: sockets (width 3 for colours and vectors, 1 otherwise). */
+enum phos_shader_op {
+    PHOS_OP_MATH = 0,            /* in a, b, c; out value. mode enum phos_math; flags 1 = clamp to [0,1];
+                                    MATH, VECTOR_MATH, HUE_SATURATION: flags 16 = Blender before 4.3,
+                                    32 = before 5.0 (shading/nodes/node_util.h) */
+    PHOS_OP_VECTOR_MATH = 1,     /* in a(3), b(3), c(3), scale; out vector(3), value. mode enum phos_vector_math */
+    PHOS_OP_MIX_FLOAT = 2,       /* in fac, a, b; out value. flags 2 = clamp factor */
+    PHOS_OP_MIX_VECTOR = 3,      /* in fac(1 or 3), a(3), b(3); out (3). flags 2 = clamp factor, 4 = fac is 3 wide */
+    PHOS_OP_MIX_COLOR = 4,       /* in fac, a(3), b(3); out (3). mode enum phos_blend; flags 1 = clamp result,
+                                    2 = clamp factor */
+    PHOS_OP_MAP_RANGE = 5,       /* in value, from_min, from_max, to_min, to_max, steps; out value.
+                                    mode enum phos_map_range; flags 1 = clamp */
+    PHOS_OP_MAP_RANGE_VECTOR = 6,/* the same, every socket 3 wide */
+    PHOS_OP_CLAMP = 7,           /* in value, min, max; out value. mode enum phos_clamp */
+    PHOS_OP_RAMP = 8,            /* in fac; out color(3), alpha. table: mode entries of RGBA (ColorRamp baked);
+                                    flags 8 = constant interpolation */
+    PHOS_OP_CURVES_RGB = 9,      /* in fac, color(3); out color(3). table: mode entries of (r, g, b, 0), the
+                                    R, G, B curves after the combined one, over [param[0], param[1]];
+                                    flags 1 = extrapolate */
+    PHOS_OP_CURVES_VECTOR = 10,  /* in fac, vector(3); out vector(3). table: mode entries of (x, y, z, 0)
+                                    over [param[0], param[1]]; flags 1 = extrapolate */
+    PHOS_OP_CURVE_FLOAT = 11,    /* in fac, value; out value. table: mode entries of (value, 0, 0, 0) over
+                                    [param[0], param[1]]; flags 1 = extrapolate */
+    PHOS_OP_HUE_SATURATION = 12, /* in hue, saturation, value, fac, color(3); out color(3) */
+    PHOS_OP_BRIGHT_CONTRAST = 13,/* in color(3), bright, contrast; out color(3) */
+    PHOS_OP_GAMMA = 14,          /* in color(3), gamma; out color(3) */
+    PHOS_OP_INVERT = 15,         /* in fac, color(3); out color(3) */
+    PHOS_OP_SEPARATE_COLOR = 16, /* in color(3); out (3). mode enum phos_color_model */
+    PHOS_OP_COMBINE_COLOR = 17,  /* in r, g, b; out color(3). mode enum phos_color_model */
+    PHOS_OP_COMBINE_XYZ = 18,    /* in x, y, z; out vector(3) */
+    PHOS_OP_RGB_TO_BW = 19,      /* in color(3); out value */
+    PHOS_OP_BLACKBODY = 20,      /* in temperature (K); out color(3) */
+    PHOS_OP_WAVELENGTH = 21,     /* in wavelength (nm); out color(3) */
+    PHOS_OP_TEX_IMAGE = 22,      /* in vector(3); out color(3), alpha. table: image id; mode enum
+                                    phos_image_projection; param[0] box blend; flags enum phos_image_flags */
+    PHOS_OP_TEX_NOISE = 23,      /* in vector(3), w, scale, detail, roughness, lacunarity, offset, gain,
+                                    distortion; out fac, color(3). mode enum phos_noise_type; flags: bits 0-2
+                                    dimensions (1-4), 8 = normalize, 16 = Blender 3.x definitions */
+    PHOS_OP_TEX_MUSGRAVE = 24,   /* (Blender 3.x and 4.0) in vector(3), w, scale, detail, dimension,
+                                    lacunarity, offset, gain; out fac. mode enum phos_noise_type; flags bits 0-2
+                                    dimensions */
+    PHOS_OP_TEX_WHITE_NOISE = 25,/* in vector(3), w; out value, color(3). flags bits 0-2 dimensions */
+    PHOS_OP_TEX_VORONOI = 26,    /* in vector(3), w, scale, detail, roughness, lacunarity, smoothness, exponent,
+                                    randomness; out distance, color(3), position(3), w, radius. mode enum
+                                    phos_voronoi_feature; flags: bits 0-2 dimensions, 8 = normalize,
+                                    16 = Blender 3.x definitions, bits 5-6 enum phos_voronoi_metric,
+                                    128 = Blender 5.0+'s cell hash (2-4D) */
+    PHOS_OP_TEX_WAVE = 27,       /* in vector(3), scale, distortion, detail, detail_scale, detail_roughness,
+                                    phase; out color(3), fac. mode enum phos_wave_type; flags: bits 0-3 bands
+                                    direction, bits 4-7 rings direction, bits 8-11 profile (enum phos_wave_*),
+                                    16 << 8 = Blender 3.x noise */
+    PHOS_OP_TEX_BRICK = 28,      /* in vector(3), color1(3), color2(3), mortar(3), scale, mortar_size,
+                                    mortar_smooth, bias, brick_width, row_height; out color(3), fac.
+                                    param: offset, offset_frequency, squash, squash_frequency */
+    PHOS_OP_TEX_CHECKER = 29,    /* in vector(3), color1(3), color2(3), scale; out color(3), fac */
+    PHOS_OP_TEX_MAGIC = 30,      /* in vector(3), scale, distortion; out color(3), fac. mode depth (0-10);
+                                    flags 1 = the scale applied before the 2π wrap (Blender 5.3) */
+    PHOS_OP_TEX_GRADIENT = 31,   /* in vector(3); out color(3), fac. mode enum phos_gradient */
+    PHOS_OP_TEXTURE_COORDINATE = 32, /* out generated(3), normal(3), uv(3), object(3), camera(3);
+                                    a second instruction with mode 1: out window(3), reflection(3) */
+    PHOS_OP_GEOMETRY = 33,       /* out position(3), normal(3), true_normal(3), incoming(3), backfacing */
+    PHOS_OP_OBJECT_INFO = 34,    /* out location(3), random, object_index */
+    PHOS_OP_FRESNEL = 35,        /* in ior, normal(3); out fac */
+    PHOS_OP_LAYER_WEIGHT = 36,   /* in blend, normal(3); out fresnel, facing */
+    PHOS_OP_LIGHT_PATH = 37,     /* out is_camera, is_shadow, is_diffuse, is_glossy, is_singular (a second
+                                    instruction with mode 1: is_reflection, is_transmission, ray_length,
+                                    ray_depth, transparent_depth) */
+    PHOS_OP_MAPPING = 38,        /* in vector(3), location(3), rotation(3) (Euler XYZ, radians), scale(3);
+                                    out vector(3). mode enum phos_mapping */
+    PHOS_OP_NORMAL_MAP = 39,     /* in strength, color(3); out normal(3). mode enum phos_normal_map_space */
+    PHOS_OP_BUMP = 40,           /* in strength, distance, height, height_dx, height_dy, normal(3); out
+                                    normal(3). flags 1 = invert. The heights at the point and at the point
+                                    moved by the two offsets the program's OFFSET instructions read */
+    PHOS_OP_BUMP_OFFSET = 41,    /* out position(3) moved along tangent mode (0: none, 1: dx, 2: dy), and the
+                                    texture coordinates there: generated(3), uv(3), object(3), normal(3) */
+    PHOS_OP_VECTOR_ROTATE = 42,  /* in vector(3), center(3), axis(3), angle, rotation(3); out vector(3).
+                                    mode enum phos_vector_rotate; flags 1 = invert */
+    PHOS_OP_VECTOR_TRANSFORM = 43,/* in vector(3); out vector(3). mode enum phos_vector_transform_type;
+                                    flags: bits 0-3 from space, bits 4-7 to space (enum phos_space) */
+    PHOS_OP_NORMAL = 44,         /* in normal(3); out normal(3) (param[0..2]), dot */
+    PHOS_OP_COUNT = 45
+};
+
+/* Node enums, named as Blender names their items so the add-on maps them by name. */
+enum phos_math {
+    PHOS_MATH_ADD = 0, PHOS_MATH_SUBTRACT = 1, PHOS_MATH_MULTIPLY = 2, PHOS_MATH_DIVIDE = 3,
+    PHOS_MATH_MULTIPLY_ADD = 4, PHOS_MATH_POWER = 5, PHOS_MATH_LOGARITHM = 6, PHOS_MATH_SQRT = 7,
+    PHOS_MATH_INVERSE_SQRT = 8, PHOS_MATH_ABSOLUTE = 9, PHOS_MATH_EXPONENT = 10, PHOS_MATH_MINIMUM = 11,
+    PHOS_MATH_MAXIMUM = 12, PHOS_MATH_LESS_THAN = 13, PHOS_MATH_GREATER_THAN = 14, PHOS_MATH_SIGN = 15,
+    PHOS_MATH_COMPARE = 16, PHOS_MATH_SMOOTH_MIN = 17, PHOS_MATH_SMOOTH_MAX = 18, PHOS_MATH_ROUND = 19,
+    PHOS_MATH_FLOOR = 20, PHOS_MATH_CEIL = 21, PHOS_MATH_TRUNC = 22, PHOS_MATH_FRACT = 23,
+    PHOS_MATH_MODULO = 24, PHOS_MATH_FLOORED_MODULO = 25, PHOS_MATH_WRAP = 26, PHOS_MATH_SNAP = 27,
+    PHOS_MATH_PINGPONG = 28, PHOS_MATH_SINE = 29, PHOS_MATH_COSINE = 30, PHOS_MATH_TANGENT = 31,
+    PHOS_MATH_ARCSINE = 32, PHOS_MATH_ARCCOSINE = 33, PHOS_MATH_ARCTANGENT = 34, PHOS_MATH_ARCTAN2 = 35,
+    PHOS_MATH_SINH = 36, PHOS_MATH_COSH = 37, PHOS_MATH_TANH = 38, PHOS_MATH_RADIANS = 39,
+    PHOS_MATH_DEGREES = 40, PHOS_MATH_COUNT = 41
+};
+enum phos_vector_math {
+    PHOS_VECTOR_MATH_ADD = 0, PHOS_VECTOR_MATH_SUBTRACT = 1, PHOS_VECTOR_MATH_MULTIPLY = 2,
+    PHOS_VECTOR_MATH_DIVIDE = 3, PHOS_VECTOR_MATH_MULTIPLY_ADD = 4, PHOS_VECTOR_MATH_CROSS_PRODUCT = 5,
+    PHOS_VECTOR_MATH_PROJECT = 6, PHOS_VECTOR_MATH_REFLECT = 7, PHOS_VECTOR_MATH_REFRACT = 8,
+    PHOS_VECTOR_MATH_FACEFORWARD = 9, PHOS_VECTOR_MATH_DOT_PRODUCT = 10, PHOS_VECTOR_MATH_DISTANCE = 11,
+    PHOS_VECTOR_MATH_LENGTH = 12, PHOS_VECTOR_MATH_SCALE = 13, PHOS_VECTOR_MATH_NORMALIZE = 14,
+    PHOS_VECTOR_MATH_ABSOLUTE = 15, PHOS_VECTOR_MATH_POWER = 16, PHOS_VECTOR_MATH_SIGN = 17,
+    PHOS_VECTOR_MATH_MINIMUM = 18, PHOS_VECTOR_MATH_MAXIMUM = 19, PHOS_VECTOR_MATH_FLOOR = 20,
+    PHOS_VECTOR_MATH_CEIL = 21, PHOS_VECTOR_MATH_FRACTION = 22, PHOS_VECTOR_MATH_MODULO = 23,
+    PHOS_VECTOR_MATH_WRAP = 24, PHOS_VECTOR_MATH_SNAP = 25, PHOS_VECTOR_MATH_SINE = 26,
+    PHOS_VECTOR_MATH_COSINE = 27, PHOS_VECTOR_MATH_TANGENT = 28, PHOS_VECTOR_MATH_COUNT = 29
+};
+enum phos_blend {
+    PHOS_BLEND_MIX = 0, PHOS_BLEND_DARKEN = 1, PHOS_BLEND_MULTIPLY = 2, PHOS_BLEND_BURN = 3,
+    PHOS_BLEND_LIGHTEN = 4, PHOS_BLEND_SCREEN = 5, PHOS_BLEND_DODGE = 6, PHOS_BLEND_ADD = 7,
+    PHOS_BLEND_OVERLAY = 8, PHOS_BLEND_SOFT_LIGHT = 9, PHOS_BLEND_LINEAR_LIGHT = 10,
+    PHOS_BLEND_DIFFERENCE = 11, PHOS_BLEND_EXCLUSION = 12, PHOS_BLEND_SUBTRACT = 13, PHOS_BLEND_DIVIDE = 14,
+    PHOS_BLEND_HUE = 15, PHOS_BLEND_SATURATION = 16, PHOS_BLEND_VALUE = 17, PHOS_BLEND_COLOR = 18,
+    PHOS_BLEND_COUNT = 19
+};
+enum phos_map_range {
+    PHOS_MAP_RANGE_LINEAR = 0, PHOS_MAP_RANGE_STEPPED = 1, PHOS_MAP_RANGE_SMOOTHSTEP = 2,
+    PHOS_MAP_RANGE_SMOOTHERSTEP = 3, PHOS_MAP_RANGE_COUNT = 4
+};
+enum phos_clamp { PHOS_CLAMP_MINMAX = 0, PHOS_CLAMP_RANGE = 1, PHOS_CLAMP_COUNT = 2 };
+enum phos_color_model { PHOS_COLOR_MODEL_RGB = 0, PHOS_COLOR_MODEL_HSV = 1, PHOS_COLOR_MODEL_HSL = 2,
+                        PHOS_COLOR_MODEL_COUNT = 3 };
+enum phos_image_projection { PHOS_PROJECTION_FLAT = 0, PHOS_PROJECTION_BOX = 1, PHOS_PROJECTION_SPHERE = 2,
+                             PHOS_PROJECTION_TUBE = 3, PHOS_PROJECTION_COUNT = 4 };
+/* TEX_IMAGE flags: interpolation in bits 0-1, extension in bits 2-3, and whether the colour is
+ * multiplied by alpha (Cycles' alpha handling of straight-alpha images used unassociated). */
+enum phos_image_flags {
+    PHOS_IMAGE_LINEAR = 0, PHOS_IMAGE_CLOSEST = 1, PHOS_IMAGE_CUBIC = 2,
+    PHOS_IMAGE_REPEAT = 0 << 2, PHOS_IMAGE_EXTEND = 1 << 2, PHOS_IMAGE_CLIP = 2 << 2, PHOS_IMAGE_MIRROR = 3 << 2,
+    PHOS_IMAGE_UNASSOCIATE = 1 << 4
+};
+enum phos_noise_type {
+    PHOS_NOISE_FBM = 0, PHOS_NOISE_MULTIFRACTAL = 1, PHOS_NOISE_HYBRID_MULTIFRACTAL = 2,
+    PHOS_NOISE_RIDGED_MULTIFRACTAL = 3, PHOS_NOISE_HETERO_TERRAIN = 4, PHOS_NOISE_COUNT = 5
+};
+enum phos_voronoi_feature {
+    PHOS_VORONOI_F1 = 0, PHOS_VORONOI_F2 = 1, PHOS_VORONOI_SMOOTH_F1 = 2, PHOS_VORONOI_DISTANCE_TO_EDGE = 3,
+    PHOS_VORONOI_N_SPHERE_RADIUS = 4, PHOS_VORONOI_FEATURE_COUNT = 5
+};
+enum phos_voronoi_metric {
+    PHOS_VORONOI_EUCLIDEAN = 0, PHOS_VORONOI_MANHATTAN = 1, PHOS_VORONOI_CHEBYCHEV = 2,
+    PHOS_VORONOI_MINKOWSKI = 3
+};
+enum phos_wave_type { PHOS_WAVE_BANDS = 0, PHOS_WAVE_RINGS = 1, PHOS_WAVE_TYPE_COUNT = 2 };
+enum phos_wave_direction { PHOS_WAVE_X = 0, PHOS_WAVE_Y = 1, PHOS_WAVE_Z = 2, PHOS_WAVE_DIAGONAL = 3,
+                           PHOS_WAVE_SPHERICAL = 3 };
+enum phos_wave_profile { PHOS_WAVE_SIN = 0, PHOS_WAVE_SAW = 1, PHOS_WAVE_TRI = 2 };
+enum phos_gradient {
+    PHOS_GRADIENT_LINEAR = 0, PHOS_GRADIENT_QUADRATIC = 1, PHOS_GRADIENT_EASING = 2, PHOS_GRADIENT_DIAGONAL = 3,
+    PHOS_GRADIENT_SPHERICAL = 4, PHOS_GRADIENT_QUADRATIC_SPHERE = 5, PHOS_GRADIENT_RADIAL = 6,
+    PHOS_GRADIENT_COUNT = 7
+};
+enum phos_mapping { PHOS_MAPPING_POINT = 0, PHOS_MAPPING_TEXTURE = 1, PHOS_MAPPING_VECTOR = 2,
+                    PHOS_MAPPING_NORMAL = 3, PHOS_MAPPING_COUNT = 4 };
+enum phos_normal_map_space { PHOS_NORMAL_MAP_TANGENT = 0, PHOS_NORMAL_MAP_OBJECT = 1, PHOS_NORMAL_MAP_WORLD = 2,
+                             PHOS_NORMAL_MAP_COUNT = 3 };
+enum phos_vector_rotate { PHOS_VECTOR_ROTATE_AXIS_ANGLE = 0, PHOS_VECTOR_ROTATE_X_AXIS = 1,
+                          PHOS_VECTOR_ROTATE_Y_AXIS = 2, PHOS_VECTOR_ROTATE_Z_AXIS = 3,
+                          PHOS_VECTOR_ROTATE_EULER_XYZ = 4, PHOS_VECTOR_ROTATE_COUNT = 5 };
+enum phos_vector_transform_type { PHOS_VECTOR_TRANSFORM_POINT = 0, PHOS_VECTOR_TRANSFORM_VECTOR = 1,
+                                  PHOS_VECTOR_TRANSFORM_NORMAL = 2, PHOS_VECTOR_TRANSFORM_COUNT = 3 };
+enum phos_space { PHOS_SPACE_WORLD = 0, PHOS_SPACE_OBJECT = 1, PHOS_SPACE_CAMERA = 2, PHOS_SPACE_COUNT = 3 };
+
+typedef struct phos_shader_instruction {
+    uint32_t op;                 /* enum phos_shader_op */
+    uint32_t mode;               /* the node's main enum setting */
+    uint32_t flags;              /* the op's switches and secondary enums */
+    uint32_t table;              /* image id or table offset, by op */
+    float param[4];              /* float settings that are not sockets */
+    uint32_t inputs[PHOS_SHADER_MAX_INPUTS];   /* first register of each input socket */
+    uint32_t outputs[PHOS_SHADER_MAX_OUTPUTS]; /* first register of each output, or PHOS_SHADER_NO_REGISTER */
+} phos_shader_instruction;
+
+/* Closure fields a program can set (phos_closure_desc's names; width 3 for colours). */
+enum phos_closure_field {
+    PHOS_FIELD_WEIGHT = 0, PHOS_FIELD_ROUGHNESS = 1, PHOS_FIELD_IOR = 2, PHOS_FIELD_SPECULAR_COLOR = 3,
+    PHOS_FIELD_TRANSMISSION_TINT = 4, PHOS_FIELD_TRANSMISSION_ROUGHNESS = 5,
+    PHOS_FIELD_MULTISCATTER_FRESNEL = 6, PHOS_FIELD_SPECULAR_TINT = 7, PHOS_FIELD_THIN_FILM_THICKNESS = 8,
+    PHOS_FIELD_THIN_FILM_IOR = 9, PHOS_FIELD_LAYER_WEIGHT = 10, PHOS_FIELD_LAYER_TINT = 11,
+    PHOS_FIELD_LAYER_TINT_WEIGHT = 12, PHOS_FIELD_NORMAL = 13, PHOS_FIELD_COUNT = 14
+};
+
+typedef struct phos_shader_binding {
+    uint32_t closure;            /* index in the material's closures */
+    uint32_t field;              /* enum phos_closure_field */
+    uint32_t reg;                /* first register of the value; the core clamps it to the field's range */
+} phos_shader_binding;
+
+typedef struct phos_shader_program_desc {
+    uint32_t register_count;     /* <= PHOS_SHADER_MAX_REGISTERS */
+    uint32_t constant_count;
+    const float *constants;      /* loaded into registers [0, constant_count) */
+    uint32_t instruction_count;  /* <= PHOS_SHADER_MAX_INSTRUCTIONS */
+    const phos_shader_instruction *instructions;
+    uint32_t table_size;         /* floats, <= PHOS_SHADER_MAX_TABLE */
+    const float *table;          /* ramps and curves, baked */
+    uint32_t binding_count;
+    const phos_shader_binding *bindings;
+} phos_shader_program_desc;
+
 typedef struct phos_material_desc {
     uint32_t closure_count;               /* 0..PHOS_MAX_CLOSURES; 0 = black */
     const phos_closure_desc *closures;
+    const phos_shader_program_desc *program; /* NULL: the closures are constant */
 } phos_material_desc;
 #define PHOS_MAX_CLOSURES 16
 PHOS_API void phos_material_desc_init(phos_material_desc *desc);
@@ -194,6 +420,11 @@ typedef struct phos_mesh_desc {
     const float *normals;        /* triangle_count*9 per-corner normals, or NULL (flat shading) */
     const float *uvs;            /* triangle_count*6 per-corner UVs, or NULL */
     const uint32_t *material_slots; /* triangle_count slot indices into the instance's materials, or NULL (slot 0) */
+    const float *tangents;       /* triangle_count*12 per-corner tangents of the UV map (x, y, z, bitangent
+                                    sign ±1; MikkTSpace, as Blender computes them), or NULL */
+    float texspace_location[3];  /* the texture space: Generated coordinates are
+                                    (p − location) / size · ½ + ½ in object space */
+    float texspace_size[3];      /* all 0: the bounding box of the positions (Blender's automatic texture space) */
 } phos_mesh_desc;
 PHOS_API void phos_mesh_desc_init(phos_mesh_desc *desc);
 PHOS_API phos_status phos_scene_add_mesh(phos_scene *scene, const phos_mesh_desc *desc,
@@ -225,6 +456,8 @@ typedef struct phos_instance_desc {
     float transform[12];         /* object → world, row-major 3x4 */
     uint32_t material_count;
     const uint32_t *materials;   /* material ids */
+    float random;                /* Object Info's Random, in [0,1) */
+    float pass_index;            /* Object Info's Object Index */
 } phos_instance_desc;
 PHOS_API void phos_instance_desc_init(phos_instance_desc *desc);
 PHOS_API phos_status phos_scene_add_instance(phos_scene *scene, const phos_instance_desc *desc,

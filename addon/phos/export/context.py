@@ -22,7 +22,8 @@ class ExportContext:
         # Caches: Blender datablock → core id, so each is added once per frame.
         self.meshes = {}                    # geometry key → mesh id, or None for no triangles
         self.materials = {}                 # material pointer → material id
-        self.images = {}                    # (image pointer, interpolation, extension) → image id or None
+        self.images = {}                    # image pointer → image id or None
+        self.tangents_wanted = False        # a material reads tangents (a Normal Map in tangent space)
         self.image_pixels = {}              # image pointer → (pixels, width, height) or None
         self.default_material = None        # id of the grey default, added on first use
         self.world_emits = False            # the world's colour is not black

@@ -2,25 +2,14 @@
 """Blender images → core images (linear RGBA float, rows bottom-up).
 
 The pixels of an image are read once per frame (foreach_get into float32)
-and shared by every Image Texture node using it; a core image is added per
-(image, interpolation, extension), because the core keeps the sampling
-mode on the image.
+and added to the core once, shared by every Image Texture node using it;
+each node's interpolation, extension and projection travel with its
+instruction in the material's shader program (nodes.py).
 """
 
 import numpy as np
 
 from .. import core
-
-# Image Texture node settings → core enums; anything else is approximated.
-INTERPOLATION = {
-    'Linear': core.PHOS_INTERP_LINEAR,
-    'Closest': core.PHOS_INTERP_CLOSEST,
-}
-EXTENSION = {
-    'REPEAT': core.PHOS_EXTEND_REPEAT,
-    'EXTEND': core.PHOS_EXTEND_EXTEND,
-    'CLIP': core.PHOS_EXTEND_CLIP,
-}
 
 # Colour spaces whose stored values are already linear: Blender 3.x's
 # names, then those of 4.x and 5.x (whose configuration renamed them).
@@ -91,50 +80,26 @@ def _read_pixels(image, ctx, owner):
 
 
 def add_image(node, ctx, owner):
-    """Core image id for an Image Texture node, or None if it cannot be used.
-
-    `owner` names the material or world for warnings.
-    """
+    """Core image id for an Image Texture node's image, or None if it cannot
+    be used. The pixels go to the core once per image; interpolation,
+    extension and projection are the node's (shader program flags).
+    `owner` names the material or world for warnings."""
     image = node.image
     if image is None:
         return None
-    interp = INTERPOLATION.get(node.interpolation)
-    if interp is None:
-        ctx.warn("Phos: %s: node '%s': %s interpolation is not supported; using Linear"
-                 % (owner, node.name, node.interpolation))
-        interp = core.PHOS_INTERP_LINEAR
-    ext = EXTENSION.get(node.extension)
-    if ext is None:
-        ctx.warn("Phos: %s: node '%s': %s extension is not supported; using Repeat"
-                 % (owner, node.name, node.extension.title()))
-        ext = core.PHOS_EXTEND_REPEAT
-    if node.projection != 'FLAT':
-        ctx.warn("Phos: %s: node '%s': %s projection is not supported; using Flat"
-                 % (owner, node.name, node.projection.title()))
-
-    image_key = image.original.as_pointer()
-    key = (image_key, interp, ext)
+    key = image.original.as_pointer()
     if key in ctx.images:
         return ctx.images[key]
-    if image_key not in ctx.image_pixels:
-        ctx.image_pixels[image_key] = _read_pixels(image, ctx, owner)
-    data = ctx.image_pixels[image_key]
+    if key not in ctx.image_pixels:
+        ctx.image_pixels[key] = _read_pixels(image, ctx, owner)
+    data = ctx.image_pixels[key]
     image_id = None
     if data is not None:
         pixels, width, height = data
         try:
-            image_id = ctx.core.add_image(pixels, width, height, interp, ext)
+            image_id = ctx.core.add_image(pixels, width, height)
         except core.PhosError as ex:
             raise core.PhosError("image '%s': %s" % (image.name, ex), ex.status) from None
         ctx.stats["images"] += 1
     ctx.images[key] = image_id
     return image_id
-
-
-def average_color(node, ctx):
-    """Mean linear RGB of the image behind an Image Texture node (already read)."""
-    image = node.image
-    data = ctx.image_pixels.get(image.original.as_pointer()) if image is not None else None
-    if data is None:
-        return np.ones(3, dtype=np.float32)
-    return data[0].reshape(-1, 4)[:, :3].mean(axis=0)

@@ -114,7 +114,11 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
         if mats is None:
             mats = material_lists[mat_key] = _materials(ob, ctx)
         try:
-            ctx.core.add_instance(mesh_id, core.matrix_to_3x4(matrix), mats)
+            # Object Info's Random as Cycles computes it: the instance's random id
+            # over 2^32 − 1.
+            random = float(np.float32((inst.random_id & 0xFFFFFFFF) * (1.0 / 0xFFFFFFFF)))
+            ctx.core.add_instance(mesh_id, core.matrix_to_3x4(matrix), mats, random=random,
+                                  pass_index=float(getattr(ob, "pass_index", 0)))
         except core.PhosError as ex:
             raise core.PhosError("object '%s': %s" % (ob.name, ex), ex.status) from None
         ctx.stats["instances"] += 1

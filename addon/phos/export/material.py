@@ -7,11 +7,14 @@ Phos does the same in Python, walking back from the active Material Output's
 Surface socket, so the materials users already have render without a Phos
 node set.
 
-Supported: Principled BSDF, Diffuse, Glossy, Glass, Refraction, Emission,
-Transparent, Mix and Add Shader, Image Texture on colour inputs, RGB and
-Value nodes, reroutes, muted nodes and node groups. Anything else renders
-with the default value of the socket it feeds (the closest match) and one
-warning per (material, node), so a user sees what was approximated.
+Shader nodes (Principled BSDF, Diffuse, Glossy, Glass, Refraction, Metallic,
+Emission, Transparent, Mix and Add Shader) become closures; the value nodes
+feeding their inputs (textures, colour, converter, vector and input nodes:
+nodes.py) compile into the material's shader program (program.py), whose
+outputs the core writes into the closures' fields at each shading point.
+An input that folds to a constant costs nothing. Anything unsupported
+renders with the closest match and one warning per (material, node), so a
+user sees what was approximated.
 
 The Principled BSDF is decomposed the way Cycles 3.4 does it (svm_closure.h,
 CLOSURE_BSDF_PRINCIPLED_ID): Burley diffuse, a GGX specular layer with the
@@ -32,8 +35,9 @@ import bpy
 import numpy as np
 
 from .. import core
-from . import image as image_export
+from . import program as prog
 from .microfacet import conductor_as_f82, f82_fss, microfacet_model, unit_rgb
+from .program import Program, Value
 
 # Closures whose weight is below this are dropped (Cycles: CLOSURE_WEIGHT_CUTOFF).
 WEIGHT_CUTOFF = 1e-5
@@ -69,54 +73,100 @@ class Closure:
     _VECTORS = {"specular_color", "transmission_tint", "multiscatter_fresnel", "specular_tint",
                 "layer_weight", "layer_tint"}
 
-    __slots__ = ("type", "weight", "image", "layer_children") + tuple(_FIELDS)
+    __slots__ = ("type", "weight", "normal", "layer_children") + tuple(_FIELDS)
 
-    def __init__(self, type, weight, image=None, layer_children=None, **fields):
+    # Fields a shader program may set, with their phos.h field ids and widths.
+    _BINDABLE = {"weight": ("PHOS_FIELD_WEIGHT", 3), "roughness": ("PHOS_FIELD_ROUGHNESS", 1),
+                 "ior": ("PHOS_FIELD_IOR", 1), "specular_color": ("PHOS_FIELD_SPECULAR_COLOR", 3),
+                 "transmission_tint": ("PHOS_FIELD_TRANSMISSION_TINT", 3),
+                 "transmission_roughness": ("PHOS_FIELD_TRANSMISSION_ROUGHNESS", 1),
+                 "multiscatter_fresnel": ("PHOS_FIELD_MULTISCATTER_FRESNEL", 3),
+                 "specular_tint": ("PHOS_FIELD_SPECULAR_TINT", 3),
+                 "thin_film_thickness": ("PHOS_FIELD_THIN_FILM_THICKNESS", 1),
+                 "thin_film_ior": ("PHOS_FIELD_THIN_FILM_IOR", 1),
+                 "layer_weight": ("PHOS_FIELD_LAYER_WEIGHT", 3), "layer_tint": ("PHOS_FIELD_LAYER_TINT", 3),
+                 "layer_tint_weight": ("PHOS_FIELD_LAYER_TINT_WEIGHT", 1), "normal": ("PHOS_FIELD_NORMAL", 3)}
+
+    def __init__(self, type, weight, normal=None, layer_children=None, **fields):
         unknown = set(fields) - set(self._FIELDS)
         if unknown:
             raise TypeError("Closure: unknown fields %s" % sorted(unknown))
         self.type = type
-        self.weight = _rgb(weight)
-        self.image = image
+        self.weight = _field(weight, 3)
+        self.normal = normal          # a Value (Bump, Normal Map) or None: the surface's own
         self.layer_children = layer_children
         for name, default in self._FIELDS.items():
             value = fields.get(name, default)
-            setattr(self, name, _rgb(value) if name in self._VECTORS else value)
+            setattr(self, name, _field(value, 3) if name in self._VECTORS else _field(value, 1))
 
     def scale(self, factor):
-        self.weight *= factor
+        self.weight = _field(self.weight * factor if isinstance(self.weight, Value) or not isinstance(factor, Value)
+                             else factor * self.weight, 3)
         return self
 
     def negligible(self):
+        if prog.varies(self.weight):
+            return False
         return float(np.max(np.abs(self.weight))) <= WEIGHT_CUTOFF
 
+    def bind(self, program, index):
+        """Bindings of this closure's varying fields (closure `index`); the
+        desc then holds placeholders the program overwrites."""
+        for name, (field, width) in self._BINDABLE.items():
+            value = getattr(self, name)
+            if prog.varies(value):
+                program.bind(index, getattr(core, field), value, width)
+
     def to_desc(self, layer_span=0):
+        c = {name: (_placeholder(name) if prog.varies(getattr(self, name)) else getattr(self, name))
+             for name in ("weight",) + tuple(self._FIELDS)}
         d = core.new_closure()
         d.type = self.type
-        d.weight[:] = [float(x) for x in self.weight]
-        d.weight_image = -1 if self.image is None else int(self.image)
-        d.roughness = min(max(float(self.roughness), 0.0), 1.0)
-        d.ior = max(float(self.ior), 1e-5)
-        d.specular_color[:] = [max(float(x), 0.0) for x in self.specular_color]
+        d.weight[:] = [float(x) for x in c["weight"]]
+        d.weight_image = -1
+        self_roughness = c["roughness"]
+        d.roughness = min(max(float(self_roughness), 0.0), 1.0)
+        d.ior = max(float(c["ior"]), 1e-5)
+        d.specular_color[:] = [max(float(x), 0.0) for x in c["specular_color"]]
         d.glass_fresnel = self.glass_fresnel
-        d.transmission_tint[:] = [max(float(x), 0.0) for x in self.transmission_tint]
-        d.transmission_roughness = min(float(self.transmission_roughness), 1.0)
+        d.transmission_tint[:] = [max(float(x), 0.0) for x in c["transmission_tint"]]
+        d.transmission_roughness = min(float(c["transmission_roughness"]), 1.0)
         d.microfacet = self.microfacet
-        d.multiscatter_fresnel[:] = [min(max(float(x), 0.0), 1.0) for x in self.multiscatter_fresnel]
-        d.specular_tint[:] = [min(max(float(x), 0.0), 1.0) for x in self.specular_tint]
-        d.thin_film_thickness = min(max(float(self.thin_film_thickness), 0.0), 1e6)
-        d.thin_film_ior = max(float(self.thin_film_ior), 1e-5)
+        d.multiscatter_fresnel[:] = [min(max(float(x), 0.0), 1.0) for x in c["multiscatter_fresnel"]]
+        d.specular_tint[:] = [min(max(float(x), 0.0), 1.0) for x in c["specular_tint"]]
+        d.thin_film_thickness = min(max(float(c["thin_film_thickness"]), 0.0), 1e6)
+        d.thin_film_ior = max(float(c["thin_film_ior"]), 1e-5)
         d.layer_span = layer_span
-        d.layer_weight[:] = [max(float(x), 0.0) for x in self.layer_weight]
-        d.layer_tint[:] = [max(float(x), 0.0) for x in self.layer_tint]
-        d.layer_tint_weight = max(float(self.layer_tint_weight), 0.0)
+        d.layer_weight[:] = [max(float(x), 0.0) for x in c["layer_weight"]]
+        d.layer_tint[:] = [max(float(x), 0.0) for x in c["layer_tint"]]
+        d.layer_tint_weight = max(float(c["layer_tint_weight"]), 0.0)
         return d
 
 
-def closure_descs(closures):
+def _field(value, width):
+    """A closure field: a float or float64 array when constant, else the Value."""
+    if isinstance(value, Value):
+        if not value.is_const:
+            return value
+        value = value.const
+    if width == 3:
+        return _rgb(value).astype(np.float64)
+    if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+        return value  # enum fields (microfacet, glass_fresnel)
+    return float(np.asarray(value, dtype=np.float64).reshape(-1)[0])
+
+
+def _placeholder(name):
+    """The constant a desc holds where a program sets the field: any valid value."""
+    return np.ones(3) if name in Closure._VECTORS or name == "weight" else \
+        (1.45 if name in {"ior", "thin_film_ior"} else 0.0)
+
+
+def closure_descs(closures, program=None):
     """core descs of a material's final closure list, with each layer's span
     counted among the closures that remain (filtering only removes, so a
-    layer's surviving children still follow it)."""
+    layer's surviving children still follow it), and the program's
+    bindings of their varying fields."""
     descs = []
     for i, c in enumerate(closures):
         span = 0
@@ -124,6 +174,8 @@ def closure_descs(closures):
             children = {id(k) for k in c.layer_children}
             span = sum(1 for k in closures[i + 1:] if id(k) in children)
         descs.append(c.to_desc(span))
+        if program is not None:
+            c.bind(program, i)
     return descs
 
 
@@ -246,6 +298,8 @@ class NodeTreeWalker:
         self.glass_fresnel = (core.PHOS_GLASS_FRESNEL_MICROFACET if ctx.at_least(4, 0)
                               else core.PHOS_GLASS_FRESNEL_MACRO)
         self.stack = ()  # group nodes around the node being translated
+        self.program = Program()  # the material's shader program
+        self._nodes = None
         # Shader nodes being translated, with their group stack: a node met
         # again while its own inputs are read is a cycle. Blender marks the
         # link that closes a cycle invalid as soon as it is made (3.4, also
@@ -265,86 +319,59 @@ class NodeTreeWalker:
 
     # ---------------------------------------------------------------- values
 
-    def value(self, node, names, default=0.0, consumed=None):
-        """A float input: its default, or a constant node feeding it."""
+    @property
+    def nodes(self):
+        """The compiler of the value nodes, with the material's program."""
+        if self._nodes is None:
+            from .nodes import NodeCompiler
+            self._nodes = NodeCompiler(self, self.program)
+        return self._nodes
+
+    def _input(self, node, names, width, consumed):
         socket = find_input(node, *names) if isinstance(names, tuple) else find_input(node, names)
         if socket is None:
-            return float(default)
+            return None
         if consumed is not None:
             consumed.add(socket.identifier)
-        src = _resolve(socket, self.stack)
-        return self._float_of(src, socket, default)
-
-    def _float_of(self, src, socket, default):
-        if src.socket is not None:
-            return _socket_float(src.socket, default)
-        if src.node is None:
-            return _socket_float(socket, default)
-        n = src.node
-        if n.bl_idname == 'ShaderNodeValue':
-            return float(n.outputs[0].default_value)
-        if n.bl_idname == 'ShaderNodeRGB':
-            return float(np.dot(_LUMA, np.array(n.outputs[0].default_value[:3], dtype=np.float32)))
-        if n.bl_idname == 'ShaderNodeTexImage':
-            self.note(n, "images are only supported on colour inputs; using the default of '%s'"
+        value = self.nodes.socket(socket, width, self.stack)
+        if self.world and prog.varies(value):
+            # The core's world is one colour (the next issue brings world programs).
+            self.note(node, "a texture on '%s' of the world is not supported; using the socket's default"
                       % socket.name)
-            return _socket_float(socket, default)
-        self.unsupported(n)
-        return _socket_float(socket, default)
+            return prog.constant(_socket_color(socket) if width == 3 else _socket_float(socket, 0.0))
+        return value
+
+    def value(self, node, names, default=0.0, consumed=None):
+        """A float input: a float when constant, else the program's Value."""
+        value = self._input(node, names, 1, consumed)
+        if value is None:
+            return float(default)
+        return prog.plain(value)
 
     def color(self, node, names, consumed=None, allow_image=True):
-        """A colour input: (linear rgb float32[3], image id or None, image node or None).
+        """A colour input: (float64[3] when constant, else the program's
+        Value; None; None) — the tuple of the image-only translator, whose
+        callers this keeps."""
+        value = self._input(node, names, 3, consumed)
+        if value is None:
+            return np.zeros(3), None, None
+        if not allow_image and prog.varies(value):
+            self.note(node, "a texture on this input is not supported; using its default")
+            socket = find_input(node, *names) if isinstance(names, tuple) else find_input(node, names)
+            return _socket_color(socket).astype(np.float64), None, None
+        return prog.plain(value), None, None
 
-        An Image Texture's Color output gives the image with weight (1,1,1).
-        """
+    def normal(self, node, names=('Normal',), consumed=None):
+        """A linked Normal input (Bump, Normal Map) as a Value, else None."""
         socket = find_input(node, *names) if isinstance(names, tuple) else find_input(node, names)
         if socket is None:
-            return np.zeros(3, dtype=np.float32), None, None
+            return None
         if consumed is not None:
             consumed.add(socket.identifier)
-        # The core's world is a constant colour: no images there.
-        return self._color_of(_resolve(socket, self.stack), socket, allow_image and not self.world)
-
-    def _color_of(self, src, socket, allow_image):
-        if src.socket is not None:
-            return _socket_color(src.socket), None, None
-        if src.node is None:
-            return _socket_color(socket), None, None
-        n = src.node
-        if n.bl_idname == 'ShaderNodeRGB':
-            return np.array(n.outputs[0].default_value[:3], dtype=np.float32), None, None
-        if n.bl_idname == 'ShaderNodeValue':
-            return np.full(3, n.outputs[0].default_value, dtype=np.float32), None, None
-        if n.bl_idname == 'ShaderNodeTexImage':
-            if allow_image and src.output.identifier == 'Color':
-                self._check_image_vector(n, src.stack)
-                image_id = image_export.add_image(n, self.ctx, self.owner)
-                if image_id is not None:
-                    return np.ones(3, dtype=np.float32), image_id, n
-                return _socket_color(socket), None, None
-            why = ("its Alpha output is not supported" if src.output.identifier != 'Color'
-                   else "images are not supported here")
-            self.note(n, "%s; using the default of '%s'" % (why, socket.name))
-            return _socket_color(socket), None, None
-        self.unsupported(n)
-        return _socket_color(socket), None, None
-
-    def _check_image_vector(self, node, stack):
-        """Images are looked up with the mesh's active render UVs only."""
-        vector = node.inputs.get('Vector')
-        if vector is None or not vector.is_linked:
-            return
-        src = _resolve(vector, stack)
-        n = src.node
-        if n is None:
-            return
-        if n.bl_idname == 'ShaderNodeTexCoord' and src.output.identifier == 'UV':
-            return
-        if n.bl_idname == 'ShaderNodeUVMap':
-            if n.uv_map:
-                self.note(node, "UV map '%s' is ignored; the active render UV map is used" % n.uv_map)
-            return
-        self.unsupported(n, "the image uses the active render UV map")
+        if self.world or not self.nodes.value_node_linked(socket, self.stack):
+            return None
+        value = self.nodes.socket(socket, 3, self.stack)
+        return value if prog.varies(value) else None
 
     def check_unused_links(self, node, consumed):
         """Warn about links into inputs this node's translation does not read."""
@@ -366,12 +393,12 @@ class NodeTreeWalker:
             return []  # an unlinked shader socket renders black, as in Cycles
         if src.output.type != 'SHADER':
             # Cycles turns a colour linked into a shader socket into an emission.
-            outer, self.stack = self.stack, src.stack
+            outer, self.stack = self.stack, stack
             try:
-                rgb, img, _ = self._color_of(src, socket, True)
+                rgb = prog.plain(self.nodes.socket(socket, 3, stack))
             finally:
                 self.stack = outer
-            return [Closure(core.PHOS_CLOSURE_EMISSION, rgb, img)]
+            return [Closure(core.PHOS_CLOSURE_EMISSION, rgb)]
         return self.node_closures(src.node, src.output, src.stack)
 
     def node_closures(self, node, output, stack):
@@ -402,19 +429,18 @@ class NodeTreeWalker:
             self.unsupported(node, "it renders black")
             return []
         self.unsupported(node, "rendered as a diffuse of its %s" % color_socket.name)
-        rgb, img, _ = self.color(node, color_socket.name)
-        return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, img)]
+        rgb, _, _ = self.color(node, color_socket.name)
+        return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, self.normal(node))]
 
     # ---------------------------------------------------------- shader nodes
 
     def _mix(self, node, stack):
         consumed = {node.inputs[0].identifier}
         fac_socket = node.inputs[0]
-        src = _resolve(fac_socket, stack)
-        fac = min(max(self._float_of(src, fac_socket, 0.5), 0.0), 1.0)  # Cycles clamps the factor
+        fac = prog.clamp(prog.plain(self.nodes.socket(fac_socket, 1, stack)), 0.0, 1.0)  # Cycles clamps it
         self.check_unused_links(node, consumed)
-        a = [c.scale(1.0 - fac) for c in self.closures(node.inputs[1], stack)] if fac < 1.0 else []
-        b = [c.scale(fac) for c in self.closures(node.inputs[2], stack)] if fac > 0.0 else []
+        a = [c.scale(1.0 - fac) for c in self.closures(node.inputs[1], stack)] if prog.may_be_below(fac, 1.0) else []
+        b = [c.scale(fac) for c in self.closures(node.inputs[2], stack)] if prog.may_exceed(fac, 0.0) else []
         return a + b
 
     def _add(self, node, stack):
@@ -424,20 +450,19 @@ class NodeTreeWalker:
         if self.world:
             return self._fallback(node)
         consumed = set()
-        rgb, img, _ = self.color(node, 'Color', consumed)
-        roughness = _clamp01(self.value(node, 'Roughness', 0.0, consumed))
+        rgb, _, _ = self.color(node, 'Color', consumed)
+        roughness = prog.clamp(self.value(node, 'Roughness', 0.0, consumed), 0.0, 1.0)
+        normal = self.normal(node, consumed=consumed)
         self.check_unused_links(node, consumed)
-        if roughness >= 1e-5:
+        if prog.may_exceed(roughness, 1e-5 - 1e-12):
             if self.ctx.at_least(4, 3):
                 # Cycles 4.3+: the energy-preserving Oren-Nayar, its colour
                 # also the albedo of its multiple-scattering term.
-                albedo = (image_export.average_color(self._image_node(node, 'Color'), self.ctx)
-                          if img is not None else rgb)
-                return [Closure(core.PHOS_CLOSURE_OREN_NAYAR, rgb, img, roughness=roughness,
-                                specular_color=np.clip(rgb, 0.0, 1.0),
-                                specular_tint=oren_nayar_tint(self.ctx, albedo))]
+                return [Closure(core.PHOS_CLOSURE_OREN_NAYAR, rgb, normal, roughness=roughness,
+                                specular_color=prog.clamp(rgb, 0.0, 1.0),
+                                specular_tint=oren_nayar_tint(self.ctx, rgb))]
             self.note(node, "Oren-Nayar roughness before Blender 4.3 is not supported; rendered as Lambertian")
-        return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, img)]
+        return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, normal)]
 
     def distribution(self, node, allowed=('GGX', 'MULTI_GGX')):
         """(microfacet model, roughness override) of a node's distribution:
@@ -459,24 +484,19 @@ class NodeTreeWalker:
         if self.world:
             return self._fallback(node)
         consumed = set()
-        rgb, img, _ = self.color(node, 'Color', consumed)
-        roughness = self.value(node, 'Roughness', 0.5, consumed)
+        rgb, _, _ = self.color(node, 'Color', consumed)
+        roughness = prog.clamp(self.value(node, 'Roughness', 0.5, consumed), 0.0, 1.0)
         model, override = self.distribution(node)
         if override is not None:
             roughness = override
-        if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:
+        if _nonzero(self.value(node, 'Anisotropy', 0.0, consumed)):
             self.note(node, anisotropy_note)
+        normal = self.normal(node, consumed=consumed)
         self.check_unused_links(node, consumed)
         # Multiscatter: its colour is the mean Fresnel of the multiply
         # scattered light (Cycles' constant-Fresnel Glossy).
-        fss = unit_rgb(image_export.average_color(self._image_node(node, 'Color'), self.ctx) if img is not None
-                       else rgb)
-        return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, img, roughness=roughness, microfacet=model,
-                        multiscatter_fresnel=fss)]
-
-    def _image_node(self, node, name):
-        src = _resolve(find_input(node, name), self.stack)
-        return src.node
+        return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, normal, roughness=roughness, microfacet=model,
+                        multiscatter_fresnel=unit_rgb(rgb))]
 
     def _anisotropic(self, node, stack):
         """The 3.x Anisotropic BSDF: a Glossy BSDF whose anisotropy Phos ignores."""
@@ -486,39 +506,41 @@ class NodeTreeWalker:
         if self.world:
             return self._fallback(node)
         consumed = set()
-        rgb, img, _ = self.color(node, 'Color', consumed)
-        roughness = self.value(node, 'Roughness', 0.0, consumed)
-        ior = self.value(node, 'IOR', 1.45, consumed)
+        rgb, _, _ = self.color(node, 'Color', consumed)
+        roughness = prog.clamp(self.value(node, 'Roughness', 0.0, consumed), 0.0, 1.0)
+        ior = prog.maximum(self.value(node, 'IOR', 1.45, consumed), 1e-5)
         model, override = self.distribution(node)
         if override is not None:
             roughness = override
         film = thin_film(self, node, consumed)
-        if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:  # Blender 5.3's glass
+        if _nonzero(self.value(node, 'Anisotropy', 0.0, consumed)):  # Blender 5.3's glass
             self.note(node, "anisotropy is not supported; ignored")
+        normal = self.normal(node, consumed=consumed)
         self.check_unused_links(node, consumed)
-        fss = unit_rgb(image_export.average_color(self._image_node(node, 'Color'), self.ctx) if img is not None
-                       else rgb)
+        fss = unit_rgb(rgb)
         # Multiscatter glass splits by the Fresnel of each microfacet in every
         # version (3.x's random walk does too).
         fresnel = core.PHOS_GLASS_FRESNEL_MICROFACET if model == core.PHOS_MICROFACET_GGX_MULTISCATTER \
             else self.glass_fresnel
-        return [Closure(core.PHOS_CLOSURE_GLASS, rgb, img, roughness=roughness, ior=ior,
+        return [Closure(core.PHOS_CLOSURE_GLASS, rgb, normal, roughness=roughness, ior=ior,
                         glass_fresnel=fresnel, microfacet=model, multiscatter_fresnel=fss, **film)]
 
     def _refraction(self, node, stack):
         if self.world:
             return self._fallback(node)
         consumed = set()
-        rgb, img, _ = self.color(node, 'Color', consumed)
-        roughness = self.value(node, 'Roughness', 0.0, consumed)
-        ior = self.value(node, 'IOR', 1.45, consumed)
+        rgb, _, _ = self.color(node, 'Color', consumed)
+        roughness = prog.clamp(self.value(node, 'Roughness', 0.0, consumed), 0.0, 1.0)
+        ior = prog.maximum(self.value(node, 'IOR', 1.45, consumed), 1e-5)
         model, override = self.distribution(node)
         if override is not None:
             roughness = override
         if model == core.PHOS_MICROFACET_GGX_MULTISCATTER:
             model = microfacet_model(self.ctx, 'GGX')  # Cycles never compensates refraction
+        normal = self.normal(node, consumed=consumed)
         self.check_unused_links(node, consumed)
-        return [Closure(core.PHOS_CLOSURE_REFRACTION, rgb, img, roughness=roughness, ior=ior, microfacet=model)]
+        return [Closure(core.PHOS_CLOSURE_REFRACTION, rgb, normal, roughness=roughness, ior=ior,
+                        microfacet=model)]
 
     def _metallic(self, node, stack):
         """The Metallic BSDF (4.3+): F82-tint, or a physical conductor's
@@ -527,7 +549,7 @@ class NodeTreeWalker:
         if self.world:
             return self._fallback(node)
         consumed = set()
-        roughness = self.value(node, 'Roughness', 0.5, consumed)
+        roughness = prog.clamp(self.value(node, 'Roughness', 0.5, consumed), 0.0, 1.0)
         model, override = self.distribution(node)
         if override is not None:
             roughness = override
@@ -535,30 +557,27 @@ class NodeTreeWalker:
             n, _, _ = self.color(node, 'IOR', consumed, allow_image=False)
             k, _, _ = self.color(node, 'Extinction', consumed, allow_image=False)
             f0, tint = conductor_as_f82(n, k)
-            img = None
         else:
-            base, img, base_node = self.color(node, 'Base Color', consumed)
-            edge, _, _ = self.color(node, 'Edge Tint', consumed, allow_image=False)
-            f0 = unit_rgb(image_export.average_color(base_node, self.ctx) if img is not None else base)
+            base, _, _ = self.color(node, 'Base Color', consumed)
+            edge, _, _ = self.color(node, 'Edge Tint', consumed)
+            f0 = unit_rgb(base)
             tint = unit_rgb(edge)
-            if img is not None:
-                self.note(node, "an image Base Color uses the image's average colour")
-                img = None
-        if self.value(node, 'Anisotropy', 0.0, consumed) != 0.0:
+        if _nonzero(self.value(node, 'Anisotropy', 0.0, consumed)):
             self.note(node, "anisotropy is not supported; ignored")
-        if self.value(node, 'Thin Film Thickness', 0.0, consumed) > 0.1:
+        if prog.may_exceed(self.value(node, 'Thin Film Thickness', 0.0, consumed), 0.1):
             self.note(node, "a thin film on a metal is not supported; ignored")
         consumed |= {sk.identifier for sk in node.inputs if sk.name.startswith("Thin Film")}
+        normal = self.normal(node, consumed=consumed)
         self.check_unused_links(node, consumed)
-        return [Closure(core.PHOS_CLOSURE_METAL, (1.0, 1.0, 1.0), img, roughness=roughness, microfacet=model,
+        return [Closure(core.PHOS_CLOSURE_METAL, (1.0, 1.0, 1.0), normal, roughness=roughness, microfacet=model,
                         specular_color=f0, specular_tint=tint, multiscatter_fresnel=f82_fss(f0, tint))]
 
     def _emission(self, node, stack):
         consumed = set()
-        rgb, img, _ = self.color(node, 'Color', consumed)
+        rgb, _, _ = self.color(node, 'Color', consumed)
         strength = self.value(node, 'Strength', 1.0, consumed)
         self.check_unused_links(node, consumed)
-        return [Closure(core.PHOS_CLOSURE_EMISSION, rgb * strength, img)]
+        return [Closure(core.PHOS_CLOSURE_EMISSION, rgb * strength)]
 
     def _background(self, node, stack):
         if not self.world:
@@ -574,9 +593,9 @@ class NodeTreeWalker:
         if self.world:
             return self._fallback(node)
         consumed = set()
-        rgb, img, _ = self.color(node, 'Color', consumed)
+        rgb, _, _ = self.color(node, 'Color', consumed)
         self.check_unused_links(node, consumed)
-        return [Closure(core.PHOS_CLOSURE_TRANSPARENT, rgb, img)]
+        return [Closure(core.PHOS_CLOSURE_TRANSPARENT, rgb)]
 
     def _principled(self, node, stack):
         if self.world:
@@ -630,7 +649,7 @@ def oren_nayar_tint(ctx, albedo):
     With a texture, its mean colour stands in for the albedo."""
     if ctx.at_least(5, 3):
         return np.ones(3)
-    return np.clip(np.asarray(albedo, dtype=float)[:3], 0.0, 1.0)
+    return prog.clamp(albedo if prog.varies(albedo) else np.asarray(albedo, dtype=float)[:3], 0.0, 1.0)
 
 
 def thin_film(walker, node, consumed):
@@ -639,8 +658,10 @@ def thin_film(walker, node, consumed):
     which Cycles fades the film in (30 nm before 5.0, 1 nm from 5.0)."""
     if find_input(node, 'Thin Film Thickness') is None:
         return {}
-    d = max(walker.value(node, ('Thin Film Thickness',), 0.0, consumed), 0.0)
-    n = max(walker.value(node, ('Thin Film IOR',), 1.33, consumed), 1e-5)
+    d = prog.maximum(walker.value(node, ('Thin Film Thickness',), 0.0, consumed), 0.0)
+    n = prog.maximum(walker.value(node, ('Thin Film IOR',), 1.33, consumed), 1e-5)
+    if prog.varies(d) or prog.varies(n):
+        return dict(thin_film_thickness=d, thin_film_ior=n)  # the fade-in below aside
     if d <= 0.1:
         return {}
     fade = 1.0 if walker.ctx.at_least(5, 0) else 30.0
@@ -651,7 +672,12 @@ def thin_film(walker, node, consumed):
 
 
 def _clamp01(x):
-    return min(max(float(x), 0.0), 1.0)
+    return prog.clamp(x, 0.0, 1.0)
+
+
+def _nonzero(x):
+    """Whether a value can differ from 0 (a varying one can)."""
+    return prog.varies(x) or float(np.max(np.abs(prog._arr(x)))) != 0.0
 
 
 _HANDLERS = {
@@ -683,14 +709,20 @@ def uses_nodes(id_data):
 
 def material_closures(mat, ctx):
     """The closure list of a material (before truncation and conversion)."""
+    return compile_material(mat, ctx)[0]
+
+
+def compile_material(mat, ctx):
+    """The closure list of a material (before truncation and conversion)
+    and the shader program that sets its varying fields."""
     owner = "material '%s'" % mat.name
     if not uses_nodes(mat):
         # What Cycles renders for a material without nodes: a diffuse of its colour.
-        return [Closure(core.PHOS_CLOSURE_DIFFUSE, mat.diffuse_color[:3])]
+        return [Closure(core.PHOS_CLOSURE_DIFFUSE, mat.diffuse_color[:3])], Program()
     out = active_output(mat.node_tree, 'ShaderNodeOutputMaterial')
     if out is None:
         ctx.warn("Phos: %s has no Material Output node; it renders black" % owner)
-        return []
+        return [], Program()
     for link in mat.node_tree.links:
         if not link.is_valid:
             # Blender marks a link that closes a cycle (or joins sockets that
@@ -700,11 +732,38 @@ def material_closures(mat, ctx):
                          owner, link.from_node.name, link.to_node.name))
     walker = NodeTreeWalker(ctx, owner)
     closures = walker.closures(out.inputs['Surface'])
-    for name in ('Volume', 'Displacement'):
-        s = out.inputs.get(name)
-        if s is not None and s.is_linked:
-            ctx.warn("Phos: %s: the %s output is not supported; ignored" % (owner, name.lower()))
-    return closures
+    s = out.inputs.get('Volume')
+    if s is not None and s.is_linked:
+        ctx.warn("Phos: %s: the volume output is not supported; ignored" % owner)
+    displacement = displacement_as_bump(walker, out)
+    if displacement is not None:
+        for c in closures:
+            if c.normal is None:
+                c.normal = displacement
+    return closures, walker.program
+
+
+def displacement_as_bump(walker, out):
+    """The Material Output's Displacement rendered as Cycles renders it by
+    default (Displacement Only is not the default): a bump of the height
+    that a Displacement node computes, as a normal Value; None when unlinked
+    or not a Displacement node."""
+    socket = out.inputs.get('Displacement')
+    if socket is None or not socket.is_linked:
+        return None
+    src = _resolve(socket, ())
+    if src.node is None:
+        return None
+    method = getattr(getattr(walker.ctx.scene, "cycles", None), "displacement_method", None)
+    material = getattr(out.id_data, "cycles", None)
+    method = getattr(material, "displacement_method", 'BUMP') if material is not None else 'BUMP'
+    if method not in {'BUMP', 'BOTH'}:
+        walker.ctx.warn("Phos: %s: true displacement is not supported; rendered as bump" % walker.owner)
+    if src.node.bl_idname != 'ShaderNodeDisplacement':
+        walker.unsupported(src.node, "the displacement is ignored")
+        return None
+    from .nodes import displacement_bump
+    return displacement_bump(walker.nodes, src.node, src.stack)
 
 
 def add_material(mat, ctx):
@@ -715,13 +774,20 @@ def add_material(mat, ctx):
     mat_id = ctx.materials.get(key)
     if mat_id is not None:
         return mat_id
-    closures = [c for c in material_closures(mat, ctx) if not c.negligible() or c.image is not None]
+    closures, program = compile_material(mat, ctx)
+    closures = [c for c in closures if not c.negligible()]
     if len(closures) > core.PHOS_MAX_CLOSURES:
         ctx.warn("Phos: material '%s' has %d closures; only the first %d are rendered"
                  % (mat.name, len(closures), core.PHOS_MAX_CLOSURES))
         closures = closures[:core.PHOS_MAX_CLOSURES]
+    descs = closure_descs(closures, program)
+    if program.too_large():
+        ctx.warn("Phos: material '%s': its shader program exceeds the core's limits (%d registers, %d "
+                 "instructions); its textures are replaced by their defaults"
+                 % (mat.name, core.PHOS_SHADER_MAX_REGISTERS, core.PHOS_SHADER_MAX_INSTRUCTIONS))
+        program = Program()
     try:
-        mat_id = ctx.core.add_material(closure_descs(closures))
+        mat_id = ctx.core.add_material(descs, None if program.empty() else program.desc())
     except core.PhosError as ex:
         raise core.PhosError("material '%s': %s" % (mat.name, ex), ex.status) from None
     ctx.materials[key] = mat_id

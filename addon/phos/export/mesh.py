@@ -19,6 +19,8 @@ triangles: meshes have millions):
   on several threads, so two evaluations of one mesh differ in the last bit.
 """
 
+import math
+
 import numpy as np
 
 from .. import core
@@ -198,7 +200,7 @@ def _degenerate(p, tri):
     return degenerate
 
 
-def _drop_broken(name, positions, indices, normals, uvs, slots, ctx):
+def _drop_broken(name, positions, indices, normals, uvs, slots, ctx, tangents=None):
     """Drop triangles with a non-finite vertex and degenerate ones; repair the rest.
 
     Arrays are flat (positions V*3, indices T*3, normals T*9, uvs T*6 or None,
@@ -237,6 +239,8 @@ def _drop_broken(name, positions, indices, normals, uvs, slots, ctx):
         normals = np.ascontiguousarray(normals.reshape(-1, 9)[keep]).reshape(-1)
         if uvs is not None:
             uvs = np.ascontiguousarray(uvs.reshape(-1, 6)[keep]).reshape(-1)
+        if tangents is not None:
+            tangents = np.ascontiguousarray(tangents.reshape(-1, 12)[keep]).reshape(-1)
         if slots is not None:
             slots = slots[keep]
         if bad_vertex is not None:
@@ -255,7 +259,61 @@ def _drop_broken(name, positions, indices, normals, uvs, slots, ctx):
         corner[rows, corners] = face
     if uvs is not None and not np.isfinite(uvs).all():
         uvs[~np.isfinite(uvs)] = 0.0
-    return positions, indices, normals, uvs, slots
+    if tangents is not None and not np.isfinite(tangents).all():
+        tangents[~np.isfinite(tangents)] = 0.0
+    return positions, indices, normals, uvs, slots, tangents
+
+
+def _texture_space(me):
+    """(location, size) of the mesh's texture space, which Generated
+    coordinates map to [0, 1]³ (Blender computes the automatic one)."""
+    loc = getattr(me, "texspace_location", None)
+    size = getattr(me, "texspace_size", None)
+    if loc is None or size is None:
+        return None
+    loc, size = tuple(loc), tuple(abs(x) for x in size)
+    if not all(math.isfinite(x) for x in loc + size):
+        return None  # a mesh with non-finite vertices: the core's automatic one
+    return loc, size
+
+
+def _tree_has(tree, bl_idname, seen=None):
+    seen = set() if seen is None else seen
+    if tree is None or tree.as_pointer() in seen:
+        return False
+    seen.add(tree.as_pointer())
+    for n in tree.nodes:
+        if n.bl_idname == bl_idname and getattr(n, "space", 'TANGENT') == 'TANGENT' and not n.mute:
+            return True
+        if n.bl_idname == 'ShaderNodeGroup' and _tree_has(n.node_tree, bl_idname, seen):
+            return True
+    return False
+
+
+def _reads_tangents(ob):
+    """Whether a material of the object has a tangent-space Normal Map."""
+    for slot in getattr(ob, "material_slots", ()):
+        mat = slot.material
+        if mat is not None and mat.node_tree is not None and _tree_has(mat.node_tree, 'ShaderNodeNormalMap'):
+            return True
+    return False
+
+
+def _corner_tangents(me, ob, uv_layer, corners, ctx):
+    """Per-corner MikkTSpace tangents (x, y, z, bitangent sign) of the UV
+    map, as Blender computes them for Cycles; None where it cannot (faces
+    of more than four corners), with a warning."""
+    try:
+        me.calc_tangents(uvmap=uv_layer.name)
+    except RuntimeError as ex:
+        ctx.warn("Phos: object '%s': tangents for its normal map could not be computed (%s); the map is "
+                 "ignored" % (ob.name, ex))
+        return None
+    n = len(me.loops)
+    t = _foreach(me.loops, "tangent", n * 3, np.float32).reshape(-1, 3)
+    sign = _foreach(me.loops, "bitangent_sign", n, np.float32)
+    loops = np.concatenate([t, sign[:, None]], axis=1)
+    return np.ascontiguousarray(loops[corners].reshape(-1))
 
 
 def read_mesh(ob, ctx):
@@ -308,13 +366,15 @@ def read_mesh(ob, ctx):
             normals = _foreach(tris, "split_normals", triangle_count * 9, np.float32)
         slots = _foreach(tris, "material_index", triangle_count, np.int32)
 
-        uvs = None
+        uvs = tangents = None
         if uv_layer is not None:
             loop_uvs = _foreach(uv_layer.data, "uv", len(me.loops) * 2, np.float32)
             uvs = np.ascontiguousarray(loop_uvs.reshape(-1, 2)[corners].reshape(-1))
+            if _reads_tangents(ob):
+                tangents = _corner_tangents(me, ob, uv_layer, corners, ctx)
 
-        positions, indices, normals, uvs, slots = _drop_broken(
-            ob.name, positions, indices, normals, uvs, slots, ctx)
+        positions, indices, normals, uvs, slots, tangents = _drop_broken(
+            ob.name, positions, indices, normals, uvs, slots, ctx, tangents)
         if indices.size == 0:
             return None
 
@@ -323,6 +383,8 @@ def read_mesh(ob, ctx):
             "indices": indices.view(np.uint32),
             "normals": normals,
             "uvs": uvs,
+            "tangents": tangents,
+            "texspace": _texture_space(me),
             # Material slot 0 everywhere is the core's default: skip the array then.
             "material_slots": slots.view(np.uint32) if slots.any() else None,
         }

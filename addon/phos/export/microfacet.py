@@ -21,6 +21,14 @@ import math
 import numpy as np
 
 from .. import core
+from . import program as prog
+from .program import Value
+
+
+def _varies(*xs):
+    """Whether any argument is a shader-program value that is not constant:
+    the helpers below then build the same formula as instructions."""
+    return any(isinstance(x, Value) and not x.is_const for x in xs)
 
 # Cycles' lower bound of a microfacet closure's weight.
 WEIGHT_CUTOFF = 1e-5
@@ -36,18 +44,27 @@ def microfacet_model(ctx, distribution):
 
 
 def f0_from_ior(ior):
+    if _varies(ior):
+        r = (ior - 1.0) / (ior + 1.0)
+        return r * r
     return ((ior - 1.0) / (ior + 1.0)) ** 2
 
 
 def ior_from_f0(f0):
     """The IOR whose normal reflectance is f0 (f0 clamped below 1, as Cycles)."""
+    if _varies(f0):
+        s = prog.sqrt(prog.clamp(f0, 0.0, 0.99))
+        return (1.0 + s) / (1.0 - s)
     s = math.sqrt(min(max(f0, 0.0), 0.99))
     return (1.0 + s) / (1.0 - s)
 
 
 def dielectric_fss(eta):
     """Mean Fresnel of a dielectric of relative IOR eta: Kulla & Conty's fit
-    (2017, the one Cycles uses), within 0.3 % of the integral."""
+    (2017, the one Cycles uses), within 0.3 % of the integral. A varying
+    eta takes the branch of eta >= 1 (IORs of real dielectrics)."""
+    if _varies(eta):
+        return (eta - 1.0) / (4.08567 + 1.00071 * eta)
     if eta < 1.0:
         return 0.997118 + eta * (0.1014 - eta * (0.965241 + 0.130607 * eta))
     return (eta - 1.0) / (4.08567 + 1.00071 * eta)
@@ -56,6 +73,10 @@ def dielectric_fss(eta):
 def fresnel_blend_fss(f0, eta):
     """F_ss of the Principled specular colour: f0 blended to white by the
     dielectric Fresnel of eta, averaged (the blend is linear in its factor)."""
+    if _varies(f0, eta):
+        F0 = f0_from_ior(eta)
+        s = prog.clamp((dielectric_fss(eta) - F0) / (1.0 - F0), 0.0, 1.0)
+        return prog.clamp(f0 * (1.0 - s) + s, 0.0, 1.0)
     F0 = f0_from_ior(eta)
     s = 1.0 if F0 >= 1.0 - 1e-6 else min(max((dielectric_fss(eta) - F0) / (1.0 - F0), 0.0), 1.0)
     return np.asarray(f0, dtype=np.float64) * (1.0 - s) + s
@@ -63,6 +84,9 @@ def fresnel_blend_fss(f0, eta):
 
 def f82_b(f0, tint):
     """F82-tint's b: at μ = 1/7 the reflectance is Schlick's times tint."""
+    if _varies(f0, tint):
+        schlick = f0 + (1.0 - f0) * (6.0 / 7.0) ** 5
+        return schlick * (1.0 - tint) * (7.0 / (6.0 / 7.0) ** 6)
     f0 = np.asarray(f0, dtype=np.float64)
     schlick = f0 + (1.0 - f0) * (6.0 / 7.0) ** 5
     return schlick * (1.0 - np.asarray(tint, dtype=np.float64)) * 7.0 / (6.0 / 7.0) ** 6
@@ -70,12 +94,16 @@ def f82_b(f0, tint):
 
 def f82_fss(f0, tint):
     """∫ F82(μ) 2μ dμ = f0 + (1 − f0)/21 − b/126 (the clamp to [0,1] aside)."""
+    if _varies(f0, tint):
+        return prog.clamp(f0 + (1.0 - f0) / 21.0 - f82_b(f0, tint) / 126.0, 0.0, 1.0)
     f0 = np.asarray(f0, dtype=np.float64)
     return np.clip(f0 + (1.0 - f0) / 21.0 - f82_b(f0, tint) / 126.0, 0.0, 1.0)
 
 
 def unit_rgb(c):
     """A colour clamped to [0, 1] per channel (Fresnel colours and tints)."""
+    if _varies(c):
+        return prog.clamp(c, 0.0, 1.0)
     return np.clip(np.asarray(c, dtype=np.float64).reshape(3), 0.0, 1.0)
 
 

@@ -325,13 +325,27 @@ phos_status phos_scene_add_material(phos_scene *s, const phos_material_desc *d, 
             FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u lies over %u closures, but only %u follow it",
                  i, d->closures[i].layer_span, d->closure_count - 1 - i);
     }
-    if (!grow((void **)&s->materials, s->material_count, &s->material_capacity, sizeof(material)))
+    shader_program program;
+    memset(&program, 0, sizeof(program));
+    if (d->program) {
+        char msg[256];
+        const char *bad = shader_program_create(d->program, d->closure_count, s->image_count, &program, msg,
+                                                sizeof(msg));
+        if (bad)
+            FAIL(s, strcmp(bad, "out of memory") ? PHOS_ERROR_INVALID_ARGUMENT : PHOS_ERROR_OUT_OF_MEMORY,
+                 "material: shader program: %s", bad);
+    }
+    if (!grow((void **)&s->materials, s->material_count, &s->material_capacity, sizeof(material))) {
+        shader_program_free(&program);
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "material: out of memory");
+    }
     material *m = &s->materials[s->material_count];
     memset(m, 0, sizeof(*m));
     m->closure_count = d->closure_count;
     if (d->closure_count)
         memcpy(m->closures, d->closures, sizeof(phos_closure_desc) * d->closure_count);
+    if (d->program)
+        material_set_program(s, m, &program);
     if (out_id)
         *out_id = s->material_count;
     s->material_count++;
@@ -368,6 +382,10 @@ phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: normals must be finite");
     if (d->uvs && !all_finite(d->uvs, 6 * nt))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: UVs must be finite");
+    if (d->tangents && !all_finite(d->tangents, 12 * nt))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: tangents must be finite");
+    if (!all_finite(d->texspace_location, 3) || !all_finite_nonnegative(d->texspace_size, 3))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: the texture space must be finite, its size >= 0");
     if (!grow((void **)&s->meshes, s->mesh_count, &s->mesh_capacity, sizeof(mesh)))
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "mesh: out of memory");
     mesh m;
@@ -379,13 +397,17 @@ phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t
     m.normals = d->normals ? copy_array(d->normals, sizeof(float) * 9 * nt) : NULL;
     m.uvs = d->uvs ? copy_array(d->uvs, sizeof(float) * 6 * nt) : NULL;
     m.slots = d->material_slots ? copy_array(d->material_slots, sizeof(uint32_t) * nt) : NULL;
+    m.tangents = d->tangents ? copy_array(d->tangents, sizeof(float) * 12 * nt) : NULL;
+    memcpy(m.texspace_location, d->texspace_location, sizeof(m.texspace_location));
+    memcpy(m.texspace_size, d->texspace_size, sizeof(m.texspace_size));
     if (!m.positions || !m.indices || (d->normals && !m.normals) || (d->uvs && !m.uvs) ||
-        (d->material_slots && !m.slots)) {
+        (d->material_slots && !m.slots) || (d->tangents && !m.tangents)) {
         free(m.positions);
         free(m.indices);
         free(m.normals);
         free(m.uvs);
         free(m.slots);
+        free(m.tangents);
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "mesh: out of memory for %u triangles", d->triangle_count);
     }
     s->meshes[s->mesh_count] = m;
@@ -405,6 +427,8 @@ phos_status phos_scene_add_instance(phos_scene *s, const phos_instance_desc *d, 
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: the transform must be finite");
     if (d->material_count > 0 && !d->materials)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: materials are NULL");
+    if (!isfinite(d->random) || !isfinite(d->pass_index))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: random and pass index must be finite");
     for (uint32_t i = 0; i < d->material_count; i++)
         if (d->materials[i] >= s->material_count)
             FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: slot %u uses material %u, but the scene has %u materials", i,
@@ -415,6 +439,8 @@ phos_status phos_scene_add_instance(phos_scene *s, const phos_instance_desc *d, 
     memset(inst, 0, sizeof(*inst));
     inst->mesh_id = d->mesh_id;
     memcpy(inst->transform, d->transform, sizeof(inst->transform));
+    inst->random = d->random;
+    inst->pass_index = d->pass_index;
     inst->material_count = d->material_count;
     inst->materials = copy_array(d->materials, sizeof(uint32_t) * d->material_count);
     if (!inst->materials)

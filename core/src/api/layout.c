@@ -31,14 +31,26 @@ static const layout_field fields[] = {
     FIELD(phos_closure_desc, layer_span) FIELD(phos_closure_desc, layer_weight)
     FIELD(phos_closure_desc, layer_tint) FIELD(phos_closure_desc, layer_tint_weight)
 
-    FIELD(phos_material_desc, closure_count) FIELD(phos_material_desc, closures)
+    FIELD(phos_material_desc, closure_count) FIELD(phos_material_desc, closures) FIELD(phos_material_desc, program)
+
+    FIELD(phos_shader_instruction, op) FIELD(phos_shader_instruction, mode) FIELD(phos_shader_instruction, flags)
+    FIELD(phos_shader_instruction, table) FIELD(phos_shader_instruction, param)
+    FIELD(phos_shader_instruction, inputs) FIELD(phos_shader_instruction, outputs)
+    FIELD(phos_shader_binding, closure) FIELD(phos_shader_binding, field) FIELD(phos_shader_binding, reg)
+    FIELD(phos_shader_program_desc, register_count) FIELD(phos_shader_program_desc, constant_count)
+    FIELD(phos_shader_program_desc, constants) FIELD(phos_shader_program_desc, instruction_count)
+    FIELD(phos_shader_program_desc, instructions) FIELD(phos_shader_program_desc, table_size)
+    FIELD(phos_shader_program_desc, table) FIELD(phos_shader_program_desc, binding_count)
+    FIELD(phos_shader_program_desc, bindings)
 
     FIELD(phos_mesh_desc, vertex_count) FIELD(phos_mesh_desc, positions) FIELD(phos_mesh_desc, triangle_count)
     FIELD(phos_mesh_desc, indices) FIELD(phos_mesh_desc, normals) FIELD(phos_mesh_desc, uvs)
-    FIELD(phos_mesh_desc, material_slots)
+    FIELD(phos_mesh_desc, material_slots) FIELD(phos_mesh_desc, tangents) FIELD(phos_mesh_desc, texspace_location)
+    FIELD(phos_mesh_desc, texspace_size)
 
     FIELD(phos_instance_desc, mesh_id) FIELD(phos_instance_desc, transform)
     FIELD(phos_instance_desc, material_count) FIELD(phos_instance_desc, materials)
+    FIELD(phos_instance_desc, random) FIELD(phos_instance_desc, pass_index)
 
     FIELD(phos_light_desc, type) FIELD(phos_light_desc, color) FIELD(phos_light_desc, position)
     FIELD(phos_light_desc, direction) FIELD(phos_light_desc, axis_u) FIELD(phos_light_desc, axis_v)
@@ -75,6 +87,9 @@ static const struct {
     {"phos_image_desc", sizeof(phos_image_desc)},
     {"phos_closure_desc", sizeof(phos_closure_desc)},
     {"phos_material_desc", sizeof(phos_material_desc)},
+    {"phos_shader_instruction", sizeof(phos_shader_instruction)},
+    {"phos_shader_binding", sizeof(phos_shader_binding)},
+    {"phos_shader_program_desc", sizeof(phos_shader_program_desc)},
     {"phos_mesh_desc", sizeof(phos_mesh_desc)},
     {"phos_instance_desc", sizeof(phos_instance_desc)},
     {"phos_light_desc", sizeof(phos_light_desc)},

@@ -161,7 +161,7 @@ static phos_status add_emissive_triangles(scene *s, light_table *t, uint32_t *ca
             l.p1 = v[1];
             l.p2 = v[2];
             l.area = 0.5f * v3_length(v3_cross(v3_sub(v[1], v[0]), v3_sub(v[2], v[0])));
-            l.color = material_emission_estimate(s, mat);
+            l.color = material_emission_estimate_triangle(s, i, p);
             if (!(l.area > 0.0f) || v3_is_zero(l.color))
                 continue;
             inst->emitter_of_triangle[p] = (int32_t)t->count;

@@ -14,12 +14,17 @@ typedef struct mesh {
     float *normals;             /* triangle_count*9 per-corner, or NULL */
     float *uvs;                 /* triangle_count*6, or NULL */
     uint32_t *slots;            /* triangle_count, or NULL */
+    float *tangents;            /* triangle_count*12 per-corner MikkTSpace (tangent xyz, sign), or NULL */
+    float texspace_location[3], texspace_size[3]; /* the texture space Generated coordinates map to [0,1]³ */
 } mesh;
 
 typedef struct instance {
     uint32_t mesh_id;
     float transform[12];        /* object → world */
     float normal_matrix[9];     /* inverse transpose of the 3x3 part, row-major */
+    float inverse[12];          /* world → object */
+    float random;               /* Object Info's Random, [0,1) */
+    float pass_index;           /* Object Info's Object Index */
     uint32_t material_count;
     uint32_t *materials;
     int32_t *emitter_of_triangle; /* light index per triangle, or NULL if nothing emits */

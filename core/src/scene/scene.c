@@ -49,6 +49,57 @@ static void normal_matrix(const float m[12], float out[9])
             out[k] = -out[k];
 }
 
+/* The inverse of an affine 3x4 transform (identity for a singular one,
+ * whose instance does not render). */
+static void affine_inverse(const float m[12], float out[12])
+{
+    float a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9], i = m[10];
+    float c00 = e * i - f * h, c01 = f * g - d * i, c02 = d * h - e * g;
+    float det = a * c00 + b * c01 + c * c02;
+    if (!(fabsf(det) > 0.0f)) {
+        static const float identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+        memcpy(out, identity, sizeof(identity));
+        return;
+    }
+    float k = 1.0f / det;
+    /* inverse = adjugate / det: the adjugate is the transposed cofactors. */
+    float r[9] = {c00 * k, (c * h - b * i) * k, (b * f - c * e) * k,
+                  c01 * k, (a * i - c * g) * k, (c * d - a * f) * k,
+                  c02 * k, (b * g - a * h) * k, (a * e - b * d) * k};
+    for (int row = 0; row < 3; row++) {
+        out[4 * row + 0] = r[3 * row + 0];
+        out[4 * row + 1] = r[3 * row + 1];
+        out[4 * row + 2] = r[3 * row + 2];
+        out[4 * row + 3] = -(r[3 * row + 0] * m[3] + r[3 * row + 1] * m[7] + r[3 * row + 2] * m[11]);
+    }
+}
+
+/* Blender's automatic texture space: the bounding box of the positions,
+ * with a zero extent replaced by 1 and a tiny one raised (BKE's rule). */
+static void auto_texture_space(mesh *m)
+{
+    float s0 = m->texspace_size[0], s1 = m->texspace_size[1], s2 = m->texspace_size[2];
+    if (s0 != 0.0f || s1 != 0.0f || s2 != 0.0f)
+        return;
+    vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
+    for (uint32_t v = 0; v < m->vertex_count; v++) {
+        lo = v3_min(lo, v3_load(m->positions + 3 * (size_t)v));
+        hi = v3_max(hi, v3_load(m->positions + 3 * (size_t)v));
+    }
+    if (lo.x > hi.x)
+        lo = hi = v3s(0.0f);
+    float loc[3] = {0.5f * (lo.x + hi.x), 0.5f * (lo.y + hi.y), 0.5f * (lo.z + hi.z)};
+    float size[3] = {0.5f * (hi.x - lo.x), 0.5f * (hi.y - lo.y), 0.5f * (hi.z - lo.z)};
+    for (int k = 0; k < 3; k++) {
+        if (size[k] == 0.0f)
+            size[k] = 1.0f;
+        else if (size[k] > 0.0f && size[k] < 1e-5f)
+            size[k] = 1e-5f;
+        m->texspace_location[k] = loc[k];
+        m->texspace_size[k] = size[k];
+    }
+}
+
 /* Whether Embree can trace rays through an instance: it maps each ray
  * into the instance's space by the inverse transform, and a ray whose
  * origin or direction leaves ±1.8e18 there fails Embree's validity check
@@ -105,6 +156,7 @@ void scene_prepare(scene *s)
 {
     for (uint32_t i = 0; i < s->instance_count; i++) {
         normal_matrix(s->instances[i].transform, s->instances[i].normal_matrix);
+        affine_inverse(s->instances[i].transform, s->instances[i].inverse);
         s->instances[i].hidden = !instance_is_renderable(s->instances[i].transform);
     }
     for (uint32_t i = 0; i < s->material_count; i++) {
@@ -122,6 +174,10 @@ void scene_prepare(scene *s)
             s->has_transparency = 1;
     }
     compute_bounds(s);
+    for (uint32_t i = 0; i < s->mesh_count; i++)
+        auto_texture_space(&s->meshes[i]);
+    affine_inverse(s->camera.transform, s->world_to_camera);
+    s->bump_offset = 1e-4f * fmaxf(v3_length(v3_sub(s->bounds_max, s->bounds_min)), 1e-3f);
 }
 
 static void scene_free(scene *s)
@@ -133,7 +189,10 @@ static void scene_free(scene *s)
         free(m->normals);
         free(m->uvs);
         free(m->slots);
+        free(m->tangents);
     }
+    for (uint32_t i = 0; i < s->material_count; i++)
+        shader_program_free(&s->materials[i].program);
     for (uint32_t i = 0; i < s->instance_count; i++) {
         free(s->instances[i].materials);
         free(s->instances[i].emitter_of_triangle);

@@ -13,11 +13,14 @@
 #include "lights/light_table.h"
 #include "phos.h"
 #include "scene/geometry.h"
+#include "shading/shader_program.h"
 #include "util/vec.h"
 
 typedef struct material {
     uint32_t closure_count;
     phos_closure_desc closures[PHOS_MAX_CLOSURES];
+    int has_program;            /* closures' fields vary over the surface: program sets them */
+    shader_program program;
     int emissive;               /* has an EMISSION closure */
     int transparent;            /* has a TRANSPARENT closure */
     int transmits;              /* has a REFRACTION or GLASS closure: scatters light to its other side */
@@ -46,12 +49,14 @@ struct phos_scene {
     phos_world_desc world;
     phos_camera_desc camera;
     int has_camera;
+    float world_to_camera[12];     /* for shader programs (Texture Coordinate's Camera, Vector Transform) */
 
     /* Built by commit. */
     struct embree_bvh *bvh;
     vec3 bounds_min, bounds_max;   /* world bounds of all geometry, scene units */
     light_table lights;
     int has_transparency;          /* some material lets shadow rays through */
+    float bump_offset;             /* scene units a Bump node steps by: 1e-4 of the scene's diagonal */
 };
 
 typedef struct phos_scene scene;

@@ -7,6 +7,8 @@
 
 #include "shading/texture.h"
 
+#include <string.h>
+
 const material scene_default_material = {
     .closure_count = 1,
     .closures = {{.type = PHOS_CLOSURE_DIFFUSE, .weight = {0.8f, 0.8f, 0.8f}, .weight_image = -1,
@@ -56,6 +58,8 @@ void surface_from_hit(const scene *s, uint32_t instance_id, uint32_t prim, float
     }
     out->instance = instance_id;
     out->prim = prim;
+    out->b1 = b1;
+    out->b2 = b2;
     out->mat = scene_instance_material(s, inst, mesh_triangle_slot(m, prim));
 }
 
@@ -85,14 +89,231 @@ static bsdf_layer layer_of(const phos_closure_desc *d, float eta)
     return l;
 }
 
+/* ------------------------------------------------------- shader programs */
+
+static float finite_or(float x, float fallback) { return isfinite(x) ? x : fallback; }
+
+/* Writes a program's value into a closure field, clamped to the range
+ * phos_scene_add_material accepts for it (api.c), so a texture can never
+ * make a closure invalid. */
+static void closure_set_field(phos_closure_desc *c, uint32_t field, const float *v)
+{
+    float x = finite_or(v[0], 0.0f);
+    float rgb[3] = {finite_or(v[0], 0.0f), finite_or(v[1], 0.0f), finite_or(v[2], 0.0f)};
+    switch (field) {
+    case PHOS_FIELD_WEIGHT:
+        for (int k = 0; k < 3; k++)
+            c->weight[k] = fmaxf(rgb[k], 0.0f);
+        break;
+    case PHOS_FIELD_ROUGHNESS:
+        c->roughness = clampf(x, 0.0f, 1.0f);
+        break;
+    case PHOS_FIELD_IOR:
+        c->ior = fmaxf(x, 1e-5f);
+        break;
+    case PHOS_FIELD_SPECULAR_COLOR:
+        for (int k = 0; k < 3; k++)
+            c->specular_color[k] = fmaxf(rgb[k], 0.0f);
+        break;
+    case PHOS_FIELD_TRANSMISSION_TINT:
+        for (int k = 0; k < 3; k++)
+            c->transmission_tint[k] = fmaxf(rgb[k], 0.0f);
+        break;
+    case PHOS_FIELD_TRANSMISSION_ROUGHNESS:
+        c->transmission_roughness = clampf(x, 0.0f, 1.0f);
+        break;
+    case PHOS_FIELD_MULTISCATTER_FRESNEL:
+        for (int k = 0; k < 3; k++)
+            c->multiscatter_fresnel[k] = clampf(rgb[k], 0.0f, 1.0f);
+        break;
+    case PHOS_FIELD_SPECULAR_TINT:
+        for (int k = 0; k < 3; k++)
+            c->specular_tint[k] = clampf(rgb[k], 0.0f, 1.0f);
+        break;
+    case PHOS_FIELD_THIN_FILM_THICKNESS:
+        c->thin_film_thickness = clampf(x, 0.0f, 1e6f);
+        break;
+    case PHOS_FIELD_THIN_FILM_IOR:
+        c->thin_film_ior = fmaxf(x, 1e-5f);
+        break;
+    case PHOS_FIELD_LAYER_WEIGHT:
+        for (int k = 0; k < 3; k++)
+            c->layer_weight[k] = fmaxf(rgb[k], 0.0f);
+        break;
+    case PHOS_FIELD_LAYER_TINT:
+        for (int k = 0; k < 3; k++)
+            c->layer_tint[k] = fmaxf(rgb[k], 0.0f);
+        break;
+    case PHOS_FIELD_LAYER_TINT_WEIGHT:
+        c->layer_tint_weight = fmaxf(x, 0.0f);
+        break;
+    default: /* PHOS_FIELD_NORMAL is the BSDF's, not a closure's (material_eval) */
+        break;
+    }
+}
+
+void material_set_program(const scene *s, material *m, shader_program *p)
+{
+    float *values = malloc(sizeof(float) * (p->register_count ? p->register_count : 1));
+    phos_shader_binding *baked = malloc(sizeof(phos_shader_binding) * (p->binding_count ? p->binding_count : 1));
+    uint32_t baked_count = 0;
+    if (values && baked) {
+        shader_program_fold(p, s, values, baked, &baked_count);
+        for (uint32_t b = 0; b < baked_count; b++)
+            closure_set_field(&m->closures[baked[b].closure], baked[b].field, values + baked[b].reg);
+    }
+    free(values);
+    free(baked);
+    if (p->binding_count == 0) {
+        shader_program_free(p); /* constant: costs what a closure list costs */
+        m->has_program = 0;
+        return;
+    }
+    m->program = *p;
+    m->has_program = 1;
+}
+
+/* Barycentric interpolation of a per-corner attribute of n floats. */
+static void corner_lerp(const float *corners, int n, float b0, float b1, float b2, float *out)
+{
+    for (int k = 0; k < n; k++)
+        out[k] = b0 * corners[k] + b1 * corners[n + k] + b2 * corners[2 * n + k];
+}
+
+/* Tangents along the UV map: with edges e1, e2 and their UV differences,
+ * [e1 e2] = [dPdu dPdv] [[du1 du2] [dv1 dv2]]. */
+static void uv_tangents(const vec3 v[3], const float *uv, vec3 *dpdu, vec3 *dpdv)
+{
+    float du1 = uv[2] - uv[0], dv1 = uv[3] - uv[1], du2 = uv[4] - uv[0], dv2 = uv[5] - uv[1];
+    float det = du1 * dv2 - du2 * dv1;
+    vec3 e1 = v3_sub(v[1], v[0]), e2 = v3_sub(v[2], v[0]);
+    if (fabsf(det) < 1e-20f) {
+        *dpdu = *dpdv = v3s(0.0f);
+        return;
+    }
+    float k = 1.0f / det;
+    *dpdu = v3_scale(v3_sub(v3_scale(e1, dv2), v3_scale(e2, dv1)), k);
+    *dpdv = v3_scale(v3_sub(v3_scale(e2, du1), v3_scale(e1, du2)), k);
+}
+
+/* Projects a world point onto the camera's frame: (x, y) in [0,1]². */
+static vec3 window_coordinates(const scene *s, vec3 p)
+{
+    const phos_camera_desc *c = &s->camera;
+    vec3 q = xform_point(s->world_to_camera, p);
+    float x = q.x, y = q.y;
+    if (c->type == PHOS_CAMERA_PERSPECTIVE) {
+        float depth = -q.z;
+        if (!(fabsf(depth) > 1e-12f))
+            return v3s(0.0f);
+        x /= depth;
+        y /= depth;
+    }
+    float w = c->frame_max[0] - c->frame_min[0], h = c->frame_max[1] - c->frame_min[1];
+    return v3(w != 0.0f ? (x - c->frame_min[0]) / w : 0.0f, h != 0.0f ? (y - c->frame_min[1]) / h : 0.0f, 0.0f);
+}
+
+void material_shader_globals(const scene *s, const surface *sf, shader_globals *g)
+{
+    memset(g, 0, sizeof(*g));
+    const instance *inst = &s->instances[sf->instance];
+    const mesh *m = &s->meshes[inst->mesh_id];
+    float b1 = sf->b1, b2 = sf->b2, b0 = 1.0f - b1 - b2;
+    g->P = sf->p;
+    g->N = sf->ns;
+    g->Ng = sf->ng;
+    g->I = sf->wo;
+    g->u = sf->u;
+    g->v = sf->v;
+    g->backfacing = sf->backfacing;
+    g->object_to_world = inst->transform;
+    g->world_to_object = inst->inverse;
+    g->normal_to_world = inst->normal_matrix;
+    g->camera_to_world = s->camera.transform;
+    g->world_to_camera = s->world_to_camera;
+    g->object_P = xform_point(inst->inverse, sf->p);
+    for (int k = 0; k < 3; k++) {
+        /* Generated = (p − location)·½/size + ½; an axis of size 0 stays at ½. */
+        float size = m->texspace_size[k];
+        float scale = size != 0.0f ? 0.5f / size : 0.0f;
+        float o = k == 0 ? g->object_P.x : k == 1 ? g->object_P.y : g->object_P.z;
+        float gen = (o - m->texspace_location[k]) * scale + 0.5f;
+        if (k == 0)
+            g->generated.x = gen, g->generated_scale.x = scale;
+        else if (k == 1)
+            g->generated.y = gen, g->generated_scale.y = scale;
+        else
+            g->generated.z = gen, g->generated_scale.z = scale;
+    }
+    if (m->uvs) {
+        vec3 v[3];
+        scene_triangle_vertices(s, inst, sf->prim, v);
+        uv_tangents(v, m->uvs + 6 * (size_t)sf->prim, &g->dPdu, &g->dPdv);
+    }
+    if (m->tangents) {
+        float t[4];
+        corner_lerp(m->tangents + 12 * (size_t)sf->prim, 4, b0, b1, b2, t);
+        vec3 tw = xform_vector(inst->transform, v3(t[0], t[1], t[2]));
+        /* Orthogonal to the shading normal, as interpolation breaks it. */
+        vec3 n = sf->backfacing ? v3_neg(sf->ns) : sf->ns;
+        tw = v3_sub(tw, v3_scale(n, v3_dot(tw, n)));
+        if (v3_length2(tw) > 0.0f) {
+            g->tangent = v3_normalize(tw);
+            g->tangent_sign = t[3] < 0.0f ? -1.0f : 1.0f;
+        }
+    }
+    g->window = window_coordinates(s, sf->p);
+    g->object_location = v3(inst->transform[3], inst->transform[7], inst->transform[11]);
+    g->object_random = inst->random;
+    g->object_index = inst->pass_index;
+    g->ray_flags = sf->ray_flags;
+    g->ray_length = sf->ray_length;
+    g->ray_depth = sf->ray_depth;
+    g->bump_offset = s->bump_offset;
+}
+
+/* The material's closures at the surface: its own when constant, else a
+ * copy with the program's values written in (and the shading normal the
+ * program sets, if it sets one). */
+static const phos_closure_desc *material_eval(const scene *s, const surface *sf, phos_closure_desc *local,
+                                              vec3 *ns)
+{
+    const material *m = sf->mat;
+    if (!m->has_program)
+        return m->closures;
+    shader_globals g;
+    material_shader_globals(s, sf, &g);
+    float r[PHOS_SHADER_MAX_REGISTERS];
+    shader_program_eval(&m->program, s, &g, r);
+    memcpy(local, m->closures, sizeof(phos_closure_desc) * m->closure_count);
+    int normal_set = 0;
+    for (uint32_t b = 0; b < m->program.binding_count; b++) {
+        const phos_shader_binding *bd = &m->program.bindings[b];
+        if (bd->field != PHOS_FIELD_NORMAL) {
+            closure_set_field(&local[bd->closure], bd->field, r + bd->reg);
+        } else if (!normal_set && ns) {
+            /* One shading frame per BSDF: the first closure's normal sets it,
+             * kept on the viewer's side of the geometric surface. */
+            vec3 n = v3_load(r + bd->reg);
+            if (v3_is_finite(n) && v3_length2(n) > 0.5f && v3_dot(n, sf->ng) > 0.0f)
+                *ns = v3_normalize(n);
+            normal_set = 1;
+        }
+    }
+    return local;
+}
+
 void material_bsdf(const scene *s, const surface *sf, bsdf *out)
 {
-    bsdf_init(out, sf->ns, sf->ng);
+    phos_closure_desc local[PHOS_MAX_CLOSURES];
+    vec3 ns = sf->ns;
+    const phos_closure_desc *closures = material_eval(s, sf, local, &ns);
+    bsdf_init(out, ns, sf->ng);
     const material *m = sf->mat;
     /* under[i]: the layers over closure i (bit j: the bsdf's layers[j]). */
     uint32_t under[PHOS_MAX_CLOSURES] = {0};
     for (uint32_t i = 0; i < m->closure_count; i++) {
-        const phos_closure_desc *d = &m->closures[i];
+        const phos_closure_desc *d = &closures[i];
         /* The Principled specular IOR describes the coating from outside
          * only; dielectric interfaces invert it when hit from inside. */
         int interface = d->type == PHOS_CLOSURE_GLASS || d->type == PHOS_CLOSURE_REFRACTION;
@@ -132,12 +353,14 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
     }
 }
 
-static vec3 emission_of(const scene *s, const material *m, float u, float v)
+static vec3 emission_of(const scene *s, const surface *sf)
 {
+    phos_closure_desc local[PHOS_MAX_CLOSURES];
+    const phos_closure_desc *closures = material_eval(s, sf, local, NULL);
     vec3 sum = v3s(0.0f);
-    for (uint32_t i = 0; i < m->closure_count; i++)
-        if (m->closures[i].type == PHOS_CLOSURE_EMISSION)
-            sum = v3_add(sum, closure_weight(s, &m->closures[i], u, v));
+    for (uint32_t i = 0; i < sf->mat->closure_count; i++)
+        if (closures[i].type == PHOS_CLOSURE_EMISSION)
+            sum = v3_add(sum, closure_weight(s, &closures[i], sf->u, sf->v));
     return sum;
 }
 
@@ -145,22 +368,36 @@ vec3 material_emission(const scene *s, const surface *sf)
 {
     if (!sf->mat->emissive)
         return v3s(0.0f);
-    return emission_of(s, sf->mat, sf->u, sf->v);
+    return emission_of(s, sf);
 }
 
 vec3 material_emission_at(const scene *s, uint32_t instance_id, uint32_t prim, float b1, float b2)
 {
+    /* A light sample sees the emitter's front: the direction into the
+     * triangle against its winding normal. */
+    vec3 v[3];
+    scene_triangle_vertices(s, &s->instances[instance_id], prim, v);
+    vec3 d = v3_neg(v3_normalize(v3_cross(v3_sub(v[1], v[0]), v3_sub(v[2], v[0]))));
+    surface sf;
+    surface_from_hit(s, instance_id, prim, b1, b2, v3_is_finite(d) ? d : v3(0.0f, 0.0f, -1.0f), &sf);
+    return emission_of(s, &sf);
+}
+
+vec3 material_emission_estimate_triangle(const scene *s, uint32_t instance_id, uint32_t prim)
+{
     const instance *inst = &s->instances[instance_id];
-    const mesh *m = &s->meshes[inst->mesh_id];
-    const material *mat = scene_instance_material(s, inst, mesh_triangle_slot(m, prim));
-    float u = 0.0f, v = 0.0f;
-    if (m->uvs) {
-        const float *t = m->uvs + 6 * (size_t)prim;
-        float b0 = 1.0f - b1 - b2;
-        u = b0 * t[0] + b1 * t[2] + b2 * t[4];
-        v = b0 * t[1] + b1 * t[3] + b2 * t[5];
-    }
-    return emission_of(s, mat, u, v);
+    const material *m = scene_instance_material(s, inst, mesh_triangle_slot(&s->meshes[inst->mesh_id], prim));
+    if (!m->has_program)
+        return material_emission_estimate(s, m);
+    /* A textured emitter: the mean over seven points of the triangle, never
+     * zero, so that light picking proportional to it still reaches every
+     * part that emits (an estimate only sets the sampling density). */
+    static const float b[7][2] = {{1.0f / 3, 1.0f / 3}, {0.1f, 0.1f}, {0.8f, 0.1f}, {0.1f, 0.8f},
+                                  {0.45f, 0.1f}, {0.45f, 0.45f}, {0.1f, 0.45f}};
+    vec3 sum = v3s(0.0f);
+    for (int k = 0; k < 7; k++)
+        sum = v3_add(sum, material_emission_at(s, instance_id, prim, b[k][0], b[k][1]));
+    return v3_max(v3_scale(sum, 1.0f / 7.0f), v3s(1e-6f));
 }
 
 vec3 material_emission_estimate(const scene *s, const material *m)
@@ -184,9 +421,11 @@ vec3 material_transparency(const scene *s, const surface *sf)
     const material *m = sf->mat;
     if (!m->transparent)
         return sum;
+    phos_closure_desc local[PHOS_MAX_CLOSURES];
+    const phos_closure_desc *closures = material_eval(s, sf, local, NULL);
     for (uint32_t i = 0; i < m->closure_count; i++)
-        if (m->closures[i].type == PHOS_CLOSURE_TRANSPARENT)
-            sum = v3_add(sum, closure_weight(s, &m->closures[i], sf->u, sf->v));
+        if (closures[i].type == PHOS_CLOSURE_TRANSPARENT)
+            sum = v3_add(sum, closure_weight(s, &closures[i], sf->u, sf->v));
     return sum;
 }
 

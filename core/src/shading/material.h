@@ -15,7 +15,11 @@ typedef struct surface {
     vec3 ns;                /* shading normal, facing the ray origin */
     vec3 wo;                /* toward the ray origin */
     float u, v;             /* texture coordinates */
+    float b1, b2;           /* barycentrics of the hit in the triangle */
     int backfacing;         /* the ray arrived from behind the triangle's winding normal */
+    uint32_t ray_flags;     /* enum shader_ray_flags of the ray (Light Path node); 0 unless the caller sets it */
+    float ray_length;       /* scene units from the ray origin */
+    uint32_t ray_depth;
     uint32_t instance, prim;
     const material *mat;
 } surface;
@@ -24,6 +28,11 @@ typedef struct surface {
  * direction d (unit). */
 void surface_from_hit(const scene *s, uint32_t instance, uint32_t prim, float b1, float b2, vec3 d,
                       surface *out);
+
+/* Gives a material its shader program (api.c, after validation): folds
+ * it, writes the bindings that became constant into the closures, and
+ * keeps the program only if something still varies over the surface. */
+void material_set_program(const scene *s, material *m, shader_program *p);
 
 /* The BSDF at the surface, textures applied; wo = −d. */
 void material_bsdf(const scene *s, const surface *sf, bsdf *out);
@@ -34,6 +43,11 @@ vec3 material_emission_at(const scene *s, uint32_t instance, uint32_t prim, floa
 
 /* Mean emitted radiance of a material, for light power estimates. */
 vec3 material_emission_estimate(const scene *s, const material *m);
+/* The same for one triangle of an instance, where a program may vary it. */
+vec3 material_emission_estimate_triangle(const scene *s, uint32_t instance, uint32_t prim);
+
+/* What a shader program reads at the surface. */
+void material_shader_globals(const scene *s, const surface *sf, shader_globals *g);
 
 /* Whether some closure of the material can scatter into a delta lobe
  * (sharp mirror or glass, index-matched refraction): only such a surface

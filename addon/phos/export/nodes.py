@@ -1,0 +1,714 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Cycles' value nodes → shader-program instructions (docs/architecture.md,
+"Shader programs").
+
+`NodeCompiler.input(node, names, width)` gives the Value feeding a node's
+input: the socket's default when unlinked (or, for the sockets Cycles links
+implicitly, the texture coordinate or normal it reads), else the compiled
+output of the node behind reroutes, muted nodes and groups. Each node type
+has a handler returning its outputs; handlers are memoised per (node, group
+stack, bump offset), so a node used twice is computed once.
+
+A Bump node's Height is compiled three times: at the point and at two
+points moved along the surface (BUMP_OFFSET), as Cycles evaluates it; the
+texture coordinates inside those copies come from the moved points.
+
+Anything without a handler gives one warning naming the material and node,
+and its output socket's default value (the closest match).
+"""
+
+import math
+
+import numpy as np
+
+from .. import core
+from .program import Value, constant, is_const
+
+_GENERATED, _NORMAL, _UV, _OBJECT, _CAMERA = range(5)
+
+
+def _socket_default(socket, width):
+    value = getattr(socket, "default_value", None)
+    if value is None:
+        return constant(np.zeros(width))
+    try:
+        v = [float(x) for x in value[:3]]
+        if width == 1:
+            return constant(float(np.dot([0.2126, 0.7152, 0.0722], v)) if len(v) == 3 else v[0])
+        return constant(v if len(v) == 3 else [v[0]] * 3)
+    except TypeError:
+        return constant(float(value) if width == 1 else [float(value)] * 3)
+
+
+def _enum(prefix, identifier):
+    return getattr(core, prefix + identifier, None)
+
+
+def _mode_of(nc, node, prefix, identifier):
+    value = _enum(prefix, identifier)
+    if value is None:
+        nc.walker.note(node, "its setting %s is unknown to Phos; the first choice is used" % identifier)
+        return 0
+    return value
+
+
+def _dims(s):
+    return {'1D': 1, '2D': 2, '3D': 3, '4D': 4}.get(s, 3)
+
+
+class NodeCompiler:
+    def __init__(self, walker, program):
+        from .material import find_input, _resolve  # the walker's plumbing
+        self._find_input, self._resolve = find_input, _resolve
+        self.walker = walker
+        self.ctx = walker.ctx
+        self.p = program
+        self.bump = 0             # 0, or 1/2 while compiling a Bump's moved heights
+        self._memo = {}
+        self._active = set()
+
+    # ---------------------------------------------------------------- plumbing
+
+    def input(self, node, names, width, stack=None, implicit=None):
+        """The Value of a node's input (first of `names` that exists), or the
+        constant 0 when the node has none of them."""
+        names = (names,) if isinstance(names, str) else names
+        socket = self._find_input(node, *names)
+        if socket is None:
+            return constant(np.zeros(width)) if width == 3 else constant(0.0)
+        return self.socket(socket, width, self.walker.stack if stack is None else stack, implicit)
+
+    def socket(self, socket, width, stack, implicit=None):
+        src = self._resolve(socket, stack)
+        if src.node is None:
+            if implicit is not None and not socket.is_linked:
+                return self.p.convert(implicit(), width)
+            return self.p.convert(_socket_default(src.socket if src.socket is not None else socket, width), width)
+        outputs = self.node_outputs(src.node, src.stack)
+        value = outputs.get(src.output.identifier)
+        if value is None:
+            value = _socket_default(src.output, width)
+        return self.p.convert(value, width)
+
+    def node_outputs(self, node, stack):
+        key = (node.as_pointer(), tuple(g.as_pointer() for g in stack), self.bump)
+        if key in self._memo:
+            return self._memo[key]
+        if key in self._active:
+            self.ctx.warn("Phos: %s: the node tree has a cycle through node '%s'; the cycle is cut there"
+                          % (self.walker.owner, node.name))
+            return {}
+        handler = _HANDLERS.get(node.bl_idname)
+        self._active.add(key)
+        outer = self.walker.stack
+        self.walker.stack = stack
+        try:
+            if handler is None:
+                self.walker.unsupported(node, "using the default value of its output")
+                outputs = {}
+            else:
+                outputs = handler(self, node, stack)
+        finally:
+            self.walker.stack = outer
+            self._active.discard(key)
+        self._memo[key] = outputs
+        return outputs
+
+    def value_node_linked(self, socket, stack):
+        """Whether a socket is fed by a node this compiler evaluates."""
+        src = self._resolve(socket, stack)
+        return src.node is not None
+
+    # ------------------------------------------------------ implicit inputs
+
+    def coordinates(self):
+        """Texture Coordinate's outputs at the point (or at the bump's moved point)."""
+        if self.bump:
+            pos, gen, uv, obj, _ = self.p.emit(core.PHOS_OP_BUMP_OFFSET, [], [3, 3, 3, 3, 3], mode=self.bump)
+            base = self.p.emit(core.PHOS_OP_TEXTURE_COORDINATE, [], [3, 3, 3, 3, 3], mode=0)
+            return [gen, base[1], uv, obj, base[4]], pos
+        base = self.p.emit(core.PHOS_OP_TEXTURE_COORDINATE, [], [3, 3, 3, 3, 3], mode=0)
+        geometry = self.p.emit(core.PHOS_OP_GEOMETRY, [], [3, 3, 3, 3, 1])
+        return base, geometry[0]
+
+    def generated(self):
+        return self.coordinates()[0][_GENERATED]
+
+    def uv(self):
+        return self.coordinates()[0][_UV]
+
+    def normal(self):
+        return self.p.emit(core.PHOS_OP_GEOMETRY, [], [3, 3, 3, 3, 1])[1]
+
+    def mode(self, node, prefix, identifier):
+        """The core enum of a node setting (PHOS_<prefix><identifier>), or 0
+        with a warning for one a newer Blender added."""
+        return _mode_of(self, node, prefix, identifier)
+
+    def version_flags(self):
+        """Flags of MATH, VECTOR_MATH and HUE_SATURATION for the running
+        Blender's definitions (shading/nodes/node_util.h)."""
+        flags = 0
+        if not self.ctx.at_least(5, 0):
+            flags |= 32
+        if not self.ctx.at_least(4, 3):
+            flags |= 16
+        return flags
+
+    def legacy_texture_flag(self):
+        """Value 16 in the texture ops' flags: Blender 3.x's definitions."""
+        return 0 if self.ctx.at_least(4, 0) else 16
+
+    def check_texture_mapping(self, node):
+        mapping = getattr(node, "texture_mapping", None)
+        if mapping is None:
+            return
+        identity = (tuple(mapping.translation) == (0.0, 0.0, 0.0) and tuple(mapping.rotation) == (0.0, 0.0, 0.0)
+                    and tuple(mapping.scale) == (1.0, 1.0, 1.0) and not mapping.use_min and not mapping.use_max)
+        if not identity:
+            self.walker.note(node, "its Texture Mapping panel is not supported; ignored (use a Mapping node)")
+
+
+# ---------------------------------------------------------------- converters
+
+def _math(nc, node, stack):
+    op = nc.mode(node, "PHOS_MATH_", node.operation)
+    a, b, c = (nc.socket(node.inputs[k], 1, stack) for k in range(3))
+    flags = (1 if node.use_clamp else 0) | nc.version_flags()
+    return {"Value": nc.p.emit(core.PHOS_OP_MATH, [a, b, c], [1], mode=op, flags=flags)[0]}
+
+
+def _vector_math(nc, node, stack):
+    op = nc.mode(node, "PHOS_VECTOR_MATH_", node.operation)
+    a, b, c = (nc.socket(node.inputs[k], 3, stack) for k in range(3))
+    scale = nc.socket(node.inputs[3], 1, stack)
+    vec, val = nc.p.emit(core.PHOS_OP_VECTOR_MATH, [a, b, c, scale], [3, 1], mode=op, flags=nc.version_flags())
+    return {"Vector": vec, "Value": val}
+
+
+def _map_range(nc, node, stack):
+    mode = nc.mode(node, "PHOS_MAP_RANGE_", node.interpolation_type)
+    flags = 1 if node.clamp else 0
+    if getattr(node, "data_type", 'FLOAT') == 'FLOAT_VECTOR':
+        ins = [nc.socket(node.inputs[k], 3, stack) for k in (6, 7, 8, 9, 10, 11)]
+        return {"Vector": nc.p.emit(core.PHOS_OP_MAP_RANGE_VECTOR, ins, [3], mode=mode, flags=flags)[0]}
+    ins = [nc.socket(node.inputs[k], 1, stack) for k in range(6)]
+    return {"Result": nc.p.emit(core.PHOS_OP_MAP_RANGE, ins, [1], mode=mode, flags=flags)[0]}
+
+
+def _clamp_node(nc, node, stack):
+    ins = [nc.socket(node.inputs[k], 1, stack) for k in range(3)]
+    mode = nc.mode(node, "PHOS_CLAMP_", node.clamp_type)
+    return {"Result": nc.p.emit(core.PHOS_OP_CLAMP, ins, [1], mode=mode)[0]}
+
+
+def _combine_xyz(nc, node, stack):
+    ins = [nc.socket(node.inputs[k], 1, stack) for k in range(3)]
+    return {"Vector": nc.p.emit(core.PHOS_OP_COMBINE_XYZ, ins, [3])[0]}
+
+
+def _separate(nc, value, names):
+    """Components of a 3-wide Value as three float Values."""
+    if value.is_const:
+        return {n: constant(float(value.const[k])) for k, n in enumerate(names)}
+    p = nc.p
+    out = {}
+    for k, n in enumerate(names):
+        out[n] = Value(1, ref=(value.ref[0], value.ref[1] + k), program=p)
+    return out
+
+
+def _separate_xyz(nc, node, stack):
+    return _separate(nc, nc.socket(node.inputs[0], 3, stack), ("X", "Y", "Z"))
+
+
+def _math_value(nc, node, stack):
+    return {"Value": constant(float(node.outputs[0].default_value))}
+
+
+def _rgb(nc, node, stack):
+    return {"Color": constant([float(x) for x in node.outputs[0].default_value[:3]])}
+
+
+def _rgb_to_bw(nc, node, stack):
+    return {"Val": nc.p.convert(nc.socket(node.inputs[0], 3, stack), 1)}
+
+
+def _blackbody(nc, node, stack):
+    return {"Color": nc.p.emit(core.PHOS_OP_BLACKBODY, [nc.socket(node.inputs[0], 1, stack)], [3])[0]}
+
+
+def _wavelength(nc, node, stack):
+    return {"Color": nc.p.emit(core.PHOS_OP_WAVELENGTH, [nc.socket(node.inputs[0], 1, stack)], [3])[0]}
+
+
+# --------------------------------------------------------------------- colour
+
+def _mix(nc, node, stack):
+    """The Mix node (3.4+): float, vector or colour, uniform or per-axis factor."""
+    dt = node.data_type
+    sockets = {s.identifier: s for s in node.inputs}
+    clamp_factor = 2 if node.clamp_factor else 0
+    if dt == 'FLOAT':
+        fac, a, b = (nc.socket(sockets[k], 1, stack) for k in ("Factor_Float", "A_Float", "B_Float"))
+        return {"Result_Float": nc.p.emit(core.PHOS_OP_MIX_FLOAT, [fac, a, b], [1], flags=clamp_factor)[0]}
+    if dt == 'VECTOR':
+        uniform = getattr(node, "factor_mode", 'UNIFORM') == 'UNIFORM'
+        fac = nc.socket(sockets["Factor_Float" if uniform else "Factor_Vector"], 1 if uniform else 3, stack)
+        a, b = (nc.socket(sockets[k], 3, stack) for k in ("A_Vector", "B_Vector"))
+        flags = clamp_factor | (0 if uniform else 4)
+        return {"Result_Vector": nc.p.emit(core.PHOS_OP_MIX_VECTOR, [fac, a, b], [3], flags=flags,
+                                           in_widths=[1 if uniform else 3, 3, 3])[0]}
+    if dt != 'RGBA':
+        nc.walker.unsupported(node, "its %s data type is not supported; using its default" % dt)
+        return {}
+    fac = nc.socket(sockets["Factor_Float"], 1, stack)
+    a, b = (nc.socket(sockets[k], 3, stack) for k in ("A_Color", "B_Color"))
+    mode = nc.mode(node, "PHOS_BLEND_", node.blend_type)
+    flags = clamp_factor | (1 if node.clamp_result else 0)
+    return {"Result_Color": nc.p.emit(core.PHOS_OP_MIX_COLOR, [fac, a, b], [3], mode=mode, flags=flags)[0]}
+
+
+def _mix_rgb(nc, node, stack):
+    """The legacy MixRGB node: its factor is always clamped (Cycles)."""
+    fac = nc.socket(node.inputs[0], 1, stack)
+    a, b = nc.socket(node.inputs[1], 3, stack), nc.socket(node.inputs[2], 3, stack)
+    mode = nc.mode(node, "PHOS_BLEND_", node.blend_type)
+    flags = 2 | (1 if node.use_clamp else 0)
+    return {"Color": nc.p.emit(core.PHOS_OP_MIX_COLOR, [fac, a, b], [3], mode=mode, flags=flags)[0]}
+
+
+RAMP_TABLE_SIZE = 256  # Cycles bakes ramps and curves into this many entries
+
+
+def _color_ramp(nc, node, stack):
+    ramp = node.color_ramp
+    if ramp.color_mode != 'RGB' and ramp.interpolation not in {'CONSTANT', 'LINEAR'}:
+        pass  # evaluate() already blends in the ramp's colour mode
+    table = []
+    for i in range(RAMP_TABLE_SIZE):
+        table.extend(float(x) for x in ramp.evaluate(i / (RAMP_TABLE_SIZE - 1)))
+    offset = nc.p.add_table(table)
+    flags = 8 if ramp.interpolation == 'CONSTANT' else 0
+    fac = nc.socket(node.inputs[0], 1, stack)
+    color, alpha = nc.p.emit(core.PHOS_OP_RAMP, [fac], [3, 1], mode=RAMP_TABLE_SIZE, flags=flags, table=offset)
+    return {"Color": color, "Alpha": alpha}
+
+
+def _curve_range(mapping, curves):
+    """The x range a curve table spans: from the leftmost to the rightmost
+    point of the curves (Cycles bakes the same range)."""
+    xs = [point.location[0] for curve in curves for point in curve.points]
+    if not xs or max(xs) <= min(xs):
+        return 0.0, 1.0
+    return min(xs), max(xs)
+
+
+def _extrapolate(mapping):
+    return 1 if getattr(mapping, "extend", 'EXTRAPOLATED') == 'EXTRAPOLATED' else 0
+
+
+def _rgb_curves(nc, node, stack):
+    mapping = node.mapping
+    mapping.update()
+    curves = mapping.curves
+    lo, hi = _curve_range(mapping, curves[:4])
+    table = []
+    for i in range(RAMP_TABLE_SIZE):
+        t = lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)
+        c = mapping.evaluate(curves[3], t)
+        table.extend([mapping.evaluate(curves[0], c), mapping.evaluate(curves[1], c),
+                      mapping.evaluate(curves[2], c), 0.0])
+    offset = nc.p.add_table(table)
+    fac, color = nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], 3, stack)
+    return {"Color": nc.p.emit(core.PHOS_OP_CURVES_RGB, [fac, color], [3], mode=RAMP_TABLE_SIZE, table=offset,
+                               param=(lo, hi), flags=_extrapolate(mapping))[0]}
+
+
+def _vector_curves(nc, node, stack):
+    mapping = node.mapping
+    mapping.update()
+    curves = mapping.curves
+    lo, hi = _curve_range(mapping, curves[:3])
+    table = []
+    for i in range(RAMP_TABLE_SIZE):
+        t = lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)
+        table.extend([mapping.evaluate(curves[0], t), mapping.evaluate(curves[1], t),
+                      mapping.evaluate(curves[2], t), 0.0])
+    offset = nc.p.add_table(table)
+    fac, vec = nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], 3, stack)
+    return {"Vector": nc.p.emit(core.PHOS_OP_CURVES_VECTOR, [fac, vec], [3], mode=RAMP_TABLE_SIZE, table=offset,
+                                param=(lo, hi), flags=_extrapolate(mapping))[0]}
+
+
+def _float_curve(nc, node, stack):
+    mapping = node.mapping
+    mapping.update()
+    curve = mapping.curves[0]
+    lo, hi = _curve_range(mapping, [curve])
+    table = []
+    for i in range(RAMP_TABLE_SIZE):
+        table.extend([mapping.evaluate(curve, lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)), 0.0, 0.0, 0.0])
+    offset = nc.p.add_table(table)
+    fac, value = nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], 1, stack)
+    return {"Value": nc.p.emit(core.PHOS_OP_CURVE_FLOAT, [fac, value], [1], mode=RAMP_TABLE_SIZE, table=offset,
+                               param=(lo, hi), flags=_extrapolate(mapping))[0]}
+
+
+def _hue_saturation(nc, node, stack):
+    ins = [nc.socket(node.inputs[k], 1, stack) for k in range(4)] + [nc.socket(node.inputs[4], 3, stack)]
+    return {"Color": nc.p.emit(core.PHOS_OP_HUE_SATURATION, ins, [3], flags=nc.version_flags())[0]}
+
+
+def _bright_contrast(nc, node, stack):
+    ins = [nc.socket(node.inputs[0], 3, stack), nc.socket(node.inputs[1], 1, stack),
+           nc.socket(node.inputs[2], 1, stack)]
+    return {"Color": nc.p.emit(core.PHOS_OP_BRIGHT_CONTRAST, ins, [3])[0]}
+
+
+def _gamma(nc, node, stack):
+    ins = [nc.socket(node.inputs[0], 3, stack), nc.socket(node.inputs[1], 1, stack)]
+    return {"Color": nc.p.emit(core.PHOS_OP_GAMMA, ins, [3])[0]}
+
+
+def _invert(nc, node, stack):
+    ins = [nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], 3, stack)]
+    return {"Color": nc.p.emit(core.PHOS_OP_INVERT, ins, [3])[0]}
+
+
+def _separate_color(nc, node, stack):
+    mode = nc.mode(node, "PHOS_COLOR_MODEL_", getattr(node, "mode", 'RGB'))
+    out = nc.p.emit(core.PHOS_OP_SEPARATE_COLOR, [nc.socket(node.inputs[0], 3, stack)], [3], mode=mode)[0]
+    return _separate(nc, out, ("Red", "Green", "Blue"))
+
+
+def _combine_color(nc, node, stack):
+    mode = nc.mode(node, "PHOS_COLOR_MODEL_", getattr(node, "mode", 'RGB'))
+    ins = [nc.socket(node.inputs[k], 1, stack) for k in range(3)]
+    return {"Color": nc.p.emit(core.PHOS_OP_COMBINE_COLOR, ins, [3], mode=mode)[0]}
+
+
+def _separate_rgb(nc, node, stack):
+    return _separate(nc, nc.socket(node.inputs[0], 3, stack), ("R", "G", "B"))
+
+
+def _combine_rgb(nc, node, stack):
+    ins = [nc.socket(node.inputs[k], 1, stack) for k in range(3)]
+    return {"Image": nc.p.emit(core.PHOS_OP_COMBINE_COLOR, ins, [3], mode=core.PHOS_COLOR_MODEL_RGB)[0]}
+
+
+def _separate_hsv(nc, node, stack):
+    out = nc.p.emit(core.PHOS_OP_SEPARATE_COLOR, [nc.socket(node.inputs[0], 3, stack)], [3],
+                    mode=core.PHOS_COLOR_MODEL_HSV)[0]
+    return _separate(nc, out, ("H", "S", "V"))
+
+
+def _combine_hsv(nc, node, stack):
+    ins = [nc.socket(node.inputs[k], 1, stack) for k in range(3)]
+    return {"Color": nc.p.emit(core.PHOS_OP_COMBINE_COLOR, ins, [3], mode=core.PHOS_COLOR_MODEL_HSV)[0]}
+
+
+# ------------------------------------------------------------------- textures
+
+def _texture_vector(nc, node, stack, implicit):
+    nc.check_texture_mapping(node)
+    return nc.input(node, "Vector", 3, stack, implicit=implicit)
+
+
+def _tex_image(nc, node, stack):
+    from . import image as image_export
+    image_id = image_export.add_image(node, nc.ctx, nc.walker.owner)
+    if image_id is None:
+        # Cycles' missing-image colour is magenta; Phos renders as unlinked.
+        return {}
+    vec = _texture_vector(nc, node, stack, nc.uv)
+    interp = {'Closest': core.PHOS_IMAGE_CLOSEST, 'Cubic': core.PHOS_IMAGE_CUBIC,
+              'Smart': core.PHOS_IMAGE_CUBIC}.get(node.interpolation, core.PHOS_IMAGE_LINEAR)
+    ext = {'EXTEND': core.PHOS_IMAGE_EXTEND, 'CLIP': core.PHOS_IMAGE_CLIP,
+           'MIRROR': core.PHOS_IMAGE_MIRROR}.get(node.extension, core.PHOS_IMAGE_REPEAT)
+    flags = interp | ext
+    alpha_linked = any(l.is_valid for l in node.outputs["Alpha"].links) if "Alpha" in node.outputs else False
+    alpha_mode = getattr(node.image, "alpha_mode", 'STRAIGHT')
+    if alpha_linked or alpha_mode in {'CHANNEL_PACKED', 'NONE'} or node.image.colorspace_settings.is_data:
+        flags |= core.PHOS_IMAGE_UNASSOCIATE
+    mode = nc.mode(node, "PHOS_PROJECTION_", node.projection)
+    color, alpha = nc.p.emit(core.PHOS_OP_TEX_IMAGE, [vec], [3, 1], mode=mode, flags=flags, table=image_id,
+                             param=(getattr(node, "projection_blend", 0.0),))
+    return {"Color": color, "Alpha": alpha}
+
+
+def _tex_noise(nc, node, stack):
+    vec = _texture_vector(nc, node, stack, nc.generated)
+    names = ("W", "Scale", "Detail", "Roughness", "Lacunarity", "Offset", "Gain", "Distortion")
+    defaults = {"Lacunarity": 2.0, "Gain": 1.0}
+    ins = [vec] + [nc.input(node, n, 1, stack) if nc._find_input(node, n) is not None
+                   else constant(defaults.get(n, 0.0)) for n in names]
+    mode = nc.mode(node, "PHOS_NOISE_", getattr(node, "noise_type", 'FBM'))
+    flags = _dims(node.noise_dimensions) | (8 if getattr(node, "normalize", True) else 0) | nc.legacy_texture_flag()
+    fac, color = nc.p.emit(core.PHOS_OP_TEX_NOISE, ins, [1, 3], mode=mode, flags=flags)
+    return {"Fac": fac, "Color": color}
+
+
+def _tex_musgrave(nc, node, stack):
+    vec = _texture_vector(nc, node, stack, nc.generated)
+    names = ("W", "Scale", "Detail", "Dimension", "Lacunarity", "Offset", "Gain")
+    ins = [vec] + [nc.input(node, n, 1, stack) for n in names]
+    mode = nc.mode(node, "PHOS_NOISE_", node.musgrave_type)
+    fac = nc.p.emit(core.PHOS_OP_TEX_MUSGRAVE, ins, [1], mode=mode, flags=_dims(node.musgrave_dimensions))[0]
+    return {"Fac": fac, "Height": fac}
+
+
+def _tex_white_noise(nc, node, stack):
+    vec = _texture_vector(nc, node, stack, nc.generated)
+    value, color = nc.p.emit(core.PHOS_OP_TEX_WHITE_NOISE, [vec, nc.input(node, "W", 1, stack)], [1, 3],
+                             flags=_dims(node.noise_dimensions))
+    return {"Value": value, "Color": color}
+
+
+def _tex_voronoi(nc, node, stack):
+    vec = _texture_vector(nc, node, stack, nc.generated)
+    names = ("W", "Scale", "Detail", "Roughness", "Lacunarity", "Smoothness", "Exponent", "Randomness")
+    defaults = {"Roughness": 0.5, "Lacunarity": 2.0}
+    ins = [vec] + [nc.input(node, n, 1, stack) if nc._find_input(node, n) is not None
+                   else constant(defaults.get(n, 0.0)) for n in names]
+    mode = nc.mode(node, "PHOS_VORONOI_", node.feature)
+    metric = nc.mode(node, "PHOS_VORONOI_", node.distance)
+    flags = (_dims(node.voronoi_dimensions) | (metric << 5) | (8 if getattr(node, "normalize", False) else 0)
+             | nc.legacy_texture_flag() | (128 if nc.ctx.at_least(5, 0) else 0))
+    dist, color, pos, w, radius = nc.p.emit(core.PHOS_OP_TEX_VORONOI, ins, [1, 3, 3, 1, 1], mode=mode, flags=flags)
+    return {"Distance": dist, "Color": color, "Position": pos, "W": w, "Radius": radius}
+
+
+def _tex_wave(nc, node, stack):
+    vec = _texture_vector(nc, node, stack, nc.generated)
+    names = ("Scale", "Distortion", "Detail", "Detail Scale", "Detail Roughness", "Phase Offset")
+    ins = [vec] + [nc.input(node, n, 1, stack) for n in names]
+    mode = nc.mode(node, "PHOS_WAVE_", node.wave_type)
+    bands = {'X': 0, 'Y': 1, 'Z': 2, 'DIAGONAL': 3}.get(getattr(node, "bands_direction", 'X'), 0)
+    rings = {'X': 0, 'Y': 1, 'Z': 2, 'SPHERICAL': 3}.get(getattr(node, "rings_direction", 'X'), 0)
+    profile = {'SIN': 0, 'SAW': 1, 'TRI': 2}.get(node.wave_profile, 0)
+    flags = bands | (rings << 4) | (profile << 8) | (nc.legacy_texture_flag() << 8)
+    color, fac = nc.p.emit(core.PHOS_OP_TEX_WAVE, ins, [3, 1], mode=mode, flags=flags)
+    return {"Color": color, "Fac": fac}
+
+
+def _tex_brick(nc, node, stack):
+    vec = _texture_vector(nc, node, stack, nc.generated)
+    ins = [vec] + [nc.input(node, n, 3, stack) for n in ("Color1", "Color2", "Mortar")] + \
+        [nc.input(node, n, 1, stack) for n in ("Scale", "Mortar Size", "Mortar Smooth", "Bias", "Brick Width",
+                                               "Row Height")]
+    param = (node.offset, float(node.offset_frequency), node.squash, float(node.squash_frequency))
+    color, fac = nc.p.emit(core.PHOS_OP_TEX_BRICK, ins, [3, 1], param=param)
+    return {"Color": color, "Fac": fac}
+
+
+def _tex_checker(nc, node, stack):
+    vec = _texture_vector(nc, node, stack, nc.generated)
+    ins = [vec, nc.input(node, "Color1", 3, stack), nc.input(node, "Color2", 3, stack),
+           nc.input(node, "Scale", 1, stack)]
+    color, fac = nc.p.emit(core.PHOS_OP_TEX_CHECKER, ins, [3, 1])
+    return {"Color": color, "Fac": fac}
+
+
+def _tex_magic(nc, node, stack):
+    vec = _texture_vector(nc, node, stack, nc.generated)
+    ins = [vec, nc.input(node, "Scale", 1, stack), nc.input(node, "Distortion", 1, stack)]
+    color, fac = nc.p.emit(core.PHOS_OP_TEX_MAGIC, ins, [3, 1], mode=int(node.turbulence_depth),
+                           flags=1 if nc.ctx.at_least(5, 3) else 0)
+    return {"Color": color, "Fac": fac}
+
+
+def _tex_gradient(nc, node, stack):
+    vec = _texture_vector(nc, node, stack, nc.generated)
+    mode = nc.mode(node, "PHOS_GRADIENT_", node.gradient_type)
+    color, fac = nc.p.emit(core.PHOS_OP_TEX_GRADIENT, [vec], [3, 1], mode=mode)
+    return {"Color": color, "Fac": fac}
+
+
+# --------------------------------------------------------------------- inputs
+
+def _tex_coord(nc, node, stack):
+    if getattr(node, "object", None) is not None:
+        nc.walker.note(node, "coordinates from another object are not supported; its own are used")
+    (gen, normal, uv, obj, cam), pos = nc.coordinates()
+    window, reflection = nc.p.emit(core.PHOS_OP_TEXTURE_COORDINATE, [], [3, 3], mode=1)
+    return {"Generated": gen, "Normal": normal, "UV": uv, "Object": obj, "Camera": cam, "Window": window,
+            "Reflection": reflection}
+
+
+def _uv_map(nc, node, stack):
+    if getattr(node, "uv_map", ""):
+        nc.walker.note(node, "UV map '%s' is read as the active render UV map" % node.uv_map)
+    return {"UV": nc.uv()}
+
+
+def _geometry(nc, node, stack):
+    coords, pos = nc.coordinates()
+    _, normal, true_normal, incoming, backfacing = nc.p.emit(core.PHOS_OP_GEOMETRY, [], [3, 3, 3, 3, 1])
+    linked = {s.identifier for s in node.outputs if s.is_linked}
+    unsupported = linked - {"Position", "Normal", "True Normal", "Incoming", "Backfacing"}
+    if unsupported:
+        nc.walker.note(node, "outputs %s are not supported; 0 is used" % ", ".join(sorted(unsupported)))
+    return {"Position": pos, "Normal": normal, "True Normal": true_normal, "Incoming": incoming,
+            "Backfacing": backfacing}
+
+
+def _object_info(nc, node, stack):
+    location, random, index = nc.p.emit(core.PHOS_OP_OBJECT_INFO, [], [3, 1, 1])
+    return {"Location": location, "Random": random, "Object Index": index}
+
+
+def _fresnel(nc, node, stack):
+    ins = [nc.input(node, "IOR", 1, stack), nc.input(node, "Normal", 3, stack, implicit=nc.normal)]
+    return {"Fac": nc.p.emit(core.PHOS_OP_FRESNEL, ins, [1])[0]}
+
+
+def _layer_weight(nc, node, stack):
+    ins = [nc.input(node, "Blend", 1, stack), nc.input(node, "Normal", 3, stack, implicit=nc.normal)]
+    fresnel, facing = nc.p.emit(core.PHOS_OP_LAYER_WEIGHT, ins, [1, 1])
+    return {"Fresnel": fresnel, "Facing": facing}
+
+
+def _light_path(nc, node, stack):
+    a = nc.p.emit(core.PHOS_OP_LIGHT_PATH, [], [1, 1, 1, 1, 1], mode=0)
+    b = nc.p.emit(core.PHOS_OP_LIGHT_PATH, [], [1, 1, 1, 1, 1], mode=1)
+    names = ("Is Camera Ray", "Is Shadow Ray", "Is Diffuse Ray", "Is Glossy Ray", "Is Singular Ray",
+             "Is Reflection Ray", "Is Transmission Ray", "Ray Length", "Ray Depth", "Transparent Depth")
+    out = dict(zip(names, a + b))
+    out["Diffuse Depth"] = out["Glossy Depth"] = out["Transmission Depth"] = out["Ray Depth"]
+    return out
+
+
+# --------------------------------------------------------------------- vector
+
+def _mapping(nc, node, stack):
+    vec = nc.input(node, "Vector", 3, stack)
+    mode = nc.mode(node, "PHOS_MAPPING_", node.vector_type)
+    ins = [vec] + [nc.input(node, n, 3, stack) if nc._find_input(node, n) is not None
+                   else constant((0.0, 0.0, 0.0)) for n in ("Location", "Rotation")] + \
+        [nc.input(node, "Scale", 3, stack)]
+    return {"Vector": nc.p.emit(core.PHOS_OP_MAPPING, ins, [3], mode=mode)[0]}
+
+
+def _vector_rotate(nc, node, stack):
+    ins = [nc.input(node, "Vector", 3, stack), nc.input(node, "Center", 3, stack),
+           nc.input(node, "Axis", 3, stack), nc.input(node, "Angle", 1, stack),
+           nc.input(node, "Rotation", 3, stack)]
+    mode = nc.mode(node, "PHOS_VECTOR_ROTATE_", node.rotation_type)
+    return {"Vector": nc.p.emit(core.PHOS_OP_VECTOR_ROTATE, ins, [3], mode=mode,
+                                flags=1 if node.invert else 0)[0]}
+
+
+def _vector_transform(nc, node, stack):
+    spaces = {'WORLD': 0, 'OBJECT': 1, 'CAMERA': 2}
+    mode = nc.mode(node, "PHOS_VECTOR_TRANSFORM_", node.vector_type)
+    flags = spaces[node.convert_from] | (spaces[node.convert_to] << 4)
+    return {"Vector": nc.p.emit(core.PHOS_OP_VECTOR_TRANSFORM, [nc.input(node, "Vector", 3, stack)], [3],
+                                mode=mode, flags=flags)[0]}
+
+
+def _normal(nc, node, stack):
+    direction = [float(x) for x in node.outputs["Normal"].default_value[:3]]
+    normal, dot = nc.p.emit(core.PHOS_OP_NORMAL, [nc.input(node, "Normal", 3, stack)], [3, 1], param=direction)
+    return {"Normal": normal, "Dot": dot}
+
+
+def _normal_map(nc, node, stack):
+    if node.space not in {'TANGENT', 'OBJECT', 'WORLD'}:
+        nc.walker.note(node, "the %s space is not supported; tangent space is used" % node.space)
+    mode = _enum("PHOS_NORMAL_MAP_", node.space) or core.PHOS_NORMAL_MAP_TANGENT
+    if mode == core.PHOS_NORMAL_MAP_TANGENT:
+        nc.ctx.tangents_wanted = True
+    ins = [nc.input(node, "Strength", 1, stack), nc.input(node, "Color", 3, stack)]
+    return {"Normal": nc.p.emit(core.PHOS_OP_NORMAL_MAP, ins, [3], mode=mode)[0]}
+
+
+def _bump(nc, node, stack):
+    height_socket = nc._find_input(node, "Height")
+    heights = []
+    outer = nc.bump
+    try:
+        for mode in (0, 1, 2):
+            nc.bump = mode if outer == 0 else outer
+            heights.append(nc.socket(height_socket, 1, stack))
+    finally:
+        nc.bump = outer
+    ins = [nc.input(node, "Strength", 1, stack), nc.input(node, "Distance", 1, stack)] + heights + \
+        [nc.input(node, "Normal", 3, stack, implicit=nc.normal)]
+    return {"Normal": nc.p.emit(core.PHOS_OP_BUMP, ins, [3], flags=1 if node.invert else 0)[0]}
+
+
+_HANDLERS = {
+    'ShaderNodeMath': _math,
+    'ShaderNodeVectorMath': _vector_math,
+    'ShaderNodeMapRange': _map_range,
+    'ShaderNodeClamp': _clamp_node,
+    'ShaderNodeCombineXYZ': _combine_xyz,
+    'ShaderNodeSeparateXYZ': _separate_xyz,
+    'ShaderNodeValue': _math_value,
+    'ShaderNodeRGB': _rgb,
+    'ShaderNodeRGBToBW': _rgb_to_bw,
+    'ShaderNodeBlackbody': _blackbody,
+    'ShaderNodeWavelength': _wavelength,
+    'ShaderNodeMix': _mix,
+    'ShaderNodeMixRGB': _mix_rgb,
+    'ShaderNodeValToRGB': _color_ramp,
+    'ShaderNodeRGBCurve': _rgb_curves,
+    'ShaderNodeVectorCurve': _vector_curves,
+    'ShaderNodeFloatCurve': _float_curve,
+    'ShaderNodeHueSaturation': _hue_saturation,
+    'ShaderNodeBrightContrast': _bright_contrast,
+    'ShaderNodeGamma': _gamma,
+    'ShaderNodeInvert': _invert,
+    'ShaderNodeSeparateColor': _separate_color,
+    'ShaderNodeCombineColor': _combine_color,
+    'ShaderNodeSeparateRGB': _separate_rgb,
+    'ShaderNodeCombineRGB': _combine_rgb,
+    'ShaderNodeSeparateHSV': _separate_hsv,
+    'ShaderNodeCombineHSV': _combine_hsv,
+    'ShaderNodeTexImage': _tex_image,
+    'ShaderNodeTexNoise': _tex_noise,
+    'ShaderNodeTexMusgrave': _tex_musgrave,
+    'ShaderNodeTexWhiteNoise': _tex_white_noise,
+    'ShaderNodeTexVoronoi': _tex_voronoi,
+    'ShaderNodeTexWave': _tex_wave,
+    'ShaderNodeTexBrick': _tex_brick,
+    'ShaderNodeTexChecker': _tex_checker,
+    'ShaderNodeTexMagic': _tex_magic,
+    'ShaderNodeTexGradient': _tex_gradient,
+    'ShaderNodeTexCoord': _tex_coord,
+    'ShaderNodeUVMap': _uv_map,
+    'ShaderNodeNewGeometry': _geometry,
+    'ShaderNodeObjectInfo': _object_info,
+    'ShaderNodeFresnel': _fresnel,
+    'ShaderNodeLayerWeight': _layer_weight,
+    'ShaderNodeLightPath': _light_path,
+    'ShaderNodeMapping': _mapping,
+    'ShaderNodeVectorRotate': _vector_rotate,
+    'ShaderNodeVectorTransform': _vector_transform,
+    'ShaderNodeNormal': _normal,
+    'ShaderNodeNormalMap': _normal_map,
+    'ShaderNodeBump': _bump,
+}
+
+
+def displacement_bump(nc, node, stack):
+    """The Material Output's Displacement through a Displacement node,
+    rendered as bump (Cycles' default method): the surface normal of the
+    height (Height − Midlevel)·Scale, evaluated at the point and at the two
+    moved points, as a Bump of distance 1 and strength 1."""
+    if getattr(node, "space", 'OBJECT') == 'OBJECT':
+        pass  # object-space heights scale with the object; scenes at unit scale agree
+    heights = []
+    outer = nc.bump
+    try:
+        for mode in (0, 1, 2):
+            nc.bump = mode
+            h = nc.input(node, "Height", 1, stack)
+            mid = nc.input(node, "Midlevel", 1, stack)
+            scale = nc.input(node, "Scale", 1, stack)
+            heights.append((h - mid) * scale)
+    finally:
+        nc.bump = outer
+    ins = [constant(1.0), constant(1.0)] + heights + [nc.input(node, "Normal", 3, stack, implicit=nc.normal)]
+    return nc.p.emit(core.PHOS_OP_BUMP, ins, [3])[0]

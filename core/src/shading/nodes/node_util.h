@@ -1,0 +1,38 @@
+/*
+ * node_util.h — scalar helpers the node families share, with Cycles'
+ * conventions where they differ from C's, and the flag bits that select an
+ * older Blender's definitions of a node.
+ */
+#ifndef PHOS_NODE_UTIL_H
+#define PHOS_NODE_UTIL_H
+
+#include <limits.h>
+
+#include "util/vec.h"
+
+/* Flag bits of MATH, VECTOR_MATH and HUE_SATURATION that select the
+ * definitions of older Blender versions (converter.c and color.c list
+ * what each changes): the add-on sets both for 3.4 to 4.2, PRE_5_0 alone
+ * for 4.3 to 4.5, neither for 5.0 and later. */
+#define PHOS_NODE_PRE_4_3 16u
+#define PHOS_NODE_PRE_5_0 32u
+
+/* min and max as comparisons: a NaN first operand gives the second. */
+static inline float node_min(float a, float b) { return a < b ? a : b; }
+static inline float node_max(float a, float b) { return a > b ? a : b; }
+
+/* min(max(x, lo), hi): a NaN x gives lo, and hi wins when lo > hi. */
+static inline float node_clamp(float x, float lo, float hi) { return node_min(node_max(x, lo), hi); }
+static inline vec3 node_saturate3(vec3 c)
+{
+    return v3(node_clamp(c.x, 0.0f, 1.0f), node_clamp(c.y, 0.0f, 1.0f), node_clamp(c.z, 0.0f, 1.0f));
+}
+
+/* Truncation toward zero as x86's cvttss2si does it: out of range and NaN
+ * give INT_MIN (a plain (int) cast is undefined there). */
+static inline int node_float_to_int(float x)
+{
+    return (x > -2147483648.0f && x < 2147483648.0f) ? (int)x : INT_MIN;
+}
+
+#endif /* PHOS_NODE_UTIL_H */

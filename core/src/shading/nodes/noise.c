@@ -1,0 +1,503 @@
+/*
+ * noise.c — gradient noise and its fractal sums (noise.h), as Cycles
+ * computes them.
+ *
+ * Perlin noise (Perlin 2002, "Improving Noise"): the point p splits into
+ * the lattice cell P = ⌊p⌋ and the offset f = p − P; each corner c of the
+ * cell contributes g_c · (f − c), with the gradient g_c picked by hashing
+ * c, and the contributions blend with the quintic fade
+ * s(t) = 6t⁵ − 15t⁴ + 10t³, so the noise is C² and 0 at lattice points.
+ *
+ * Float order. Cycles' CPU kernels compute the 2-4D noise with SIMD code
+ * whose rounding differs from its scalar fallback; this file follows the
+ * AVX2 kernel (the one x86-64 CPUs of the last decade run):
+ *  - fade as (t·t)·(t·b) with a = fma(t, 6, −15), b = fma(t, a, 10);
+ *  - linear blends as a + t(b − a), along x, then y, then z, and in 4D
+ *    along w first (the SSE4.2 kernel and ARM blend w last);
+ *  - 1D stays scalar: t·t·t·(t(6t − 15) + 10).
+ * Cycles builds its kernels with -ffast-math, so its compiler may fuse
+ * some of the other multiply-adds; results can differ in the last bits.
+ */
+#include "shading/nodes/noise.h"
+
+#include "phos.h"
+#include "shading/nodes/node_util.h"
+
+/* ------------------------------------------------------------ helpers */
+
+/* a·b + c rounded once: fmaf where the hardware has it, else in double,
+ * whose product of two floats is exact. */
+static inline float fused_madd(float a, float b, float c)
+{
+#ifdef FP_FAST_FMAF
+    return fmaf(a, b, c);
+#else
+    return (float)((double)a * (double)b + (double)c);
+#endif
+}
+
+static inline float lerp(float a, float b, float t) { return a + t * (b - a); }
+
+/* Cell index and offset within the cell; the index wraps as x86's
+ * conversion gives it (INT_MIN for NaN and beyond ±2^31). */
+static inline float floorfrac(float x, uint32_t *cell)
+{
+    float f = floorf(x);
+    *cell = (uint32_t)node_float_to_int(f);
+    return x - f;
+}
+
+static inline float fade_scalar(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
+
+static inline float fade_simd(float t)
+{
+    float a = fused_madd(t, 6.0f, -15.0f);
+    float b = fused_madd(t, a, 10.0f);
+    return (t * t) * (t * b);
+}
+
+static inline float negate_if(float v, uint32_t cond) { return cond ? -v : v; }
+
+/* Gradients (Perlin 2002 §3, as in Cycles/OSL): 1D slopes ±1..±8; 2D the
+ * eight (±1, ±2), (±2, ±1); 3D the twelve cube edge midpoints (four
+ * repeated); 4D the thirty-two (0, ±1, ±1, ±1) permutations. */
+static inline float grad1(uint32_t hash, float x)
+{
+    uint32_t h = hash & 15u;
+    float g = (float)(1u + (h & 7u));
+    return negate_if(g, h & 8u) * x;
+}
+
+static inline float grad2(uint32_t hash, float x, float y)
+{
+    uint32_t h = hash & 7u;
+    float u = h < 4u ? x : y;
+    float v = 2.0f * (h < 4u ? y : x);
+    return negate_if(u, h & 1u) + negate_if(v, h & 2u);
+}
+
+static inline float grad3(uint32_t hash, float x, float y, float z)
+{
+    uint32_t h = hash & 15u;
+    float u = h < 8u ? x : y;
+    float vt = (h == 12u || h == 14u) ? x : z;
+    float v = h < 4u ? y : vt;
+    return negate_if(u, h & 1u) + negate_if(v, h & 2u);
+}
+
+static inline float grad4(uint32_t hash, float x, float y, float z, float w)
+{
+    uint32_t h = hash & 31u;
+    float u = h < 24u ? x : y;
+    float v = h < 16u ? y : z;
+    float s = h < 8u ? z : w;
+    return negate_if(u, h & 1u) + negate_if(v, h & 2u) + negate_if(s, h & 4u);
+}
+
+/* ------------------------------------------------ lattice noise, 1D-4D */
+
+float perlin_lattice_1d(float x)
+{
+    uint32_t X;
+    float fx = floorfrac(x, &X);
+    float u = fade_scalar(fx);
+    return lerp(grad1(hash_uint(X), fx), grad1(hash_uint(X + 1u), fx - 1.0f), u);
+}
+
+float perlin_lattice_2d(float x, float y)
+{
+    uint32_t X, Y;
+    float fx = floorfrac(x, &X), fy = floorfrac(y, &Y);
+    float u = fade_simd(fx), v = fade_simd(fy);
+    float g00 = grad2(hash_uint2(X, Y), fx, fy);
+    float g01 = grad2(hash_uint2(X, Y + 1u), fx, fy - 1.0f);
+    float g10 = grad2(hash_uint2(X + 1u, Y), fx - 1.0f, fy);
+    float g11 = grad2(hash_uint2(X + 1u, Y + 1u), fx - 1.0f, fy - 1.0f);
+    return lerp(lerp(g00, g10, u), lerp(g01, g11, u), v);
+}
+
+/* Trilinear blend of corner values c[x][y][z]: x, then y, then z. */
+static inline float blend3(const float c[2][2][2], float u, float v, float w)
+{
+    float s00 = lerp(c[0][0][0], c[1][0][0], u);
+    float s01 = lerp(c[0][0][1], c[1][0][1], u);
+    float s10 = lerp(c[0][1][0], c[1][1][0], u);
+    float s11 = lerp(c[0][1][1], c[1][1][1], u);
+    return lerp(lerp(s00, s10, v), lerp(s01, s11, v), w);
+}
+
+float perlin_lattice_3d(float x, float y, float z)
+{
+    uint32_t X, Y, Z;
+    float fx = floorfrac(x, &X), fy = floorfrac(y, &Y), fz = floorfrac(z, &Z);
+    float c[2][2][2];
+    for (uint32_t i = 0; i < 2; i++)
+        for (uint32_t j = 0; j < 2; j++)
+            for (uint32_t k = 0; k < 2; k++)
+                c[i][j][k] = grad3(hash_uint3(X + i, Y + j, Z + k), fx - (float)i, fy - (float)j, fz - (float)k);
+    return blend3(c, fade_simd(fx), fade_simd(fy), fade_simd(fz));
+}
+
+float perlin_lattice_4d(float x, float y, float z, float w)
+{
+    uint32_t X, Y, Z, W;
+    float fx = floorfrac(x, &X), fy = floorfrac(y, &Y), fz = floorfrac(z, &Z), fw = floorfrac(w, &W);
+    float s = fade_simd(fw);
+    float c[2][2][2];
+    for (uint32_t i = 0; i < 2; i++)
+        for (uint32_t j = 0; j < 2; j++)
+            for (uint32_t k = 0; k < 2; k++) {
+                float dx = fx - (float)i, dy = fy - (float)j, dz = fz - (float)k;
+                float g0 = grad4(hash_uint4(X + i, Y + j, Z + k, W), dx, dy, dz, fw);
+                float g1 = grad4(hash_uint4(X + i, Y + j, Z + k, W + 1u), dx, dy, dz, fw - 1.0f);
+                c[i][j][k] = lerp(g0, g1, s); /* w first, as the AVX2 kernel */
+            }
+    return blend3(c, fade_simd(fx), fade_simd(fy), fade_simd(fz));
+}
+
+/* ------------------------------------------------ scaled signed noise */
+
+/* Wrap a coordinate to (−10⁵, 10⁵), shifting those beyond 10⁶ by half a
+ * cell so the wrapped lattice does not line up with the original. */
+static inline float wrap_coordinate(float p)
+{
+    float correction = fabsf(p) >= 1000000.0f ? 0.5f : 0.0f;
+    return fmodf(p, 100000.0f) + correction;
+}
+
+static inline float finite_or_zero(float x) { return isfinite(x) ? x : 0.0f; }
+
+#define NOISE_SCALE_1D 0.2500f
+#define NOISE_SCALE_2D 0.6616f
+#define NOISE_SCALE_3D 0.9820f
+#define NOISE_SCALE_4D 0.8344f
+
+float perlin_signed_1d(float p) { return NOISE_SCALE_1D * perlin_lattice_1d(wrap_coordinate(p)); }
+
+float perlin_signed_2d(float x, float y)
+{
+    return NOISE_SCALE_2D * perlin_lattice_2d(wrap_coordinate(x), wrap_coordinate(y));
+}
+
+float perlin_signed_3d(vec3 p)
+{
+    return NOISE_SCALE_3D * perlin_lattice_3d(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z));
+}
+
+float perlin_signed_4d(vec3 p, float w)
+{
+    return NOISE_SCALE_4D * perlin_lattice_4d(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z),
+                                              wrap_coordinate(w));
+}
+
+float perlin_1d(float p) { return 0.5f * perlin_signed_1d(p) + 0.5f; }
+float perlin_2d(float x, float y) { return 0.5f * perlin_signed_2d(x, y) + 0.5f; }
+float perlin_3d(vec3 p) { return 0.5f * perlin_signed_3d(p) + 0.5f; }
+float perlin_4d(vec3 p, float w) { return 0.5f * perlin_signed_4d(p, w) + 0.5f; }
+
+float perlin_signed_legacy_1d(float p) { return NOISE_SCALE_1D * finite_or_zero(perlin_lattice_1d(p)); }
+
+float perlin_signed_legacy_2d(float x, float y)
+{
+    return NOISE_SCALE_2D * finite_or_zero(perlin_lattice_2d(x, y));
+}
+
+float perlin_signed_legacy_3d(vec3 p)
+{
+    return NOISE_SCALE_3D * finite_or_zero(perlin_lattice_3d(p.x, p.y, p.z));
+}
+
+float perlin_signed_legacy_4d(vec3 p, float w)
+{
+    return NOISE_SCALE_4D * finite_or_zero(perlin_lattice_4d(p.x, p.y, p.z, w));
+}
+
+float perlin_signed(vec4f p, int dims)
+{
+    switch (dims) {
+    case 1: return perlin_signed_1d(p.x);
+    case 2: return perlin_signed_2d(p.x, p.y);
+    case 3: return perlin_signed_3d(v3(p.x, p.y, p.z));
+    case 4: return perlin_signed_4d(v3(p.x, p.y, p.z), p.w);
+    default: return 0.0f;
+    }
+}
+
+float perlin_signed_legacy(vec4f p, int dims)
+{
+    switch (dims) {
+    case 1: return perlin_signed_legacy_1d(p.x);
+    case 2: return perlin_signed_legacy_2d(p.x, p.y);
+    case 3: return perlin_signed_legacy_3d(v3(p.x, p.y, p.z));
+    case 4: return perlin_signed_legacy_4d(v3(p.x, p.y, p.z), p.w);
+    default: return 0.0f;
+    }
+}
+
+/* ----------------------------------------------------- fractal noise */
+
+static inline vec4f v4f_scale(vec4f p, float s) { return v4f(p.x * s, p.y * s, p.z * s, p.w * s); }
+
+/* detail's integer part, the loop bound of the octaves (callers clamp
+ * detail to [0, 15]; NaN and out-of-range values give 0, defined). */
+static inline int whole_octaves(float detail) { return detail >= 0.0f && detail < 1024.0f ? (int)detail : 0; }
+
+float noise_fbm(vec4f p, int dims, float detail, float roughness, float lacunarity, int normalize)
+{
+    float fscale = 1.0f, amp = 1.0f, maxamp = 0.0f, sum = 0.0f;
+    int n = whole_octaves(detail);
+    for (int i = 0; i <= n; i++) {
+        float t = perlin_signed(v4f_scale(p, fscale), dims);
+        sum += t * amp;
+        maxamp += amp;
+        amp *= roughness;
+        fscale *= lacunarity;
+    }
+    float rmd = detail - floorf(detail);
+    if (rmd != 0.0f) {
+        float t = perlin_signed(v4f_scale(p, fscale), dims);
+        float sum2 = sum + t * amp;
+        return normalize ? lerp(0.5f * sum / maxamp + 0.5f, 0.5f * sum2 / (maxamp + amp) + 0.5f, rmd)
+                         : lerp(sum, sum2, rmd);
+    }
+    return normalize ? 0.5f * sum / maxamp + 0.5f : sum;
+}
+
+float noise_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity)
+{
+    float value = 1.0f, pwr = 1.0f;
+    int n = whole_octaves(detail);
+    for (int i = 0; i <= n; i++) {
+        value *= pwr * perlin_signed(p, dims) + 1.0f;
+        pwr *= roughness;
+        p = v4f_scale(p, lacunarity);
+    }
+    float rmd = detail - floorf(detail);
+    if (rmd != 0.0f)
+        value *= rmd * pwr * perlin_signed(p, dims) + 1.0f;
+    return value;
+}
+
+float noise_hetero_terrain(vec4f p, int dims, float detail, float roughness, float lacunarity, float offset)
+{
+    float pwr = roughness;
+    float value = offset + perlin_signed(p, dims); /* the first octave is unscaled */
+    p = v4f_scale(p, lacunarity);
+    int n = whole_octaves(detail);
+    for (int i = 1; i <= n; i++) {
+        float increment = (perlin_signed(p, dims) + offset) * pwr * value;
+        value += increment;
+        pwr *= roughness;
+        p = v4f_scale(p, lacunarity);
+    }
+    float rmd = detail - floorf(detail);
+    if (rmd != 0.0f) {
+        float increment = (perlin_signed(p, dims) + offset) * pwr * value;
+        value += rmd * increment;
+    }
+    return value;
+}
+
+float noise_hybrid_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity,
+                                 float offset, float gain)
+{
+    float pwr = 1.0f, value = 0.0f, weight = 1.0f;
+    int n = whole_octaves(detail);
+    for (int i = 0; weight > 0.001f && i <= n; i++) {
+        if (weight > 1.0f)
+            weight = 1.0f;
+        float signal = (perlin_signed(p, dims) + offset) * pwr;
+        pwr *= roughness;
+        value += weight * signal;
+        weight *= gain * signal;
+        p = v4f_scale(p, lacunarity);
+    }
+    float rmd = detail - floorf(detail);
+    if (rmd != 0.0f && weight > 0.001f) {
+        if (weight > 1.0f)
+            weight = 1.0f;
+        float signal = (perlin_signed(p, dims) + offset) * pwr;
+        value += rmd * weight * signal;
+    }
+    return value;
+}
+
+static inline float saturate(float x) { return node_clamp(x, 0.0f, 1.0f); }
+
+float noise_ridged_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity,
+                                 float offset, float gain)
+{
+    float pwr = roughness;
+    float signal = offset - fabsf(perlin_signed(p, dims));
+    signal *= signal;
+    float value = signal;
+    int n = whole_octaves(detail);
+    for (int i = 1; i <= n; i++) {
+        p = v4f_scale(p, lacunarity);
+        float weight = saturate(signal * gain);
+        signal = offset - fabsf(perlin_signed(p, dims));
+        signal *= signal;
+        signal *= weight;
+        value += signal * pwr;
+        pwr *= roughness;
+    }
+    return value;
+}
+
+float noise_fractal(uint32_t type, vec4f p, int dims, float detail, float roughness, float lacunarity,
+                    float offset, float gain, int normalize)
+{
+    switch (type) {
+    case PHOS_NOISE_FBM: return noise_fbm(p, dims, detail, roughness, lacunarity, normalize);
+    case PHOS_NOISE_MULTIFRACTAL: return noise_multi_fractal(p, dims, detail, roughness, lacunarity);
+    case PHOS_NOISE_HYBRID_MULTIFRACTAL:
+        return noise_hybrid_multi_fractal(p, dims, detail, roughness, lacunarity, offset, gain);
+    case PHOS_NOISE_RIDGED_MULTIFRACTAL:
+        return noise_ridged_multi_fractal(p, dims, detail, roughness, lacunarity, offset, gain);
+    case PHOS_NOISE_HETERO_TERRAIN: return noise_hetero_terrain(p, dims, detail, roughness, lacunarity, offset);
+    default: return 0.0f;
+    }
+}
+
+/* ------------------------------------------ Blender 3.x Noise Texture */
+
+static inline float perlin_unsigned_legacy(vec4f p, int dims) { return 0.5f * perlin_signed_legacy(p, dims) + 0.5f; }
+
+float noise_fbm_legacy(vec4f p, int dims, float octaves, float roughness)
+{
+    float fscale = 1.0f, amp = 1.0f, maxamp = 0.0f, sum = 0.0f;
+    octaves = node_clamp(octaves, 0.0f, 15.0f);
+    roughness = node_clamp(roughness, 0.0f, 1.0f);
+    int n = whole_octaves(octaves);
+    for (int i = 0; i <= n; i++) {
+        float t = perlin_unsigned_legacy(v4f_scale(p, fscale), dims);
+        sum += t * amp;
+        maxamp += amp;
+        amp *= roughness;
+        fscale *= 2.0f;
+    }
+    float rmd = octaves - floorf(octaves);
+    if (rmd != 0.0f) {
+        float t = perlin_unsigned_legacy(v4f_scale(p, fscale), dims);
+        float sum2 = sum + t * amp;
+        sum /= maxamp;
+        sum2 /= maxamp + amp;
+        return (1.0f - rmd) * sum + rmd * sum2;
+    }
+    return sum / maxamp;
+}
+
+/* ------------------------------------- Blender 3.x/4.0 Musgrave Texture */
+
+/* fBM: Σ_{i<octaves} lacunarity^(−iH) · snoise(lacunarity^i · p). */
+static float musgrave_fbm(vec4f p, int dims, float H, float lacunarity, float octaves)
+{
+    float value = 0.0f, pwr = 1.0f, pwHL = powf(lacunarity, -H);
+    int n = whole_octaves(octaves);
+    for (int i = 0; i < n; i++) {
+        value += perlin_signed_legacy(p, dims) * pwr;
+        pwr *= pwHL;
+        p = v4f_scale(p, lacunarity);
+    }
+    float rmd = octaves - floorf(octaves);
+    if (rmd != 0.0f)
+        value += rmd * perlin_signed_legacy(p, dims) * pwr;
+    return value;
+}
+
+static float musgrave_multi_fractal(vec4f p, int dims, float H, float lacunarity, float octaves)
+{
+    float value = 1.0f, pwr = 1.0f, pwHL = powf(lacunarity, -H);
+    int n = whole_octaves(octaves);
+    for (int i = 0; i < n; i++) {
+        value *= pwr * perlin_signed_legacy(p, dims) + 1.0f;
+        pwr *= pwHL;
+        p = v4f_scale(p, lacunarity);
+    }
+    float rmd = octaves - floorf(octaves);
+    if (rmd != 0.0f)
+        value *= rmd * pwr * perlin_signed_legacy(p, dims) + 1.0f;
+    return value;
+}
+
+static float musgrave_hetero_terrain(vec4f p, int dims, float H, float lacunarity, float octaves, float offset)
+{
+    float pwHL = powf(lacunarity, -H);
+    float pwr = pwHL;
+    float value = offset + perlin_signed_legacy(p, dims);
+    p = v4f_scale(p, lacunarity);
+    int n = whole_octaves(octaves);
+    for (int i = 1; i < n; i++) {
+        float increment = (perlin_signed_legacy(p, dims) + offset) * pwr * value;
+        value += increment;
+        pwr *= pwHL;
+        p = v4f_scale(p, lacunarity);
+    }
+    float rmd = octaves - floorf(octaves);
+    if (rmd != 0.0f) {
+        float increment = (perlin_signed_legacy(p, dims) + offset) * pwr * value;
+        value += rmd * increment;
+    }
+    return value;
+}
+
+static float musgrave_hybrid_multi_fractal(vec4f p, int dims, float H, float lacunarity, float octaves,
+                                           float offset, float gain)
+{
+    float pwHL = powf(lacunarity, -H);
+    float pwr = 1.0f, value = 0.0f, weight = 1.0f;
+    int n = whole_octaves(octaves);
+    for (int i = 0; weight > 0.001f && i < n; i++) {
+        if (weight > 1.0f)
+            weight = 1.0f;
+        float signal = (perlin_signed_legacy(p, dims) + offset) * pwr;
+        pwr *= pwHL;
+        value += weight * signal;
+        weight *= gain * signal;
+        p = v4f_scale(p, lacunarity);
+    }
+    float rmd = octaves - floorf(octaves);
+    if (rmd != 0.0f && weight > 0.001f) {
+        if (weight > 1.0f)
+            weight = 1.0f;
+        float signal = (perlin_signed_legacy(p, dims) + offset) * pwr;
+        value += rmd * weight * signal;
+    }
+    return value;
+}
+
+static float musgrave_ridged_multi_fractal(vec4f p, int dims, float H, float lacunarity, float octaves,
+                                           float offset, float gain)
+{
+    float pwHL = powf(lacunarity, -H);
+    float pwr = pwHL;
+    float signal = offset - fabsf(perlin_signed_legacy(p, dims));
+    signal *= signal;
+    float value = signal;
+    int n = whole_octaves(octaves);
+    for (int i = 1; i < n; i++) {
+        p = v4f_scale(p, lacunarity);
+        float weight = saturate(signal * gain);
+        signal = offset - fabsf(perlin_signed_legacy(p, dims));
+        signal *= signal;
+        signal *= weight;
+        value += signal * pwr;
+        pwr *= pwHL;
+    }
+    return value;
+}
+
+float musgrave_fractal(uint32_t type, vec4f p, int dims, float H, float lacunarity, float octaves, float offset,
+                       float gain)
+{
+    switch (type) {
+    case PHOS_NOISE_FBM: return musgrave_fbm(p, dims, H, lacunarity, octaves);
+    case PHOS_NOISE_MULTIFRACTAL: return musgrave_multi_fractal(p, dims, H, lacunarity, octaves);
+    case PHOS_NOISE_HYBRID_MULTIFRACTAL:
+        return musgrave_hybrid_multi_fractal(p, dims, H, lacunarity, octaves, offset, gain);
+    case PHOS_NOISE_RIDGED_MULTIFRACTAL:
+        return musgrave_ridged_multi_fractal(p, dims, H, lacunarity, octaves, offset, gain);
+    case PHOS_NOISE_HETERO_TERRAIN: return musgrave_hetero_terrain(p, dims, H, lacunarity, octaves, offset);
+    default: return 0.0f;
+    }
+}
