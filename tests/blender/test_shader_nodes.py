@@ -37,6 +37,20 @@ V41 = bpy.app.version >= (4, 1, 0)
 
 # --------------------------------------------------------------- building
 
+def sock(sockets, key):
+    """A socket by index, name or identifier, available or not (Blender 4.2+
+    leaves unavailable sockets out of lookups by name)."""
+    if isinstance(key, int):
+        return sockets[key]
+    for s in sockets:
+        if s.name == key and getattr(s, "enabled", True):
+            return s
+    for s in sockets:
+        if s.name == key or s.identifier == key:
+            return s
+    raise KeyError(key)
+
+
 class Tree:
     """A material's node tree with small helpers for wiring test graphs."""
 
@@ -47,7 +61,7 @@ class Tree:
         self.nt.nodes.clear()
         self.out = self.nt.nodes.new("ShaderNodeOutputMaterial")
         self.emission = self.nt.nodes.new("ShaderNodeEmission")
-        self.link(self.emission.outputs[0], self.out.inputs["Surface"])
+        self.link(sock(self.emission.outputs, 0), sock(self.out.inputs, "Surface"))
 
     def node(self, kind, inputs=None, **props):
         n = self.nt.nodes.new(kind)
@@ -55,12 +69,12 @@ class Tree:
             setattr(n, k, v)
         for k, v in (inputs or {}).items():
             if isinstance(v, bpy.types.NodeSocket):
-                self.link(v, n.inputs[k])
+                self.link(v, sock(n.inputs, k))
             else:
-                sock = n.inputs[k]
-                if isinstance(v, (tuple, list)) and len(v) == 3 and sock.type == "RGBA":
+                target = sock(n.inputs, k)
+                if isinstance(v, (tuple, list)) and len(v) == 3 and target.type == "RGBA":
                     v = (*v, 1.0)
-                sock.default_value = v
+                target.default_value = v
         return n
 
     def link(self, a, b):
@@ -71,26 +85,26 @@ class Tree:
         ran through pixel centres would be split by the sampling jitter."""
         tc = self.node("ShaderNodeTexCoord")
         m = self.node("ShaderNodeMapping", vector_type="POINT")
-        self.link(tc.outputs[output], m.inputs["Vector"])
-        m.inputs["Scale"].default_value = scale
-        m.inputs["Location"].default_value = location
-        return m.outputs["Vector"]
+        self.link(sock(tc.outputs, output), sock(m.inputs, "Vector"))
+        sock(m.inputs, "Scale").default_value = scale
+        sock(m.inputs, "Location").default_value = location
+        return sock(m.outputs, "Vector")
 
     def component(self, vector, axis):
         sep = self.node("ShaderNodeSeparateXYZ")
-        self.link(vector, sep.inputs[0])
-        return sep.outputs[axis]
+        self.link(vector, sock(sep.inputs, 0))
+        return sock(sep.outputs, axis)
 
     def absolute(self, socket):
         if socket.type == "VALUE":
             n = self.node("ShaderNodeMath", operation="ABSOLUTE")
         else:
             n = self.node("ShaderNodeVectorMath", operation="ABSOLUTE")
-        self.link(socket, n.inputs[0])
-        return n.outputs[0]
+        self.link(socket, sock(n.inputs, 0))
+        return sock(n.outputs, 0)
 
     def show(self, socket):
-        self.link(socket, self.emission.inputs["Color"])
+        self.link(socket, sock(self.emission.inputs, "Color"))
         return self.mat
 
 
@@ -143,8 +157,8 @@ def _texture(kind, output=0, coords="Generated", scale=(1.0, 1.0, 1.0), inputs=N
     def build(name):
         t = Tree(name)
         tex = t.node(kind, inputs, **props)
-        t.link(t.coords(coords, scale), tex.inputs["Vector"])
-        out = tex.outputs[output]
+        t.link(t.coords(coords, scale), sock(tex.inputs, "Vector"))
+        out = sock(tex.outputs, output)
         return t.show(t.absolute(out) if absolute else out)
     return build
 
@@ -202,13 +216,13 @@ def _white_noise(dims):
         # input, so each pixel must read a whole cell's constant.
         t = Tree(name)
         snap = t.node("ShaderNodeVectorMath", operation="SNAP", inputs={1: (0.1307, 0.1307, 0.1307)})
-        t.link(t.coords("Generated"), snap.inputs[0])
+        t.link(t.coords("Generated"), sock(snap.inputs, 0))
         off = t.node("ShaderNodeVectorMath", operation="ADD", inputs={1: (0.0625, 0.0625, 0.0625)})
-        t.link(snap.outputs[0], off.inputs[0])
+        t.link(sock(snap.outputs, 0), sock(off.inputs, 0))
         wn = t.node("ShaderNodeTexWhiteNoise", noise_dimensions=dims)
-        t.link(off.outputs[0], wn.inputs["Vector"])
-        t.link(t.component(off.outputs[0], "X"), wn.inputs["W"])
-        return t.show(wn.outputs["Color"])
+        t.link(sock(off.outputs, 0), sock(wn.inputs, "Vector"))
+        t.link(t.component(sock(off.outputs, 0), "X"), sock(wn.inputs, "W"))
+        return t.show(sock(wn.outputs, "Color"))
     return build
 
 
@@ -236,10 +250,10 @@ def _math(op):
         t = Tree(name)
         p = t.coords("Object", (1.618, 1.414, 1.0), (0.0123, 0.0456, 0.0))
         m = t.node("ShaderNodeMath", operation=op)
-        t.link(t.component(p, "X"), m.inputs[0])
-        t.link(t.component(p, "Y"), m.inputs[1])
-        m.inputs[2].default_value = 0.3
-        return t.show(t.absolute(m.outputs[0]))
+        t.link(t.component(p, "X"), sock(m.inputs, 0))
+        t.link(t.component(p, "Y"), sock(m.inputs, 1))
+        sock(m.inputs, 2).default_value = 0.3
+        return t.show(t.absolute(sock(m.outputs, 0)))
     return build
 
 
@@ -249,13 +263,13 @@ def _vector_math(op):
         a = t.coords("Object", (1.5, 1.2, 1.0), (0.1, -0.2, 0.4))
         b = t.coords("Generated", (0.7, -1.3, 0.9), (0.3, 0.2, -0.5))
         m = t.node("ShaderNodeVectorMath", operation=op)
-        t.link(a, m.inputs[0])
-        t.link(b, m.inputs[1])
-        m.inputs[2].default_value = (0.5, -0.25, 0.75)
-        m.inputs[3].default_value = 1.3
-        v = t.absolute(m.outputs["Vector"])
+        t.link(a, sock(m.inputs, 0))
+        t.link(b, sock(m.inputs, 1))
+        sock(m.inputs, 2).default_value = (0.5, -0.25, 0.75)
+        sock(m.inputs, 3).default_value = 1.3
+        v = t.absolute(sock(m.outputs, "Vector"))
         if op in {"DOT_PRODUCT", "DISTANCE", "LENGTH"}:
-            v = t.absolute(m.outputs["Value"])
+            v = t.absolute(sock(m.outputs, "Value"))
         return t.show(v)
     return build
 
@@ -268,10 +282,10 @@ def test_math(addon, tmp_path):
 
 def _two_colours(t):
     noise = t.node("ShaderNodeTexNoise", {"Scale": 3.0})
-    t.link(t.coords("Generated"), noise.inputs["Vector"])
+    t.link(t.coords("Generated"), sock(noise.inputs, "Vector"))
     checker = t.node("ShaderNodeTexChecker", {"Scale": 2.0, "Color1": (0.9, 0.3, 0.1), "Color2": (0.2, 0.5, 0.8)})
-    t.link(t.coords("Generated"), checker.inputs["Vector"])
-    return noise.outputs["Color"], checker.outputs["Color"]
+    t.link(t.coords("Generated"), sock(checker.inputs, "Vector"))
+    return sock(noise.outputs, "Color"), sock(checker.outputs, "Color")
 
 
 BLENDS = ["MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
@@ -289,7 +303,7 @@ def _mix(blend):
         t.link(a, sockets["A_Color"])
         t.link(b, sockets["B_Color"])
         t.link(t.component(t.coords("Generated"), "X"), sockets["Factor_Float"])
-        return t.show(mix.outputs[2])
+        return t.show(sock(mix.outputs, 2))
     return build
 
 
@@ -301,8 +315,8 @@ def _color_node(kind, inputs=None, color_socket="Color", out=0, setup=None, **pr
         if setup:
             setup(n)
         if color_socket is not None:
-            t.link(a, n.inputs[color_socket])
-        return t.show(n.outputs[out])
+            t.link(a, sock(n.inputs, color_socket))
+        return t.show(sock(n.outputs, out))
     return build
 
 
@@ -319,8 +333,8 @@ def _ramp(interpolation):
         t = Tree(name)
         n = t.node("ShaderNodeValToRGB")
         setup(n)
-        t.link(t.component(t.coords("Generated"), "X"), n.inputs["Fac"])
-        return t.show(n.outputs["Color"])
+        t.link(t.component(t.coords("Generated"), "X"), sock(n.inputs, "Fac"))
+        return t.show(sock(n.outputs, "Color"))
     return build
 
 
@@ -337,15 +351,15 @@ def _map_range(mode, vector=False):
         n = t.node("ShaderNodeMapRange", interpolation_type=mode)
         if vector:
             n.data_type = "FLOAT_VECTOR"
-            t.link(t.coords("Generated"), n.inputs[6])
-            n.inputs[7].default_value = (0.2, 0.1, 0.0)
-            n.inputs[8].default_value = (0.8, 0.7, 1.0)
-            n.inputs[11].default_value = (4.0, 4.0, 4.0)
-            return t.show(n.outputs["Vector"])
-        t.link(t.component(t.coords("Generated"), "X"), n.inputs[0])
-        n.inputs[1].default_value, n.inputs[2].default_value = 0.2, 0.8
-        n.inputs[5].default_value = 4.0
-        return t.show(n.outputs[0])
+            t.link(t.coords("Generated"), sock(n.inputs, 6))
+            sock(n.inputs, 7).default_value = (0.2, 0.1, 0.0)
+            sock(n.inputs, 8).default_value = (0.8, 0.7, 1.0)
+            sock(n.inputs, 11).default_value = (4.0, 4.0, 4.0)
+            return t.show(sock(n.outputs, "Vector"))
+        t.link(t.component(t.coords("Generated"), "X"), sock(n.inputs, 0))
+        sock(n.inputs, 1).default_value, sock(n.inputs, 2).default_value = 0.2, 0.8
+        sock(n.inputs, 5).default_value = 4.0
+        return t.show(sock(n.outputs, 0))
     return build
 
 
@@ -353,10 +367,10 @@ def _scalar_to_colour(kind, lo, hi, socket):
     def build(name):
         t = Tree(name)
         n = t.node("ShaderNodeMapRange", {1: 0.0, 2: 1.0, 3: lo, 4: hi})
-        t.link(t.component(t.coords("Generated"), "X"), n.inputs[0])
+        t.link(t.component(t.coords("Generated"), "X"), sock(n.inputs, 0))
         b = t.node(kind)
-        t.link(n.outputs[0], b.inputs[socket])
-        return t.show(b.outputs[0])
+        t.link(sock(n.outputs, 0), sock(b.inputs, socket))
+        return t.show(sock(b.outputs, 0))
     return build
 
 
@@ -366,11 +380,11 @@ def _separate_combine(mode):
         a, _ = _two_colours(t)
         sep = t.node("ShaderNodeSeparateColor", mode=mode)
         comb = t.node("ShaderNodeCombineColor", mode=mode)
-        t.link(a, sep.inputs[0])
-        t.link(sep.outputs[0], comb.inputs[1])
-        t.link(sep.outputs[1], comb.inputs[2])
-        t.link(sep.outputs[2], comb.inputs[0])
-        return t.show(comb.outputs[0])
+        t.link(a, sock(sep.inputs, 0))
+        t.link(sock(sep.outputs, 0), sock(comb.inputs, 1))
+        t.link(sock(sep.outputs, 1), sock(comb.inputs, 2))
+        t.link(sock(sep.outputs, 2), sock(comb.inputs, 0))
+        return t.show(sock(comb.outputs, 0))
     return build
 
 
@@ -406,7 +420,7 @@ def _coordinate(output, absolute=True):
     def build(name):
         t = Tree(name)
         tc = t.node("ShaderNodeTexCoord")
-        out = tc.outputs[output]
+        out = sock(tc.outputs, output)
         return t.show(t.absolute(out) if absolute else out)
     return build
 
@@ -416,12 +430,12 @@ def _mapping(kind):
         t = Tree(name)
         tc = t.node("ShaderNodeTexCoord")
         m = t.node("ShaderNodeMapping", vector_type=kind)
-        t.link(tc.outputs["Object"], m.inputs["Vector"])
+        t.link(sock(tc.outputs, "Object"), sock(m.inputs, "Vector"))
         if kind in {"POINT", "TEXTURE"}:
-            m.inputs["Location"].default_value = (0.2, -0.1, 0.3)
-        m.inputs["Rotation"].default_value = (0.4, -0.3, 0.9)
-        m.inputs["Scale"].default_value = (1.5, 0.7, 1.2)
-        return t.show(t.absolute(m.outputs[0]))
+            sock(m.inputs, "Location").default_value = (0.2, -0.1, 0.3)
+        sock(m.inputs, "Rotation").default_value = (0.4, -0.3, 0.9)
+        sock(m.inputs, "Scale").default_value = (1.5, 0.7, 1.2)
+        return t.show(t.absolute(sock(m.outputs, 0)))
     return build
 
 
@@ -430,12 +444,12 @@ def _rotate(kind):
         t = Tree(name)
         tc = t.node("ShaderNodeTexCoord")
         n = t.node("ShaderNodeVectorRotate", rotation_type=kind)
-        t.link(tc.outputs["Object"], n.inputs["Vector"])
-        n.inputs["Center"].default_value = (0.1, 0.2, 0.0)
-        n.inputs["Axis"].default_value = (0.3, 0.4, 1.0)
-        n.inputs["Angle"].default_value = 0.8
-        n.inputs["Rotation"].default_value = (0.3, 0.6, -0.4)
-        return t.show(t.absolute(n.outputs[0]))
+        t.link(sock(tc.outputs, "Object"), sock(n.inputs, "Vector"))
+        sock(n.inputs, "Center").default_value = (0.1, 0.2, 0.0)
+        sock(n.inputs, "Axis").default_value = (0.3, 0.4, 1.0)
+        sock(n.inputs, "Angle").default_value = 0.8
+        sock(n.inputs, "Rotation").default_value = (0.3, 0.6, -0.4)
+        return t.show(t.absolute(sock(n.outputs, 0)))
     return build
 
 
@@ -453,8 +467,8 @@ def _textured_by_image(tmp_path, interpolation, extension, projection):
         tex = t.node("ShaderNodeTexImage", interpolation=interpolation, extension=extension, projection=projection)
         tex.image = img
         t.link(t.coords("UV" if projection == "FLAT" else "Generated", (1.7, 1.3, 1.0), (-0.2, -0.1, 0.0)),
-               tex.inputs["Vector"])
-        return t.show(tex.outputs["Color"])
+               sock(tex.inputs, "Vector"))
+        return t.show(sock(tex.outputs, "Color"))
     return build
 
 

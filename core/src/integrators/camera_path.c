@@ -105,6 +105,10 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
     if (start->from)
         prev = *start->from;
     int features = start->from_camera && is->denoising_features; /* record_features still pending */
+    /* The kind of ray that finds each surface, for the Light Path node: a
+     * walk that starts on a diffuse vertex (gathers) leaves by a diffuse
+     * reflection. */
+    uint32_t ray_flags = start->from_camera ? SHADER_RAY_CAMERA : (SHADER_RAY_DIFFUSE | SHADER_RAY_REFLECT);
     vec3 feature_beta = v3s(1.0f);
 /* Emission found while the features are pending also shows in their albedo
  * (lamps and the world seen directly or through mirrors), as in Cycles. */
@@ -145,6 +149,9 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
 
         surface sf;
         surface_from_hit(s, h.instance, h.prim, h.b1, h.b2, d, &sf);
+        sf.ray_flags = ray_flags;
+        sf.ray_length = h.t;
+        sf.ray_depth = p.depth;
         uint32_t v_index = vertex++;
         if (sf.mat->emissive) {
             float w = 1.0f;
@@ -193,6 +200,10 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
             res.alpha = 1.0f;
         camera_segment = 0;
         transparent_steps = 0;
+        ray_flags = ((bs.flags & BSDF_DIFFUSE) ? SHADER_RAY_DIFFUSE
+                     : (bs.flags & BSDF_DELTA) ? SHADER_RAY_SINGULAR | SHADER_RAY_GLOSSY
+                                               : SHADER_RAY_GLOSSY) |
+                    ((bs.flags & BSDF_TRANSMISSION) ? SHADER_RAY_TRANSMIT : SHADER_RAY_REFLECT);
         if (p.depth == 0)
             p.first_diffuse = (bs.flags & BSDF_DIFFUSE) != 0;
         else

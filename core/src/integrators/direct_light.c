@@ -23,6 +23,7 @@ vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist
             return T;
         surface occ;
         surface_from_hit(s, h.instance, h.prim, h.b1, h.b2, wi, &occ);
+        occ.ray_flags = SHADER_RAY_SHADOW;
         T = v3_mul(T, material_transparency(s, &occ));
         if (v3_is_zero(T))
             return T;

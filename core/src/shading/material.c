@@ -56,6 +56,9 @@ void surface_from_hit(const scene *s, uint32_t instance_id, uint32_t prim, float
     } else {
         out->u = out->v = 0.0f; /* no UV map: Cycles reads (0, 0) */
     }
+    out->ray_flags = 0;
+    out->ray_length = 0.0f;
+    out->ray_depth = 0;
     out->instance = instance_id;
     out->prim = prim;
     out->b1 = b1;
