@@ -307,15 +307,14 @@ class Scene(_Handle):
     def _error_text(self, handle):
         return _decode(self._lib.phos_scene_error(handle))
 
-    def add_image(self, pixels, width, height, interpolation=PHOS_INTERP_LINEAR,
-                  extension=PHOS_EXTEND_REPEAT):
-        """Add linear RGBA float pixels (rows bottom-up); returns the image id."""
+    def add_image(self, pixels, width, height):
+        """Add linear RGBA float pixels (rows bottom-up, straight alpha);
+        returns the image id."""
         px = _as_array(pixels, np.float32, width * height * 4, "image pixels")
         d = phos_image_desc()
         self._lib.phos_image_desc_init(ctypes.byref(d))
         d.width, d.height = width, height
         d.pixels = _ptr(px, ctypes.c_float)
-        d.interpolation, d.extension = interpolation, extension
         out = _u32()
         self._raise_on(self._lib.phos_scene_add_image(self.handle, ctypes.byref(d), ctypes.byref(out)),
                        "adding an image")

@@ -31,15 +31,6 @@ PHOS_ERROR_CANCELLED = 5
 PHOS_ERROR_TIMEOUT = 6
 PHOS_ERROR_INTERNAL = 7
 
-# enum phos_image_interpolation
-PHOS_INTERP_LINEAR = 0
-PHOS_INTERP_CLOSEST = 1
-
-# enum phos_image_extension
-PHOS_EXTEND_REPEAT = 0
-PHOS_EXTEND_EXTEND = 1
-PHOS_EXTEND_CLIP = 2
-
 # enum phos_closure_type
 PHOS_CLOSURE_DIFFUSE = 0
 PHOS_CLOSURE_PRINCIPLED_DIFFUSE = 1
@@ -434,8 +425,6 @@ PHOS_MAP_CAUSTIC = 1
 
 ENUMS = {
     'phos_status': {'PHOS_OK': 0, 'PHOS_ERROR_INVALID_ARGUMENT': 1, 'PHOS_ERROR_INVALID_STATE': 2, 'PHOS_ERROR_OUT_OF_MEMORY': 3, 'PHOS_ERROR_EMBREE': 4, 'PHOS_ERROR_CANCELLED': 5, 'PHOS_ERROR_TIMEOUT': 6, 'PHOS_ERROR_INTERNAL': 7},
-    'phos_image_interpolation': {'PHOS_INTERP_LINEAR': 0, 'PHOS_INTERP_CLOSEST': 1},
-    'phos_image_extension': {'PHOS_EXTEND_REPEAT': 0, 'PHOS_EXTEND_EXTEND': 1, 'PHOS_EXTEND_CLIP': 2},
     'phos_closure_type': {'PHOS_CLOSURE_DIFFUSE': 0, 'PHOS_CLOSURE_PRINCIPLED_DIFFUSE': 1, 'PHOS_CLOSURE_REFLECTION': 2, 'PHOS_CLOSURE_REFLECTION_FRESNEL': 3, 'PHOS_CLOSURE_REFRACTION': 4, 'PHOS_CLOSURE_GLASS': 5, 'PHOS_CLOSURE_TRANSPARENT': 6, 'PHOS_CLOSURE_EMISSION': 7, 'PHOS_CLOSURE_METAL': 8, 'PHOS_CLOSURE_OREN_NAYAR': 9, 'PHOS_CLOSURE_SHEEN': 10, 'PHOS_CLOSURE_TYPE_COUNT': 11},
     'phos_glass_fresnel': {'PHOS_GLASS_FRESNEL_MACRO': 0, 'PHOS_GLASS_FRESNEL_MICROFACET': 1},
     'phos_microfacet': {'PHOS_MICROFACET_GGX_SEPARABLE': 0, 'PHOS_MICROFACET_GGX': 1, 'PHOS_MICROFACET_GGX_MULTISCATTER': 2},
@@ -487,8 +476,6 @@ class phos_image_desc(ctypes.Structure):
         ("width", ctypes.c_uint32),
         ("height", ctypes.c_uint32),
         ("pixels", ctypes.POINTER(ctypes.c_float)),
-        ("interpolation", ctypes.c_uint32),
-        ("extension", ctypes.c_uint32),
     ]
 
 
@@ -496,7 +483,6 @@ class phos_closure_desc(ctypes.Structure):
     _fields_ = [
         ("type", ctypes.c_uint32),
         ("weight", ctypes.c_float * 3),
-        ("weight_image", ctypes.c_int32),
         ("roughness", ctypes.c_float),
         ("ior", ctypes.c_float),
         ("specular_color", ctypes.c_float * 3),
@@ -949,11 +935,6 @@ __all__ = (
     'PHOS_ERROR_CANCELLED',
     'PHOS_ERROR_TIMEOUT',
     'PHOS_ERROR_INTERNAL',
-    'PHOS_INTERP_LINEAR',
-    'PHOS_INTERP_CLOSEST',
-    'PHOS_EXTEND_REPEAT',
-    'PHOS_EXTEND_EXTEND',
-    'PHOS_EXTEND_CLIP',
     'PHOS_CLOSURE_DIFFUSE',
     'PHOS_CLOSURE_PRINCIPLED_DIFFUSE',
     'PHOS_CLOSURE_REFLECTION',

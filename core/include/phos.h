@@ -84,15 +84,12 @@ PHOS_API void phos_scene_destroy(phos_scene *scene);
 /* The message of the last failed call on this scene, "" if none. */
 PHOS_API const char *phos_scene_error(const phos_scene *scene);
 
-/* Images: linear RGBA float pixels, rows bottom-up (as Blender stores them). */
-enum phos_image_interpolation { PHOS_INTERP_LINEAR = 0, PHOS_INTERP_CLOSEST = 1 };
-enum phos_image_extension { PHOS_EXTEND_REPEAT = 0, PHOS_EXTEND_EXTEND = 1, PHOS_EXTEND_CLIP = 2 };
-
+/* Images: linear RGBA float pixels with straight alpha, rows bottom-up (as
+ * Blender stores them). How an image is looked up (interpolation,
+ * extension, projection) is the Image Texture instruction's (below). */
 typedef struct phos_image_desc {
     uint32_t width, height;
     const float *pixels;        /* width*height*4 floats, linear RGBA */
-    uint32_t interpolation;     /* enum phos_image_interpolation */
-    uint32_t extension;         /* enum phos_image_extension */
 } phos_image_desc;
 PHOS_API void phos_image_desc_init(phos_image_desc *desc);
 PHOS_API phos_status phos_scene_add_image(phos_scene *scene, const phos_image_desc *desc,
@@ -100,8 +97,9 @@ PHOS_API phos_status phos_scene_add_image(phos_scene *scene, const phos_image_de
 
 /*
  * Materials are weighted sums of closures, the way Cycles flattens a shader
- * node tree: Mix and Add shaders with constant factors only scale and
- * concatenate closure lists. The add-on translates node trees into closures.
+ * node tree: Mix and Add shaders only scale and concatenate closure lists.
+ * A closure's fields are constants, or set at each shading point by the
+ * material's shader program (below) where textures feed them.
  */
 enum phos_closure_type {
     PHOS_CLOSURE_DIFFUSE = 0,            /* Lambert, f = weight/π */
@@ -144,7 +142,6 @@ enum phos_microfacet {
 typedef struct phos_closure_desc {
     uint32_t type;             /* enum phos_closure_type */
     float weight[3];           /* linear RGB weight (colour × mix factors); radiance for EMISSION */
-    int32_t weight_image;      /* image id multiplied into weight (RGB), -1 for none */
     float roughness;           /* Blender roughness in [0,1]; GGX alpha = roughness² */
     float ior;                 /* index of refraction, > 0 (GLASS, REFRACTION, REFLECTION_FRESNEL) */
     float specular_color[3];   /* REFLECTION_FRESNEL, METAL: reflectance at normal incidence;

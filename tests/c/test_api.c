@@ -126,10 +126,6 @@ static void test_bad_materials_lights_camera(void)
     c.ior = 0.0f;
     CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
     c.ior = 1.5f;
-    c.weight_image = 3;
-    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
-    CHECK_MSG(contains(phos_scene_error(s), "image 3"), "%s", phos_scene_error(s));
-    c.weight_image = -1;
     c.weight[1] = -1.0f;
     CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
     c.weight[1] = 0.5f;

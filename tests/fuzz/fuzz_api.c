@@ -127,8 +127,6 @@ static void fuzz_images(reader *r, phos_scene *s)
         phos_image_desc_init(&d);
         d.width = take_u8(r) % 5;
         d.height = take_u8(r) % 5;
-        d.interpolation = take_u8(r) % 3;
-        d.extension = take_u8(r) % 4;
         float px[4 * 4 * 4 * 4];
         uint32_t count = d.width * d.height * 4;
         for (uint32_t k = 0; k < count; k++)
@@ -138,6 +136,58 @@ static void fuzz_images(reader *r, phos_scene *s)
         if (phos_scene_add_image(s, &d, &id) != PHOS_OK && !phos_scene_error(s)[0])
             abort(); /* a failure without a message */
     }
+}
+
+/* A shader program from the stream: registers, constants, instructions
+ * (any op, mode, flags and registers, 0xFF meaning none), a table and
+ * bindings; the core must refuse what is inconsistent and evaluate the
+ * rest, whatever the values. */
+typedef struct fuzz_program {
+    phos_shader_program_desc d;
+    float constants[64], table[48];
+    phos_shader_instruction ins[8];
+    phos_shader_binding bind[4];
+} fuzz_program;
+
+static uint32_t take_register(reader *r, uint32_t registers)
+{
+    uint8_t b = take_u8(r);
+    return b == 0xFF ? PHOS_SHADER_NO_REGISTER : b % (registers + 2);
+}
+
+static const phos_shader_program_desc *take_program(reader *r, fuzz_program *p)
+{
+    memset(p, 0, sizeof(*p));
+    uint32_t registers = take_u8(r) % 64 + 1;
+    p->d.register_count = registers;
+    p->d.constant_count = take_u8(r) % (registers + 1);
+    take_floats(r, p->constants, p->d.constant_count);
+    p->d.constants = p->constants;
+    p->d.instruction_count = take_u8(r) % 9;
+    for (uint32_t i = 0; i < p->d.instruction_count; i++) {
+        phos_shader_instruction *in = &p->ins[i];
+        in->op = take_u8(r) % (PHOS_OP_COUNT + 1);
+        in->mode = take_u32(r);
+        in->flags = take_u32(r);
+        in->table = take_u32(r);
+        take_floats(r, in->param, 4);
+        for (int k = 0; k < PHOS_SHADER_MAX_INPUTS; k++)
+            in->inputs[k] = take_register(r, registers);
+        for (int k = 0; k < PHOS_SHADER_MAX_OUTPUTS; k++)
+            in->outputs[k] = take_register(r, registers);
+    }
+    p->d.instructions = take_u8(r) == 0xFF ? NULL : p->ins;
+    p->d.table_size = take_u8(r) % 49;
+    take_floats(r, p->table, p->d.table_size);
+    p->d.table = p->table;
+    p->d.binding_count = take_u8(r) % 5;
+    for (uint32_t b = 0; b < p->d.binding_count; b++) {
+        p->bind[b].closure = take_u8(r) % 3;
+        p->bind[b].field = take_u8(r) % (PHOS_FIELD_COUNT + 1);
+        p->bind[b].reg = take_register(r, registers);
+    }
+    p->d.bindings = p->bind;
+    return &p->d;
 }
 
 static void fuzz_materials(reader *r, phos_scene *s)
@@ -150,7 +200,6 @@ static void fuzz_materials(reader *r, phos_scene *s)
             phos_closure_desc_init(&c[k]);
             c[k].type = take_u8(r) % (PHOS_CLOSURE_TYPE_COUNT + 1);
             take_floats(r, c[k].weight, 3);
-            c[k].weight_image = (int32_t)(take_u8(r) % 4) - 1;
             c[k].roughness = take_float(r);
             c[k].ior = take_float(r);
             if (take_u8(r) & 1)
@@ -177,9 +226,15 @@ static void fuzz_materials(reader *r, phos_scene *s)
         phos_material_desc_init(&m);
         m.closure_count = count;
         m.closures = take_u8(r) == 0xFF ? NULL : c;
+        fuzz_program p;
+        if (take_u8(r))
+            m.program = take_program(r, &p);
         uint32_t id;
-        if (phos_scene_add_material(s, &m, &id) != PHOS_OK && !phos_scene_error(s)[0])
+        phos_status st = phos_scene_add_material(s, &m, &id);
+        if (st != PHOS_OK && !phos_scene_error(s)[0])
             abort();
+        SAY("  material%s: %s %s\n", m.program ? " with a program" : "", phos_status_string(st),
+            st == PHOS_OK ? "" : phos_scene_error(s));
     }
 }
 

@@ -78,7 +78,6 @@ def closure(s, kind=0, weight=(0.75, 0.75, 0.75), roughness=0.5, ior=1.5, microf
             layer_span=0):
     s.u8(kind)
     s.fs(weight)
-    s.u8(0)                    # weight_image −1
     s.f(roughness)
     s.f(ior)
     s.u8(0)                    # no specular colour
@@ -96,13 +95,49 @@ def closure(s, kind=0, weight=(0.75, 0.75, 0.75), roughness=0.5, ior=1.5, microf
     s.f(0.0)                   # layer tint weight
 
 
-def materials(s, mats):
+def materials(s, mats, programs=None):
     s.u8(len(mats))
-    for closures in mats:
+    for i, closures in enumerate(mats):
         s.u8(len(closures))
         for c in closures:
             closure(s, *c)
         s.u8(0)                # closures not NULL
+        program = (programs or {}).get(i)
+        if program is None:
+            s.u8(0)            # no shader program
+        else:
+            s.u8(1)
+            program(s)
+
+
+NO = 0xFF  # no register
+
+
+def noise_program(s):
+    """A shader program: Texture Coordinate → Noise Texture (3D, normalized)
+    → the closure's weight; registers 0-2 hold (0.25, 2, 0.5)."""
+    s.u8(22 - 1)               # registers
+    s.u8(3)                    # constants
+    s.fs((0.25, 2.0, 0.5))
+    s.u8(2)                    # instructions
+    s.u8(32)                   # PHOS_OP_TEXTURE_COORDINATE
+    s.u32(0), s.u32(0), s.u32(0), s.fs((0.0, 0.0, 0.0, 0.0))
+    for _ in range(12):
+        s.u8(NO)
+    for k in range(5):
+        s.u8(3 + 3 * k)        # generated, normal, uv, object, camera at 3..17
+    s.u8(23)                   # PHOS_OP_TEX_NOISE
+    s.u32(0), s.u32(3 | 8), s.u32(0), s.fs((0.0, 0.0, 0.0, 0.0))
+    for reg in (3, 0, 1, 1, 2, 1, 0, 1, 0):
+        s.u8(reg)              # vector, w, scale, detail, roughness, lacunarity, offset, gain, distortion
+    for _ in range(3):
+        s.u8(NO)
+    for reg in (18, 19, NO, NO, NO):
+        s.u8(reg)              # fac, colour
+    s.u8(0)                    # instructions not NULL
+    s.u8(0)                    # no table
+    s.u8(1)                    # one binding: the colour sets closure 0's weight
+    s.u8(0), s.u8(0), s.u8(19)
 
 
 def mesh(s, positions, tris, slots=None):
@@ -198,10 +233,10 @@ PHOS_STAGE_COUNT = 7
 
 
 def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camera=True,
-          renders=(({}, 0),), vertex_normals=None):
+          renders=(({}, 0),), vertex_normals=None, programs=None):
     s = Stream()
     s.u8(0)                    # no images
-    materials(s, mats if mats is not None else [[(0, (0.75, 0.75, 0.75))]])
+    materials(s, mats if mats is not None else [[(0, (0.75, 0.75, 0.75))]], programs)
     meshes = meshes if meshes is not None else [(BOX, BOX_TRIS, None)]
     s.u8(len(meshes))
     for m in meshes:
@@ -256,6 +291,7 @@ SEEDS = {
                               instances=[(0, [0, 1])],
                               meshes=[(BOX, BOX_TRIS, [0] * 6 + [1] * 6)],
                               renders=[({"pass_mask": (1 << 10) | (1 << 11), **PHOTON}, 0), ({"pass_mask": 4095}, 0)]),
+    "shader_program_noise": scene(programs={0: noise_program}, renders=[(PHOTON, 0)]),
     "nan_vertex": scene(meshes=[([(0, 0, 0), ("nan", 0, 0), (0, 1, 0)], [(0, 1, 2)], None),
                                 (BOX, BOX_TRIS, None)], instances=[(1, [0]), (0, [0])]),
     "inf_and_huge_vertices": scene(meshes=[([(0, 0, 0), ("inf", 0, 0), (0, 1e30, 0), (1e38, 1e38, 1e38)],

@@ -123,7 +123,6 @@ class Closure:
         d = core.new_closure()
         d.type = self.type
         d.weight[:] = [float(x) for x in c["weight"]]
-        d.weight_image = -1
         self_roughness = c["roughness"]
         d.roughness = min(max(float(self_roughness), 0.0), 1.0)
         d.ior = max(float(c["ior"]), 1e-5)

@@ -12,7 +12,6 @@
 
 #include "lights/light.h"
 #include "scene/embree.h"
-#include "shading/texture.h"
 #include "render/film.h"
 #include "render/memory.h"
 #include "phos.h"
@@ -98,8 +97,6 @@ void phos_image_desc_init(phos_image_desc *d)
     if (!d)
         return;
     memset(d, 0, sizeof(*d));
-    d->interpolation = PHOS_INTERP_LINEAR;
-    d->extension = PHOS_EXTEND_REPEAT;
 }
 
 void phos_closure_desc_init(phos_closure_desc *d)
@@ -109,7 +106,6 @@ void phos_closure_desc_init(phos_closure_desc *d)
     memset(d, 0, sizeof(*d));
     d->type = PHOS_CLOSURE_DIFFUSE;
     d->weight[0] = d->weight[1] = d->weight[2] = 0.8f;
-    d->weight_image = -1;
     d->roughness = 0.5f;
     d->ior = 1.45f;
     d->specular_color[0] = d->specular_color[1] = d->specular_color[2] = 0.04f;
@@ -228,9 +224,6 @@ phos_status phos_scene_add_image(phos_scene *s, const phos_image_desc *d, uint32
              d->height);
     if (!d->pixels)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "image: pixels are NULL");
-    if (d->interpolation > PHOS_INTERP_CLOSEST || d->extension > PHOS_EXTEND_CLIP)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "image: unknown interpolation %u or extension %u", d->interpolation,
-             d->extension);
     size_t n = (size_t)d->width * d->height * 4;
     if (!all_finite(d->pixels, n))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "image: pixel values must be finite (found NaN or infinity)");
@@ -244,8 +237,6 @@ phos_status phos_scene_add_image(phos_scene *s, const phos_image_desc *d, uint32
     memcpy(img->pixels, d->pixels, n * sizeof(float));
     img->width = d->width;
     img->height = d->height;
-    img->interpolation = d->interpolation;
-    img->extension = d->extension;
     if (out_id)
         *out_id = s->image_count;
     s->image_count++;
@@ -271,9 +262,6 @@ static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown type %u", i, c->type);
     if (!all_finite_nonnegative(c->weight, 3))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u weight must be finite and >= 0", i);
-    if (c->weight_image < -1 || (c->weight_image >= 0 && (uint32_t)c->weight_image >= s->image_count))
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u refers to image %d, but the scene has %u images",
-             i, c->weight_image, s->image_count);
     if (!isfinite(c->roughness) || c->roughness < 0.0f || c->roughness > 1.0f)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u roughness %g must be in [0, 1]", i,
              (double)c->roughness);
@@ -537,11 +525,8 @@ phos_status phos_scene_commit(phos_scene *s)
     s->error[0] = 0;
     if (s->committed)
         FAIL(s, PHOS_ERROR_INVALID_STATE, "commit: the scene is already committed");
-    /* Scene data first, then what is derived from it: image means (for the
-     * lights' power estimates), the BVH, the light table. */
+    /* Scene data first, then what is derived from it: the BVH, the light table. */
     scene_prepare(s);
-    for (uint32_t i = 0; i < s->image_count; i++)
-        s->images[i].average = image_average(&s->images[i]);
     phos_status st = embree_bvh_build(s->meshes, s->mesh_count, s->instances, s->instance_count, &s->cancel,
                                       &s->bvh, s->error, sizeof(s->error));
     if (st == PHOS_OK) {

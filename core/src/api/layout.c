@@ -20,9 +20,9 @@ typedef struct layout_field {
 /* Every field of every struct of phos.h, struct by struct in header order. */
 static const layout_field fields[] = {
     FIELD(phos_image_desc, width) FIELD(phos_image_desc, height) FIELD(phos_image_desc, pixels)
-    FIELD(phos_image_desc, interpolation) FIELD(phos_image_desc, extension)
 
-    FIELD(phos_closure_desc, type) FIELD(phos_closure_desc, weight) FIELD(phos_closure_desc, weight_image)
+
+    FIELD(phos_closure_desc, type) FIELD(phos_closure_desc, weight) 
     FIELD(phos_closure_desc, roughness) FIELD(phos_closure_desc, ior) FIELD(phos_closure_desc, specular_color)
     FIELD(phos_closure_desc, glass_fresnel) FIELD(phos_closure_desc, transmission_tint)
     FIELD(phos_closure_desc, transmission_roughness) FIELD(phos_closure_desc, microfacet)

@@ -45,6 +45,22 @@ static uint64_t hash_normals(uint64_t h, const float *n, size_t count)
 }
 
 /* An optional array: its presence counts too. */
+/* A material's program as the core keeps it (folded): its words. */
+static uint64_t hash_program(uint64_t h, const shader_program *p)
+{
+    h = hash_u32(h, p != NULL);
+    if (!p)
+        return h;
+    h = hash_u32(hash_u32(h, p->register_count), p->constant_count);
+    h = hash_words(h, p->constants, p->constant_count);
+    h = hash_u32(h, p->instruction_count);
+    h = hash_words(h, p->instructions, p->instruction_count * (sizeof(phos_shader_instruction) / 4));
+    h = hash_u32(h, p->table_size);
+    h = hash_words(h, p->table, p->table_size);
+    h = hash_u32(h, p->binding_count);
+    return hash_words(h, p->bindings, p->binding_count * (sizeof(phos_shader_binding) / 4));
+}
+
 static uint64_t hash_array(uint64_t h, const void *p, size_t words)
 {
     h = hash_u32(h, p != NULL);
@@ -62,6 +78,9 @@ scene_fingerprint scene_fingerprint_of(const scene *s)
         f.geometry = hash_normals(f.geometry, m->normals, 9 * (size_t)m->triangle_count);
         f.geometry = hash_array(f.geometry, m->uvs, 6 * (size_t)m->triangle_count);
         f.geometry = hash_array(f.geometry, m->slots, m->triangle_count);
+        f.geometry = hash_array(f.geometry, m->tangents, 12 * (size_t)m->triangle_count);
+        f.geometry = hash_words(f.geometry, m->texspace_location, 3);
+        f.geometry = hash_words(f.geometry, m->texspace_size, 3);
     }
     for (uint32_t i = 0; i < s->instance_count; i++) {
         const instance *in = &s->instances[i];
@@ -69,17 +88,18 @@ scene_fingerprint scene_fingerprint_of(const scene *s)
         f.geometry = hash_words(f.geometry, in->transform, 12);
         f.geometry = hash_u32(f.geometry, in->material_count);
         f.geometry = hash_words(f.geometry, in->materials, in->material_count);
+        f.geometry = hash_words(hash_words(f.geometry, &in->random, 1), &in->pass_index, 1);
     }
     /* phos_closure_desc and phos_light_desc hold 32-bit fields only. */
     for (uint32_t i = 0; i < s->material_count; i++) {
         const material *m = &s->materials[i];
         f.materials = hash_u32(f.materials, m->closure_count);
         f.materials = hash_words(f.materials, m->closures, m->closure_count * (sizeof(phos_closure_desc) / 4));
+        f.materials = hash_program(f.materials, m->has_program ? &m->program : NULL);
     }
     for (uint32_t i = 0; i < s->image_count; i++) {
         const image *im = &s->images[i];
         f.materials = hash_u32(hash_u32(f.materials, im->width), im->height);
-        f.materials = hash_u32(hash_u32(f.materials, im->interpolation), im->extension);
         f.materials = hash_words(f.materials, im->pixels, 4 * (size_t)im->width * im->height);
     }
     for (uint32_t i = 0; i < s->light_desc_count; i++)
@@ -89,5 +109,6 @@ scene_fingerprint scene_fingerprint_of(const scene *s)
 }
 
 _Static_assert(sizeof(phos_closure_desc) % 4 == 0 && sizeof(phos_light_desc) % 4 == 0 &&
-                   sizeof(phos_world_desc) % 4 == 0,
+                   sizeof(phos_world_desc) % 4 == 0 && sizeof(phos_shader_instruction) % 4 == 0 &&
+                   sizeof(phos_shader_binding) % 4 == 0,
                "the fingerprint hashes these structs as 32-bit words");

@@ -29,8 +29,6 @@ typedef struct material {
 typedef struct image {
     uint32_t width, height;
     float *pixels;              /* width*height*4, linear RGBA, rows bottom-up */
-    uint32_t interpolation, extension;
-    vec3 average;               /* mean RGB, for light power estimates */
 } image;
 
 struct embree_bvh;

@@ -11,7 +11,7 @@
 
 const material scene_default_material = {
     .closure_count = 1,
-    .closures = {{.type = PHOS_CLOSURE_DIFFUSE, .weight = {0.8f, 0.8f, 0.8f}, .weight_image = -1,
+    .closures = {{.type = PHOS_CLOSURE_DIFFUSE, .weight = {0.8f, 0.8f, 0.8f},
                   .roughness = 0.5f, .ior = 1.45f, .transmission_tint = {1.0f, 1.0f, 1.0f},
                   .transmission_roughness = -1.0f}},
 };
@@ -64,14 +64,6 @@ void surface_from_hit(const scene *s, uint32_t instance_id, uint32_t prim, float
     out->b1 = b1;
     out->b2 = b2;
     out->mat = scene_instance_material(s, inst, mesh_triangle_slot(m, prim));
-}
-
-static vec3 closure_weight(const scene *s, const phos_closure_desc *c, float u, float v)
-{
-    vec3 w = v3_load(c->weight);
-    if (c->weight_image >= 0 && (uint32_t)c->weight_image < s->image_count)
-        w = v3_mul(w, image_lookup(&s->images[c->weight_image], u, v));
-    return w;
 }
 
 /* A layer closure's parameters as bsdf.c's layering reads them. */
@@ -331,7 +323,7 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
             continue;
         closure c;
         c.type = d->type;
-        c.weight = closure_weight(s, d, sf->u, sf->v);
+        c.weight = v3_load(d->weight);
         c.roughness = clampf(d->roughness, 0.0f, 1.0f);
         c.alpha = c.roughness * c.roughness;
         float rt = d->transmission_roughness < 0.0f ? c.roughness : d->transmission_roughness;
@@ -339,8 +331,6 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
         c.transmission_tint = v3_load(d->transmission_tint);
         c.eta = eta;
         c.f0 = v3_load(d->specular_color);
-        if (d->type == PHOS_CLOSURE_OREN_NAYAR && d->weight_image >= 0 && (uint32_t)d->weight_image < s->image_count)
-            c.f0 = v3_mul(c.f0, image_lookup(&s->images[d->weight_image], sf->u, sf->v)); /* a textured colour */
         c.specular_tint = v3_load(d->specular_tint);
         c.glass_fresnel = d->glass_fresnel;
         c.microfacet = d->microfacet;
@@ -363,7 +353,7 @@ static vec3 emission_of(const scene *s, const surface *sf)
     vec3 sum = v3s(0.0f);
     for (uint32_t i = 0; i < sf->mat->closure_count; i++)
         if (closures[i].type == PHOS_CLOSURE_EMISSION)
-            sum = v3_add(sum, closure_weight(s, &closures[i], sf->u, sf->v));
+            sum = v3_add(sum, v3_load(closures[i].weight));
     return sum;
 }
 
@@ -410,10 +400,7 @@ vec3 material_emission_estimate(const scene *s, const material *m)
         const phos_closure_desc *c = &m->closures[i];
         if (c->type != PHOS_CLOSURE_EMISSION)
             continue;
-        vec3 w = v3_load(c->weight);
-        if (c->weight_image >= 0 && (uint32_t)c->weight_image < s->image_count)
-            w = v3_mul(w, s->images[c->weight_image].average);
-        sum = v3_add(sum, w);
+        sum = v3_add(sum, v3_load(c->weight));
     }
     return sum;
 }
@@ -428,7 +415,7 @@ vec3 material_transparency(const scene *s, const surface *sf)
     const phos_closure_desc *closures = material_eval(s, sf, local, NULL);
     for (uint32_t i = 0; i < m->closure_count; i++)
         if (closures[i].type == PHOS_CLOSURE_TRANSPARENT)
-            sum = v3_add(sum, closure_weight(s, &closures[i], sf->u, sf->v));
+            sum = v3_add(sum, v3_load(closures[i].weight));
     return sum;
 }
 

@@ -92,22 +92,3 @@ void image_lookup_rgba(const image *img, float u, float v, uint32_t interpolatio
                 out[c] += w * t[c];
         }
 }
-
-vec3 image_lookup(const image *img, float u, float v)
-{
-    float rgba[4];
-    uint32_t interp = img->interpolation == PHOS_INTERP_CLOSEST ? PHOS_IMAGE_CLOSEST : PHOS_IMAGE_LINEAR;
-    image_lookup_rgba(img, u, v, interp, img->extension, 0, rgba);
-    return v3(rgba[0], rgba[1], rgba[2]);
-}
-
-vec3 image_average(const image *img)
-{
-    double sum[3] = {0.0, 0.0, 0.0};
-    size_t n = (size_t)img->width * img->height;
-    for (size_t i = 0; i < n; i++)
-        for (int c = 0; c < 3; c++)
-            sum[c] += img->pixels[4 * i + c];
-    double inv = n ? 1.0 / (double)n : 0.0;
-    return v3((float)(sum[0] * inv), (float)(sum[1] * inv), (float)(sum[2] * inv));
-}

@@ -1,6 +1,6 @@
 /*
  * texture.h — image lookups: the Image Texture node's interpolations and
- * extension modes, and image averages for light power estimates.
+ * extension modes.
  */
 #ifndef PHOS_TEXTURE_H
 #define PHOS_TEXTURE_H
@@ -15,11 +15,5 @@
  * stored with associated alpha is (Cycles stores images so). */
 void image_lookup_rgba(const image *img, float u, float v, uint32_t interpolation, uint32_t extension,
                        int associate, float out[4]);
-
-/* RGB with the image's own modes (phos_image_desc). */
-vec3 image_lookup(const image *img, float u, float v);
-
-/* Mean RGB over all pixels. */
-vec3 image_average(const image *img);
 
 #endif /* PHOS_TEXTURE_H */
