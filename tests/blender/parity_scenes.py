@@ -197,87 +197,18 @@ def _image_texture(scene):
 
 
 def _walnut(scene):
-    """A material as artists build it (issue 21): a Principled BSDF whose
-    Base Color is wood grain (a Wave texture distorted by noise, through a
-    Color Ramp), whose Roughness follows a Voronoi texture through Map
-    Range, with a Bump of the grain, inside a node group."""
-    mat = bpy.data.materials.new("Test Walnut")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
-    bsdf = nt.nodes.new("ShaderNodeBsdfPrincipled")
-    group = bpy.data.node_groups.new("Grain", "ShaderNodeTree")
-    if hasattr(group, "interface"):  # 4.0+
-        group.interface.new_socket("Vector", in_out="INPUT", socket_type="NodeSocketVector")
-        group.interface.new_socket("Fac", in_out="OUTPUT", socket_type="NodeSocketFloat")
-    else:
-        group.inputs.new("NodeSocketVector", "Vector")
-        group.outputs.new("NodeSocketFloat", "Fac")
-    gin, gout = group.nodes.new("NodeGroupInput"), group.nodes.new("NodeGroupOutput")
-    wave = group.nodes.new("ShaderNodeTexWave")
-    wave.inputs["Scale"].default_value = 3.0
-    wave.inputs["Distortion"].default_value = 4.0
-    wave.inputs["Detail"].default_value = 2.0
-    group.links.new(gin.outputs[0], wave.inputs["Vector"])
-    group.links.new(wave.outputs["Fac"], gout.inputs[0])
-    coords = nt.nodes.new("ShaderNodeTexCoord")
-    grain = nt.nodes.new("ShaderNodeGroup")
-    grain.node_tree = group
-    nt.links.new(coords.outputs["Object"], grain.inputs[0])
-    ramp = nt.nodes.new("ShaderNodeValToRGB")
-    ramp.color_ramp.elements[0].color = (0.08, 0.035, 0.015, 1.0)
-    ramp.color_ramp.elements[1].color = (0.35, 0.17, 0.07, 1.0)
-    nt.links.new(grain.outputs[0], ramp.inputs["Fac"])
-    nt.links.new(ramp.outputs["Color"], bsdf.inputs["Base Color"])
-    voronoi = nt.nodes.new("ShaderNodeTexVoronoi")
-    voronoi.inputs["Scale"].default_value = 6.0
-    nt.links.new(coords.outputs["Object"], voronoi.inputs["Vector"])
-    rough = nt.nodes.new("ShaderNodeMapRange")
-    rough.inputs[3].default_value, rough.inputs[4].default_value = 0.25, 0.6
-    nt.links.new(voronoi.outputs["Distance"], rough.inputs[0])
-    nt.links.new(rough.outputs[0], bsdf.inputs["Roughness"])
-    bump = nt.nodes.new("ShaderNodeBump")
-    bump.inputs["Strength"].default_value = 0.3
-    bump.inputs["Distance"].default_value = 0.02
-    nt.links.new(grain.outputs[0], bump.inputs["Height"])
-    nt.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
-    nt.links.new(bsdf.outputs[0], out.inputs["Surface"])
-    return mat
+    """A material as artists build them (issue 21; scenes/procedural_materials.py):
+    a Principled BSDF whose Base Color is wood grain in a node group through
+    a Color Ramp, Roughness a Voronoi through Map Range, and a Bump."""
+    import procedural_materials
+    return procedural_materials.walnut()
 
 
 def _mixed_by_texture(scene):
-    """Diffuse and Glossy mixed by a texture (a checker times Layer Weight's
-    Facing), the diffuse coloured by noise through Hue/Saturation."""
-    mat = bpy.data.materials.new("Test Mixed")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
-    mix = nt.nodes.new("ShaderNodeMixShader")
-    diffuse = nt.nodes.new("ShaderNodeBsdfDiffuse")
-    glossy = nt.nodes.new("ShaderNodeBsdfGlossy")
-    glossy.distribution = "GGX"
-    glossy.inputs["Roughness"].default_value = 0.25
-    noise = nt.nodes.new("ShaderNodeTexNoise")
-    noise.inputs["Scale"].default_value = 4.0
-    hsv = nt.nodes.new("ShaderNodeHueSaturation")
-    hsv.inputs["Saturation"].default_value = 1.6
-    nt.links.new(noise.outputs["Color"], hsv.inputs["Color"])
-    nt.links.new(hsv.outputs["Color"], diffuse.inputs["Color"])
-    checker = nt.nodes.new("ShaderNodeTexChecker")
-    checker.inputs["Scale"].default_value = 4.0
-    weight = nt.nodes.new("ShaderNodeLayerWeight")
-    weight.inputs["Blend"].default_value = 0.3
-    fac = nt.nodes.new("ShaderNodeMath")
-    fac.operation = "MULTIPLY"
-    nt.links.new(checker.outputs["Fac"], fac.inputs[0])
-    nt.links.new(weight.outputs["Facing"], fac.inputs[1])
-    nt.links.new(fac.outputs[0], mix.inputs["Fac"])
-    nt.links.new(diffuse.outputs[0], mix.inputs[1])
-    nt.links.new(glossy.outputs[0], mix.inputs[2])
-    nt.links.new(mix.outputs[0], out.inputs["Surface"])
-    return mat
+    """Diffuse and Glossy mixed by a checker times Layer Weight's Facing, the
+    diffuse coloured by noise through Hue/Saturation/Value."""
+    import procedural_materials
+    return procedural_materials.glazed_ceramic()
 
 
 def _principled(inputs, props=None):
@@ -323,6 +254,8 @@ MATERIAL_SCENES = {
         ("ShaderNodeBsdfDiffuse", {"Color": (0.2, 0.3, 0.5)}, None),
         ("ShaderNodeBsdfGlossy", {"Color": (0.4, 0.4, 0.4), "Roughness": 0.3}, {"distribution": "GGX"}))),
     "image_texture": _material_scene(_image_texture),
+    "sheen_bsdf": _material_scene(_one("ShaderNodeBsdfSheen", {"Color": (0.9, 0.5, 0.6), "Roughness": 0.4},
+                                       {"distribution": "MICROFIBER"})),
     "textured_walnut": _material_scene(_walnut),
     "textured_mix": _material_scene(_mixed_by_texture),
 }
@@ -375,6 +308,7 @@ MIN_VERSION = {
     "spot_sphere": (4, 1, 0),
     "principled_coat": (4, 0, 0),
     "principled_sheen": (4, 0, 0),
+    "sheen_bsdf": (4, 0, 0),
     "principled_specular_tint": (4, 0, 0),
     "principled_metal_edge_tint": (4, 0, 0),
     "principled_thin_film": (4, 2, 0),

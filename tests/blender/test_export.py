@@ -638,3 +638,74 @@ def test_unsupported_node_report(tmp_path):
     assert len(ours) == 1, "warnings naming the material: %s" % ours
     assert "My Toon Node" in ours[0], ours[0]
     assert not [line for line in out.splitlines() if line.startswith("Error:")], out[-3000:]
+
+
+# ------------------------------------------------------------ shader programs
+
+def _chain_material(name, length, textured=True):
+    """Diffuse whose colour is a chain of `length` Math nodes, fed by a
+    texture coordinate (varying) or by a constant (folds away)."""
+    mat = bpy.data.materials.new(name)
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    bsdf = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    nt.links.new(bsdf.outputs[0], out.inputs["Surface"])
+    value = nt.nodes.new("ShaderNodeValue")
+    value.outputs[0].default_value = 0.3
+    src = value.outputs[0]
+    if textured:
+        sep = nt.nodes.new("ShaderNodeSeparateXYZ")
+        nt.links.new(nt.nodes.new("ShaderNodeTexCoord").outputs["UV"], sep.inputs[0])
+        src = sep.outputs["X"]
+    for k in range(length):
+        m = nt.nodes.new("ShaderNodeMath")
+        m.operation = ("ADD", "MULTIPLY", "SINE")[k % 3]
+        m.inputs[1].default_value = 0.5 + 0.01 * k
+        nt.links.new(src, m.inputs[0])
+        src = m.outputs[0]
+    nt.links.new(src, bsdf.inputs["Color"])
+    return mat
+
+
+def test_constant_node_chain_folds(scene):
+    """Value nodes of constants compile to instructions of constants only,
+    which the core folds into the closure's colour when the material is
+    added (tests/c/test_shader_program.c shows the folding): nothing reads
+    the shading point."""
+    from phos import core
+    from phos.export import material as mexp
+    from phos.export.context import ExportContext
+    mat = _chain_material("Folded", 12, textured=False)
+    with core.Scene() as core_scene:
+        ctx = ExportContext(scene, core_scene)
+        closures, program = mexp.compile_material(mat, ctx)
+    reads_point = {core.PHOS_OP_TEXTURE_COORDINATE, core.PHOS_OP_GEOMETRY, core.PHOS_OP_OBJECT_INFO,
+                   core.PHOS_OP_FRESNEL, core.PHOS_OP_LAYER_WEIGHT, core.PHOS_OP_LIGHT_PATH,
+                   core.PHOS_OP_BUMP_OFFSET, core.PHOS_OP_BUMP, core.PHOS_OP_NORMAL_MAP,
+                   core.PHOS_OP_VECTOR_TRANSFORM}
+    ops = [ins[0] for ins in program.instructions]
+    assert len(ops) >= 12 and not set(ops) & reads_point, ops
+    assert not ctx.warnings, ctx.warnings
+
+
+def test_program_over_the_limit_warns(scene, monkeypatch):
+    """A program beyond the core's limits is one warning naming the
+    material; it renders without it."""
+    from phos import core
+    monkeypatch.setattr(core, "PHOS_SHADER_MAX_INSTRUCTIONS", 50)
+    closures, warnings = closures_of(scene, _chain_material("Huge Graph", 80))
+    assert any("Huge Graph" in w and "exceeds the core's limits" in w for w in warnings), warnings
+
+
+def test_one_program_per_material(scene, tmp_path):
+    """A thousand objects of one textured material share its program: the
+    material is exported once."""
+    mat = _chain_material("Shared", 6)
+    for i in range(1000):
+        pt.add_cube(scene, "Cube %d" % i, size=0.05, location=(i % 32 * 0.1, i // 32 * 0.1, 0.0), material=mat)
+    ortho_top_camera(scene)
+    ctx = export(scene)
+    assert ctx.stats["instances"] == 1000
+    assert ctx.stats["materials"] == 1

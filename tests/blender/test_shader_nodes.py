@@ -472,6 +472,52 @@ def _textured_by_image(tmp_path, interpolation, extension, projection):
     return build
 
 
+def _bump(invert):
+    """Bump of a smooth height: Cycles differentiates over the pixel's
+    footprint (a forward difference, so the normal of a point half a
+    footprint away), Phos over 10⁻⁴ of the scene's size; on a height that
+    bends little over a pixel both are its derivative."""
+    def build(name):
+        t = Tree(name)
+        noise = t.node("ShaderNodeTexNoise", {"Scale": 0.3, "Detail": 0.0})
+        t.link(t.coords("Object"), sock(noise.inputs, "Vector"))
+        bump = t.node("ShaderNodeBump", {"Strength": 0.8, "Distance": 0.6}, invert=invert)
+        t.link(sock(noise.outputs, "Fac"), sock(bump.inputs, "Height"))
+        return t.show(t.absolute(sock(bump.outputs, "Normal")))
+    return build
+
+
+def _normal_map(space):
+    def build(name):
+        t = Tree(name)
+        img = bpy.data.images.get("normal_image")
+        if img is None:
+            img = bpy.data.images.new("normal_image", 8, 8, alpha=True, float_buffer=True)
+            rng = np.random.default_rng(3)
+            px = np.empty((8, 8, 4), np.float32)
+            px[..., 0:2] = 0.5 + 0.3 * (rng.random((8, 8, 2)) - 0.5)
+            px[..., 2] = 0.9
+            px[..., 3] = 1.0
+            img.pixels.foreach_set(px.ravel())
+            img.colorspace_settings.is_data = True
+            img.pack()
+        tex = t.node("ShaderNodeTexImage", interpolation="Linear")
+        tex.image = img
+        nm = t.node("ShaderNodeNormalMap", {"Strength": 0.7}, space=space)
+        t.link(sock(tex.outputs, "Color"), sock(nm.inputs, "Color"))
+        return t.show(t.absolute(sock(nm.outputs, "Normal")))
+    return build
+
+
+def _input_node(kind, output, inputs=None):
+    def build(name):
+        t = Tree(name)
+        n = t.node(kind, inputs)
+        out = sock(n.outputs, output)
+        return t.show(t.absolute(out) if out.type != "RGBA" else out)
+    return build
+
+
 def vector_cases(tmp_path):
     cases = [("coordinates %s" % o.lower(), _coordinate(o)) for o in ("Generated", "Normal", "UV", "Object",
                                                                        "Camera", "Window", "Reflection")]
@@ -483,6 +529,16 @@ def vector_cases(tmp_path):
                           _textured_by_image(tmp_path, interp, ext, "FLAT")))
     for proj in ("SPHERE", "TUBE", "BOX"):
         cases.append(("image %s" % proj.lower(), _textured_by_image(tmp_path, "Linear", "REPEAT", proj)))
+    cases += [("bump", _bump(False)), ("bump inverted", _bump(True))]
+    cases += [("normal map %s" % s.lower(), _normal_map(s)) for s in ("TANGENT", "OBJECT", "WORLD")]
+    cases += [("fresnel", _input_node("ShaderNodeFresnel", "Fac", {"IOR": 1.8})),
+              ("layer weight fresnel", _input_node("ShaderNodeLayerWeight", "Fresnel", {"Blend": 0.3})),
+              ("layer weight facing", _input_node("ShaderNodeLayerWeight", "Facing", {"Blend": 0.7})),
+              ("geometry position", _input_node("ShaderNodeNewGeometry", "Position")),
+              ("geometry incoming", _input_node("ShaderNodeNewGeometry", "Incoming")),
+              ("object info location", _input_node("ShaderNodeObjectInfo", "Location")),
+              ("object info random", _input_node("ShaderNodeObjectInfo", "Random")),
+              ("light path camera", _input_node("ShaderNodeLightPath", "Is Camera Ray"))]
     return cases
 
 

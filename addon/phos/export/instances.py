@@ -40,6 +40,41 @@ _VISIBILITY = ("visible_camera", "visible_diffuse", "visible_glossy", "visible_t
                "visible_shadow")
 
 
+def _hash_uint2(kx, ky):
+    """Bob Jenkins' lookup3 hash of two words (its final mix), as Cycles'
+    hash_uint2."""
+    m = 0xFFFFFFFF
+
+    def rot(x, k):
+        return ((x << k) | (x >> (32 - k))) & m
+
+    a = b = c = (0xDEADBEEF + (2 << 2) + 13) & m
+    b = (b + ky) & m
+    a = (a + kx) & m
+    c ^= b; c = (c - rot(b, 14)) & m
+    a ^= c; a = (a - rot(c, 11)) & m
+    b ^= a; b = (b - rot(a, 25)) & m
+    c ^= b; c = (c - rot(b, 16)) & m
+    a ^= c; a = (a - rot(c, 4)) & m
+    b ^= a; b = (b - rot(a, 14)) & m
+    c ^= b; c = (c - rot(b, 24)) & m
+    return c
+
+
+def _hash_string(text):
+    h = 0
+    for ch in text.encode("utf-8"):
+        h = (h * 37 + ch) & 0xFFFFFFFF
+    return h
+
+
+def object_random(inst, ob):
+    """Object Info's Random as Cycles computes it: an instance's random id,
+    or for an object itself the hash of its name, over 2^32 − 1."""
+    rid = inst.random_id & 0xFFFFFFFF if inst.is_instance else _hash_uint2(_hash_string(ob.name), 0)
+    return float(np.float32(rid * (1.0 / 0xFFFFFFFF)))
+
+
 def _check_object(ob, ctx):
     """Warn about per-object render settings the core does not have (once per object)."""
     if any(not getattr(ob, name, True) for name in _VISIBILITY) or \
@@ -114,9 +149,7 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
         if mats is None:
             mats = material_lists[mat_key] = _materials(ob, ctx)
         try:
-            # Object Info's Random as Cycles computes it: the instance's random id
-            # over 2^32 − 1.
-            random = float(np.float32((inst.random_id & 0xFFFFFFFF) * (1.0 / 0xFFFFFFFF)))
+            random = object_random(inst, ob)
             ctx.core.add_instance(mesh_id, core.matrix_to_3x4(matrix), mats, random=random,
                                   pass_index=float(getattr(ob, "pass_index", 0)))
         except core.PhosError as ex:

@@ -156,9 +156,12 @@ def _field(value, width):
 
 
 def _placeholder(name):
-    """The constant a desc holds where a program sets the field: any valid value."""
-    return np.ones(3) if name in Closure._VECTORS or name == "weight" else \
-        (1.45 if name in {"ior", "thin_film_ior"} else 0.0)
+    """The constant a desc holds where a program sets the field, and what
+    renders if the program has to be dropped (too large): white colours,
+    roughness ½, IOR 1.45, no thin film."""
+    if name in Closure._VECTORS or name == "weight":
+        return np.ones(3)
+    return {"ior": 1.45, "thin_film_ior": 1.33, "roughness": 0.5, "transmission_roughness": 0.5}.get(name, 0.0)
 
 
 def closure_descs(closures, program=None):
@@ -571,6 +574,21 @@ class NodeTreeWalker:
         return [Closure(core.PHOS_CLOSURE_METAL, (1.0, 1.0, 1.0), normal, roughness=roughness, microfacet=model,
                         specular_color=f0, specular_tint=tint, multiscatter_fresnel=f82_fss(f0, tint))]
 
+    def _sheen(self, node, stack):
+        """The Sheen BSDF (4.0+): Microfiber is the core's sheen lobe;
+        Ashikhmin (and 3.x's Velvet BSDF) is rendered with it, with one
+        warning."""
+        if self.world:
+            return self._fallback(node)
+        consumed = set()
+        rgb, _, _ = self.color(node, 'Color', consumed)
+        roughness = prog.clamp(self.value(node, ('Roughness', 'Sigma'), 0.5, consumed), 0.0, 1.0)
+        if getattr(node, "distribution", 'ASHIKHMIN') != 'MICROFIBER':
+            self.note(node, "Ashikhmin velvet is rendered as the microfiber sheen of the same roughness")
+        normal = self.normal(node, consumed=consumed)
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_SHEEN, rgb, normal, roughness=roughness)]
+
     def _emission(self, node, stack):
         consumed = set()
         rgb, _, _ = self.color(node, 'Color', consumed)
@@ -692,6 +710,8 @@ _HANDLERS = {
     'ShaderNodeBsdfTransparent': NodeTreeWalker._transparent,
     'ShaderNodeBsdfPrincipled': NodeTreeWalker._principled,
     'ShaderNodeBsdfMetallic': NodeTreeWalker._metallic,
+    'ShaderNodeBsdfSheen': NodeTreeWalker._sheen,
+    'ShaderNodeBsdfVelvet': NodeTreeWalker._sheen,
 }
 
 
@@ -782,7 +802,7 @@ def add_material(mat, ctx):
     descs = closure_descs(closures, program)
     if program.too_large():
         ctx.warn("Phos: material '%s': its shader program exceeds the core's limits (%d registers, %d "
-                 "instructions); its textures are replaced by their defaults"
+                 "instructions); it renders without them: white colours, roughness 0.5"
                  % (mat.name, core.PHOS_SHADER_MAX_REGISTERS, core.PHOS_SHADER_MAX_INSTRUCTIONS))
         program = Program()
     try:
