@@ -208,7 +208,7 @@ static vec3 window_coordinates(const scene *s, vec3 p)
     return v3(w != 0.0f ? (x - c->frame_min[0]) / w : 0.0f, h != 0.0f ? (y - c->frame_min[1]) / h : 0.0f, 0.0f);
 }
 
-void material_shader_globals(const scene *s, const surface *sf, shader_globals *g)
+void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, shader_globals *g)
 {
     memset(g, 0, sizeof(*g));
     const instance *inst = &s->instances[sf->instance];
@@ -240,12 +240,12 @@ void material_shader_globals(const scene *s, const surface *sf, shader_globals *
         else
             g->generated.z = gen, g->generated_scale.z = scale;
     }
-    if (m->uvs) {
+    if (m->uvs && (needs & SHADER_NEEDS_UV_TANGENTS)) {
         vec3 v[3];
         scene_triangle_vertices(s, inst, sf->prim, v);
         uv_tangents(v, m->uvs + 6 * (size_t)sf->prim, &g->dPdu, &g->dPdv);
     }
-    if (m->tangents) {
+    if (m->tangents && (needs & SHADER_NEEDS_TANGENT)) {
         float t[4];
         corner_lerp(m->tangents + 12 * (size_t)sf->prim, 4, b0, b1, b2, t);
         vec3 tw = xform_vector(inst->transform, v3(t[0], t[1], t[2]));
@@ -257,7 +257,8 @@ void material_shader_globals(const scene *s, const surface *sf, shader_globals *
             g->tangent_sign = t[3] < 0.0f ? -1.0f : 1.0f;
         }
     }
-    g->window = window_coordinates(s, sf->p);
+    if (needs & SHADER_NEEDS_WINDOW)
+        g->window = window_coordinates(s, sf->p);
     g->object_location = v3(inst->transform[3], inst->transform[7], inst->transform[11]);
     g->object_random = inst->random;
     g->object_index = inst->pass_index;
@@ -277,7 +278,7 @@ static const phos_closure_desc *material_eval(const scene *s, const surface *sf,
     if (!m->has_program)
         return m->closures;
     shader_globals g;
-    material_shader_globals(s, sf, &g);
+    material_shader_globals(s, sf, m->program.needs, &g);
     float r[PHOS_SHADER_MAX_REGISTERS];
     shader_program_eval(&m->program, s, &g, r);
     memcpy(local, m->closures, sizeof(phos_closure_desc) * m->closure_count);

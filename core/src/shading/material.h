@@ -46,8 +46,9 @@ vec3 material_emission_estimate(const scene *s, const material *m);
 /* The same for one triangle of an instance, where a program may vary it. */
 vec3 material_emission_estimate_triangle(const scene *s, uint32_t instance, uint32_t prim);
 
-/* What a shader program reads at the surface. */
-void material_shader_globals(const scene *s, const surface *sf, shader_globals *g);
+/* What a shader program reads at the surface; needs: enum shader_needs,
+ * the costlier parts to fill. */
+void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, shader_globals *g);
 
 /* Whether some closure of the material can scatter into a delta lobe
  * (sharp mirror or glass, index-matched refraction): only such a surface

@@ -267,6 +267,21 @@ static uint32_t split_constant_bindings(shader_program *p, const uint8_t *known)
     return baked;
 }
 
+/* Which costlier globals the program's instructions read. */
+static void shader_program_needs(shader_program *p)
+{
+    p->needs = 0;
+    for (uint32_t i = 0; i < p->instruction_count; i++) {
+        const phos_shader_instruction *ins = &p->instructions[i];
+        if (ins->op == PHOS_OP_BUMP || ins->op == PHOS_OP_BUMP_OFFSET)
+            p->needs |= SHADER_NEEDS_UV_TANGENTS;
+        else if (ins->op == PHOS_OP_NORMAL_MAP)
+            p->needs |= SHADER_NEEDS_TANGENT;
+        else if (ins->op == PHOS_OP_TEXTURE_COORDINATE && ins->mode == 1)
+            p->needs |= SHADER_NEEDS_WINDOW;
+    }
+}
+
 const char *shader_program_create(const phos_shader_program_desc *d, uint32_t closure_count, uint32_t image_count,
                                   shader_program *out, char *msg, size_t n)
 {
@@ -300,6 +315,7 @@ const char *shader_program_create(const phos_shader_program_desc *d, uint32_t cl
         memcpy(out->table, d->table, sizeof(float) * d->table_size);
     if (d->binding_count)
         memcpy(out->bindings, d->bindings, sizeof(phos_shader_binding) * d->binding_count);
+    shader_program_needs(out);
     return NULL;
 }
 

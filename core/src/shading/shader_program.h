@@ -68,7 +68,16 @@ typedef struct shader_program {
     float *table;
     uint32_t binding_count;
     phos_shader_binding *bindings;
+    uint32_t needs;                 /* enum shader_needs: what the globals must hold */
 } shader_program;
+
+/* The costlier parts of shader_globals, filled only for a program that
+ * reads them. */
+enum shader_needs {
+    SHADER_NEEDS_UV_TANGENTS = 1 << 0, /* dPdu, dPdv (Bump) */
+    SHADER_NEEDS_TANGENT = 1 << 1,     /* the MikkTSpace tangent (Normal Map) */
+    SHADER_NEEDS_WINDOW = 1 << 2       /* window coordinates (Texture Coordinate's Window) */
+};
 
 /* The state one op sees. */
 typedef struct shader_context {
