@@ -400,6 +400,8 @@ def colour_cases():
         ("gamma", _color_node("ShaderNodeGamma", {"Gamma": 2.2})),
         ("invert", _color_node("ShaderNodeInvert", {"Fac": 0.8})),
         ("rgb curves", _color_node("ShaderNodeRGBCurve", setup=_curves)),
+        ("vector curves", _color_node("ShaderNodeVectorCurve", color_socket="Vector", setup=_curves)),
+        ("clamp range", _scalar_to_colour("ShaderNodeClamp", -0.3, 1.4, "Value")),
         ("rgb to bw", _color_node("ShaderNodeRGBToBW")),
         ("blackbody", _scalar_to_colour("ShaderNodeBlackbody", 1500.0, 12000.0, "Temperature")),
         ("wavelength", _scalar_to_colour("ShaderNodeWavelength", 380.0, 780.0, "Wavelength")),

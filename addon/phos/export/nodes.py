@@ -308,51 +308,41 @@ def _extrapolate(mapping):
     return 1 if getattr(mapping, "extend", 'EXTRAPOLATED') == 'EXTRAPOLATED' else 0
 
 
-def _rgb_curves(nc, node, stack):
+def _curve_node(nc, node, stack, op, used, entry, width, output):
+    """A curve node baked as Cycles bakes it: RAMP_TABLE_SIZE entries of
+    entry(mapping, curves, t) (four floats) over the x range of the `used`
+    curves, then one instruction reading Fac and the input (width wide)."""
     mapping = node.mapping
     mapping.update()
     curves = mapping.curves
-    lo, hi = _curve_range(mapping, curves[:4])
+    lo, hi = _curve_range(mapping, curves[:used])
     table = []
     for i in range(RAMP_TABLE_SIZE):
-        t = lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)
-        c = mapping.evaluate(curves[3], t)
-        table.extend([mapping.evaluate(curves[0], c), mapping.evaluate(curves[1], c),
-                      mapping.evaluate(curves[2], c), 0.0])
+        table.extend(entry(mapping, curves, lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)))
     offset = nc.p.add_table(table)
-    fac, color = nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], 3, stack)
-    return {"Color": nc.p.emit(core.PHOS_OP_CURVES_RGB, [fac, color], [3], mode=RAMP_TABLE_SIZE, table=offset,
-                               param=(lo, hi), flags=_extrapolate(mapping))[0]}
+    fac, value = nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], width, stack)
+    return {output: nc.p.emit(op, [fac, value], [width], mode=RAMP_TABLE_SIZE, table=offset, param=(lo, hi),
+                              flags=_extrapolate(mapping))[0]}
+
+
+def _rgb_entry(mapping, curves, t):
+    c = mapping.evaluate(curves[3], t)  # the combined curve first, then R, G, B
+    return [mapping.evaluate(curves[0], c), mapping.evaluate(curves[1], c), mapping.evaluate(curves[2], c), 0.0]
+
+
+def _rgb_curves(nc, node, stack):
+    return _curve_node(nc, node, stack, core.PHOS_OP_CURVES_RGB, 4, _rgb_entry, 3, "Color")
 
 
 def _vector_curves(nc, node, stack):
-    mapping = node.mapping
-    mapping.update()
-    curves = mapping.curves
-    lo, hi = _curve_range(mapping, curves[:3])
-    table = []
-    for i in range(RAMP_TABLE_SIZE):
-        t = lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)
-        table.extend([mapping.evaluate(curves[0], t), mapping.evaluate(curves[1], t),
-                      mapping.evaluate(curves[2], t), 0.0])
-    offset = nc.p.add_table(table)
-    fac, vec = nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], 3, stack)
-    return {"Vector": nc.p.emit(core.PHOS_OP_CURVES_VECTOR, [fac, vec], [3], mode=RAMP_TABLE_SIZE, table=offset,
-                                param=(lo, hi), flags=_extrapolate(mapping))[0]}
+    return _curve_node(nc, node, stack, core.PHOS_OP_CURVES_VECTOR, 3,
+                       lambda m, c, t: [m.evaluate(c[0], t), m.evaluate(c[1], t), m.evaluate(c[2], t), 0.0],
+                       3, "Vector")
 
 
 def _float_curve(nc, node, stack):
-    mapping = node.mapping
-    mapping.update()
-    curve = mapping.curves[0]
-    lo, hi = _curve_range(mapping, [curve])
-    table = []
-    for i in range(RAMP_TABLE_SIZE):
-        table.extend([mapping.evaluate(curve, lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)), 0.0, 0.0, 0.0])
-    offset = nc.p.add_table(table)
-    fac, value = nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], 1, stack)
-    return {"Value": nc.p.emit(core.PHOS_OP_CURVE_FLOAT, [fac, value], [1], mode=RAMP_TABLE_SIZE, table=offset,
-                               param=(lo, hi), flags=_extrapolate(mapping))[0]}
+    return _curve_node(nc, node, stack, core.PHOS_OP_CURVE_FLOAT, 1,
+                       lambda m, c, t: [m.evaluate(c[0], t), 0.0, 0.0, 0.0], 1, "Value")
 
 
 def _hue_saturation(nc, node, stack):

@@ -188,27 +188,13 @@ static int project_to_film(const render *r, vec3 p, float *px, float *py)
 {
     const phos_camera_desc *c = &r->scene->camera;
     const float *m = c->transform;
-    /* Invert the affine camera transform: p_cam = A⁻¹ (p − t). */
-    vec3 q = v3(p.x - m[3], p.y - m[7], p.z - m[11]);
-    vec3 c0 = v3(m[0], m[4], m[8]), c1 = v3(m[1], m[5], m[9]), c2 = v3(m[2], m[6], m[10]);
-    vec3 r0 = v3_cross(c1, c2), r1 = v3_cross(c2, c0), r2 = v3_cross(c0, c1);
-    float det = v3_dot(c0, r0);
-    vec3 pc = v3_scale(v3(v3_dot(r0, q), v3_dot(r1, q), v3_dot(r2, q)), 1.0f / det);
-    float x, y;
-    vec3 origin;
-    if (c->type == PHOS_CAMERA_ORTHOGRAPHIC) {
-        x = pc.x;
-        y = pc.y;
-        origin = xform_point(m, v3(pc.x, pc.y, 0.0f));
-    } else {
-        if (pc.z >= 0.0f)
-            return 0;
-        x = pc.x / -pc.z;
-        y = pc.y / -pc.z;
-        origin = xform_point(m, v3s(0.0f));
-    }
-    *px = (x - c->frame_min[0]) / (c->frame_max[0] - c->frame_min[0]) * (float)r->settings.width;
-    *py = (y - c->frame_min[1]) / (c->frame_max[1] - c->frame_min[1]) * (float)r->settings.height;
+    float fx, fy;
+    vec3 pc;
+    if (!camera_project(c, p, &fx, &fy, &pc))
+        return 0;
+    vec3 origin = c->type == PHOS_CAMERA_ORTHOGRAPHIC ? xform_point(m, v3(pc.x, pc.y, 0.0f)) : xform_point(m, v3s(0.0f));
+    *px = fx * (float)r->settings.width;
+    *py = fy * (float)r->settings.height;
     vec3 to = v3_sub(p, origin);
     float dist = v3_length(to);
     if (!(dist > 0.0f))

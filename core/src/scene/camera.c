@@ -42,6 +42,28 @@ camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, fl
     return r;
 }
 
+int camera_project(const phos_camera_desc *c, vec3 p, float *fx, float *fy, vec3 *p_cam)
+{
+    const float *m = c->transform;
+    /* Invert the affine camera transform: p_cam = A⁻¹ (p − t). */
+    vec3 q = v3(p.x - m[3], p.y - m[7], p.z - m[11]);
+    vec3 c0 = v3(m[0], m[4], m[8]), c1 = v3(m[1], m[5], m[9]), c2 = v3(m[2], m[6], m[10]);
+    vec3 r0 = v3_cross(c1, c2), r1 = v3_cross(c2, c0), r2 = v3_cross(c0, c1);
+    float det = v3_dot(c0, r0);
+    vec3 pc = v3_scale(v3(v3_dot(r0, q), v3_dot(r1, q), v3_dot(r2, q)), 1.0f / det);
+    *p_cam = pc;
+    float x = pc.x, y = pc.y;
+    if (c->type != PHOS_CAMERA_ORTHOGRAPHIC) {
+        if (pc.z >= 0.0f)
+            return 0;
+        x = pc.x / -pc.z;
+        y = pc.y / -pc.z;
+    }
+    *fx = (x - c->frame_min[0]) / (c->frame_max[0] - c->frame_min[0]);
+    *fy = (y - c->frame_min[1]) / (c->frame_max[1] - c->frame_min[1]);
+    return 1;
+}
+
 /* The transform's columns are the camera axes in world space (scaled, if
  * the camera object is): project on each, then normalise. Cycles' camera
  * space looks down +z, Blender's down −z. */

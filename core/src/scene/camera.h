@@ -18,6 +18,11 @@ typedef struct camera_ray {
  * bottom-left corner), lens sample in [0,1)². */
 camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, float2 lens);
 
+/* Where a world point lies on the camera's full frame: (fx, fy) in [0,1]²
+ * (0,0 = bottom-left, as camera_generate_ray takes them) and the point in
+ * camera space. Returns 0 for a point behind a perspective camera. */
+int camera_project(const phos_camera_desc *c, vec3 p, float *fx, float *fy, vec3 *p_cam);
+
 /* A world direction in Cycles' camera space (x right, y up, z along the
  * view), unit length: what the Denoising Normal pass holds, as in Cycles. */
 vec3 camera_direction_to_camera_space(const phos_camera_desc *c, vec3 d);

@@ -5,6 +5,7 @@
  */
 #include "shading/material.h"
 
+#include "scene/camera.h"
 #include "shading/texture.h"
 
 #include <string.h>
@@ -191,21 +192,14 @@ static void uv_tangents(const vec3 v[3], const float *uv, vec3 *dpdu, vec3 *dpdv
     *dpdv = v3_scale(v3_sub(v3_scale(e2, du1), v3_scale(e1, du2)), k);
 }
 
-/* Projects a world point onto the camera's frame: (x, y) in [0,1]². */
+/* Texture Coordinate's Window: the point's place on the camera's frame. */
 static vec3 window_coordinates(const scene *s, vec3 p)
 {
-    const phos_camera_desc *c = &s->camera;
-    vec3 q = xform_point(s->world_to_camera, p);
-    float x = q.x, y = q.y;
-    if (c->type == PHOS_CAMERA_PERSPECTIVE) {
-        float depth = -q.z;
-        if (!(fabsf(depth) > 1e-12f))
-            return v3s(0.0f);
-        x /= depth;
-        y /= depth;
-    }
-    float w = c->frame_max[0] - c->frame_min[0], h = c->frame_max[1] - c->frame_min[1];
-    return v3(w != 0.0f ? (x - c->frame_min[0]) / w : 0.0f, h != 0.0f ? (y - c->frame_min[1]) / h : 0.0f, 0.0f);
+    float fx = 0.0f, fy = 0.0f;
+    vec3 pc;
+    if (!s->has_camera || !camera_project(&s->camera, p, &fx, &fy, &pc))
+        return v3s(0.0f);
+    return v3(fx, fy, 0.0f);
 }
 
 void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, shader_globals *g)
