@@ -14,7 +14,7 @@ points moved along the surface (BUMP_OFFSET), as Cycles evaluates it; the
 texture coordinates inside those copies come from the moved points.
 
 Anything without a handler gives one warning naming the material and node,
-and its output socket's default value (the closest match).
+and the input it feeds takes its own unlinked value (the closest match).
 """
 
 import math
@@ -87,7 +87,9 @@ class NodeCompiler:
         outputs = self.node_outputs(src.node, src.stack)
         value = outputs.get(src.output.identifier)
         if value is None:
-            value = _socket_default(src.output, width)
+            # An unsupported node or output, a missing image: the input
+            # takes its own unlinked value (the node has warned).
+            value = _socket_default(socket, width)
         return self.p.convert(value, width)
 
     def node_outputs(self, node, stack):
@@ -104,7 +106,7 @@ class NodeCompiler:
         self.walker.stack = stack
         try:
             if handler is None:
-                self.walker.unsupported(node, "using the default value of its output")
+                self.walker.unsupported(node)
                 outputs = {}
             else:
                 outputs = handler(self, node, stack)
