@@ -612,7 +612,8 @@ def _normal_map(nc, node, stack):
     if mode == core.PHOS_NORMAL_MAP_TANGENT:
         nc.ctx.tangents_wanted = True
     ins = [nc.input(node, "Strength", 1, stack), nc.input(node, "Color", 3, stack)]
-    return {"Normal": nc.p.emit(core.PHOS_OP_NORMAL_MAP, ins, [3], mode=mode)[0]}
+    flags = 1 if nc.ctx.at_least(4, 0) else 0  # where Strength applies (phos.h)
+    return {"Normal": nc.p.emit(core.PHOS_OP_NORMAL_MAP, ins, [3], mode=mode, flags=flags)[0]}
 
 
 def _bump(nc, node, stack):

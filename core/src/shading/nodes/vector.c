@@ -159,7 +159,8 @@ void shader_op_normal(const phos_shader_instruction *ins, shader_context *ctx)
 /* Colour → normal: tangent space uses the UV map's MikkTSpace tangent
  * frame (T, ±N×T, N) about the interpolated normal; object and world
  * space take the colour as the normal itself. Strength blends from the
- * shading normal: normalize(N + s·(N' − N)). */
+ * shading normal, normalize(N + s·(N' − N)), except in tangent space from
+ * Blender 4 (flags 1), where it scales the map's tilt. */
 void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ctx)
 {
     const shader_globals *g = ctx->g;
@@ -167,10 +168,19 @@ void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ct
     vec3 c = SHADER_IN3(1);
     c = v3(2.0f * (c.x - 0.5f), 2.0f * (c.y - 0.5f), 2.0f * (c.z - 0.5f));
     vec3 n;
+    int blend_strength = 1;
     if (ins->mode == PHOS_NORMAL_MAP_TANGENT) {
         if (v3_is_zero(g->tangent)) {
             SHADER_OUT3(0, g->N); /* no tangents: the unperturbed normal */
             return;
+        }
+        if (ins->flags & 1) {
+            /* Strength in tangent space (Cycles of Blender 4+): the map's
+             * tilt scales by it, its z goes toward 1. */
+            c.x *= strength;
+            c.y *= strength;
+            c.z = 1.0f + (c.z - 1.0f) * clampf(strength, 0.0f, 1.0f);
+            blend_strength = 0;
         }
         /* The frame is the one the map was baked in, seen from the front. */
         vec3 normal = g->backfacing ? v3_neg(g->N) : g->N;
@@ -183,7 +193,7 @@ void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ct
     }
     if (g->backfacing)
         n = v3_neg(n);
-    if (strength != 1.0f) {
+    if (blend_strength && strength != 1.0f) {
         strength = fmaxf(strength, 0.0f);
         n = safe_normalize3(v3_add(g->N, v3_scale(v3_sub(n, g->N), strength)));
     }
