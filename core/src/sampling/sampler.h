@@ -82,14 +82,21 @@ static inline uint32_t owen_scramble(uint32_t x, uint32_t seed)
 }
 
 /* Sobol dimension 1 (dimension 0 is the bit reversal): its direction
- * numbers are the rows of Pascal's triangle mod 2, v_{k+1} = v_k ^ (v_k >> 1). */
+ * numbers are the rows of Pascal's triangle mod 2, v_{k+1} = v_k ^ (v_k >> 1),
+ * so bit m (from the top) of v_k is C(k, m) mod 2, which by Lucas' theorem
+ * is 1 exactly when m's bits are a subset of k's. The product with index i
+ * is then, before the bit reversal, bit m = XOR of i's bits k ⊇ m: a
+ * superset transform over the five bits of the position, done for all 32
+ * positions at once in five shift-and-mask steps instead of a loop over
+ * i's bits, whose branches the owen-scrambled indices make unpredictable. */
 static inline uint32_t sobol_dim1(uint32_t i)
 {
-    uint32_t r = 0;
-    for (uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1)
-        if (i & 1u)
-            r ^= v;
-    return r;
+    i ^= (i >> 1) & 0x55555555u;
+    i ^= (i >> 2) & 0x33333333u;
+    i ^= (i >> 4) & 0x0f0f0f0fu;
+    i ^= (i >> 8) & 0x00ff00ffu;
+    i ^= (i >> 16) & 0x0000ffffu;
+    return reverse_bits32(i);
 }
 
 typedef struct sampler {

@@ -17,6 +17,19 @@
 #define PHOS_NODE_PRE_4_3 16u
 #define PHOS_NODE_PRE_5_0 32u
 
+/* The texture nodes' entry points and the noise library, compiled twice
+ * on x86-64: for AVX2 and FMA (x86-64-v3, CPUs since 2013), which runs
+ * the eight corners of a noise cell in one vector, and for the baseline;
+ * the loader picks one by the CPU (GCC's function multi-versioning, an
+ * ifunc). Not under the sanitizers, whose run-time starts after ifuncs
+ * resolve, nor with other compilers. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__) && \
+    !defined(__SANITIZE_THREAD__)
+#define NODE_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define NODE_VECTOR_CLONES
+#endif
+
 /* min and max as comparisons: a NaN first operand gives the second. */
 static inline float node_min(float a, float b) { return a < b ? a : b; }
 static inline float node_max(float a, float b) { return a > b ? a : b; }

@@ -85,6 +85,27 @@ static inline float grad3(uint32_t hash, float x, float y, float z)
     return negate_if(u, h & 1u) + negate_if(v, h & 2u);
 }
 
+/* grad3 without branches, on the bit patterns: selects by masks and
+ * negation by flipping the sign bit (exactly −v), so that eight corners
+ * run in vector lanes. */
+static inline float grad3_select(uint32_t hash, float x, float y, float z)
+{
+    uint32_t h = hash & 15u;
+    uint32_t bx = noise_float_bits(x), by = noise_float_bits(y), bz = noise_float_bits(z);
+    uint32_t u_is_x = 0u - (uint32_t)(h < 8u);
+    uint32_t v_is_y = 0u - (uint32_t)(h < 4u);
+    uint32_t v_is_x = 0u - (uint32_t)(h == 12u || h == 14u);
+    uint32_t u = (bx & u_is_x) | (by & ~u_is_x);
+    uint32_t vt = (bx & v_is_x) | (bz & ~v_is_x);
+    uint32_t v = (by & v_is_y) | (vt & ~v_is_y);
+    u ^= (h & 1u) << 31;
+    v ^= (h & 2u) << 30;
+    float fu, fv;
+    memcpy(&fu, &u, sizeof fu);
+    memcpy(&fv, &v, sizeof fv);
+    return fu + fv;
+}
+
 static inline float grad4(uint32_t hash, float x, float y, float z, float w)
 {
     uint32_t h = hash & 31u;
@@ -96,7 +117,7 @@ static inline float grad4(uint32_t hash, float x, float y, float z, float w)
 
 /* ------------------------------------------------ lattice noise, 1D-4D */
 
-float perlin_lattice_1d(float x)
+NODE_VECTOR_CLONES float perlin_lattice_1d(float x)
 {
     uint32_t X;
     float fx = floorfrac(x, &X);
@@ -104,7 +125,7 @@ float perlin_lattice_1d(float x)
     return lerp(grad1(hash_uint(X), fx), grad1(hash_uint(X + 1u), fx - 1.0f), u);
 }
 
-float perlin_lattice_2d(float x, float y)
+NODE_VECTOR_CLONES float perlin_lattice_2d(float x, float y)
 {
     uint32_t X, Y;
     float fx = floorfrac(x, &X), fy = floorfrac(y, &Y);
@@ -126,19 +147,37 @@ static inline float blend3(const float c[2][2][2], float u, float v, float w)
     return lerp(lerp(s00, s10, v), lerp(s01, s11, v), w);
 }
 
-float perlin_lattice_3d(float x, float y, float z)
+/* The eight corners' hashes and gradients are computed lane by lane over
+ * arrays, the way Cycles' SIMD kernel does, so that the compiler keeps
+ * them in vector registers (lookup3 needs only add, xor and rotate); the
+ * values are the same as corner by corner. */
+NODE_VECTOR_CLONES float perlin_lattice_3d(float x, float y, float z)
 {
     uint32_t X, Y, Z;
     float fx = floorfrac(x, &X), fy = floorfrac(y, &Y), fz = floorfrac(z, &Z);
+    uint32_t h[8];
+    float dx[8], dy[8], dz[8], g[8];
+    for (uint32_t n = 0; n < 8; n++) { /* corner n = (i, j, k) = bits 2, 1, 0 */
+        uint32_t i = n >> 2, j = (n >> 1) & 1u, k = n & 1u;
+        uint32_t a, b, c;
+        a = b = c = 0xdeadbeefu + (3u << 2) + 13u;
+        c += Z + k;
+        b += Y + j;
+        a += X + i;
+        NOISE_LOOKUP3_FINAL(a, b, c);
+        h[n] = c;
+        dx[n] = fx - (float)i;
+        dy[n] = fy - (float)j;
+        dz[n] = fz - (float)k;
+    }
+    for (uint32_t n = 0; n < 8; n++)
+        g[n] = grad3_select(h[n], dx[n], dy[n], dz[n]);
     float c[2][2][2];
-    for (uint32_t i = 0; i < 2; i++)
-        for (uint32_t j = 0; j < 2; j++)
-            for (uint32_t k = 0; k < 2; k++)
-                c[i][j][k] = grad3(hash_uint3(X + i, Y + j, Z + k), fx - (float)i, fy - (float)j, fz - (float)k);
+    memcpy(c, g, sizeof c);
     return blend3(c, fade_simd(fx), fade_simd(fy), fade_simd(fz));
 }
 
-float perlin_lattice_4d(float x, float y, float z, float w)
+NODE_VECTOR_CLONES float perlin_lattice_4d(float x, float y, float z, float w)
 {
     uint32_t X, Y, Z, W;
     float fx = floorfrac(x, &X), fy = floorfrac(y, &Y), fz = floorfrac(z, &Z), fw = floorfrac(w, &W);
@@ -161,6 +200,8 @@ float perlin_lattice_4d(float x, float y, float z, float w)
  * cell so the wrapped lattice does not line up with the original. */
 static inline float wrap_coordinate(float p)
 {
+    if (fabsf(p) < 100000.0f) /* fmodf is then p itself, exactly: skip the call */
+        return p;
     float correction = fabsf(p) >= 1000000.0f ? 0.5f : 0.0f;
     return fmodf(p, 100000.0f) + correction;
 }
@@ -172,47 +213,47 @@ static inline float finite_or_zero(float x) { return isfinite(x) ? x : 0.0f; }
 #define NOISE_SCALE_3D 0.9820f
 #define NOISE_SCALE_4D 0.8344f
 
-float perlin_signed_1d(float p) { return NOISE_SCALE_1D * perlin_lattice_1d(wrap_coordinate(p)); }
+NODE_VECTOR_CLONES float perlin_signed_1d(float p) { return NOISE_SCALE_1D * perlin_lattice_1d(wrap_coordinate(p)); }
 
-float perlin_signed_2d(float x, float y)
+NODE_VECTOR_CLONES float perlin_signed_2d(float x, float y)
 {
     return NOISE_SCALE_2D * perlin_lattice_2d(wrap_coordinate(x), wrap_coordinate(y));
 }
 
-float perlin_signed_3d(vec3 p)
+NODE_VECTOR_CLONES float perlin_signed_3d(vec3 p)
 {
     return NOISE_SCALE_3D * perlin_lattice_3d(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z));
 }
 
-float perlin_signed_4d(vec3 p, float w)
+NODE_VECTOR_CLONES float perlin_signed_4d(vec3 p, float w)
 {
     return NOISE_SCALE_4D * perlin_lattice_4d(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z),
                                               wrap_coordinate(w));
 }
 
-float perlin_1d(float p) { return 0.5f * perlin_signed_1d(p) + 0.5f; }
-float perlin_2d(float x, float y) { return 0.5f * perlin_signed_2d(x, y) + 0.5f; }
-float perlin_3d(vec3 p) { return 0.5f * perlin_signed_3d(p) + 0.5f; }
-float perlin_4d(vec3 p, float w) { return 0.5f * perlin_signed_4d(p, w) + 0.5f; }
+NODE_VECTOR_CLONES float perlin_1d(float p) { return 0.5f * perlin_signed_1d(p) + 0.5f; }
+NODE_VECTOR_CLONES float perlin_2d(float x, float y) { return 0.5f * perlin_signed_2d(x, y) + 0.5f; }
+NODE_VECTOR_CLONES float perlin_3d(vec3 p) { return 0.5f * perlin_signed_3d(p) + 0.5f; }
+NODE_VECTOR_CLONES float perlin_4d(vec3 p, float w) { return 0.5f * perlin_signed_4d(p, w) + 0.5f; }
 
-float perlin_signed_legacy_1d(float p) { return NOISE_SCALE_1D * finite_or_zero(perlin_lattice_1d(p)); }
+NODE_VECTOR_CLONES float perlin_signed_legacy_1d(float p) { return NOISE_SCALE_1D * finite_or_zero(perlin_lattice_1d(p)); }
 
-float perlin_signed_legacy_2d(float x, float y)
+NODE_VECTOR_CLONES float perlin_signed_legacy_2d(float x, float y)
 {
     return NOISE_SCALE_2D * finite_or_zero(perlin_lattice_2d(x, y));
 }
 
-float perlin_signed_legacy_3d(vec3 p)
+NODE_VECTOR_CLONES float perlin_signed_legacy_3d(vec3 p)
 {
     return NOISE_SCALE_3D * finite_or_zero(perlin_lattice_3d(p.x, p.y, p.z));
 }
 
-float perlin_signed_legacy_4d(vec3 p, float w)
+NODE_VECTOR_CLONES float perlin_signed_legacy_4d(vec3 p, float w)
 {
     return NOISE_SCALE_4D * finite_or_zero(perlin_lattice_4d(p.x, p.y, p.z, w));
 }
 
-float perlin_signed(vec4f p, int dims)
+NODE_VECTOR_CLONES float perlin_signed(vec4f p, int dims)
 {
     switch (dims) {
     case 1: return perlin_signed_1d(p.x);
@@ -223,7 +264,7 @@ float perlin_signed(vec4f p, int dims)
     }
 }
 
-float perlin_signed_legacy(vec4f p, int dims)
+NODE_VECTOR_CLONES float perlin_signed_legacy(vec4f p, int dims)
 {
     switch (dims) {
     case 1: return perlin_signed_legacy_1d(p.x);
@@ -242,7 +283,7 @@ static inline vec4f v4f_scale(vec4f p, float s) { return v4f(p.x * s, p.y * s, p
  * detail to [0, 15]; NaN and out-of-range values give 0, defined). */
 static inline int whole_octaves(float detail) { return detail >= 0.0f && detail < 1024.0f ? (int)detail : 0; }
 
-float noise_fbm(vec4f p, int dims, float detail, float roughness, float lacunarity, int normalize)
+NODE_VECTOR_CLONES float noise_fbm(vec4f p, int dims, float detail, float roughness, float lacunarity, int normalize)
 {
     float fscale = 1.0f, amp = 1.0f, maxamp = 0.0f, sum = 0.0f;
     int n = whole_octaves(detail);
@@ -263,7 +304,7 @@ float noise_fbm(vec4f p, int dims, float detail, float roughness, float lacunari
     return normalize ? 0.5f * sum / maxamp + 0.5f : sum;
 }
 
-float noise_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity)
+NODE_VECTOR_CLONES float noise_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity)
 {
     float value = 1.0f, pwr = 1.0f;
     int n = whole_octaves(detail);
@@ -278,7 +319,7 @@ float noise_multi_fractal(vec4f p, int dims, float detail, float roughness, floa
     return value;
 }
 
-float noise_hetero_terrain(vec4f p, int dims, float detail, float roughness, float lacunarity, float offset)
+NODE_VECTOR_CLONES float noise_hetero_terrain(vec4f p, int dims, float detail, float roughness, float lacunarity, float offset)
 {
     float pwr = roughness;
     float value = offset + perlin_signed(p, dims); /* the first octave is unscaled */
@@ -298,7 +339,7 @@ float noise_hetero_terrain(vec4f p, int dims, float detail, float roughness, flo
     return value;
 }
 
-float noise_hybrid_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity,
+NODE_VECTOR_CLONES float noise_hybrid_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity,
                                  float offset, float gain)
 {
     float pwr = 1.0f, value = 0.0f, weight = 1.0f;
@@ -324,7 +365,7 @@ float noise_hybrid_multi_fractal(vec4f p, int dims, float detail, float roughnes
 
 static inline float saturate(float x) { return node_clamp(x, 0.0f, 1.0f); }
 
-float noise_ridged_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity,
+NODE_VECTOR_CLONES float noise_ridged_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity,
                                  float offset, float gain)
 {
     float pwr = roughness;
@@ -344,7 +385,7 @@ float noise_ridged_multi_fractal(vec4f p, int dims, float detail, float roughnes
     return value;
 }
 
-float noise_fractal(uint32_t type, vec4f p, int dims, float detail, float roughness, float lacunarity,
+NODE_VECTOR_CLONES float noise_fractal(uint32_t type, vec4f p, int dims, float detail, float roughness, float lacunarity,
                     float offset, float gain, int normalize)
 {
     switch (type) {
@@ -363,7 +404,7 @@ float noise_fractal(uint32_t type, vec4f p, int dims, float detail, float roughn
 
 static inline float perlin_unsigned_legacy(vec4f p, int dims) { return 0.5f * perlin_signed_legacy(p, dims) + 0.5f; }
 
-float noise_fbm_legacy(vec4f p, int dims, float octaves, float roughness)
+NODE_VECTOR_CLONES float noise_fbm_legacy(vec4f p, int dims, float octaves, float roughness)
 {
     float fscale = 1.0f, amp = 1.0f, maxamp = 0.0f, sum = 0.0f;
     octaves = node_clamp(octaves, 0.0f, 15.0f);
@@ -487,7 +528,7 @@ static float musgrave_ridged_multi_fractal(vec4f p, int dims, float H, float lac
     return value;
 }
 
-float musgrave_fractal(uint32_t type, vec4f p, int dims, float H, float lacunarity, float octaves, float offset,
+NODE_VECTOR_CLONES float musgrave_fractal(uint32_t type, vec4f p, int dims, float H, float lacunarity, float octaves, float offset,
                        float gain)
 {
     switch (type) {

@@ -103,7 +103,7 @@ static float noise_value(const noise_params *np, vec4f p)
 
 /* in vector(3), w, scale, detail, roughness, lacunarity, offset, gain,
  * distortion; out fac, color(3). */
-void shader_op_tex_noise(const phos_shader_instruction *ins, shader_context *ctx)
+NODE_VECTOR_CLONES void shader_op_tex_noise(const phos_shader_instruction *ins, shader_context *ctx)
 {
     noise_params np;
     np.dims = flag_dims(ins->flags);
@@ -144,7 +144,7 @@ void shader_op_tex_noise(const phos_shader_instruction *ins, shader_context *ctx
 
 /* in vector(3), w, scale, detail, dimension, lacunarity, offset, gain;
  * out fac. */
-void shader_op_tex_musgrave(const phos_shader_instruction *ins, shader_context *ctx)
+NODE_VECTOR_CLONES void shader_op_tex_musgrave(const phos_shader_instruction *ins, shader_context *ctx)
 {
     int dims = flag_dims(ins->flags);
     if (dims == 0) {
@@ -164,7 +164,7 @@ void shader_op_tex_musgrave(const phos_shader_instruction *ins, shader_context *
 /* -------------------------------------------------- White Noise Texture */
 
 /* in vector(3), w; out value, color(3). */
-void shader_op_tex_white_noise(const phos_shader_instruction *ins, shader_context *ctx)
+NODE_VECTOR_CLONES void shader_op_tex_white_noise(const phos_shader_instruction *ins, shader_context *ctx)
 {
     vec3 v = SHADER_IN3(0);
     float w = SHADER_IN(1);

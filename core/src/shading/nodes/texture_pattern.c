@@ -54,6 +54,7 @@
 
 #include "shading/shader_program.h"
 #include "shading/nodes/noise.h"
+#include "shading/nodes/node_util.h"
 
 /* float literals of Cycles' constants */
 #define TWO_PI_F 6.28318530717958647692f
@@ -61,10 +62,7 @@
 
 /* ------------------------------------------------------------ scalars */
 
-static float minf_c(float a, float b) { return a < b ? a : b; } /* Cycles' min/max: NaN picks b */
-static float maxf_c(float a, float b) { return a > b ? a : b; }
-static float clamp_c(float a, float lo, float hi) { return minf_c(maxf_c(a, lo), hi); } /* NaN → lo */
-static float saturatef(float a) { return clamp_c(a, 0.0f, 1.0f); }
+static float saturatef(float a) { return node_clamp(a, 0.0f, 1.0f); }
 static float mixf(float a, float b, float t) { return a + t * (b - a); }
 
 /* smoothstep(0, 1, x): 0 below 0, 1 from 1 on, (3 − 2x)x² between (NaN stays NaN). */
@@ -116,7 +114,7 @@ static float checker(vec3 p)
 }
 
 /* in vector(3), color1(3), color2(3), scale; out color(3), fac */
-void shader_op_tex_checker(const phos_shader_instruction *ins, shader_context *ctx)
+NODE_VECTOR_CLONES void shader_op_tex_checker(const phos_shader_instruction *ins, shader_context *ctx)
 {
     vec3 co = SHADER_IN3(0), c1 = SHADER_IN3(1), c2 = SHADER_IN3(2);
     float f = checker(v3_scale(co, SHADER_IN(3)));
@@ -157,7 +155,7 @@ static float gradient(vec3 p, uint32_t type)
 }
 
 /* in vector(3); out color(3), fac. mode enum phos_gradient */
-void shader_op_tex_gradient(const phos_shader_instruction *ins, shader_context *ctx)
+NODE_VECTOR_CLONES void shader_op_tex_gradient(const phos_shader_instruction *ins, shader_context *ctx)
 {
     float f = saturatef(gradient(SHADER_IN3(0), ins->mode));
     SHADER_OUT3(0, v3s(f));
@@ -221,7 +219,7 @@ static vec3 magic(vec3 p, float scale, int depth, float distortion, int scale_in
 
 /* in vector(3), scale, distortion; out color(3), fac. mode depth (0-10);
  * flags 1 = Blender 5.3's wrap of the scaled point */
-void shader_op_tex_magic(const phos_shader_instruction *ins, shader_context *ctx)
+NODE_VECTOR_CLONES void shader_op_tex_magic(const phos_shader_instruction *ins, shader_context *ctx)
 {
     vec3 c = magic(SHADER_IN3(0), SHADER_IN(1), (int)ins->mode, SHADER_IN(2),
                    (ins->flags & MAGIC_FLAG_SCALE_IN_WRAP) != 0);
@@ -264,7 +262,7 @@ static brick_result brick(vec3 p, float mortar_size, float mortar_smooth, float 
     brick_result r;
     uint32_t key = ((uint32_t)rownum << 16) + ((uint32_t)bricknum & 0xFFFFu);
     r.tint = saturatef(brick_noise(key) + bias);
-    float min_dist = minf_c(minf_c(x, y), minf_c(brick_width - x, row_height - y));
+    float min_dist = node_min(node_min(x, y), node_min(brick_width - x, row_height - y));
     if (min_dist >= mortar_size)
         r.mortar = 0.0f;
     else if (mortar_smooth == 0.0f)
@@ -277,7 +275,7 @@ static brick_result brick(vec3 p, float mortar_size, float mortar_smooth, float 
 /* in vector(3), color1(3), color2(3), mortar(3), scale, mortar_size,
  * mortar_smooth, bias, brick_width, row_height; out color(3), fac.
  * param: offset, offset_frequency, squash, squash_frequency */
-void shader_op_tex_brick(const phos_shader_instruction *ins, shader_context *ctx)
+NODE_VECTOR_CLONES void shader_op_tex_brick(const phos_shader_instruction *ins, shader_context *ctx)
 {
     vec3 co = SHADER_IN3(0), color1 = SHADER_IN3(1), color2 = SHADER_IN3(2), mortar = SHADER_IN3(3);
     brick_result b = brick(v3_scale(co, SHADER_IN(4)), SHADER_IN(5), SHADER_IN(6), SHADER_IN(7), SHADER_IN(8),
@@ -347,7 +345,7 @@ static float wave(uint32_t type, uint32_t bands_dir, uint32_t rings_dir, uint32_
 /* in vector(3), scale, distortion, detail, detail_scale, detail_roughness,
  * phase; out color(3), fac. mode enum phos_wave_type; flags: bits 0-3 bands
  * direction, 4-7 rings direction, 8-11 profile, 16 << 8 = 3.x noise */
-void shader_op_tex_wave(const phos_shader_instruction *ins, shader_context *ctx)
+NODE_VECTOR_CLONES void shader_op_tex_wave(const phos_shader_instruction *ins, shader_context *ctx)
 {
     uint32_t fl = ins->flags;
     float f = wave(ins->mode, fl & 15u, (fl >> 4) & 15u, (fl >> 8) & 15u, v3_scale(SHADER_IN3(0), SHADER_IN(1)),
@@ -368,6 +366,10 @@ void shader_op_tex_wave(const phos_shader_instruction *ins, shader_context *ctx)
 #define VORONOI_METRIC_SHIFT 5u
 #define VORONOI_FLAG_INT_CELLS 128u  /* Blender 5.0+: PCG hashes of integer cells (2D-4D) */
 
+/* The Voronoi search's helpers are inlined into each dimension's copy of
+ * an octave (voronoi_octave). */
+#define VORONOI_INLINE static inline __attribute__((always_inline))
+
 /* PCG hashes of integer cells (Jarzynski & Olano 2020) as Blender 5.0's
  * Voronoi uses them: an LCG step per component, then the components mix
  * by products (by a constant in 2D) before and after an xorshift by 16
@@ -376,10 +378,10 @@ void shader_op_tex_wave(const phos_shader_instruction *ins, shader_context *ctx)
 #define PCG_MUL 1664525u
 #define PCG_ADD 1013904223u
 
-static uint32_t sar16(uint32_t v) { return (v >> 16) | ((v & 0x80000000u) ? 0xFFFF0000u : 0u); }
-static float pcg_unit(uint32_t h) { return (float)(int32_t)(h & 0x7FFFFFFFu) * (1.0f / 2147483648.0f); }
+VORONOI_INLINE uint32_t sar16(uint32_t v) { return (v >> 16) | ((v & 0x80000000u) ? 0xFFFF0000u : 0u); }
+VORONOI_INLINE float pcg_unit(uint32_t h) { return (float)(int32_t)(h & 0x7FFFFFFFu) * (1.0f / 2147483648.0f); }
 
-static void pcg2(const int32_t k[2], float out[2])
+VORONOI_INLINE void pcg2(const int32_t k[2], float out[2])
 {
     uint32_t x = (uint32_t)k[0] * PCG_MUL + PCG_ADD, y = (uint32_t)k[1] * PCG_MUL + PCG_ADD;
     x += y * PCG_MUL;
@@ -391,7 +393,7 @@ static void pcg2(const int32_t k[2], float out[2])
     out[0] = pcg_unit(x), out[1] = pcg_unit(y);
 }
 
-static void pcg3(const int32_t k[3], float out[3])
+VORONOI_INLINE void pcg3(const int32_t k[3], float out[3])
 {
     uint32_t x = (uint32_t)k[0] * PCG_MUL + PCG_ADD, y = (uint32_t)k[1] * PCG_MUL + PCG_ADD,
              z = (uint32_t)k[2] * PCG_MUL + PCG_ADD;
@@ -407,7 +409,7 @@ static void pcg3(const int32_t k[3], float out[3])
     out[0] = pcg_unit(x), out[1] = pcg_unit(y), out[2] = pcg_unit(z);
 }
 
-static void pcg4(const int32_t k[4], float out[4])
+VORONOI_INLINE void pcg4(const int32_t k[4], float out[4])
 {
     uint32_t x = (uint32_t)k[0] * PCG_MUL + PCG_ADD, y = (uint32_t)k[1] * PCG_MUL + PCG_ADD,
              z = (uint32_t)k[2] * PCG_MUL + PCG_ADD, w = (uint32_t)k[3] * PCG_MUL + PCG_ADD;
@@ -451,7 +453,7 @@ typedef struct voronoi_result {
     float position[4]; /* the feature point (1D: in [0]) */
 } voronoi_result;
 
-static voronoi_cell voronoi_cell_of(const voronoi_params *v, const float p[4])
+VORONOI_INLINE voronoi_cell voronoi_cell_of(const voronoi_params *v, const float p[4])
 {
     voronoi_cell c = {{0}, {0}, {0}};
     for (int k = 0; k < v->dims; k++) {
@@ -464,7 +466,7 @@ static voronoi_cell voronoi_cell_of(const voronoi_params *v, const float p[4])
 
 /* Next neighbour offset in [lo, hi]^dims, x fastest (Cycles' loop order:
  * the last axis outermost). Returns 0 after the last. */
-static int next_offset(int off[4], int dims, int lo, int hi)
+VORONOI_INLINE int next_offset(int off[4], int dims, int lo, int hi)
 {
     for (int k = 0; k < dims; k++) {
         if (off[k] < hi) {
@@ -476,14 +478,14 @@ static int next_offset(int off[4], int dims, int lo, int hi)
     return 0;
 }
 
-static void first_offset(int off[4], int dims, int lo)
+VORONOI_INLINE void first_offset(int off[4], int dims, int lo)
 {
     for (int k = 0; k < 4; k++)
         off[k] = k < dims ? lo : 0;
 }
 
 /* The feature point's jitter in [0, 1]^dims for cell + off. */
-static void cell_jitter(const voronoi_params *v, const voronoi_cell *c, const int off[4], float h[4])
+VORONOI_INLINE void cell_jitter(const voronoi_params *v, const voronoi_cell *c, const int off[4], float h[4])
 {
     if (v->int_cells && v->dims >= 2) {
         int32_t k[4];
@@ -515,7 +517,7 @@ static void cell_jitter(const voronoi_params *v, const voronoi_cell *c, const in
 }
 
 /* The cell's colour output, [0, 1]³. */
-static vec3 cell_color(const voronoi_params *v, const voronoi_cell *c, const int off[4])
+VORONOI_INLINE vec3 cell_color(const voronoi_params *v, const voronoi_cell *c, const int off[4])
 {
     if (v->int_cells && v->dims >= 2) {
         int32_t k[4] = {0, 0, 0, 0};
@@ -540,7 +542,7 @@ static vec3 cell_color(const voronoi_params *v, const voronoi_cell *c, const int
 }
 
 /* The feature point of cell + off, relative to the cell: off + jitter·randomness. */
-static void feature_point(const voronoi_params *v, const voronoi_cell *c, const int off[4], float pp[4])
+VORONOI_INLINE void feature_point(const voronoi_params *v, const voronoi_cell *c, const int off[4], float pp[4])
 {
     float h[4] = {0, 0, 0, 0};
     cell_jitter(v, c, off, h);
@@ -550,7 +552,7 @@ static void feature_point(const voronoi_params *v, const voronoi_cell *c, const 
 
 /* Σ a in Cycles' order: 4-wide pairs (x + y) + (z + w), except 3.x's
  * componentwise 4D Manhattan/Minkowski sums, left to right. */
-static float vsum(const float *a, int dims, int legacy)
+VORONOI_INLINE float vsum(const float *a, int dims, int legacy)
 {
     switch (dims) {
     case 1: return a[0];
@@ -561,7 +563,7 @@ static float vsum(const float *a, int dims, int legacy)
 }
 
 /* a·b in Cycles' order (SSE dot product: (x² + y²) + (z² + w²)). */
-static float vdot(const float *a, const float *b, int dims)
+VORONOI_INLINE float vdot(const float *a, const float *b, int dims)
 {
     switch (dims) {
     case 1: return a[0] * b[0];
@@ -571,11 +573,11 @@ static float vdot(const float *a, const float *b, int dims)
     }
 }
 
-static float vmax(const float *a, int dims)
+VORONOI_INLINE float vmax(const float *a, int dims)
 {
     float m = a[0];
     for (int k = 1; k < dims; k++)
-        m = maxf_c(m, a[k]);
+        m = node_max(m, a[k]);
     return m;
 }
 
@@ -583,7 +585,7 @@ static float vmax(const float *a, int dims)
  * ‖a − b‖₁, Chebychev ‖a − b‖∞, Minkowski (Σ|aᵢ − bᵢ|^e)^(1/e). 1D is
  * always |b − a|. With `bound`, a monotone stand-in that ranks candidates
  * the same (squared length, Minkowski without the root; Blender 4.5+'s F1). */
-static float voronoi_distance(const voronoi_params *v, const float *a, const float *b, int bound)
+VORONOI_INLINE float voronoi_distance(const voronoi_params *v, const float *a, const float *b, int bound)
 {
     int d = v->dims;
     if (d == 1)
@@ -616,7 +618,7 @@ static float voronoi_distance(const voronoi_params *v, const float *a, const flo
 }
 
 /* Euclidean distance, or its square (N-Sphere Radius in 4.5+). */
-static float euclid(const voronoi_params *v, const float *a, const float *b, int squared)
+VORONOI_INLINE float euclid(const voronoi_params *v, const float *a, const float *b, int squared)
 {
     float t[4] = {0, 0, 0, 0};
     for (int k = 0; k < v->dims; k++)
@@ -625,16 +627,16 @@ static float euclid(const voronoi_params *v, const float *a, const float *b, int
     return squared ? s : sqrtf(s);
 }
 
-static float search_start(const voronoi_params *v) { return v->legacy ? 8.0f : FLT_MAX; }
+VORONOI_INLINE float search_start(const voronoi_params *v) { return v->legacy ? 8.0f : FLT_MAX; }
 
-static void copy4(float *dst, const float *src) { dst[0] = src[0], dst[1] = src[1], dst[2] = src[2], dst[3] = src[3]; }
+VORONOI_INLINE void copy4(float *dst, const float *src) { dst[0] = src[0], dst[1] = src[1], dst[2] = src[2], dst[3] = src[3]; }
 
 /* Cycles 4.0+ carries every position as a float4, and a 3D one gets w = 1
  * (make_float4 of a float3), which reaches the W output through the
  * fractal sums and the division by the scale. */
-static float position_w3(const voronoi_params *v) { return v->dims == 3 && !v->legacy ? 1.0f : 0.0f; }
+VORONOI_INLINE float position_w3(const voronoi_params *v) { return v->dims == 3 && !v->legacy ? 1.0f : 0.0f; }
 
-static void set_position(const voronoi_params *v, const voronoi_cell *c, const float *pp, voronoi_result *r)
+VORONOI_INLINE void set_position(const voronoi_params *v, const voronoi_cell *c, const float *pp, voronoi_result *r)
 {
     for (int k = 0; k < 4; k++)
         r->position[k] = k < v->dims ? pp[k] + c->cell[k] : 0.0f;
@@ -643,7 +645,7 @@ static void set_position(const voronoi_params *v, const voronoi_cell *c, const f
 }
 
 /* F1 (Worley 1996): the nearest feature point among the 3^dims cells. */
-static voronoi_result voronoi_f1(const voronoi_params *v, const float p[4])
+VORONOI_INLINE voronoi_result voronoi_f1(const voronoi_params *v, const float p[4])
 {
     voronoi_cell c = voronoi_cell_of(v, p);
     int bound = !v->legacy && v->dims >= 2;
@@ -669,7 +671,7 @@ static voronoi_result voronoi_f1(const voronoi_params *v, const float p[4])
 }
 
 /* F2: the second nearest feature point. */
-static voronoi_result voronoi_f2(const voronoi_params *v, const float p[4])
+VORONOI_INLINE voronoi_result voronoi_f2(const voronoi_params *v, const float p[4])
 {
     voronoi_cell c = voronoi_cell_of(v, p);
     float d1 = search_start(v), d2 = d1, pp1[4] = {0, 0, 0, 0}, pp2[4] = {0, 0, 0, 0};
@@ -701,7 +703,7 @@ static voronoi_result voronoi_f2(const voronoi_params *v, const float p[4])
  * of width s (Quilez' smin): h = smoothstep(½ + ½(D − d)/s),
  * D ← mix(D, d, h) − s·h(1 − h); colour and position follow with the
  * correction divided by 1 + 3s. */
-static voronoi_result voronoi_smooth_f1(const voronoi_params *v, const float p[4])
+VORONOI_INLINE voronoi_result voronoi_smooth_f1(const voronoi_params *v, const float p[4])
 {
     voronoi_cell c = voronoi_cell_of(v, p);
     float s = v->smoothness;
@@ -744,7 +746,7 @@ static float voronoi_edge_1d(const voronoi_params *v, float p)
     float right = 1.0f + hash_float_to_float(cell + 1.0f) * v->randomness;
     float dl = fabsf((mid + left) / 2.0f - local);
     float dr = fabsf((mid + right) / 2.0f - local);
-    return minf_c(dl, dr);
+    return node_min(dl, dr);
 }
 
 /* Distance to Edge (Euclidean): find the nearest point's vector c, then
@@ -785,7 +787,7 @@ static float voronoi_edge(const voronoi_params *v, const float p[4])
                 mid[k] = (closest[k] + vp[k]) * 0.5f;
                 perp[k] = d == 3 ? perp[k] / len : perp[k] * inv; /* float3 divides, float2/4 multiply */
             }
-            best = minf_c(best, vdot(mid, perp, d));
+            best = node_min(best, vdot(mid, perp, d));
         }
     } while (next_offset(off, d, -1, 1));
     return best;
@@ -833,13 +835,31 @@ static float voronoi_n_sphere_radius(const voronoi_params *v, const float p[4])
     return euclid(v, other, closest, 0) / 2.0f;
 }
 
-static voronoi_result voronoi_octave(const voronoi_params *v, const float p[4])
+VORONOI_INLINE voronoi_result voronoi_octave_of(const voronoi_params *v, const float p[4])
 {
     if (v->feature == PHOS_VORONOI_F2)
         return voronoi_f2(v, p);
     if (v->feature == PHOS_VORONOI_SMOOTH_F1 && (v->legacy || v->smoothness != 0.0f))
         return voronoi_smooth_f1(v, p);
     return voronoi_f1(v, p);
+}
+
+/* One octave, compiled apart for 2D and 3D with the dimension a constant:
+ * the searches over 3^dims cells and the loops over components then
+ * unroll, as Cycles' per-dimension code does (the same arithmetic). */
+static NODE_VECTOR_CLONES voronoi_result voronoi_octave(const voronoi_params *v, const float p[4])
+{
+    voronoi_params fixed = *v;
+    switch (v->dims) {
+    case 2:
+        fixed.dims = 2;
+        return voronoi_octave_of(&fixed, p);
+    case 3:
+        fixed.dims = 3;
+        return voronoi_octave_of(&fixed, p);
+    default:
+        return voronoi_octave_of(v, p);
+    }
 }
 
 static void scale4(float *out, const float *p, float s, int dims)
@@ -912,7 +932,7 @@ static float voronoi_fractal_edge(const voronoi_params *v, const float p[4])
         }
         if ((float)i <= v->detail) {
             max_amp = mixf(max_amp, v->max_distance / scale, amp);
-            dist = mixf(dist, minf_c(dist, od / scale), amp);
+            dist = mixf(dist, node_min(dist, od / scale), amp);
             scale *= v->lacunarity;
             amp *= v->roughness;
         } else {
@@ -920,8 +940,8 @@ static float voronoi_fractal_edge(const voronoi_params *v, const float p[4])
             if (rem != 0.0f) {
                 float lerp_amp = mixf(max_amp, v->max_distance / scale, amp);
                 max_amp = mixf(max_amp, lerp_amp, rem);
-                float lerp_dist = mixf(dist, minf_c(dist, od / scale), amp);
-                dist = mixf(dist, minf_c(dist, lerp_dist), rem);
+                float lerp_dist = mixf(dist, node_min(dist, od / scale), amp);
+                dist = mixf(dist, node_min(dist, lerp_dist), rem);
             }
         }
     }
@@ -967,9 +987,7 @@ static voronoi_outputs voronoi_legacy(const voronoi_params *v, const float p[4],
     } else if (v->feature == PHOS_VORONOI_N_SPHERE_RADIUS) {
         o.radius = voronoi_n_sphere_radius(v, p);
     } else {
-        voronoi_result r = v->feature == PHOS_VORONOI_F2          ? voronoi_f2(v, p)
-                           : v->feature == PHOS_VORONOI_SMOOTH_F1 ? voronoi_smooth_f1(v, p)
-                                                                  : voronoi_f1(v, p);
+        voronoi_result r = voronoi_octave(v, p); /* 3.x: Smooth F1 whatever the smoothness */
         o.distance = r.distance;
         o.color = r.color;
         position_outputs(v, r.position, scale, v->dims == 1 || v->dims == 3, &o);
@@ -1004,7 +1022,7 @@ static voronoi_outputs voronoi_modern(voronoi_params *v, const float p[4], float
  * exponent, randomness; out distance, color(3), position(3), w, radius.
  * mode enum phos_voronoi_feature; flags: bits 0-2 dimensions, 8 =
  * normalize, 16 = Blender 3.x, bits 5-6 metric, 128 = Blender 5.0+ */
-void shader_op_tex_voronoi(const phos_shader_instruction *ins, shader_context *ctx)
+NODE_VECTOR_CLONES void shader_op_tex_voronoi(const phos_shader_instruction *ins, shader_context *ctx)
 {
     uint32_t fl = ins->flags;
     voronoi_params v;
@@ -1017,12 +1035,12 @@ void shader_op_tex_voronoi(const phos_shader_instruction *ins, shader_context *c
 
     vec3 co = SHADER_IN3(0);
     float w = SHADER_IN(1), scale = SHADER_IN(2);
-    v.detail = clamp_c(SHADER_IN(3), 0.0f, 15.0f);
-    v.roughness = clamp_c(SHADER_IN(4), 0.0f, 1.0f);
+    v.detail = node_clamp(SHADER_IN(3), 0.0f, 15.0f);
+    v.roughness = node_clamp(SHADER_IN(4), 0.0f, 1.0f);
     v.lacunarity = SHADER_IN(5);
-    v.smoothness = clamp_c(SHADER_IN(6) / 2.0f, 0.0f, 0.5f);
+    v.smoothness = node_clamp(SHADER_IN(6) / 2.0f, 0.0f, 0.5f);
     v.exponent = SHADER_IN(7);
-    v.randomness = clamp_c(SHADER_IN(8), 0.0f, 1.0f);
+    v.randomness = node_clamp(SHADER_IN(8), 0.0f, 1.0f);
     v.max_distance = 0.0f;
 
     voronoi_outputs o = {0.0f, {0, 0, 0}, {0, 0, 0}, 0.0f, 0.0f};
