@@ -211,6 +211,94 @@ def _mixed_by_texture(scene):
     return procedural_materials.glazed_ceramic()
 
 
+def _texture_families(scene):
+    """Every texture family lit (issue 21's lit sweep): six spheres whose
+    colours, roughness and bump come from Noise, Voronoi, Wave, Magic,
+    Gradient with Checker, and White Noise through Math and Vector Math,
+    on the Brick floor, under the material scenes' area light and world."""
+    import procedural_materials as pm
+    pt.add_camera(scene, location=(0.0, -4.6, 3.4), target=(0.0, 0.15, 0.3), lens=42.0)
+    pt.add_plane(scene, "Floor", size=8.0, material=pm.brick_floor())
+    for i, make in enumerate((pm.marble, pm.rusted_metal, _wave_bumped, _magic, _gradient_checker,
+                              _white_noise_cells)):
+        location = (-1.1 + 1.1 * (i % 3), -0.45 + 1.0 * (i // 3), 0.4)
+        pt.add_sphere(scene, "Sphere %d" % i, radius=0.4, location=location, material=make(),
+                      segments=48, rings=24)
+    pt.set_world(scene, (0.3, 0.35, 0.4), strength=1.0)
+    pt.add_light(scene, "AREA", 250.0, location=(1.5, -1.8, 3.2), target=(0.0, 0.0, 0.3),
+                 shape="SQUARE", size=1.5)
+
+
+def _wave_bumped():
+    """Wave rings distorted by noise into a Principled base colour, and a
+    Bump of the same wave."""
+    import procedural_materials as pm
+    n = pm.Nodes("Wave bumped")
+    bsdf = n.new("ShaderNodeBsdfPrincipled", Roughness=0.35)
+    wave = n.new("ShaderNodeTexWave", Scale=3.0, Distortion=4.0, Detail=3.0)
+    wave.wave_type = "RINGS"
+    color = pm.ramp(n, [(0.0, (0.15, 0.3, 0.6)), (1.0, (0.9, 0.8, 0.5))])
+    bump = n.new("ShaderNodeBump", Strength=0.3, Distance=0.05)
+    n.link(wave.outputs["Fac"], color.inputs["Fac"])
+    n.link(color.outputs["Color"], bsdf.inputs["Base Color"])
+    n.link(wave.outputs["Fac"], bump.inputs["Height"])
+    n.link(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    return n.surface(bsdf)
+
+
+def _magic():
+    import procedural_materials as pm
+    n = pm.Nodes("Magic")
+    bsdf = n.new("ShaderNodeBsdfDiffuse")
+    magic = n.new("ShaderNodeTexMagic", Scale=2.5, Distortion=1.5)
+    magic.turbulence_depth = 3
+    n.link(magic.outputs["Color"], bsdf.inputs["Color"])
+    return n.surface(bsdf)
+
+
+def _gradient_checker():
+    """A spherical Gradient times a Checker (Math), as the factor of a
+    Diffuse-Glossy mix."""
+    import procedural_materials as pm
+    n = pm.Nodes("Gradient checker")
+    mix = n.new("ShaderNodeMixShader")
+    diffuse = n.new("ShaderNodeBsdfDiffuse", Color=(0.7, 0.25, 0.2))
+    glossy = n.new("ShaderNodeBsdfGlossy", Roughness=0.2)
+    glossy.distribution = "GGX"
+    coords = n.new("ShaderNodeTexCoord")
+    gradient = n.new("ShaderNodeTexGradient")
+    gradient.gradient_type = "SPHERICAL"
+    checker = n.new("ShaderNodeTexChecker", Scale=6.0)
+    product = n.new("ShaderNodeMath")
+    product.operation = "MULTIPLY"
+    n.link(coords.outputs["Object"], gradient.inputs["Vector"])
+    n.link(gradient.outputs["Fac"], product.inputs[0])
+    n.link(checker.outputs["Fac"], product.inputs[1])
+    n.link(product.outputs[0], mix.inputs["Fac"])
+    n.link(diffuse.outputs[0], mix.inputs[1])
+    n.link(glossy.outputs[0], mix.inputs[2])
+    return n.surface(mix)
+
+
+def _white_noise_cells():
+    """White Noise of the position snapped to cells (Vector Math Snap), its
+    colour as a Diffuse colour and its value as a Principled roughness."""
+    import procedural_materials as pm
+    n = pm.Nodes("White noise cells")
+    bsdf = n.new("ShaderNodeBsdfPrincipled")
+    coords = n.new("ShaderNodeTexCoord")
+    snap = n.new("ShaderNodeVectorMath")
+    snap.operation = "SNAP"
+    snap.inputs[1].default_value = (0.2, 0.2, 0.2)
+    noise = n.new("ShaderNodeTexWhiteNoise")
+    noise.noise_dimensions = "3D"
+    n.link(coords.outputs["Object"], snap.inputs[0])
+    n.link(snap.outputs["Vector"], noise.inputs["Vector"])
+    n.link(noise.outputs["Color"], bsdf.inputs["Base Color"])
+    n.link(noise.outputs["Value"], bsdf.inputs["Roughness"])
+    return n.surface(bsdf)
+
+
 def _principled(inputs, props=None):
     """A Principled BSDF with the given inputs (4.x names) and properties."""
     return _one("ShaderNodeBsdfPrincipled", inputs, props)
@@ -258,6 +346,7 @@ MATERIAL_SCENES = {
                                        {"distribution": "MICROFIBER"})),
     "textured_walnut": _material_scene(_walnut),
     "textured_mix": _material_scene(_mixed_by_texture),
+    "texture_families": _texture_families,
 }
 
 # Multiscatter GGX at roughness 0.2, 0.5 and 1: a white Glossy (no Fresnel),
