@@ -25,6 +25,8 @@
 
 /* ------------------------------------------------------------ helpers */
 
+#define NOISE_INLINE static inline __attribute__((always_inline))
+
 /* a·b + c rounded once: fmaf where the hardware has it, else in double,
  * whose product of two floats is exact. */
 static inline float fused_madd(float a, float b, float c)
@@ -117,7 +119,7 @@ static inline float grad4(uint32_t hash, float x, float y, float z, float w)
 
 /* ------------------------------------------------ lattice noise, 1D-4D */
 
-NODE_VECTOR_CLONES float perlin_lattice_1d(float x)
+NOISE_INLINE float perlin_lattice_1d_inline(float x)
 {
     uint32_t X;
     float fx = floorfrac(x, &X);
@@ -125,7 +127,7 @@ NODE_VECTOR_CLONES float perlin_lattice_1d(float x)
     return lerp(grad1(hash_uint(X), fx), grad1(hash_uint(X + 1u), fx - 1.0f), u);
 }
 
-NODE_VECTOR_CLONES float perlin_lattice_2d(float x, float y)
+NOISE_INLINE float perlin_lattice_2d_inline(float x, float y)
 {
     uint32_t X, Y;
     float fx = floorfrac(x, &X), fy = floorfrac(y, &Y);
@@ -151,7 +153,7 @@ static inline float blend3(const float c[2][2][2], float u, float v, float w)
  * arrays, the way Cycles' SIMD kernel does, so that the compiler keeps
  * them in vector registers (lookup3 needs only add, xor and rotate); the
  * values are the same as corner by corner. */
-NODE_VECTOR_CLONES float perlin_lattice_3d(float x, float y, float z)
+NOISE_INLINE float perlin_lattice_3d_inline(float x, float y, float z)
 {
     uint32_t X, Y, Z;
     float fx = floorfrac(x, &X), fy = floorfrac(y, &Y), fz = floorfrac(z, &Z);
@@ -177,7 +179,7 @@ NODE_VECTOR_CLONES float perlin_lattice_3d(float x, float y, float z)
     return blend3(c, fade_simd(fx), fade_simd(fy), fade_simd(fz));
 }
 
-NODE_VECTOR_CLONES float perlin_lattice_4d(float x, float y, float z, float w)
+NOISE_INLINE float perlin_lattice_4d_inline(float x, float y, float z, float w)
 {
     uint32_t X, Y, Z, W;
     float fx = floorfrac(x, &X), fy = floorfrac(y, &Y), fz = floorfrac(z, &Z), fw = floorfrac(w, &W);
@@ -213,67 +215,89 @@ static inline float finite_or_zero(float x) { return isfinite(x) ? x : 0.0f; }
 #define NOISE_SCALE_3D 0.9820f
 #define NOISE_SCALE_4D 0.8344f
 
-NODE_VECTOR_CLONES float perlin_signed_1d(float p) { return NOISE_SCALE_1D * perlin_lattice_1d(wrap_coordinate(p)); }
+NOISE_INLINE float perlin_signed_1d_inline(float p) { return NOISE_SCALE_1D * perlin_lattice_1d_inline(wrap_coordinate(p)); }
 
-NODE_VECTOR_CLONES float perlin_signed_2d(float x, float y)
+NOISE_INLINE float perlin_signed_2d_inline(float x, float y)
 {
-    return NOISE_SCALE_2D * perlin_lattice_2d(wrap_coordinate(x), wrap_coordinate(y));
+    return NOISE_SCALE_2D * perlin_lattice_2d_inline(wrap_coordinate(x), wrap_coordinate(y));
 }
 
-NODE_VECTOR_CLONES float perlin_signed_3d(vec3 p)
+NOISE_INLINE float perlin_signed_3d_inline(vec3 p)
 {
-    return NOISE_SCALE_3D * perlin_lattice_3d(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z));
+    return NOISE_SCALE_3D * perlin_lattice_3d_inline(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z));
 }
 
-NODE_VECTOR_CLONES float perlin_signed_4d(vec3 p, float w)
+NOISE_INLINE float perlin_signed_4d_inline(vec3 p, float w)
 {
-    return NOISE_SCALE_4D * perlin_lattice_4d(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z),
+    return NOISE_SCALE_4D * perlin_lattice_4d_inline(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z),
                                               wrap_coordinate(w));
 }
 
-NODE_VECTOR_CLONES float perlin_1d(float p) { return 0.5f * perlin_signed_1d(p) + 0.5f; }
-NODE_VECTOR_CLONES float perlin_2d(float x, float y) { return 0.5f * perlin_signed_2d(x, y) + 0.5f; }
-NODE_VECTOR_CLONES float perlin_3d(vec3 p) { return 0.5f * perlin_signed_3d(p) + 0.5f; }
-NODE_VECTOR_CLONES float perlin_4d(vec3 p, float w) { return 0.5f * perlin_signed_4d(p, w) + 0.5f; }
+NOISE_INLINE float perlin_1d_inline(float p) { return 0.5f * perlin_signed_1d_inline(p) + 0.5f; }
+NOISE_INLINE float perlin_2d_inline(float x, float y) { return 0.5f * perlin_signed_2d_inline(x, y) + 0.5f; }
+NOISE_INLINE float perlin_3d_inline(vec3 p) { return 0.5f * perlin_signed_3d_inline(p) + 0.5f; }
+NOISE_INLINE float perlin_4d_inline(vec3 p, float w) { return 0.5f * perlin_signed_4d_inline(p, w) + 0.5f; }
 
-NODE_VECTOR_CLONES float perlin_signed_legacy_1d(float p) { return NOISE_SCALE_1D * finite_or_zero(perlin_lattice_1d(p)); }
+NOISE_INLINE float perlin_signed_legacy_1d_inline(float p) { return NOISE_SCALE_1D * finite_or_zero(perlin_lattice_1d_inline(p)); }
 
-NODE_VECTOR_CLONES float perlin_signed_legacy_2d(float x, float y)
+NOISE_INLINE float perlin_signed_legacy_2d_inline(float x, float y)
 {
-    return NOISE_SCALE_2D * finite_or_zero(perlin_lattice_2d(x, y));
+    return NOISE_SCALE_2D * finite_or_zero(perlin_lattice_2d_inline(x, y));
 }
 
-NODE_VECTOR_CLONES float perlin_signed_legacy_3d(vec3 p)
+NOISE_INLINE float perlin_signed_legacy_3d_inline(vec3 p)
 {
-    return NOISE_SCALE_3D * finite_or_zero(perlin_lattice_3d(p.x, p.y, p.z));
+    return NOISE_SCALE_3D * finite_or_zero(perlin_lattice_3d_inline(p.x, p.y, p.z));
 }
 
-NODE_VECTOR_CLONES float perlin_signed_legacy_4d(vec3 p, float w)
+NOISE_INLINE float perlin_signed_legacy_4d_inline(vec3 p, float w)
 {
-    return NOISE_SCALE_4D * finite_or_zero(perlin_lattice_4d(p.x, p.y, p.z, w));
+    return NOISE_SCALE_4D * finite_or_zero(perlin_lattice_4d_inline(p.x, p.y, p.z, w));
 }
 
-NODE_VECTOR_CLONES float perlin_signed(vec4f p, int dims)
+NOISE_INLINE float perlin_signed_inline(vec4f p, int dims)
 {
     switch (dims) {
-    case 1: return perlin_signed_1d(p.x);
-    case 2: return perlin_signed_2d(p.x, p.y);
-    case 3: return perlin_signed_3d(v3(p.x, p.y, p.z));
-    case 4: return perlin_signed_4d(v3(p.x, p.y, p.z), p.w);
+    case 1: return perlin_signed_1d_inline(p.x);
+    case 2: return perlin_signed_2d_inline(p.x, p.y);
+    case 3: return perlin_signed_3d_inline(v3(p.x, p.y, p.z));
+    case 4: return perlin_signed_4d_inline(v3(p.x, p.y, p.z), p.w);
     default: return 0.0f;
     }
 }
 
-NODE_VECTOR_CLONES float perlin_signed_legacy(vec4f p, int dims)
+NOISE_INLINE float perlin_signed_legacy_inline(vec4f p, int dims)
 {
     switch (dims) {
-    case 1: return perlin_signed_legacy_1d(p.x);
-    case 2: return perlin_signed_legacy_2d(p.x, p.y);
-    case 3: return perlin_signed_legacy_3d(v3(p.x, p.y, p.z));
-    case 4: return perlin_signed_legacy_4d(v3(p.x, p.y, p.z), p.w);
+    case 1: return perlin_signed_legacy_1d_inline(p.x);
+    case 2: return perlin_signed_legacy_2d_inline(p.x, p.y);
+    case 3: return perlin_signed_legacy_3d_inline(v3(p.x, p.y, p.z));
+    case 4: return perlin_signed_legacy_4d_inline(v3(p.x, p.y, p.z), p.w);
     default: return 0.0f;
     }
 }
+
+/* The entry points other files call, each compiled for the CPU's vector
+ * width (node_util.h); within this file the inline forms above are used,
+ * so a fractal sum's octaves run inside one compiled copy. */
+NODE_VECTOR_CLONES float perlin_lattice_1d(float x) { return perlin_lattice_1d_inline(x); }
+NODE_VECTOR_CLONES float perlin_lattice_2d(float x, float y) { return perlin_lattice_2d_inline(x, y); }
+NODE_VECTOR_CLONES float perlin_lattice_3d(float x, float y, float z) { return perlin_lattice_3d_inline(x, y, z); }
+NODE_VECTOR_CLONES float perlin_lattice_4d(float x, float y, float z, float w) { return perlin_lattice_4d_inline(x, y, z, w); }
+NODE_VECTOR_CLONES float perlin_signed_1d(float p) { return perlin_signed_1d_inline(p); }
+NODE_VECTOR_CLONES float perlin_signed_2d(float x, float y) { return perlin_signed_2d_inline(x, y); }
+NODE_VECTOR_CLONES float perlin_signed_3d(vec3 p) { return perlin_signed_3d_inline(p); }
+NODE_VECTOR_CLONES float perlin_signed_4d(vec3 p, float w) { return perlin_signed_4d_inline(p, w); }
+NODE_VECTOR_CLONES float perlin_1d(float p) { return perlin_1d_inline(p); }
+NODE_VECTOR_CLONES float perlin_2d(float x, float y) { return perlin_2d_inline(x, y); }
+NODE_VECTOR_CLONES float perlin_3d(vec3 p) { return perlin_3d_inline(p); }
+NODE_VECTOR_CLONES float perlin_4d(vec3 p, float w) { return perlin_4d_inline(p, w); }
+NODE_VECTOR_CLONES float perlin_signed_legacy_1d(float p) { return perlin_signed_legacy_1d_inline(p); }
+NODE_VECTOR_CLONES float perlin_signed_legacy_2d(float x, float y) { return perlin_signed_legacy_2d_inline(x, y); }
+NODE_VECTOR_CLONES float perlin_signed_legacy_3d(vec3 p) { return perlin_signed_legacy_3d_inline(p); }
+NODE_VECTOR_CLONES float perlin_signed_legacy_4d(vec3 p, float w) { return perlin_signed_legacy_4d_inline(p, w); }
+NODE_VECTOR_CLONES float perlin_signed(vec4f p, int dims) { return perlin_signed_inline(p, dims); }
+NODE_VECTOR_CLONES float perlin_signed_legacy(vec4f p, int dims) { return perlin_signed_legacy_inline(p, dims); }
 
 /* ----------------------------------------------------- fractal noise */
 
@@ -288,7 +312,7 @@ NODE_VECTOR_CLONES float noise_fbm(vec4f p, int dims, float detail, float roughn
     float fscale = 1.0f, amp = 1.0f, maxamp = 0.0f, sum = 0.0f;
     int n = whole_octaves(detail);
     for (int i = 0; i <= n; i++) {
-        float t = perlin_signed(v4f_scale(p, fscale), dims);
+        float t = perlin_signed_inline(v4f_scale(p, fscale), dims);
         sum += t * amp;
         maxamp += amp;
         amp *= roughness;
@@ -296,7 +320,7 @@ NODE_VECTOR_CLONES float noise_fbm(vec4f p, int dims, float detail, float roughn
     }
     float rmd = detail - floorf(detail);
     if (rmd != 0.0f) {
-        float t = perlin_signed(v4f_scale(p, fscale), dims);
+        float t = perlin_signed_inline(v4f_scale(p, fscale), dims);
         float sum2 = sum + t * amp;
         return normalize ? lerp(0.5f * sum / maxamp + 0.5f, 0.5f * sum2 / (maxamp + amp) + 0.5f, rmd)
                          : lerp(sum, sum2, rmd);
@@ -309,31 +333,31 @@ NODE_VECTOR_CLONES float noise_multi_fractal(vec4f p, int dims, float detail, fl
     float value = 1.0f, pwr = 1.0f;
     int n = whole_octaves(detail);
     for (int i = 0; i <= n; i++) {
-        value *= pwr * perlin_signed(p, dims) + 1.0f;
+        value *= pwr * perlin_signed_inline(p, dims) + 1.0f;
         pwr *= roughness;
         p = v4f_scale(p, lacunarity);
     }
     float rmd = detail - floorf(detail);
     if (rmd != 0.0f)
-        value *= rmd * pwr * perlin_signed(p, dims) + 1.0f;
+        value *= rmd * pwr * perlin_signed_inline(p, dims) + 1.0f;
     return value;
 }
 
 NODE_VECTOR_CLONES float noise_hetero_terrain(vec4f p, int dims, float detail, float roughness, float lacunarity, float offset)
 {
     float pwr = roughness;
-    float value = offset + perlin_signed(p, dims); /* the first octave is unscaled */
+    float value = offset + perlin_signed_inline(p, dims); /* the first octave is unscaled */
     p = v4f_scale(p, lacunarity);
     int n = whole_octaves(detail);
     for (int i = 1; i <= n; i++) {
-        float increment = (perlin_signed(p, dims) + offset) * pwr * value;
+        float increment = (perlin_signed_inline(p, dims) + offset) * pwr * value;
         value += increment;
         pwr *= roughness;
         p = v4f_scale(p, lacunarity);
     }
     float rmd = detail - floorf(detail);
     if (rmd != 0.0f) {
-        float increment = (perlin_signed(p, dims) + offset) * pwr * value;
+        float increment = (perlin_signed_inline(p, dims) + offset) * pwr * value;
         value += rmd * increment;
     }
     return value;
@@ -347,7 +371,7 @@ NODE_VECTOR_CLONES float noise_hybrid_multi_fractal(vec4f p, int dims, float det
     for (int i = 0; weight > 0.001f && i <= n; i++) {
         if (weight > 1.0f)
             weight = 1.0f;
-        float signal = (perlin_signed(p, dims) + offset) * pwr;
+        float signal = (perlin_signed_inline(p, dims) + offset) * pwr;
         pwr *= roughness;
         value += weight * signal;
         weight *= gain * signal;
@@ -357,7 +381,7 @@ NODE_VECTOR_CLONES float noise_hybrid_multi_fractal(vec4f p, int dims, float det
     if (rmd != 0.0f && weight > 0.001f) {
         if (weight > 1.0f)
             weight = 1.0f;
-        float signal = (perlin_signed(p, dims) + offset) * pwr;
+        float signal = (perlin_signed_inline(p, dims) + offset) * pwr;
         value += rmd * weight * signal;
     }
     return value;
@@ -369,14 +393,14 @@ NODE_VECTOR_CLONES float noise_ridged_multi_fractal(vec4f p, int dims, float det
                                  float offset, float gain)
 {
     float pwr = roughness;
-    float signal = offset - fabsf(perlin_signed(p, dims));
+    float signal = offset - fabsf(perlin_signed_inline(p, dims));
     signal *= signal;
     float value = signal;
     int n = whole_octaves(detail);
     for (int i = 1; i <= n; i++) {
         p = v4f_scale(p, lacunarity);
         float weight = saturate(signal * gain);
-        signal = offset - fabsf(perlin_signed(p, dims));
+        signal = offset - fabsf(perlin_signed_inline(p, dims));
         signal *= signal;
         signal *= weight;
         value += signal * pwr;
@@ -402,7 +426,7 @@ NODE_VECTOR_CLONES float noise_fractal(uint32_t type, vec4f p, int dims, float d
 
 /* ------------------------------------------ Blender 3.x Noise Texture */
 
-static inline float perlin_unsigned_legacy(vec4f p, int dims) { return 0.5f * perlin_signed_legacy(p, dims) + 0.5f; }
+static inline float perlin_unsigned_legacy(vec4f p, int dims) { return 0.5f * perlin_signed_legacy_inline(p, dims) + 0.5f; }
 
 NODE_VECTOR_CLONES float noise_fbm_legacy(vec4f p, int dims, float octaves, float roughness)
 {
@@ -436,13 +460,13 @@ static float musgrave_fbm(vec4f p, int dims, float H, float lacunarity, float oc
     float value = 0.0f, pwr = 1.0f, pwHL = powf(lacunarity, -H);
     int n = whole_octaves(octaves);
     for (int i = 0; i < n; i++) {
-        value += perlin_signed_legacy(p, dims) * pwr;
+        value += perlin_signed_legacy_inline(p, dims) * pwr;
         pwr *= pwHL;
         p = v4f_scale(p, lacunarity);
     }
     float rmd = octaves - floorf(octaves);
     if (rmd != 0.0f)
-        value += rmd * perlin_signed_legacy(p, dims) * pwr;
+        value += rmd * perlin_signed_legacy_inline(p, dims) * pwr;
     return value;
 }
 
@@ -451,13 +475,13 @@ static float musgrave_multi_fractal(vec4f p, int dims, float H, float lacunarity
     float value = 1.0f, pwr = 1.0f, pwHL = powf(lacunarity, -H);
     int n = whole_octaves(octaves);
     for (int i = 0; i < n; i++) {
-        value *= pwr * perlin_signed_legacy(p, dims) + 1.0f;
+        value *= pwr * perlin_signed_legacy_inline(p, dims) + 1.0f;
         pwr *= pwHL;
         p = v4f_scale(p, lacunarity);
     }
     float rmd = octaves - floorf(octaves);
     if (rmd != 0.0f)
-        value *= rmd * pwr * perlin_signed_legacy(p, dims) + 1.0f;
+        value *= rmd * pwr * perlin_signed_legacy_inline(p, dims) + 1.0f;
     return value;
 }
 
@@ -465,18 +489,18 @@ static float musgrave_hetero_terrain(vec4f p, int dims, float H, float lacunarit
 {
     float pwHL = powf(lacunarity, -H);
     float pwr = pwHL;
-    float value = offset + perlin_signed_legacy(p, dims);
+    float value = offset + perlin_signed_legacy_inline(p, dims);
     p = v4f_scale(p, lacunarity);
     int n = whole_octaves(octaves);
     for (int i = 1; i < n; i++) {
-        float increment = (perlin_signed_legacy(p, dims) + offset) * pwr * value;
+        float increment = (perlin_signed_legacy_inline(p, dims) + offset) * pwr * value;
         value += increment;
         pwr *= pwHL;
         p = v4f_scale(p, lacunarity);
     }
     float rmd = octaves - floorf(octaves);
     if (rmd != 0.0f) {
-        float increment = (perlin_signed_legacy(p, dims) + offset) * pwr * value;
+        float increment = (perlin_signed_legacy_inline(p, dims) + offset) * pwr * value;
         value += rmd * increment;
     }
     return value;
@@ -491,7 +515,7 @@ static float musgrave_hybrid_multi_fractal(vec4f p, int dims, float H, float lac
     for (int i = 0; weight > 0.001f && i < n; i++) {
         if (weight > 1.0f)
             weight = 1.0f;
-        float signal = (perlin_signed_legacy(p, dims) + offset) * pwr;
+        float signal = (perlin_signed_legacy_inline(p, dims) + offset) * pwr;
         pwr *= pwHL;
         value += weight * signal;
         weight *= gain * signal;
@@ -501,7 +525,7 @@ static float musgrave_hybrid_multi_fractal(vec4f p, int dims, float H, float lac
     if (rmd != 0.0f && weight > 0.001f) {
         if (weight > 1.0f)
             weight = 1.0f;
-        float signal = (perlin_signed_legacy(p, dims) + offset) * pwr;
+        float signal = (perlin_signed_legacy_inline(p, dims) + offset) * pwr;
         value += rmd * weight * signal;
     }
     return value;
@@ -512,14 +536,14 @@ static float musgrave_ridged_multi_fractal(vec4f p, int dims, float H, float lac
 {
     float pwHL = powf(lacunarity, -H);
     float pwr = pwHL;
-    float signal = offset - fabsf(perlin_signed_legacy(p, dims));
+    float signal = offset - fabsf(perlin_signed_legacy_inline(p, dims));
     signal *= signal;
     float value = signal;
     int n = whole_octaves(octaves);
     for (int i = 1; i < n; i++) {
         p = v4f_scale(p, lacunarity);
         float weight = saturate(signal * gain);
-        signal = offset - fabsf(perlin_signed_legacy(p, dims));
+        signal = offset - fabsf(perlin_signed_legacy_inline(p, dims));
         signal *= signal;
         signal *= weight;
         value += signal * pwr;
