@@ -33,6 +33,7 @@ SAMPLES = 16
 TOLERANCE = 2e-3
 V4 = bpy.app.version >= (4, 0, 0)
 V41 = bpy.app.version >= (4, 1, 0)
+V44 = bpy.app.version >= (4, 4, 0)
 
 
 # --------------------------------------------------------------- building
@@ -474,19 +475,36 @@ def _textured_by_image(tmp_path, interpolation, extension, projection):
     return build
 
 
-def _bump(invert):
-    """Bump of a smooth height: Cycles differentiates over the pixel's
-    footprint (a forward difference, so the normal of a point half a
-    footprint away), Phos over 10⁻⁴ of the scene's size; on a height that
-    bends little over a pixel both are its derivative."""
+def _bump(invert, scale, detail, filter_width=None):
+    """Bump of a noise height. Cycles differentiates forward over the
+    pixel's footprint (all of it before 4.4, then the node's Filter Width
+    of it, 0.1 by default), so where the height bends within a pixel the
+    normal is that of a point up to a footprint away, along Cycles' own
+    axes: Phos steps the same footprint along the same axes, which the
+    detailed and fine noises (a feature every few pixels) test; the smooth
+    one would pass with any small step."""
     def build(name):
         t = Tree(name)
-        noise = t.node("ShaderNodeTexNoise", {"Scale": 0.3, "Detail": 0.0})
+        noise = t.node("ShaderNodeTexNoise", {"Scale": scale, "Detail": detail})
         t.link(t.coords("Object"), sock(noise.inputs, "Vector"))
-        bump = t.node("ShaderNodeBump", {"Strength": 0.8, "Distance": 0.6}, invert=invert)
+        inputs = {"Strength": 0.8, "Distance": 0.6}
+        if filter_width is not None:
+            inputs["Filter Width"] = filter_width
+        bump = t.node("ShaderNodeBump", inputs, invert=invert)
         t.link(sock(noise.outputs, "Fac"), sock(bump.inputs, "Height"))
         return t.show(t.absolute(sock(bump.outputs, "Normal")))
     return build
+
+
+def bump_cases():
+    return [("bump", _bump(False, 0.3, 0.0)), ("bump inverted", _bump(True, 0.3, 0.0)),
+            ("bump detailed", _bump(False, 3.0, 2.0)), ("bump detailed inverted", _bump(True, 3.0, 2.0)),
+            ("bump fine", _bump(False, 8.0, 0.0))] + \
+        ([("bump filter width", _bump(False, 8.0, 0.0, 0.5))] if V44 else [])
+
+
+def test_bump(addon, tmp_path):
+    check(render_grid(bump_cases(), tmp_path, "bump"))
 
 
 def _normal_map(space):
@@ -531,7 +549,6 @@ def vector_cases(tmp_path):
                           _textured_by_image(tmp_path, interp, ext, "FLAT")))
     for proj in ("SPHERE", "TUBE", "BOX"):
         cases.append(("image %s" % proj.lower(), _textured_by_image(tmp_path, "Linear", "REPEAT", proj)))
-    cases += [("bump", _bump(False)), ("bump inverted", _bump(True))]
     cases += [("normal map %s" % s.lower(), _normal_map(s)) for s in ("TANGENT", "OBJECT", "WORLD")]
     cases += [("fresnel", _input_node("ShaderNodeFresnel", "Fac", {"IOR": 1.8})),
               ("layer weight fresnel", _input_node("ShaderNodeLayerWeight", "Fresnel", {"Blend": 0.3})),
