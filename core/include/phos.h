@@ -249,7 +249,8 @@ enum phos_shader_op {
                                     16 << 8 = Blender 3.x noise */
     PHOS_OP_TEX_BRICK = 28,      /* in vector(3), color1(3), color2(3), mortar(3), scale, mortar_size,
                                     mortar_smooth, bias, brick_width, row_height; out color(3), fac.
-                                    param: offset, offset_frequency, squash, squash_frequency */
+                                    param: offset, offset_frequency, squash, squash_frequency; flags 1 =
+                                    Blender 3.x's mortar smoothing (solid mortar for a negative one) */
     PHOS_OP_TEX_CHECKER = 29,    /* in vector(3), color1(3), color2(3), scale; out color(3), fac */
     PHOS_OP_TEX_MAGIC = 30,      /* in vector(3), scale, distortion; out color(3), fac. mode depth (0-10);
                                     flags 1 = the scale applied before the 2π wrap (Blender 5.3) */

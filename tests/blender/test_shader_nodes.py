@@ -211,6 +211,27 @@ def texture_cases():
     return cases
 
 
+def out_of_range_cases():
+    """Settings outside the sliders' usual range, where versions differ:
+    a negative Mortar Smooth (solid mortar in 3.x, none from 4.0, whose
+    smoothstep is clamped) and a Noise Roughness above 1 (4.x no longer
+    clamps it to [0, 1]: each octave outweighs the last)."""
+    cases = [("brick mortar smooth negative",
+              _texture("ShaderNodeTexBrick", "Color", inputs={"Scale": 3.0, "Mortar Size": 0.06,
+                                                              "Mortar Smooth": -0.4}))]
+    if V4:
+        cases.append(("noise roughness 1.6", _texture("ShaderNodeTexNoise", 0,
+                                                      inputs={"Detail": 3.5, "Roughness": 1.6})))
+        cases.append(("noise 2D roughness 1.3", _texture("ShaderNodeTexNoise", 1, noise_dimensions="2D",
+                                                         inputs={"Detail": 2.0, "Roughness": 1.3,
+                                                                 "Distortion": 0.4})))
+    if V41:
+        cases.append(("noise ridged roughness 1.4",
+                      _texture("ShaderNodeTexNoise", 0, noise_type="RIDGED_MULTIFRACTAL", absolute=True,
+                               inputs={"Detail": 2.0, "Roughness": 1.4, "Offset": 0.8, "Gain": 1.1})))
+    return cases
+
+
 def _white_noise(dims):
     def build(name):
         # Quantised coordinates: white noise changes with every bit of its
@@ -230,6 +251,10 @@ def _white_noise(dims):
 def test_textures(addon, tmp_path):
     cases = texture_cases() + [("white noise %s" % d, _white_noise(d)) for d in ("1D", "2D", "3D", "4D")]
     check(render_grid(cases, tmp_path, "textures"))
+
+
+def test_textures_out_of_range(addon, tmp_path):
+    check(render_grid(out_of_range_cases(), tmp_path, "out_of_range"))
 
 
 # ------------------------------------------------------ converters, colour
@@ -375,6 +400,27 @@ def _scalar_to_colour(kind, lo, hi, socket):
     return build
 
 
+def _float_curve(extend):
+    """Float Curve over Generated X mapped to [−0.3, 1.3]: the curve's
+    points inside [0, 1] and its extension outside (extrapolated: the end
+    segments' slopes, as Cycles bakes them; horizontal), blended with the
+    input by a Factor of 0.8. Absolute, as extrapolation goes below 0."""
+    def build(name):
+        t = Tree(name)
+        n = t.node("ShaderNodeMapRange", {1: 0.0, 2: 1.0, 3: -0.3, 4: 1.3})
+        t.link(t.component(t.coords("Generated"), "X"), sock(n.inputs, 0))
+        c = t.node("ShaderNodeFloatCurve", {"Factor": 0.8})
+        c.mapping.extend = extend
+        curve = c.mapping.curves[0]
+        curve.points.new(0.3, 0.7)
+        p = curve.points.new(0.65, 0.15)
+        p.handle_type = "VECTOR"
+        c.mapping.update()
+        t.link(sock(n.outputs, 0), sock(c.inputs, "Value"))
+        return t.show(t.absolute(sock(c.outputs, 0)))
+    return build
+
+
 def _separate_combine(mode):
     def build(name):
         t = Tree(name)
@@ -402,6 +448,8 @@ def colour_cases():
         ("invert", _color_node("ShaderNodeInvert", {"Fac": 0.8})),
         ("rgb curves", _color_node("ShaderNodeRGBCurve", setup=_curves)),
         ("vector curves", _color_node("ShaderNodeVectorCurve", color_socket="Vector", setup=_curves)),
+        ("float curve extrapolated", _float_curve("EXTRAPOLATED")),
+        ("float curve horizontal", _float_curve("HORIZONTAL")),
         ("clamp range", _scalar_to_colour("ShaderNodeClamp", -0.3, 1.4, "Value")),
         ("rgb to bw", _color_node("ShaderNodeRGBToBW")),
         ("blackbody", _scalar_to_colour("ShaderNodeBlackbody", 1500.0, 12000.0, "Temperature")),

@@ -317,17 +317,21 @@ def _extrapolate(mapping):
 def _curve_node(nc, node, stack, op, used, entry, width, output):
     """A curve node baked as Cycles bakes it: RAMP_TABLE_SIZE entries of
     entry(mapping, curves, t) (four floats) over the x range of the `used`
-    curves, then one instruction reading Fac and the input (width wide)."""
+    curves (one more from Blender 4.0, which samples the range's end too,
+    as Blender's own curve table does: the extrapolated slope comes from
+    the last step), then one instruction reading Fac and the input (width
+    wide)."""
     mapping = node.mapping
     mapping.update()
     curves = mapping.curves
     lo, hi = _curve_range(mapping, curves[:used])
+    size = RAMP_TABLE_SIZE + 1 if nc.ctx.at_least(4, 0) else RAMP_TABLE_SIZE
     table = []
-    for i in range(RAMP_TABLE_SIZE):
-        table.extend(entry(mapping, curves, lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)))
+    for i in range(size):
+        table.extend(entry(mapping, curves, lo + i / (size - 1) * (hi - lo)))
     offset = nc.p.add_table(table)
     fac, value = nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], width, stack)
-    return {output: nc.p.emit(op, [fac, value], [width], mode=RAMP_TABLE_SIZE, table=offset, param=(lo, hi),
+    return {output: nc.p.emit(op, [fac, value], [width], mode=size, table=offset, param=(lo, hi),
                               flags=_extrapolate(mapping))[0]}
 
 
@@ -494,7 +498,8 @@ def _tex_brick(nc, node, stack):
         [nc.input(node, n, 1, stack) for n in ("Scale", "Mortar Size", "Mortar Smooth", "Bias", "Brick Width",
                                                "Row Height")]
     param = (node.offset, float(node.offset_frequency), node.squash, float(node.squash_frequency))
-    color, fac = nc.p.emit(core.PHOS_OP_TEX_BRICK, ins, [3, 1], param=param)
+    flags = 0 if nc.ctx.at_least(4, 0) else 1  # 3.x's mortar smoothing (phos.h)
+    color, fac = nc.p.emit(core.PHOS_OP_TEX_BRICK, ins, [3, 1], param=param, flags=flags)
     return {"Color": color, "Fac": fac}
 
 
