@@ -555,6 +555,52 @@ def test_bump(addon, tmp_path):
     check(render_grid(bump_cases(), tmp_path, "bump"))
 
 
+def test_bump_perspective(addon, tmp_path):
+    """The detailed bump on a plane tilted 50° away from a perspective
+    camera: the footprint grows with distance (the angle between pixels)
+    and its axes lie in the slanted plane, as in Cycles."""
+    pt.reset_file()
+    scene = bpy.context.scene
+    pt.add_plane(scene, "tilted", size=4.0, rotation=(math.radians(50.0), 0.0, 0.3),
+                 material=_bump(False, 3.0, 2.0)("tilted"))
+    pt.add_camera(scene, location=(0.2, -0.3, 4.0), target=(0.0, 0.0, 0.0), lens=35.0)
+    pt.set_world(scene, (0.0, 0.0, 0.0))
+    pt.configure_output(scene, 96, 96)
+    pt.configure_cycles(scene, SAMPLES, filter_width=0.01)
+    pt.configure_phos(scene, SAMPLES, filter_width=0.01)
+    cyc = pt.render_array(scene, tmp_path, engine="CYCLES", name="bump_perspective_cycles")[..., :3]
+    pho = pt.render_array(scene, tmp_path, engine="PHOS", name="bump_perspective_phos")[..., :3]
+    covered = cyc.max(axis=2) > 0.0  # the plane, not the black world around it
+    assert covered.mean() > 0.5, "the plane fills too little of the frame"
+    check({"tilted": (pho[covered][None].astype(np.float64), cyc[covered][None].astype(np.float64))})
+
+
+def test_bump_seen_in_mirror(addon, tmp_path):
+    """The detailed bump seen through a sharp mirror: after the bounce
+    the footprint starts from its radius on the mirror and keeps the
+    camera's spread (Cycles 3.4 to 4.5 carry only dP through a bounce)."""
+    pt.reset_file()
+    scene = bpy.context.scene
+    mirror = Tree("mirror")
+    mirror.nt.nodes.remove(mirror.emission)
+    glossy = mirror.node("ShaderNodeBsdfGlossy", {"Color": (1.0, 1.0, 1.0), "Roughness": 0.0},
+                         distribution="SHARP" if not V4 else "GGX")
+    mirror.link(sock(glossy.outputs, 0), sock(mirror.out.inputs, "Surface"))
+    pt.add_plane(scene, "mirror", size=6.0, location=(0.0, 0.0, 0.0), material=mirror.mat)
+    pt.add_plane(scene, "bumped", size=3.0, location=(0.0, 1.6, 1.4), rotation=(math.radians(-60.0), 0.0, 0.0),
+                 material=_bump(False, 3.0, 2.0)("bumped"))
+    pt.add_camera(scene, location=(0.0, -2.5, 1.6), target=(0.0, 0.6, 0.0), lens=35.0)
+    pt.set_world(scene, (0.0, 0.0, 0.0))
+    pt.configure_output(scene, 96, 96)
+    pt.configure_cycles(scene, SAMPLES, filter_width=0.01)
+    pt.configure_phos(scene, SAMPLES, filter_width=0.01)
+    cyc = pt.render_array(scene, tmp_path, engine="CYCLES", name="bump_mirror_cycles")[..., :3]
+    pho = pt.render_array(scene, tmp_path, engine="PHOS", name="bump_mirror_phos")[..., :3]
+    covered = cyc.max(axis=2) > 0.0  # the bumped plane, seen directly and in the mirror
+    assert covered.mean() > 0.3, "the reflection fills too little of the frame"
+    check({"reflected": (pho[covered][None].astype(np.float64), cyc[covered][None].astype(np.float64))})
+
+
 def _normal_map(space):
     def build(name):
         t = Tree(name)
