@@ -249,7 +249,8 @@ enum phos_shader_op {
                                     16 << 8 = Blender 3.x noise */
     PHOS_OP_TEX_BRICK = 28,      /* in vector(3), color1(3), color2(3), mortar(3), scale, mortar_size,
                                     mortar_smooth, bias, brick_width, row_height; out color(3), fac.
-                                    param: offset, offset_frequency, squash, squash_frequency */
+                                    param: offset, offset_frequency, squash, squash_frequency; flags 1 =
+                                    Blender 3.x's mortar smoothing (solid mortar for a negative one) */
     PHOS_OP_TEX_CHECKER = 29,    /* in vector(3), color1(3), color2(3), scale; out color(3), fac */
     PHOS_OP_TEX_MAGIC = 30,      /* in vector(3), scale, distortion; out color(3), fac. mode depth (0-10);
                                     flags 1 = the scale applied before the 2π wrap (Blender 5.3) */
@@ -269,10 +270,14 @@ enum phos_shader_op {
                                     flags 1 = tangent space applies Strength in tangent space (Blender 4+;
                                     before, the normal is blended from the shading normal) */
     PHOS_OP_BUMP = 40,           /* in strength, distance, height, height_dx, height_dy, normal(3); out
-                                    normal(3). flags 1 = invert. The heights at the point and at the point
-                                    moved by the two offsets the program's OFFSET instructions read */
-    PHOS_OP_BUMP_OFFSET = 41,    /* out position(3) moved along tangent mode (0: none, 1: dx, 2: dy), and the
-                                    texture coordinates there: generated(3), uv(3), object(3), normal(3) */
+                                    normal(3). flags 1 = invert, 2 = keep the viewer's reflection above the
+                                    surface (Blender before 4.0). The heights at the point and at the point
+                                    moved by the two offsets the program's OFFSET instructions read; param[0]
+                                    the filter width: the fraction of the pixel's footprint the offsets step
+                                    (≥ 0; 0 means 1), the same as those OFFSET instructions' */
+    PHOS_OP_BUMP_OFFSET = 41,    /* out position(3) moved along the footprint's axis mode (0: none, 1: dx,
+                                    2: dy) by param[0] (the filter width, as BUMP's) of it, and the texture
+                                    coordinates there: generated(3), uv(3), object(3), normal(3) */
     PHOS_OP_VECTOR_ROTATE = 42,  /* in vector(3), center(3), axis(3), angle, rotation(3); out vector(3).
                                     mode enum phos_vector_rotate; flags 1 = invert */
     PHOS_OP_VECTOR_TRANSFORM = 43,/* in vector(3); out vector(3). mode enum phos_vector_transform_type;

@@ -33,6 +33,7 @@ SAMPLES = 16
 TOLERANCE = 2e-3
 V4 = bpy.app.version >= (4, 0, 0)
 V41 = bpy.app.version >= (4, 1, 0)
+V44 = bpy.app.version >= (4, 4, 0)
 
 
 # --------------------------------------------------------------- building
@@ -210,6 +211,27 @@ def texture_cases():
     return cases
 
 
+def out_of_range_cases():
+    """Settings outside the sliders' usual range, where versions differ:
+    a negative Mortar Smooth (solid mortar in 3.x, none from 4.0, whose
+    smoothstep is clamped) and a Noise Roughness above 1 (4.x no longer
+    clamps it to [0, 1]: each octave outweighs the last)."""
+    cases = [("brick mortar smooth negative",
+              _texture("ShaderNodeTexBrick", "Color", inputs={"Scale": 3.0, "Mortar Size": 0.06,
+                                                              "Mortar Smooth": -0.4}))]
+    if V4:
+        cases.append(("noise roughness 1.6", _texture("ShaderNodeTexNoise", 0,
+                                                      inputs={"Detail": 3.5, "Roughness": 1.6})))
+        cases.append(("noise 2D roughness 1.3", _texture("ShaderNodeTexNoise", 1, noise_dimensions="2D",
+                                                         inputs={"Detail": 2.0, "Roughness": 1.3,
+                                                                 "Distortion": 0.4})))
+    if V41:
+        cases.append(("noise ridged roughness 1.4",
+                      _texture("ShaderNodeTexNoise", 0, noise_type="RIDGED_MULTIFRACTAL", absolute=True,
+                               inputs={"Detail": 2.0, "Roughness": 1.4, "Offset": 0.8, "Gain": 1.1})))
+    return cases
+
+
 def _white_noise(dims):
     def build(name):
         # Quantised coordinates: white noise changes with every bit of its
@@ -229,6 +251,10 @@ def _white_noise(dims):
 def test_textures(addon, tmp_path):
     cases = texture_cases() + [("white noise %s" % d, _white_noise(d)) for d in ("1D", "2D", "3D", "4D")]
     check(render_grid(cases, tmp_path, "textures"))
+
+
+def test_textures_out_of_range(addon, tmp_path):
+    check(render_grid(out_of_range_cases(), tmp_path, "out_of_range"))
 
 
 # ------------------------------------------------------ converters, colour
@@ -374,6 +400,27 @@ def _scalar_to_colour(kind, lo, hi, socket):
     return build
 
 
+def _float_curve(extend):
+    """Float Curve over Generated X mapped to [−0.3, 1.3]: the curve's
+    points inside [0, 1] and its extension outside (extrapolated: the end
+    segments' slopes, as Cycles bakes them; horizontal), blended with the
+    input by a Factor of 0.8. Absolute, as extrapolation goes below 0."""
+    def build(name):
+        t = Tree(name)
+        n = t.node("ShaderNodeMapRange", {1: 0.0, 2: 1.0, 3: -0.3, 4: 1.3})
+        t.link(t.component(t.coords("Generated"), "X"), sock(n.inputs, 0))
+        c = t.node("ShaderNodeFloatCurve", {"Factor": 0.8})
+        c.mapping.extend = extend
+        curve = c.mapping.curves[0]
+        curve.points.new(0.3, 0.7)
+        p = curve.points.new(0.65, 0.15)
+        p.handle_type = "VECTOR"
+        c.mapping.update()
+        t.link(sock(n.outputs, 0), sock(c.inputs, "Value"))
+        return t.show(t.absolute(sock(c.outputs, 0)))
+    return build
+
+
 def _separate_combine(mode):
     def build(name):
         t = Tree(name)
@@ -401,6 +448,8 @@ def colour_cases():
         ("invert", _color_node("ShaderNodeInvert", {"Fac": 0.8})),
         ("rgb curves", _color_node("ShaderNodeRGBCurve", setup=_curves)),
         ("vector curves", _color_node("ShaderNodeVectorCurve", color_socket="Vector", setup=_curves)),
+        ("float curve extrapolated", _float_curve("EXTRAPOLATED")),
+        ("float curve horizontal", _float_curve("HORIZONTAL")),
         ("clamp range", _scalar_to_colour("ShaderNodeClamp", -0.3, 1.4, "Value")),
         ("rgb to bw", _color_node("ShaderNodeRGBToBW")),
         ("blackbody", _scalar_to_colour("ShaderNodeBlackbody", 1500.0, 12000.0, "Temperature")),
@@ -474,19 +523,85 @@ def _textured_by_image(tmp_path, interpolation, extension, projection):
     return build
 
 
-def _bump(invert):
-    """Bump of a smooth height: Cycles differentiates over the pixel's
-    footprint (a forward difference, so the normal of a point half a
-    footprint away), Phos over 10⁻⁴ of the scene's size; on a height that
-    bends little over a pixel both are its derivative."""
+def _bump(invert, scale, detail, filter_width=None, distance=0.6):
+    """Bump of a noise height. Cycles differentiates forward over the
+    pixel's footprint (all of it before 4.4, then the node's Filter Width
+    of it, 0.1 by default), so where the height bends within a pixel the
+    normal is that of a point up to a footprint away, along Cycles' own
+    axes: Phos steps the same footprint along the same axes, which the
+    detailed and fine noises (a feature every few pixels) test; the smooth
+    one would pass with any small step. Their Distance is lower: their
+    normal turns by tenths per pixel, and the pixels' ±0.005 px jitter
+    must stay within the tolerance."""
     def build(name):
         t = Tree(name)
-        noise = t.node("ShaderNodeTexNoise", {"Scale": 0.3, "Detail": 0.0})
+        noise = t.node("ShaderNodeTexNoise", {"Scale": scale, "Detail": detail})
         t.link(t.coords("Object"), sock(noise.inputs, "Vector"))
-        bump = t.node("ShaderNodeBump", {"Strength": 0.8, "Distance": 0.6}, invert=invert)
+        inputs = {"Strength": 0.8, "Distance": distance}
+        if filter_width is not None:
+            inputs["Filter Width"] = filter_width
+        bump = t.node("ShaderNodeBump", inputs, invert=invert)
         t.link(sock(noise.outputs, "Fac"), sock(bump.inputs, "Height"))
         return t.show(t.absolute(sock(bump.outputs, "Normal")))
     return build
+
+
+def bump_cases():
+    return [("bump", _bump(False, 0.3, 0.0)), ("bump inverted", _bump(True, 0.3, 0.0)),
+            ("bump detailed", _bump(False, 3.0, 2.0, distance=0.4)),
+            ("bump detailed inverted", _bump(True, 3.0, 2.0, distance=0.4)),
+            ("bump fine", _bump(False, 8.0, 0.0, distance=0.4))] + \
+        ([("bump filter width", _bump(False, 8.0, 0.0, 0.5, distance=0.4))] if V44 else [])
+
+
+def test_bump(addon, tmp_path):
+    check(render_grid(bump_cases(), tmp_path, "bump"))
+
+
+def test_bump_perspective(addon, tmp_path):
+    """The detailed bump on a plane tilted 50° away from a perspective
+    camera: the footprint grows with distance (the angle between pixels)
+    and its axes lie in the slanted plane, as in Cycles."""
+    pt.reset_file()
+    scene = bpy.context.scene
+    pt.add_plane(scene, "tilted", size=4.0, rotation=(math.radians(50.0), 0.0, 0.3),
+                 material=_bump(False, 3.0, 2.0)("tilted"))
+    pt.add_camera(scene, location=(0.2, -0.3, 4.0), target=(0.0, 0.0, 0.0), lens=35.0)
+    pt.set_world(scene, (0.0, 0.0, 0.0))
+    pt.configure_output(scene, 96, 96)
+    pt.configure_cycles(scene, SAMPLES, filter_width=0.01)
+    pt.configure_phos(scene, SAMPLES, filter_width=0.01)
+    cyc = pt.render_array(scene, tmp_path, engine="CYCLES", name="bump_perspective_cycles")[..., :3]
+    pho = pt.render_array(scene, tmp_path, engine="PHOS", name="bump_perspective_phos")[..., :3]
+    covered = cyc.max(axis=2) > 0.0  # the plane, not the black world around it
+    assert covered.mean() > 0.5, "the plane fills too little of the frame"
+    check({"tilted": (pho[covered][None].astype(np.float64), cyc[covered][None].astype(np.float64))})
+
+
+def test_bump_seen_in_mirror(addon, tmp_path):
+    """The detailed bump seen through a sharp mirror: after the bounce
+    the footprint starts from its radius on the mirror and keeps the
+    camera's spread (Cycles 3.4 to 4.5 carry only dP through a bounce)."""
+    pt.reset_file()
+    scene = bpy.context.scene
+    mirror = Tree("mirror")
+    mirror.nt.nodes.remove(mirror.emission)
+    glossy = mirror.node("ShaderNodeBsdfGlossy", {"Color": (1.0, 1.0, 1.0), "Roughness": 0.0},
+                         distribution="SHARP" if not V4 else "GGX")
+    mirror.link(sock(glossy.outputs, 0), sock(mirror.out.inputs, "Surface"))
+    pt.add_plane(scene, "mirror", size=6.0, location=(0.0, 0.0, 0.0), material=mirror.mat)
+    pt.add_plane(scene, "bumped", size=3.0, location=(0.0, 1.6, 1.4), rotation=(math.radians(-60.0), 0.0, 0.0),
+                 material=_bump(False, 3.0, 2.0)("bumped"))
+    pt.add_camera(scene, location=(0.0, -2.5, 1.6), target=(0.0, 0.6, 0.0), lens=35.0)
+    pt.set_world(scene, (0.0, 0.0, 0.0))
+    pt.configure_output(scene, 96, 96)
+    pt.configure_cycles(scene, SAMPLES, filter_width=0.01)
+    pt.configure_phos(scene, SAMPLES, filter_width=0.01)
+    cyc = pt.render_array(scene, tmp_path, engine="CYCLES", name="bump_mirror_cycles")[..., :3]
+    pho = pt.render_array(scene, tmp_path, engine="PHOS", name="bump_mirror_phos")[..., :3]
+    covered = cyc.max(axis=2) > 0.0  # the bumped plane, seen directly and in the mirror
+    assert covered.mean() > 0.3, "the reflection fills too little of the frame"
+    check({"reflected": (pho[covered][None].astype(np.float64), cyc[covered][None].astype(np.float64))})
 
 
 def _normal_map(space):
@@ -531,7 +646,6 @@ def vector_cases(tmp_path):
                           _textured_by_image(tmp_path, interp, ext, "FLAT")))
     for proj in ("SPHERE", "TUBE", "BOX"):
         cases.append(("image %s" % proj.lower(), _textured_by_image(tmp_path, "Linear", "REPEAT", proj)))
-    cases += [("bump", _bump(False)), ("bump inverted", _bump(True))]
     cases += [("normal map %s" % s.lower(), _normal_map(s)) for s in ("TANGENT", "OBJECT", "WORLD")]
     cases += [("fresnel", _input_node("ShaderNodeFresnel", "Fac", {"IOR": 1.8})),
               ("layer weight fresnel", _input_node("ShaderNodeLayerWeight", "Fresnel", {"Blend": 0.3})),

@@ -11,7 +11,8 @@
  *     dimension, metric and definition (3.x, 4.x, 5.x) with and without
  *     fractal detail;
  *  4. Brick gives the mortar colour on a mortar line and a brick colour
- *     inside a brick;
+ *     inside a brick; a negative mortar smoothing is solid mortar with
+ *     Blender 3.x's rule and none after;
  *  5. every output of every op and mode is finite over a grid of points;
  *  6. determinism: the same inputs give the same bits.
  */
@@ -315,16 +316,16 @@ static void test_voronoi_details(void)
 
 /* -------------------------------------------------------------- Brick */
 
-static void brick_run(rig *g, float x, float y)
+static void brick_run_smooth(rig *g, float x, float y, float smooth, uint32_t flags)
 {
-    rig_init(g, PHOS_OP_TEX_BRICK, 0, 0);
+    rig_init(g, PHOS_OP_TEX_BRICK, 0, flags);
     in3(g, 0, x, y, 0.0f);
     in3(g, 1, 0.8f, 0.8f, 0.8f);  /* color1 */
     in3(g, 2, 0.2f, 0.2f, 0.2f);  /* color2 */
     in3(g, 3, 0.0f, 0.0f, 1.0f);  /* mortar */
     in1(g, 4, 1.0f);              /* scale */
     in1(g, 5, 0.02f);             /* mortar size */
-    in1(g, 6, 0.1f);              /* mortar smooth */
+    in1(g, 6, smooth);            /* mortar smooth */
     in1(g, 7, 0.0f);              /* bias */
     in1(g, 8, 0.5f);              /* brick width */
     in1(g, 9, 0.25f);             /* row height */
@@ -335,6 +336,8 @@ static void brick_run(rig *g, float x, float y)
     out_all(g);
     run(g);
 }
+
+static void brick_run(rig *g, float x, float y) { brick_run_smooth(g, x, y, 0.1f, 0); }
 
 static void test_brick(void)
 {
@@ -356,6 +359,17 @@ static void test_brick(void)
     /* the smooth edge of the mortar is between 0 and 1 */
     brick_run(&g, 0.5f + 0.019f, 0.375f);
     CHECK(reg(&g, 1, 0) > 0.0f && reg(&g, 1, 0) < 1.0f);
+    /* A negative smoothing inside the mortar band: solid mortar with 3.x's
+     * rule (flags 1), none with the clamped smoothstep of 4.0 on; a
+     * positive one agrees between the two. */
+    brick_run_smooth(&g, 0.5f + 0.01f, 0.375f, -0.4f, 1);
+    CHECK(reg(&g, 1, 0) == 1.0f);
+    brick_run_smooth(&g, 0.5f + 0.01f, 0.375f, -0.4f, 0);
+    CHECK(reg(&g, 1, 0) == 0.0f);
+    brick_run_smooth(&g, 0.5f + 0.019f, 0.375f, 0.1f, 1);
+    float legacy = reg(&g, 1, 0);
+    brick_run_smooth(&g, 0.5f + 0.019f, 0.375f, 0.1f, 0);
+    CHECK(legacy == reg(&g, 1, 0));
 }
 
 /* --------------------------------------------------- Wave, Magic */

@@ -11,7 +11,9 @@ stack, bump offset), so a node used twice is computed once.
 
 A Bump node's Height is compiled three times: at the point and at two
 points moved along the surface (BUMP_OFFSET), as Cycles evaluates it; the
-texture coordinates inside those copies come from the moved points.
+texture coordinates inside those copies come from the moved points. The
+moves are the pixel's footprint times the version's filter width
+(_bump_filter_width).
 
 Anything without a handler gives one warning naming the material and node,
 and the input it feeds takes its own unlinked value (the closest match).
@@ -64,6 +66,7 @@ class NodeCompiler:
         self.ctx = walker.ctx
         self.p = program
         self.bump = 0             # 0, or 1/2 while compiling a Bump's moved heights
+        self.bump_width = 0.0     # the filter width of those moves (BUMP_OFFSET's param[0])
         self._memo = {}
         self._active = set()
 
@@ -93,7 +96,7 @@ class NodeCompiler:
         return self.p.convert(value, width)
 
     def node_outputs(self, node, stack):
-        key = (node.as_pointer(), tuple(g.as_pointer() for g in stack), self.bump)
+        key = (node.as_pointer(), tuple(g.as_pointer() for g in stack), self.bump, self.bump_width)
         if key in self._memo:
             return self._memo[key]
         if key in self._active:
@@ -126,7 +129,8 @@ class NodeCompiler:
     def coordinates(self):
         """Texture Coordinate's outputs at the point (or at the bump's moved point)."""
         if self.bump:
-            pos, gen, uv, obj, _ = self.p.emit(core.PHOS_OP_BUMP_OFFSET, [], [3, 3, 3, 3, 3], mode=self.bump)
+            pos, gen, uv, obj, _ = self.p.emit(core.PHOS_OP_BUMP_OFFSET, [], [3, 3, 3, 3, 3], mode=self.bump,
+                                               param=(self.bump_width,))
             base = self.p.emit(core.PHOS_OP_TEXTURE_COORDINATE, [], [3, 3, 3, 3, 3], mode=0)
             return [gen, base[1], uv, obj, base[4]], pos
         base = self.p.emit(core.PHOS_OP_TEXTURE_COORDINATE, [], [3, 3, 3, 3, 3], mode=0)
@@ -313,17 +317,21 @@ def _extrapolate(mapping):
 def _curve_node(nc, node, stack, op, used, entry, width, output):
     """A curve node baked as Cycles bakes it: RAMP_TABLE_SIZE entries of
     entry(mapping, curves, t) (four floats) over the x range of the `used`
-    curves, then one instruction reading Fac and the input (width wide)."""
+    curves (one more from Blender 4.0, which samples the range's end too,
+    as Blender's own curve table does: the extrapolated slope comes from
+    the last step), then one instruction reading Fac and the input (width
+    wide)."""
     mapping = node.mapping
     mapping.update()
     curves = mapping.curves
     lo, hi = _curve_range(mapping, curves[:used])
+    size = RAMP_TABLE_SIZE + 1 if nc.ctx.at_least(4, 0) else RAMP_TABLE_SIZE
     table = []
-    for i in range(RAMP_TABLE_SIZE):
-        table.extend(entry(mapping, curves, lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)))
+    for i in range(size):
+        table.extend(entry(mapping, curves, lo + i / (size - 1) * (hi - lo)))
     offset = nc.p.add_table(table)
     fac, value = nc.socket(node.inputs[0], 1, stack), nc.socket(node.inputs[1], width, stack)
-    return {output: nc.p.emit(op, [fac, value], [width], mode=RAMP_TABLE_SIZE, table=offset, param=(lo, hi),
+    return {output: nc.p.emit(op, [fac, value], [width], mode=size, table=offset, param=(lo, hi),
                               flags=_extrapolate(mapping))[0]}
 
 
@@ -490,7 +498,8 @@ def _tex_brick(nc, node, stack):
         [nc.input(node, n, 1, stack) for n in ("Scale", "Mortar Size", "Mortar Smooth", "Bias", "Brick Width",
                                                "Row Height")]
     param = (node.offset, float(node.offset_frequency), node.squash, float(node.squash_frequency))
-    color, fac = nc.p.emit(core.PHOS_OP_TEX_BRICK, ins, [3, 1], param=param)
+    flags = 0 if nc.ctx.at_least(4, 0) else 1  # 3.x's mortar smoothing (phos.h)
+    color, fac = nc.p.emit(core.PHOS_OP_TEX_BRICK, ins, [3, 1], param=param, flags=flags)
     return {"Color": color, "Fac": fac}
 
 
@@ -616,19 +625,47 @@ def _normal_map(nc, node, stack):
     return {"Normal": nc.p.emit(core.PHOS_OP_NORMAL_MAP, ins, [3], mode=mode, flags=flags)[0]}
 
 
-def _bump(nc, node, stack):
-    height_socket = nc._find_input(node, "Height")
+def _bump_filter_width(nc, node):
+    """The fraction of the pixel's footprint Cycles steps a bump's heights
+    by: the Bump node's Filter Width (Blender 4.4 added it, 0.1 for new
+    nodes, 1 for those of older files); before, the whole footprint."""
+    socket = nc._find_input(node, "Filter Width")
+    if socket is None:
+        return 1.0
+    if socket.is_linked:
+        nc.walker.note(node, "a linked Filter Width is not supported; its unlinked value is used")
+    return max(float(socket.default_value), 0.0)
+
+
+def _bump_flags(nc, invert):
+    """BUMP's flags (phos.h): invert, and before Blender 4.0 the tilt that
+    keeps the viewer's reflection above the surface."""
+    return (1 if invert else 0) | (0 if nc.ctx.at_least(4, 0) else 2)
+
+
+def _bump_heights(nc, height, width):
+    """The height at the point and at its two moved points: height(), a
+    function compiling it, called with nc.bump set to each move."""
     heights = []
-    outer = nc.bump
+    outer, outer_width = nc.bump, nc.bump_width
     try:
         for mode in (0, 1, 2):
-            nc.bump = mode if outer == 0 else outer
-            heights.append(nc.socket(height_socket, 1, stack))
+            if outer == 0:
+                nc.bump, nc.bump_width = mode, (width if mode else 0.0)
+            heights.append(height())
     finally:
-        nc.bump = outer
+        nc.bump, nc.bump_width = outer, outer_width
+    return heights
+
+
+def _bump(nc, node, stack):
+    height_socket = nc._find_input(node, "Height")
+    width = _bump_filter_width(nc, node)
+    heights = _bump_heights(nc, lambda: nc.socket(height_socket, 1, stack), width)
     ins = [nc.input(node, "Strength", 1, stack), nc.input(node, "Distance", 1, stack)] + heights + \
         [nc.input(node, "Normal", 3, stack, implicit=nc.normal)]
-    return {"Normal": nc.p.emit(core.PHOS_OP_BUMP, ins, [3], flags=1 if node.invert else 0)[0]}
+    return {"Normal": nc.p.emit(core.PHOS_OP_BUMP, ins, [3], flags=_bump_flags(nc, node.invert),
+                                param=(width,))[0]}
 
 
 _HANDLERS = {
@@ -689,19 +726,18 @@ def displacement_bump(nc, node, stack):
     """The Material Output's Displacement through a Displacement node,
     rendered as bump (Cycles' default method): the surface normal of the
     height (Height − Midlevel)·Scale, evaluated at the point and at the two
-    moved points, as a Bump of distance 1 and strength 1."""
+    moved points, as a Bump of distance 1 and strength 1 (Cycles adds such
+    a Bump node, with the version's filter width)."""
     if getattr(node, "space", 'OBJECT') == 'OBJECT':
         pass  # object-space heights scale with the object; scenes at unit scale agree
-    heights = []
-    outer = nc.bump
-    try:
-        for mode in (0, 1, 2):
-            nc.bump = mode
-            h = nc.input(node, "Height", 1, stack)
-            mid = nc.input(node, "Midlevel", 1, stack)
-            scale = nc.input(node, "Scale", 1, stack)
-            heights.append((h - mid) * scale)
-    finally:
-        nc.bump = outer
+
+    def height():
+        h = nc.input(node, "Height", 1, stack)
+        mid = nc.input(node, "Midlevel", 1, stack)
+        scale = nc.input(node, "Scale", 1, stack)
+        return (h - mid) * scale
+
+    width = 0.1 if nc.ctx.at_least(4, 4) else 1.0  # the Bump node's default from 4.4
+    heights = _bump_heights(nc, height, width)
     ins = [constant(1.0), constant(1.0)] + heights + [nc.input(node, "Normal", 3, stack, implicit=nc.normal)]
-    return nc.p.emit(core.PHOS_OP_BUMP, ins, [3])[0]
+    return nc.p.emit(core.PHOS_OP_BUMP, ins, [3], flags=_bump_flags(nc, False), param=(width,))[0]

@@ -110,6 +110,12 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
      * reflection. */
     uint32_t ray_flags = start->from_camera ? SHADER_RAY_CAMERA : (SHADER_RAY_DIFFUSE | SHADER_RAY_REFLECT);
     vec3 feature_beta = v3s(1.0f);
+    /* The pixel's footprint as Cycles carries it (compact ray
+     * differentials): its radius where the ray left, growing with the
+     * camera ray's spread per unit of distance. A bounce restarts the radius
+     * from the footprint on the surface and keeps the camera's spread
+     * (Cycles 3.4 to 4.5 write only dP at a bounce), whatever the lobe. */
+    float spread_origin = start->ray.spread_origin, spread_per_distance = start->ray.spread_per_distance;
 /* Emission found while the features are pending also shows in their albedo
  * (lamps and the world seen directly or through mirrors), as in Cycles. */
 #define ADD_EMISSION(L, w)                                                                          \
@@ -152,6 +158,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         sf.ray_flags = ray_flags;
         sf.ray_length = h.t;
         sf.ray_depth = p.depth;
+        sf.footprint = spread_origin + h.t * spread_per_distance;
         uint32_t v_index = vertex++;
         if (sf.mat->emissive) {
             float w = 1.0f;
@@ -211,6 +218,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
 
         o = ray_leave_surface(sf.p, sf.ng, bs.wi);
         d = bs.wi;
+        spread_origin = sf.footprint;
         prev = here;
         tmin = 0.0f;
         tmax = INFINITY;
@@ -243,6 +251,8 @@ sample_result camera_path_walk_indirect(const scene *s, const integrator_setting
                                         vec3 d, uint32_t depth, float first_pdf, int caustics_apart,
                                         const sampler *smp, integrator_scratch *scratch, vertex_policy policy)
 {
-    walk_start start = {{o, d, 0.0f, INFINITY}, 0, depth, 1, caustics_apart, first_pdf, from};
+    /* A gather from a vertex carries no pixel's footprint (0: the bump's
+     * fallback step, material.c). */
+    walk_start start = {{o, d, 0.0f, INFINITY, 0.0f, 0.0f}, 0, depth, 1, caustics_apart, first_pdf, from};
     return walk(s, is, &start, smp, scratch, policy);
 }

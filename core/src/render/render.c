@@ -110,6 +110,7 @@ static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *s
         float fx = ((float)x + 0.5f + pixel_filter_sample(&r->filter, uf.x)) / (float)rs->width;
         float fy = ((float)y + 0.5f + pixel_filter_sample(&r->filter, uf.y)) / (float)rs->height;
         camera_ray ray = camera_generate_ray(&s->camera, fx, fy, sampler_2d(&smp, DIM_LENS));
+        camera_ray_set_footprint(&s->camera, fx, fy, rs->width, rs->height, &ray);
         sample_result sr = rs->integrator == PHOS_INTEGRATOR_PHOTON
                                ? photon_render(s, &r->integrator, ray, &smp, scratch)
                                : path_trace(s, &r->integrator, ray, &smp, scratch);

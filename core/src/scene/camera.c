@@ -39,7 +39,42 @@ camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, fl
     float world_per_cam = v3_length(xform_vector(c->transform, d_cam));
     r.tmin = c->clip_start * depth_scale * world_per_cam;
     r.tmax = c->clip_end * depth_scale * world_per_cam;
+    r.spread_origin = 0.0f;
+    r.spread_per_distance = 0.0f;
     return r;
+}
+
+/* How far a unit direction moves when the image-plane point (x, y, −1)
+ * it goes through moves by `step` (camera space), in world space. */
+static float direction_change(const phos_camera_desc *c, vec3 through, vec3 step)
+{
+    vec3 d0 = v3_normalize(xform_vector(c->transform, through));
+    vec3 d1 = v3_normalize(xform_vector(c->transform, v3_add(through, step)));
+    return v3_length(v3_sub(d1, d0));
+}
+
+void camera_ray_set_footprint(const phos_camera_desc *c, float fx, float fy, uint32_t width, uint32_t height,
+                              camera_ray *r)
+{
+    float pixel_x = (c->frame_max[0] - c->frame_min[0]) / (float)(width ? width : 1);
+    float pixel_y = (c->frame_max[1] - c->frame_min[1]) / (float)(height ? height : 1);
+    if (c->type == PHOS_CAMERA_ORTHOGRAPHIC) {
+        /* Cycles measures the orthographic footprint by a pixel's width
+         * along x alone (kernel camera_sample_orthographic, 3.4 to 4.5). */
+        r->spread_origin = v3_length(xform_vector(c->transform, v3(pixel_x, 0.0f, 0.0f)));
+        r->spread_per_distance = 0.0f;
+        return;
+    }
+    /* The change of the unit direction to the next pixel along x and along
+     * y, averaged: the cone's half-angle rate (Cycles'
+     * differential_make_compact). The ray's length is measured from the
+     * camera's centre, so clipping needs no correction. */
+    vec3 through = v3(c->frame_min[0] + fx * (c->frame_max[0] - c->frame_min[0]),
+                      c->frame_min[1] + fy * (c->frame_max[1] - c->frame_min[1]), -1.0f);
+    float dx = direction_change(c, through, v3(pixel_x, 0.0f, 0.0f));
+    float dy = direction_change(c, through, v3(0.0f, pixel_y, 0.0f));
+    r->spread_origin = 0.0f;
+    r->spread_per_distance = 0.5f * (dx + dy);
 }
 
 int camera_project(const phos_camera_desc *c, vec3 p, float *fx, float *fy, vec3 *p_cam)

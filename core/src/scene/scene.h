@@ -54,7 +54,7 @@ struct phos_scene {
     vec3 bounds_min, bounds_max;   /* world bounds of all geometry, scene units */
     light_table lights;
     int has_transparency;          /* some material lets shadow rays through */
-    float bump_offset;             /* scene units a Bump node steps by: 1e-4 of the scene's diagonal */
+    float bump_offset;             /* a Bump's footprint where no pixel's ray found the point: 1e-4 of the scene's diagonal */
 };
 
 typedef struct phos_scene scene;

@@ -60,6 +60,7 @@ void surface_from_hit(const scene *s, uint32_t instance_id, uint32_t prim, float
     out->ray_flags = 0;
     out->ray_length = 0.0f;
     out->ray_depth = 0;
+    out->footprint = 0.0f;
     out->instance = instance_id;
     out->prim = prim;
     out->b1 = b1;
@@ -202,6 +203,32 @@ static vec3 window_coordinates(const scene *s, vec3 p)
     return v3(fx, fy, 0.0f);
 }
 
+/* Two unit vectors that complete n to an orthonormal frame, chosen as
+ * Cycles chooses them (make_orthonormals: a = normalize((1,1,1) × n), or
+ * (−1,1,1) × n when n lies along (1,1,1); b = n × a), so that the bump's
+ * offsets point the same way as Cycles' and a height that bends within
+ * them gives the same normal. */
+static void footprint_axes(vec3 n, vec3 *a, vec3 *b)
+{
+    vec3 t = (n.x != n.y || n.x != n.z) ? v3(n.z - n.y, n.x - n.z, n.y - n.x) : v3(n.z - n.y, n.x + n.z, -n.y - n.x);
+    *a = v3_normalize(t);
+    *b = v3_cross(n, *a);
+}
+
+/* The position differentials: the footprint's radius along two orthogonal
+ * axes of the plane ⊥ Ng (Cycles' differential_from_compact). A point no
+ * camera ray found (a photon hit, a gather ray's) has no footprint: it
+ * steps 10⁻⁴ of the scene's size, short enough to be the height's
+ * derivative (docs/architecture.md, "Shader programs"). */
+static void position_differentials(const scene *s, const surface *sf, shader_globals *g)
+{
+    float radius = sf->footprint > 0.0f ? sf->footprint : s->bump_offset;
+    vec3 a, b;
+    footprint_axes(sf->ng, &a, &b);
+    g->dPdx = v3_scale(a, radius);
+    g->dPdy = v3_scale(b, radius);
+}
+
 void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, shader_globals *g)
 {
     memset(g, 0, sizeof(*g));
@@ -259,7 +286,7 @@ void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, 
     g->ray_flags = sf->ray_flags;
     g->ray_length = sf->ray_length;
     g->ray_depth = sf->ray_depth;
-    g->bump_offset = s->bump_offset;
+    position_differentials(s, sf, g);
 }
 
 /* The material's closures at the surface: its own when constant, else a

@@ -20,6 +20,8 @@ typedef struct surface {
     uint32_t ray_flags;     /* enum shader_ray_flags of the ray (Light Path node); 0 unless the caller sets it */
     float ray_length;       /* scene units from the ray origin */
     uint32_t ray_depth;
+    float footprint;        /* radius (scene units) of the camera pixel's footprint here, carried along
+                               the path (Cycles' sd->dP); 0 where no pixel's ray found the point */
     uint32_t instance, prim;
     const material *mat;
 } surface;

@@ -127,6 +127,8 @@ static const char *validate_instruction(const phos_shader_program_desc *d, uint3
     for (int k = 0; k < 4; k++)
         if (!isfinite(ins->param[k]))
             return BAD("instruction %u (%s) has a non-finite parameter", i, op->name);
+    if ((ins->op == PHOS_OP_BUMP || ins->op == PHOS_OP_BUMP_OFFSET) && ins->param[0] < 0.0f)
+        return BAD("instruction %u (%s) has a negative filter width %g", i, op->name, (double)ins->param[0]);
     for (int k = 0; k < PHOS_SHADER_MAX_INPUTS; k++) {
         uint32_t w = in_width(ins, k);
         if (!w)

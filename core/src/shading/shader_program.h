@@ -44,7 +44,8 @@ typedef struct shader_globals {
     uint32_t ray_flags;      /* enum shader_ray_flags of the ray that found the point */
     float ray_length;        /* scene units */
     uint32_t ray_depth, transparent_depth;
-    float bump_offset;       /* scene units the bump offsets move P by */
+    vec3 dPdx, dPdy;         /* position differentials: the pixel's footprint along two orthogonal axes
+                                of the plane ⊥ Ng (scene units), the steps of Bump (Cycles' sd->dP) */
 } shader_globals;
 
 enum shader_ray_flags {

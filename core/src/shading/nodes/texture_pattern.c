@@ -245,9 +245,26 @@ typedef struct brick_result {
  * offset bricks. Each brick gets a tint from the integer noise of its
  * (row, brick) number; the mortar is the band within mortar_size of the
  * brick's border. */
+/* The mortar's edge: f = 1 − min_dist/mortar_size runs from 0 at the
+ * mortar's inner border to 1 on the brick's edge, and the mortar is
+ * smoothstep(f / mortar_smooth). Blender 3.x applies the smoothstep only
+ * where f < mortar_smooth and is 1 elsewhere, so a negative smoothing
+ * gives solid mortar; from 4.0 the smoothstep is clamped, and a negative
+ * smoothing gives none. */
+static float mortar_edge(float f, float mortar_smooth, int blender3)
+{
+    if (blender3) {
+        if (!(f < mortar_smooth))
+            return 1.0f;
+        float x = f / mortar_smooth, xx = x * x;
+        return 3.0f * xx - 2.0f * xx * x;
+    }
+    return smoothstepf_c(f / mortar_smooth);
+}
+
 static brick_result brick(vec3 p, float mortar_size, float mortar_smooth, float bias, float brick_width,
                           float row_height, float offset_amount, int offset_frequency, float squash_amount,
-                          int squash_frequency)
+                          int squash_frequency, int blender3)
 {
     int32_t rownum = float_to_int_x86(floorf(p.y / row_height));
     float offset = 0.0f;
@@ -268,19 +285,20 @@ static brick_result brick(vec3 p, float mortar_size, float mortar_smooth, float 
     else if (mortar_smooth == 0.0f)
         r.mortar = 1.0f;
     else
-        r.mortar = smoothstepf_c((1.0f - min_dist / mortar_size) / mortar_smooth);
+        r.mortar = mortar_edge(1.0f - min_dist / mortar_size, mortar_smooth, blender3);
     return r;
 }
 
 /* in vector(3), color1(3), color2(3), mortar(3), scale, mortar_size,
  * mortar_smooth, bias, brick_width, row_height; out color(3), fac.
- * param: offset, offset_frequency, squash, squash_frequency */
+ * param: offset, offset_frequency, squash, squash_frequency; flags 1:
+ * Blender 3.x's mortar smoothing (mortar_edge) */
 NODE_VECTOR_CLONES void shader_op_tex_brick(const phos_shader_instruction *ins, shader_context *ctx)
 {
     vec3 co = SHADER_IN3(0), color1 = SHADER_IN3(1), color2 = SHADER_IN3(2), mortar = SHADER_IN3(3);
     brick_result b = brick(v3_scale(co, SHADER_IN(4)), SHADER_IN(5), SHADER_IN(6), SHADER_IN(7), SHADER_IN(8),
                            SHADER_IN(9), ins->param[0], param_int(ins->param[1]), ins->param[2],
-                           param_int(ins->param[3]));
+                           param_int(ins->param[3]), (ins->flags & 1) != 0);
     float f = b.mortar;
     if (f != 1.0f) {
         float facm = 1.0f - b.tint;

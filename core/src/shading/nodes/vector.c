@@ -200,16 +200,18 @@ void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ct
     SHADER_OUT3(0, v3_is_zero(n) ? g->N : n);
 }
 
-/* The two offsets a bump evaluates its height at: orthogonal steps of
- * bump_offset in the triangle's plane, the first along the UV map's u. */
-static void bump_steps(const shader_globals *g, vec3 *dx, vec3 *dy)
+/* The two offsets a bump evaluates its height at: the position
+ * differentials (the pixel's footprint, Cycles' dPdx and dPdy) times the
+ * instruction's filter width param[0], the fraction of the footprint the
+ * Blender version steps (the whole footprint before 4.4, then the node's
+ * Filter Width, 0.1 by default; 0 reads as 1). A forward difference over that step is the
+ * height's derivative half a step away, which is why the step must be
+ * Cycles' where heights vary within a pixel. */
+static void bump_steps(const phos_shader_instruction *ins, const shader_globals *g, vec3 *dx, vec3 *dy)
 {
-    vec3 t = v3_sub(g->dPdu, v3_scale(g->Ng, v3_dot(g->dPdu, g->Ng)));
-    if (v3_length2(t) < 1e-20f)
-        t = fabsf(g->Ng.x) > 0.9f ? v3_cross(g->Ng, v3(0.0f, 1.0f, 0.0f)) : v3_cross(g->Ng, v3(1.0f, 0.0f, 0.0f));
-    t = v3_normalize(t);
-    *dx = v3_scale(t, g->bump_offset);
-    *dy = v3_scale(v3_cross(g->Ng, t), g->bump_offset);
+    float width = ins->param[0] > 0.0f ? ins->param[0] : 1.0f;
+    *dx = v3_scale(g->dPdx, width);
+    *dy = v3_scale(g->dPdy, width);
 }
 
 /* Mode 1 (dx) or 2 (dy): the position moved by that step, and the texture
@@ -218,7 +220,7 @@ void shader_op_bump_offset(const phos_shader_instruction *ins, shader_context *c
 {
     const shader_globals *g = ctx->g;
     vec3 dx, dy, d = v3s(0.0f);
-    bump_steps(g, &dx, &dy);
+    bump_steps(ins, g, &dx, &dy);
     if (ins->mode == 1)
         d = dx;
     else if (ins->mode == 2)
@@ -239,11 +241,51 @@ void shader_op_bump_offset(const phos_shader_instruction *ins, shader_context *c
     SHADER_OUT3(4, v3_add(g->P, d));
 }
 
+/* Cycles before 4.0 tilts a bumped normal back toward Ng until the mirror
+ * reflection of the viewer leaves the surface at least as steeply as
+ * min(0.9 Ng·I, 0.01) (its ensure_valid_reflection): in the plane of Ng
+ * and N, the N' = x X + z Ng, x² + z² = 1, whose reflection
+ * 2(N'·I)N' − I meets Ng·R = t, a quadratic in z². Of the roots in
+ * (0, 1] it keeps the one whose reflection is above the surface, the
+ * shallower if both are; with none, Ng. */
+static vec3 valid_reflection_normal(vec3 ng, vec3 i, vec3 n)
+{
+    vec3 r = v3_sub(v3_scale(n, 2.0f * v3_dot(n, i)), i);
+    float t = fminf(0.9f * v3_dot(ng, i), 0.01f);
+    if (v3_dot(ng, r) >= t)
+        return n;
+    vec3 x = v3_normalize(v3_sub(n, v3_scale(ng, v3_dot(n, ng))));
+    float ix = v3_dot(i, x), iz = v3_dot(i, ng);
+    float a = ix * ix + iz * iz;
+    float b = sqrtf(fmaxf(ix * ix * (a - t * t), 0.0f));
+    float c = iz * t + a;
+    float z2[2] = {0.5f / a * (b + c), 0.5f / a * (c - b)};
+    int ok[2];
+    float refl[2];
+    for (int k = 0; k < 2; k++) {
+        ok[k] = z2[k] > 1e-5f && z2[k] <= 1.0f + 1e-5f;
+        float nx = sqrtf(fmaxf(1.0f - z2[k], 0.0f)), nz = sqrtf(fmaxf(z2[k], 0.0f));
+        refl[k] = 2.0f * (nx * ix + nz * iz) * nz - iz;
+    }
+    int pick;
+    if (ok[0] && ok[1]) {
+        int up0 = refl[0] >= 1e-5f, up1 = refl[1] >= 1e-5f;
+        pick = (up0 && up1) ? (refl[0] < refl[1] ? 0 : 1) : (refl[0] > refl[1] ? 0 : 1);
+    } else if (ok[0] || ok[1]) {
+        pick = ok[0] ? 0 : 1;
+    } else {
+        return ng;
+    }
+    float nx = sqrtf(fmaxf(1.0f - z2[pick], 0.0f)), nz = sqrtf(fmaxf(z2[pick], 0.0f));
+    return v3_add(v3_scale(x, nx), v3_scale(ng, nz));
+}
+
 /* The surface gradient of the height h from its values at the point and
  * at the two steps (Mikkelsen 2010, "Bump Mapping Unparametrized
  * Surfaces on the GPU"): with R1 = dy × N, R2 = N × dx and det = dx·R1,
  * N' = normalize(|det| N − distance · sign(det) · ((h_x − h)R1 + (h_y − h)R2)),
- * blended toward N by 1 − strength. */
+ * blended toward N by 1 − strength. flags 1 inverts; flags 2 keeps the
+ * viewer's reflection above the surface as Cycles before 4.0 does. */
 void shader_op_bump(const phos_shader_instruction *ins, shader_context *ctx)
 {
     const shader_globals *g = ctx->g;
@@ -253,7 +295,7 @@ void shader_op_bump(const phos_shader_instruction *ins, shader_context *ctx)
     if (ins->flags & 1)
         distance = -distance;
     vec3 dx, dy;
-    bump_steps(g, &dx, &dy);
+    bump_steps(ins, g, &dx, &dy);
     vec3 rx = v3_cross(dy, n), ry = v3_cross(n, dx);
     float det = v3_dot(dx, rx);
     vec3 grad = v3_add(v3_scale(rx, hx - h), v3_scale(ry, hy - h));
@@ -263,5 +305,7 @@ void shader_op_bump(const phos_shader_instruction *ins, shader_context *ctx)
         out = n;
     else
         out = v3_normalize(v3_add(v3_scale(out, strength), v3_scale(n, 1.0f - strength)));
+    if (ins->flags & 2)
+        out = valid_reflection_normal(g->Ng, g->I, out);
     SHADER_OUT3(0, out);
 }
