@@ -16,6 +16,7 @@
 #include "util/vec.h"
 
 struct phos_scene;
+struct mesh;
 
 /* What the inputs of a node tree read at a shading point. Vectors are in
  * world space unless named otherwise; N faces the viewer (Cycles). */
@@ -45,6 +46,9 @@ typedef struct shader_globals {
     float ray_length;        /* scene units */
     uint32_t ray_depth, transparent_depth;
     float bump_offset;       /* scene units the bump offsets move P by */
+    const struct mesh *mesh; /* the mesh hit and where on it (attributes), or NULL */
+    uint32_t prim;           /* triangle */
+    float b1, b2;            /* barycentric weights of corners 1 and 2 */
 } shader_globals;
 
 enum shader_ray_flags {
@@ -76,7 +80,8 @@ typedef struct shader_program {
 enum shader_needs {
     SHADER_NEEDS_UV_TANGENTS = 1 << 0, /* dPdu, dPdv (Bump) */
     SHADER_NEEDS_TANGENT = 1 << 1,     /* the MikkTSpace tangent (Normal Map) */
-    SHADER_NEEDS_WINDOW = 1 << 2       /* window coordinates (Texture Coordinate's Window) */
+    SHADER_NEEDS_WINDOW = 1 << 2,      /* window coordinates (Texture Coordinate's Window) */
+    SHADER_NEEDS_ATTRIBUTES = 1 << 3   /* the mesh and the point on it (Attribute) */
 };
 
 /* The state one op sees. */
@@ -210,5 +215,6 @@ void shader_op_bump_offset(const phos_shader_instruction *ins, shader_context *c
 void shader_op_vector_rotate(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_vector_transform(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_normal(const phos_shader_instruction *ins, shader_context *ctx);
+void shader_op_attribute(const phos_shader_instruction *ins, shader_context *ctx);
 
 #endif /* PHOS_SHADER_PROGRAM_H */

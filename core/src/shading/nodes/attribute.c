@@ -1,0 +1,56 @@
+/*
+ * attribute.c — the Attribute node: a named per-corner attribute of the
+ * mesh (phos.h, phos_mesh_attribute), interpolated barycentrically at the
+ * hit and converted to the node's outputs by its type, as Cycles' Attribute
+ * node converts them (Blender manual, "Attribute Node"; docs/architecture.md,
+ * "Shader programs"): Color and Vector are the value as three numbers, Fac
+ * their mean, Alpha a colour's fourth number and 1 otherwise.
+ */
+#include "scene/geometry.h"
+#include "shading/shader_program.h"
+
+/* The attribute's 4 floats at the point: b0·corner0 + b1·corner1 + b2·corner2. */
+static void attribute_at(const shader_globals *g, const mesh_attribute *a, float out[4])
+{
+    const float *c = a->values + 12 * (size_t)g->prim;
+    float b0 = 1.0f - g->b1 - g->b2;
+    for (int k = 0; k < 4; k++)
+        out[k] = b0 * c[k] + g->b1 * c[4 + k] + g->b2 * c[8 + k];
+}
+
+/* Out color(3), vector(3), fac, alpha. A point with no such attribute
+ * (another mesh, the world) reads 0 with alpha 1, as Cycles reads an
+ * attribute it does not find. */
+void shader_op_attribute(const phos_shader_instruction *ins, shader_context *ctx)
+{
+    const shader_globals *g = ctx->g;
+    const mesh_attribute *a = g->mesh ? mesh_find_attribute(g->mesh, ins->table) : NULL;
+    float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    if (a)
+        attribute_at(g, a, v);
+    vec3 value;
+    float fac, alpha = 1.0f;
+    switch (a ? a->type : PHOS_ATTRIBUTE_VECTOR) {
+    case PHOS_ATTRIBUTE_FLOAT:
+        value = v3s(v[0]);
+        fac = v[0];
+        break;
+    case PHOS_ATTRIBUTE_FLOAT2:
+        value = v3(v[0], v[1], 0.0f);
+        fac = v[0]; /* Cycles: a 2D attribute's Fac is its first number */
+        break;
+    case PHOS_ATTRIBUTE_COLOR:
+        value = v3(v[0], v[1], v[2]);
+        fac = (v[0] + v[1] + v[2]) / 3.0f;
+        alpha = v[3];
+        break;
+    default: /* VECTOR, and the missing attribute's zeros */
+        value = v3(v[0], v[1], v[2]);
+        fac = (v[0] + v[1] + v[2]) / 3.0f;
+        break;
+    }
+    SHADER_OUT3(0, value);
+    SHADER_OUT3(1, value);
+    SHADER_OUT(2, fac);
+    SHADER_OUT(3, alpha);
+}
