@@ -280,7 +280,8 @@ enum phos_shader_op {
     PHOS_OP_NORMAL = 44,         /* in normal(3); out normal(3) (param[0..2]), dot */
     PHOS_OP_ATTRIBUTE = 45,      /* out color(3), vector(3), fac, alpha: the mesh attribute whose id is `table`
                                     (phos_mesh_attribute), as Cycles' Attribute node converts its type; a mesh
-                                    without it gives 0 and alpha 1 */
+                                    without it gives 0 and alpha 1 (flags 1: alpha 0, the Color Attribute
+                                    node's) */
     PHOS_OP_COUNT = 46
 };
 

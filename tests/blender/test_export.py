@@ -709,3 +709,48 @@ def test_one_program_per_material(scene, tmp_path):
     ctx = export(scene)
     assert ctx.stats["instances"] == 1000
     assert ctx.stats["materials"] == 1
+
+
+def _attribute_material(name, attribute):
+    mat = bpy.data.materials.new(name)
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    emission = nt.nodes.new("ShaderNodeEmission")
+    nt.links.new(emission.outputs[0], out.inputs["Surface"])
+    if attribute is not None:
+        attr = nt.nodes.new("ShaderNodeAttribute")
+        attr.attribute_name = attribute
+        nt.links.new(attr.outputs["Color"], emission.inputs["Color"])
+    return mat
+
+
+def test_attributes_exported_only_when_read(scene, monkeypatch):
+    """A mesh exports the attributes its materials read, and only those: the
+    same mesh data under a material that reads none exports none. A name
+    the mesh lacks is one warning naming the object and the attribute (it
+    renders 0, as in Cycles: test_shader_nodes.py's "attribute missing")."""
+    from phos import core
+    exported = {}
+    original = core.Scene.add_mesh
+
+    def spy(self, *args, **kwargs):
+        mesh_id = original(self, *args, **kwargs)
+        exported[mesh_id] = [(a[0], a[1]) for a in kwargs.get("attributes", ())]
+        return mesh_id
+
+    monkeypatch.setattr(core.Scene, "add_mesh", spy)
+    for i, attribute in enumerate(("Paint", None, "Nope")):
+        ob = pt.add_plane(scene, "Plane %d" % i, size=1.0, location=(1.2 * i, 0.0, 0.0),
+                          material=_attribute_material("Reads %s" % attribute, attribute))
+        ob.data.color_attributes.new("Paint", 'FLOAT_COLOR', 'POINT')
+        ob.data.attributes.new("Unread", 'FLOAT', 'FACE')
+    ortho_top_camera(scene)
+    ctx = export(scene)
+    assert sorted(len(a) for a in exported.values()) == [0, 0, 1], exported
+    (only,) = [a for a in exported.values() if a]
+    assert only == [(ctx.attribute_ids[("name", "Paint")], core.PHOS_ATTRIBUTE_COLOR)]
+    assert set(ctx.attribute_ids) == {("name", "Paint"), ("name", "Nope")}
+    assert any("Plane 2" in w and "'Nope'" in w for w in ctx.warnings), ctx.warnings
+    assert not any("Plane 0" in w or "Plane 1" in w for w in ctx.warnings), ctx.warnings

@@ -264,6 +264,10 @@ static void test_attribute_op(void)
     ins.table = 6; /* another name: not on this mesh */
     shader_program_eval(&p, NULL, &g, r);
     CHECK(r[0] == 0.0f && r[1] == 0.0f && r[2] == 0.0f && r[6] == 0.0f && r[7] == 1.0f);
+    ins.flags = 1; /* the Color Attribute node's missing alpha */
+    shader_program_eval(&p, NULL, &g, r);
+    CHECK(r[0] == 0.0f && r[7] == 0.0f);
+    ins.flags = 0;
     g.mesh = NULL; /* the globals of a program that does not read attributes */
     ins.table = 5;
     shader_program_eval(&p, NULL, &g, r);

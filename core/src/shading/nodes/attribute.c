@@ -19,17 +19,18 @@ static void attribute_at(const shader_globals *g, const mesh_attribute *a, float
 }
 
 /* Out color(3), vector(3), fac, alpha. A point with no such attribute
- * (another mesh, the world) reads 0 with alpha 1, as Cycles reads an
- * attribute it does not find. */
+ * (another mesh, the world) reads 0 with alpha 1, as Cycles' Attribute node
+ * reads an attribute it does not find; flags 1: alpha 0, as its Color
+ * Attribute node does. */
 void shader_op_attribute(const phos_shader_instruction *ins, shader_context *ctx)
 {
     const shader_globals *g = ctx->g;
     const mesh_attribute *a = g->mesh ? mesh_find_attribute(g->mesh, ins->table) : NULL;
-    float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    float v[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     if (a)
         attribute_at(g, a, v);
     vec3 value;
-    float fac, alpha = 1.0f;
+    float fac, alpha = (!a && (ins->flags & 1)) ? 0.0f : 1.0f;
     switch (a ? a->type : PHOS_ATTRIBUTE_VECTOR) {
     case PHOS_ATTRIBUTE_FLOAT:
         value = v3s(v[0]);
