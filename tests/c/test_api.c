@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "render/memory.h"
+#include "cache/fingerprint.h"
 #include "scene/scene.h"
 #include "test_scenes.h"
 #include "test_util.h"
@@ -106,6 +107,25 @@ static void test_bad_mesh_attributes(void)
     CHECK(phos_scene_add_mesh(s, &md, &id) == PHOS_OK && id == 0);
     values[0] = 7.0f; /* copied: the caller's array may change after the call */
     CHECK(s->meshes[0].attribute_count == 2 && s->meshes[0].attributes[0].values[0] == 1.0f);
+
+    /* A saved cache's fingerprint sees the attributes: the same mesh with
+     * one value changed, or without them, is another scene. */
+    uint64_t with = scene_fingerprint_of(s).geometry;
+    phos_scene *t = phos_scene_create();
+    CHECK(phos_scene_add_mesh(t, &md, NULL) == PHOS_OK); /* values[0] is now 7 */
+    CHECK(scene_fingerprint_of(t).geometry != with);
+    phos_scene_destroy(t);
+    values[0] = 1.0f;
+    md.attribute_count = 0;
+    t = phos_scene_create();
+    CHECK(phos_scene_add_mesh(t, &md, NULL) == PHOS_OK);
+    CHECK(scene_fingerprint_of(t).geometry != with);
+    phos_scene_destroy(t);
+    md.attribute_count = 2;
+    t = phos_scene_create();
+    CHECK(phos_scene_add_mesh(t, &md, NULL) == PHOS_OK);
+    CHECK(scene_fingerprint_of(t).geometry == with);
+    phos_scene_destroy(t);
     phos_scene_destroy(s);
 }
 
