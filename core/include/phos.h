@@ -267,7 +267,9 @@ enum phos_shader_op {
                                     out vector(3). mode enum phos_mapping */
     PHOS_OP_NORMAL_MAP = 39,     /* in strength, color(3); out normal(3). mode enum phos_normal_map_space;
                                     flags 1 = tangent space applies Strength in tangent space (Blender 4+;
-                                    before, the normal is blended from the shading normal) */
+                                    before, the normal is blended from the shading normal); flags 2 = the
+                                    tangents of another UV map: the mesh attribute `table`, per corner
+                                    (x, y, z, bitangent sign) in object space */
     PHOS_OP_BUMP = 40,           /* in strength, distance, height, height_dx, height_dy, normal(3); out
                                     normal(3). flags 1 = invert. The heights at the point and at the point
                                     moved by the two offsets the program's OFFSET instructions read */

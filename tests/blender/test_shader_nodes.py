@@ -493,7 +493,7 @@ def _bump(invert):
     return build
 
 
-def _normal_map(space):
+def _normal_map(space, uv_map=""):
     def build(name):
         t = Tree(name)
         img = bpy.data.images.get("normal_image")
@@ -510,6 +510,10 @@ def _normal_map(space):
         tex = t.node("ShaderNodeTexImage", interpolation="Linear")
         tex.image = img
         nm = t.node("ShaderNodeNormalMap", {"Strength": 0.7}, space=space)
+        if uv_map:
+            uv = t.node("ShaderNodeUVMap", uv_map=uv_map)
+            t.link(sock(uv.outputs, "UV"), sock(tex.inputs, "Vector"))
+            nm.uv_map = uv_map
         t.link(sock(tex.outputs, "Color"), sock(nm.inputs, "Color"))
         return t.show(t.absolute(sock(nm.outputs, "Normal")))
     return build
@@ -663,6 +667,7 @@ def attribute_cases():
         ("attribute missing alpha", _attribute_case("ShaderNodeAttribute", "Alpha", attribute_name="Nope"),
          _grid_object),
         ("uv map second", _attribute_case("ShaderNodeUVMap", "UV", uv_map="Second"), _grid_object),
+        ("normal map and image on the second uv map", _normal_map("TANGENT", uv_map="Second"), _grid_object),
         ("object coordinates of another object", _object_coordinates),
         ("random per island", _attribute_case("ShaderNodeNewGeometry", "Random Per Island"), _islands),
         ("pointiness", _attribute_case("ShaderNodeNewGeometry", "Pointiness"), _relief),

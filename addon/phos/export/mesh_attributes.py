@@ -15,6 +15,8 @@ read, so meshes whose materials read none cost nothing. Keys:
     ("pointiness",)       Geometry's Pointiness, computed here as Cycles does
     ("random_per_island",) Geometry's Random Per Island, likewise
     ("parametric",)       Geometry's Parametric: the barycentric coordinates
+    ("tangent", uv_map)   the MikkTSpace tangents of a UV map (x, y, z and the
+                          bitangent sign, as a colour), for a Normal Map
 
 Every attribute goes to the core per triangle corner, 4 floats each, and
 the core interpolates it barycentrically: a point-domain value is copied to
@@ -125,6 +127,25 @@ def _read_named(name, topo):
         return None, "attribute '%s' (%s on %s) is not supported" % (
             name, attr.data_type.lower(), attr.domain.lower())
     return read, None
+
+
+def _uv_tangents(name, topo):
+    """Blender's MikkTSpace tangents of the UV map `name` per corner (x, y,
+    z, bitangent sign), as Cycles computes them for a Normal Map of that map."""
+    me = topo.me
+    if me.uv_layers.get(name) is None:
+        return None, "has no UV map '%s' for its normal map's tangents" % name
+    try:
+        me.calc_tangents(uvmap=name)
+    except RuntimeError as ex:
+        return None, "cannot have tangents of UV map '%s' (%s)" % (name, ex)
+    n = len(me.loops)
+    t = np.empty(n * 3, dtype=np.float32)
+    me.loops.foreach_get("tangent", t)
+    sign = np.empty(n, dtype=np.float32)
+    me.loops.foreach_get("bitangent_sign", sign)
+    loops = np.concatenate([t.reshape(-1, 3), sign[:, None]], axis=1)
+    return (_COLOR, _pack(loops[topo.corners])), None
 
 
 def _render_color(topo):
@@ -253,6 +274,8 @@ def read_attributes(ob, topo, keys, positions, vertex_normals, ctx):
             read, why = _read_named(key[1], topo)
         elif kind == "render_color":
             read, why = _render_color(topo)
+        elif kind == "tangent":
+            read, why = _uv_tangents(key[1], topo)
         elif kind == "pointiness":
             read = _FLOAT, _pack(pointiness(me, positions.reshape(-1, 3), vertex_normals)
                                  [topo.corner_vertices][:, None])

@@ -688,7 +688,15 @@ def _normal_map(nc, node, stack):
         nc.ctx.tangents_wanted = True
     ins = [nc.input(node, "Strength", 1, stack), nc.input(node, "Color", 3, stack)]
     flags = 1 if nc.ctx.at_least(4, 0) else 0  # where Strength applies (phos.h)
-    return {"Normal": nc.p.emit(core.PHOS_OP_NORMAL_MAP, ins, [3], mode=mode, flags=flags)[0]}
+    table = 0
+    uv_map = getattr(node, "uv_map", "")
+    if mode == core.PHOS_NORMAL_MAP_TANGENT and uv_map:
+        # Another UV map's tangents come as a mesh attribute (phos.h, flags 2).
+        key = ("tangent", uv_map)
+        nc.p.attributes.add(key)
+        flags |= 2
+        table = attribute_id(nc.ctx, key)
+    return {"Normal": nc.p.emit(core.PHOS_OP_NORMAL_MAP, ins, [3], mode=mode, flags=flags, table=table)[0]}
 
 
 def _bump(nc, node, stack):

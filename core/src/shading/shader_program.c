@@ -277,7 +277,7 @@ static void shader_program_needs(shader_program *p)
         if (ins->op == PHOS_OP_BUMP || ins->op == PHOS_OP_BUMP_OFFSET)
             p->needs |= SHADER_NEEDS_UV_TANGENTS;
         else if (ins->op == PHOS_OP_NORMAL_MAP)
-            p->needs |= SHADER_NEEDS_TANGENT;
+            p->needs |= (ins->flags & 2) ? SHADER_NEEDS_ATTRIBUTES : SHADER_NEEDS_TANGENT;
         else if (ins->op == PHOS_OP_TEXTURE_COORDINATE && ins->mode == 1)
             p->needs |= SHADER_NEEDS_WINDOW;
         else if (ins->op == PHOS_OP_ATTRIBUTE)

@@ -217,4 +217,11 @@ void shader_op_vector_transform(const phos_shader_instruction *ins, shader_conte
 void shader_op_normal(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_attribute(const phos_shader_instruction *ins, shader_context *ctx);
 
+/* The MikkTSpace tangent of a UV map other than the render one, from the
+ * mesh attribute `id` (object-space x, y, z and the bitangent sign per
+ * corner): in world space, perpendicular to the shading normal and unit,
+ * as material_shader_globals makes the render map's. 0 when the mesh has
+ * no such attribute. */
+int shader_attribute_tangent(const shader_globals *g, uint32_t id, vec3 *tangent, float *sign);
+
 #endif /* PHOS_SHADER_PROGRAM_H */

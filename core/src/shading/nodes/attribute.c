@@ -18,6 +18,27 @@ static void attribute_at(const shader_globals *g, const mesh_attribute *a, float
         out[k] = b0 * c[k] + g->b1 * c[4 + k] + g->b2 * c[8 + k];
 }
 
+int shader_attribute_tangent(const shader_globals *g, uint32_t id, vec3 *tangent, float *sign)
+{
+    const mesh_attribute *a = g->mesh ? mesh_find_attribute(g->mesh, id) : NULL;
+    if (!a)
+        return 0;
+    float t[4];
+    attribute_at(g, a, t);
+    vec3 tw = v3(t[0], t[1], t[2]);
+    if (g->object_to_world)
+        tw = xform_vector(g->object_to_world, tw);
+    /* Orthogonal to the shading normal (seen from the front), which
+     * interpolation breaks. */
+    vec3 n = g->backfacing ? v3_neg(g->N) : g->N;
+    tw = v3_sub(tw, v3_scale(n, v3_dot(tw, n)));
+    if (!(v3_length2(tw) > 0.0f))
+        return 0;
+    *tangent = v3_normalize(tw);
+    *sign = t[3] < 0.0f ? -1.0f : 1.0f;
+    return 1;
+}
+
 /* Out color(3), vector(3), fac, alpha. A point with no such attribute
  * (another mesh, the world) reads 0 with alpha 1, as Cycles' Attribute node
  * reads an attribute it does not find; flags 1: alpha 0, as its Color

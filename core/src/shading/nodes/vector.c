@@ -170,7 +170,11 @@ void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ct
     vec3 n;
     int blend_strength = 1;
     if (ins->mode == PHOS_NORMAL_MAP_TANGENT) {
-        if (v3_is_zero(g->tangent)) {
+        vec3 tangent = g->tangent;
+        float sign = g->tangent_sign;
+        if ((ins->flags & 2) && !shader_attribute_tangent(g, ins->table, &tangent, &sign))
+            tangent = v3s(0.0f);
+        if (v3_is_zero(tangent)) {
             SHADER_OUT3(0, g->N); /* no tangents: the unperturbed normal */
             return;
         }
@@ -184,8 +188,8 @@ void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ct
         }
         /* The frame is the one the map was baked in, seen from the front. */
         vec3 normal = g->backfacing ? v3_neg(g->N) : g->N;
-        vec3 b = v3_scale(v3_cross(normal, g->tangent), g->tangent_sign);
-        n = safe_normalize3(v3_add(v3_add(v3_scale(g->tangent, c.x), v3_scale(b, c.y)), v3_scale(normal, c.z)));
+        vec3 b = v3_scale(v3_cross(normal, tangent), sign);
+        n = safe_normalize3(v3_add(v3_add(v3_scale(tangent, c.x), v3_scale(b, c.y)), v3_scale(normal, c.z)));
     } else if (ins->mode == PHOS_NORMAL_MAP_OBJECT) {
         n = safe_normalize3(g->normal_to_world ? mat3_mul(g->normal_to_world, c) : c);
     } else {
