@@ -754,3 +754,24 @@ def test_attributes_exported_only_when_read(scene, monkeypatch):
     assert set(ctx.attribute_ids) == {("name", "Paint"), ("name", "Nope")}
     assert any("Plane 2" in w and "'Nope'" in w for w in ctx.warnings), ctx.warnings
     assert not any("Plane 0" in w or "Plane 1" in w for w in ctx.warnings), ctx.warnings
+
+
+def test_object_attributes_split_shared_meshes(scene):
+    """An Object attribute is a constant of each object, exported as a mesh
+    attribute: objects sharing mesh data share one core mesh while their
+    values agree, and get one each where they differ; a material that reads
+    no Object attribute keeps the data shared whatever the properties."""
+    mat = _attribute_material("Reads tint", None)
+    attr = mat.node_tree.nodes.new("ShaderNodeAttribute")
+    attr.attribute_type = 'OBJECT'
+    attr.attribute_name = "tint"
+    mat.node_tree.links.new(attr.outputs["Color"], mat.node_tree.nodes["Emission"].inputs["Color"])
+    first = pt.add_plane(scene, "First", size=0.5, material=mat)
+    for i, tint in enumerate((0.25, 0.25, 0.75)):
+        ob = pt.link(scene, bpy.data.objects.new("Copy %d" % i, first.data))
+        ob.location = (0.6 * (i + 1), 0.0, 0.0)
+        ob["tint"] = tint
+    first["tint"] = 0.25
+    ortho_top_camera(scene)
+    ctx = export(scene)
+    assert ctx.stats["instances"] == 4 and ctx.stats["meshes"] == 2, ctx.stats

@@ -114,6 +114,7 @@ def render_grid(builders, tmp_path, name):
     file and render them with both engines; the per-case crops."""
     pt.reset_file()
     scene = bpy.context.scene
+    pt.set_world(scene, (0.0, 0.0, 0.0))
     cases = [(entry[0], entry[1](entry[0]), entry[2] if len(entry) > 2 else None) for entry in builders]
     n = len(cases)
     cols = int(math.ceil(math.sqrt(n)))
@@ -127,7 +128,6 @@ def render_grid(builders, tmp_path, name):
     cam = pt.add_camera(scene, location=(cols / 2, rows / 2, 5.0), target=(cols / 2, rows / 2, 0.0),
                         ortho_scale=float(max(cols, rows)))
     cam.rotation_euler = (0.0, 0.0, 0.0)
-    pt.set_world(scene, (0.0, 0.0, 0.0))
     pt.configure_output(scene, cols * CELL, rows * CELL)
     if cols != rows:  # the ortho scale spans the larger side
         cam.data.sensor_fit = "HORIZONTAL" if cols >= rows else "VERTICAL"
@@ -617,6 +617,32 @@ def _smooth_sphere(scene, name, location, mat):
     return pt.add_sphere(scene, name, radius=0.45, location=location, material=mat, segments=16, rings=8)
 
 
+def _object_with_property(value):
+    """Objects sharing one mesh, each with its own custom property 'tint':
+    Object attributes differ per object over the same mesh."""
+    def make(scene, name, location, mat):
+        me = bpy.data.meshes.get("shared plane")
+        if me is None:
+            ob = pt.add_plane(scene, name, size=1.0, location=location, material=mat)
+            ob.data.name = "shared plane"
+        else:
+            ob = pt.link(scene, bpy.data.objects.new(name, me))
+            ob.location = location
+            ob.material_slots[0].link = 'OBJECT'
+            ob.material_slots[0].material = mat
+        ob["tint"] = value
+        return ob
+    return make
+
+
+def _view_layer_properties(scene, name, location, mat):
+    scene["glow"] = (0.3, 0.6, 0.9)
+    scene.world["level"] = 0.45
+    scene["shade"] = 0.9
+    scene.view_layers[0]["shade"] = (0.25, 0.5)  # the view layer's comes first
+    return pt.add_plane(scene, name, size=1.0, location=location, material=mat)
+
+
 def _attribute_case(node, output, absolute=False, **props):
     def build(name):
         t = Tree(name)
@@ -666,6 +692,26 @@ def attribute_cases():
         ("attribute missing", _attribute_case("ShaderNodeAttribute", "Color", attribute_name="Nope"), _grid_object),
         ("attribute missing alpha", _attribute_case("ShaderNodeAttribute", "Alpha", attribute_name="Nope"),
          _grid_object),
+        ("attribute object colour", _attribute_case("ShaderNodeAttribute", "Color", attribute_type='OBJECT',
+                                                    attribute_name="tint"), _object_with_property((0.2, 0.7, 0.4))),
+        ("attribute object number", _attribute_case("ShaderNodeAttribute", "Color", attribute_type='OBJECT',
+                                                    attribute_name="tint"), _object_with_property(0.35)),
+        ("attribute object rna path", _attribute_case("ShaderNodeAttribute", "Vector", attribute_type='OBJECT',
+                                                      attribute_name="location", absolute=True),
+         _object_with_property(0.1)),
+        ("attribute object missing alpha", _attribute_case("ShaderNodeAttribute", "Alpha", attribute_type='OBJECT',
+                                                           attribute_name="nope"), _object_with_property(0.1)),
+        ("attribute view layer", _attribute_case("ShaderNodeAttribute", "Color", attribute_type='VIEW_LAYER',
+                                                 attribute_name="glow"), _view_layer_properties),
+        ("attribute view layer world fac", _attribute_case("ShaderNodeAttribute", "Fac",
+                                                           attribute_type='VIEW_LAYER', attribute_name="level"),
+         _view_layer_properties),
+        ("attribute view layer first", _attribute_case("ShaderNodeAttribute", "Color",
+                                                       attribute_type='VIEW_LAYER', attribute_name="shade"),
+         _view_layer_properties),
+        ("attribute view layer missing alpha", _attribute_case("ShaderNodeAttribute", "Alpha",
+                                                               attribute_type='VIEW_LAYER', attribute_name="nope"),
+         _view_layer_properties),
         ("uv map second", _attribute_case("ShaderNodeUVMap", "UV", uv_map="Second"), _grid_object),
         ("normal map and image on the second uv map", _normal_map("TANGENT", uv_map="Second"), _grid_object),
         ("object coordinates of another object", _object_coordinates),

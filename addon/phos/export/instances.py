@@ -20,7 +20,7 @@ import time
 import numpy as np
 
 from .. import core
-from . import light, material, mesh
+from . import light, material, mesh, mesh_attributes
 from .hashing import hash_uint2
 
 # How often (wall time, s) the export asks `cancelled` and reports progress.
@@ -133,8 +133,14 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
         mats = material_lists.get(mat_key)
         if mats is None:
             mats = material_lists[mat_key] = _materials(ob, ctx)
+        attribute_keys = _attribute_keys(mats, ctx)
+        object_keys = sorted(k for k in attribute_keys if k[0] == "object")
+        if object_keys:
+            # Object attributes are constants of the object: one mesh per
+            # distinct set of values, shared by the objects that agree.
+            key = (key, tuple(mesh_attributes.object_rgba(ob, k[1]) for k in object_keys))
         if key not in ctx.meshes:
-            ctx.meshes[key] = mesh.add_mesh(ob, ctx, _attribute_keys(mats, ctx))
+            ctx.meshes[key] = mesh.add_mesh(ob, ctx, attribute_keys)
         mesh_id = ctx.meshes[key]
         if mesh_id is None:
             continue

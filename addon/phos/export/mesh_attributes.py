@@ -15,6 +15,9 @@ read, so meshes whose materials read none cost nothing. Keys:
     ("pointiness",)       Geometry's Pointiness, computed here as Cycles does
     ("random_per_island",) Geometry's Random Per Island, likewise
     ("parametric",)       Geometry's Parametric: the barycentric coordinates
+    ("object", name)      an Object attribute: the object's or its data's
+                          property, constant over the mesh (the export keeps
+                          one mesh per distinct value)
     ("tangent", uv_map)   the MikkTSpace tangents of a UV map (x, y, z and the
                           bitangent sign, as a colour), for a Normal Map
 
@@ -148,6 +151,55 @@ def _uv_tangents(name, topo):
     return (_COLOR, _pack(loops[topo.corners])), None
 
 
+def property_rgba(owner, name):
+    """A property as the RGBA Cycles reads for an Object or View Layer
+    attribute (Blender's find_property_rgba): a custom property of that
+    name, else the RNA path; a number gives (v, v, v, 1), an array of up to
+    4 numbers fills (0, 0, 0, 1) from the front. None if there is none."""
+    if owner is None:
+        return None
+    value = None
+    try:
+        if name in owner.keys():
+            value = owner[name]
+    except (TypeError, AttributeError):
+        pass
+    if value is None:
+        try:
+            value = owner.path_resolve(name)
+        except (ValueError, TypeError, AttributeError):
+            return None
+    if isinstance(value, (bool, int, float)):
+        v = float(value)
+        return (v, v, v, 1.0)
+    try:
+        numbers = [float(x) for x in value]
+    except (TypeError, ValueError):
+        return None
+    if not 0 < len(numbers) <= 4:
+        return None
+    return tuple(numbers + [0.0, 0.0, 0.0, 1.0][len(numbers):])
+
+
+def object_rgba(ob, name):
+    """An Object attribute: the object's property, else its data's (Cycles
+    without instancer lookup)."""
+    value = property_rgba(ob, name)
+    if value is None:
+        value = property_rgba(getattr(ob, "data", None), name)
+    return value
+
+
+def view_layer_rgba(ctx, name):
+    """A View Layer attribute: the view layer's property, else the scene's,
+    else the world's (Blender's BKE_view_layer_find_rgba_attribute)."""
+    for owner in (ctx.view_layer, ctx.scene, getattr(ctx.scene, "world", None)):
+        value = property_rgba(owner, name)
+        if value is not None:
+            return value
+    return None
+
+
 def _render_color(topo):
     """The colour attribute marked for rendering, as Cycles reads for the
     Color Attribute node without a name."""
@@ -276,6 +328,14 @@ def read_attributes(ob, topo, keys, positions, vertex_normals, ctx):
             read, why = _render_color(topo)
         elif kind == "tangent":
             read, why = _uv_tangents(key[1], topo)
+        elif kind == "object":
+            value = object_rgba(ob, key[1])
+            if value is None:
+                # Cycles reads (0, 0, 0, 0): alpha 0, unlike a missing mesh attribute.
+                ctx.warn("Phos: object '%s' has no property '%s'; its materials read 0 there, as in Cycles"
+                         % (ob.name, key[1]))
+                value = (0.0, 0.0, 0.0, 0.0)
+            read = _COLOR, _pack(np.tile(np.float32(value), (topo.corners.size, 1)))
         elif kind == "pointiness":
             read = _FLOAT, _pack(pointiness(me, positions.reshape(-1, 3), vertex_normals)
                                  [topo.corner_vertices][:, None])

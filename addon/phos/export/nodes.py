@@ -568,17 +568,36 @@ def _uv_map(nc, node, stack):
     return {"UV": nc.attribute(("name", name))[1]}
 
 
+def _rgba_outputs(rgba):
+    """The Attribute node's outputs of a constant RGBA, as Cycles converts a
+    colour: Fac the mean of RGB, Alpha the fourth number."""
+    rgb = constant(rgba[:3])
+    return {"Color": rgb, "Vector": rgb, "Fac": constant(sum(rgba[:3]) / 3.0), "Alpha": constant(rgba[3])}
+
+
 def _attribute(nc, node, stack):
-    """The Attribute node: Geometry attributes by name; the others (object,
-    instancer, view layer properties) read 0, with a warning."""
+    """The Attribute node: Geometry attributes by name, Object properties
+    (a constant mesh attribute per object), View Layer properties (a
+    constant of the render); Instancer ones read the object's, with a
+    warning."""
     kind = getattr(node, "attribute_type", 'GEOMETRY')
     name = node.attribute_name
-    if kind != 'GEOMETRY' or not name:
-        if kind != 'GEOMETRY':
-            nc.walker.note(node, "%s attributes are not supported; it reads 0" % kind.lower().replace('_', ' '))
-        zero = constant((0.0, 0.0, 0.0))
-        return {"Color": zero, "Vector": zero, "Fac": constant(0.0), "Alpha": constant(1.0)}
-    color, vector, fac, alpha = nc.attribute(("name", name))
+    if not name:
+        return _rgba_outputs((0.0, 0.0, 0.0, 1.0))
+    if kind == 'VIEW_LAYER':
+        from .mesh_attributes import view_layer_rgba
+        value = view_layer_rgba(nc.ctx, name)
+        if value is None:
+            nc.walker.note(node, "no view layer, scene or world property '%s'; it reads 0" % name)
+            value = (0.0, 0.0, 0.0, 0.0)
+        return _rgba_outputs(value)
+    if kind in {'OBJECT', 'INSTANCER'}:
+        if kind == 'INSTANCER':
+            nc.walker.note(node, "instancer attributes are read from the instanced object itself")
+        key = ("object", name)
+    else:
+        key = ("name", name)
+    color, vector, fac, alpha = nc.attribute(key)
     return {"Color": color, "Vector": vector, "Fac": fac, "Alpha": alpha}
 
 
