@@ -607,6 +607,23 @@ def _relief(scene, name, location, mat):
     return _grid_object(scene, name, location, mat, segments=12, relief=True)
 
 
+def _relief_seams(scene, name, location, mat):
+    """The relief with every face split off and the copies of each vertex
+    moved apart by up to 1.4·10⁻⁴ along (1, −1, 0), which keeps x + y + z:
+    Cycles welds vertices closer than 3.4·10⁻⁴ whose sums agree within
+    3·FLT_EPSILON before measuring Pointiness."""
+    ob = _grid_object(scene, name, location, mat, segments=12, relief=True, islands=True)
+    co = np.empty(len(ob.data.vertices) * 3, np.float32)
+    ob.data.vertices.foreach_get("co", co)
+    co = co.reshape(-1, 3)
+    shift = (np.random.default_rng(5).random(co.shape[0]).astype(np.float32) - 0.5) * 1e-4
+    co[:, 0] += shift
+    co[:, 1] -= shift
+    ob.data.vertices.foreach_set("co", co.ravel())
+    ob.data.update()
+    return ob
+
+
 def _shifted_grid(scene, name, location, mat):
     """The grid moved off the pixel grid: Parametric jumps at every
     triangle edge, which must not run through pixel centres."""
@@ -717,6 +734,7 @@ def attribute_cases():
         ("object coordinates of another object", _object_coordinates),
         ("random per island", _attribute_case("ShaderNodeNewGeometry", "Random Per Island"), _islands),
         ("pointiness", _attribute_case("ShaderNodeNewGeometry", "Pointiness"), _relief),
+        ("pointiness welded", _attribute_case("ShaderNodeNewGeometry", "Pointiness"), _relief_seams),
         ("parametric", _attribute_case("ShaderNodeNewGeometry", "Parametric"), _shifted_grid),
         # On a smooth mesh: on flat non-planar quads Phos shades with the
         # quad's normal where Cycles takes each triangle's (mesh.py), and

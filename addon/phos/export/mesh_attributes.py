@@ -212,12 +212,38 @@ def _render_color(topo):
 
 # ------------------------------------------------------------- pointiness
 
+FLT_EPSILON = np.float32(2.0 ** -23)
+
+
 def _welded(positions):
-    """Index of the vertex each vertex is merged with: the first of those at
-    exactly its position (Cycles merges vertices closer than √FLT_EPSILON
-    before measuring pointiness, so that UV seams do not show)."""
-    _, first, inverse = np.unique(positions, axis=0, return_index=True, return_inverse=True)
-    return first[inverse.reshape(-1)]
+    """Index of the vertex each vertex is merged with before pointiness is
+    measured, as Cycles merges them (so that seams do not show): vertices
+    sorted by x + y + z (float32; equal positions by decreasing index),
+    each merged with the first after it, within 3·FLT_EPSILON of its sum,
+    closer than √FLT_EPSILON; then chains followed to their end."""
+    p = positions.astype(np.float32)
+    count = p.shape[0]
+    sums = (p[:, 0] + p[:, 1]) + p[:, 2]
+    order = np.lexsort((-np.arange(count), sums))
+    sorted_sums, sorted_p = sums[order], p[order]
+    orig = np.arange(count)
+    open_ = np.arange(count)          # sorted positions still looking
+    k = 1
+    while open_.size:
+        open_ = open_[open_ + k < count]
+        open_ = open_[~(sorted_sums[open_ + k] - sorted_sums[open_] > 3 * FLT_EPSILON)]
+        if not open_.size:
+            break
+        d = sorted_p[open_ + k] - sorted_p[open_]
+        near = (d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] + d[:, 2] * d[:, 2]) < FLT_EPSILON
+        orig[order[open_[near]]] = order[open_[near] + k]
+        open_ = open_[~near]
+        k += 1
+    while True:
+        nxt = orig[orig]
+        if np.array_equal(nxt, orig):
+            return orig
+        orig = nxt
 
 
 def pointiness(me, positions, vertex_normals):
