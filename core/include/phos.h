@@ -283,7 +283,8 @@ enum phos_shader_op {
     PHOS_OP_ATTRIBUTE = 45,      /* out color(3), vector(3), fac, alpha: the mesh attribute whose id is `table`
                                     (phos_mesh_attribute), as Cycles' Attribute node converts its type; a mesh
                                     without it gives 0 and alpha 1 (flags 1: alpha 0, the Color Attribute
-                                    node's) */
+                                    node's). mode 0: at the point; 1, 2: at a Bump's moved points
+                                    (BUMP_OFFSET's modes), the barycentrics moved with them */
     PHOS_OP_COUNT = 46
 };
 

@@ -683,6 +683,16 @@ def _object_coordinates(name):
     return t.show(t.absolute(sock(tc.outputs, "Object")))
 
 
+def _bumped_by_attribute(name):
+    """A Bump whose height is a point colour attribute: the attribute is
+    read at the bump's moved points too."""
+    t = Tree(name)
+    attr = t.node("ShaderNodeAttribute", attribute_name="PointColor")
+    bump = t.node("ShaderNodeBump", {"Strength": 1.0, "Distance": 0.3})
+    t.link(sock(attr.outputs, "Fac"), sock(bump.inputs, "Height"))
+    return t.show(t.absolute(sock(bump.outputs, "Normal")))
+
+
 def attribute_cases():
     cases = [
         ("colour attribute point float", _attribute_case("ShaderNodeVertexColor", "Color", layer_name="PointColor"),
@@ -732,6 +742,7 @@ def attribute_cases():
         ("uv map second", _attribute_case("ShaderNodeUVMap", "UV", uv_map="Second"), _grid_object),
         ("normal map and image on the second uv map", _normal_map("TANGENT", uv_map="Second"), _grid_object),
         ("object coordinates of another object", _object_coordinates),
+        ("bump of an attribute", _bumped_by_attribute, _grid_object),
         ("random per island", _attribute_case("ShaderNodeNewGeometry", "Random Per Island"), _islands),
         ("pointiness", _attribute_case("ShaderNodeNewGeometry", "Pointiness"), _relief),
         ("pointiness welded", _attribute_case("ShaderNodeNewGeometry", "Pointiness"), _relief_seams),

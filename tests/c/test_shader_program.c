@@ -272,6 +272,26 @@ static void test_attribute_op(void)
     ins.table = 5;
     shader_program_eval(&p, NULL, &g, r);
     CHECK(r[0] == 0.0f && r[7] == 1.0f);
+
+    /* At a Bump's moved points (modes 1, 2): the triangle (0,0,0), (1,0,0),
+     * (0,1,0) with steps of 0.1 along x (its u) and y moves b1, then b2, by
+     * 0.1; a FLOAT attribute of corners (0, 1, 0) reads b1. */
+    float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    uint32_t indices[3] = {0, 1, 2};
+    float b1_corners[12] = {0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0};
+    mesh_attribute b1_attr = {5, PHOS_ATTRIBUTE_FLOAT, b1_corners};
+    m.positions = positions, m.indices = indices, m.vertex_count = 3;
+    m.attributes = &b1_attr;
+    g.mesh = &m;
+    g.Ng = g.N = v3(0.0f, 0.0f, 1.0f);
+    g.dPdu = v3(1.0f, 0.0f, 0.0f);
+    g.bump_offset = 0.1f;
+    const float moved[3] = {0.2f, 0.3f, 0.2f}; /* b1 at the point, after dx, after dy */
+    for (uint32_t mode = 0; mode < 3; mode++) {
+        ins.mode = mode;
+        shader_program_eval(&p, NULL, &g, r);
+        CHECK_MSG(fabsf(r[6] - moved[mode]) < 1e-6f, "mode %u: %g", mode, (double)r[6]);
+    }
 }
 
 /* A quad whose corners carry a colour attribute equal to their UVs (and

@@ -144,11 +144,12 @@ class NodeCompiler:
         return self.p.emit(core.PHOS_OP_GEOMETRY, [], [3, 3, 3, 3, 1])[1]
 
     def attribute(self, key, flags=0):
-        """Color, Vector, Fac and Alpha of a mesh attribute (mesh_attributes.py);
+        """Color, Vector, Fac and Alpha of a mesh attribute (mesh_attributes.py),
+        at the point or at a Bump's moved point;
         the program remembers the key, so the meshes of its material export it.
         flags 1: a missing attribute's alpha is 0 (the Color Attribute node)."""
         self.p.attributes.add(key)
-        return self.p.emit(core.PHOS_OP_ATTRIBUTE, [], [3, 3, 1, 1], flags=flags,
+        return self.p.emit(core.PHOS_OP_ATTRIBUTE, [], [3, 3, 1, 1], mode=self.bump, flags=flags,
                            table=attribute_id(self.ctx, key))
 
     def vector_math(self, operation, a, b=None):

@@ -76,7 +76,7 @@ const shader_op_info shader_ops[PHOS_OP_COUNT] = {
     [PHOS_OP_VECTOR_TRANSFORM] = {"Vector Transform", shader_op_vector_transform, {W3}, {W3}, 1,
                                   PHOS_VECTOR_TRANSFORM_COUNT},
     [PHOS_OP_NORMAL] = {"Normal", shader_op_normal, {W3}, {W3, W1}, 0, 0},
-    [PHOS_OP_ATTRIBUTE] = {"Attribute", shader_op_attribute, {0}, {W3, W3, W1, W1}, 1, 0},
+    [PHOS_OP_ATTRIBUTE] = {"Attribute", shader_op_attribute, {0}, {W3, W3, W1, W1}, 1, 3},
 };
 
 /* Width of each closure field (phos.h, enum phos_closure_field). */

@@ -222,6 +222,10 @@ void shader_op_attribute(const phos_shader_instruction *ins, shader_context *ctx
  * corner): in world space, perpendicular to the shading normal and unit,
  * as material_shader_globals makes the render map's. 0 when the mesh has
  * no such attribute. */
+/* The two steps a Bump evaluates its height at (world space, in the
+ * triangle's plane; shading/nodes/vector.c). */
+void shader_bump_steps(const shader_globals *g, vec3 *dx, vec3 *dy);
+
 int shader_attribute_tangent(const shader_globals *g, uint32_t id, vec3 *tangent, float *sign);
 
 #endif /* PHOS_SHADER_PROGRAM_H */

@@ -206,7 +206,7 @@ void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ct
 
 /* The two offsets a bump evaluates its height at: orthogonal steps of
  * bump_offset in the triangle's plane, the first along the UV map's u. */
-static void bump_steps(const shader_globals *g, vec3 *dx, vec3 *dy)
+void shader_bump_steps(const shader_globals *g, vec3 *dx, vec3 *dy)
 {
     vec3 t = v3_sub(g->dPdu, v3_scale(g->Ng, v3_dot(g->dPdu, g->Ng)));
     if (v3_length2(t) < 1e-20f)
@@ -222,7 +222,7 @@ void shader_op_bump_offset(const phos_shader_instruction *ins, shader_context *c
 {
     const shader_globals *g = ctx->g;
     vec3 dx, dy, d = v3s(0.0f);
-    bump_steps(g, &dx, &dy);
+    shader_bump_steps(g, &dx, &dy);
     if (ins->mode == 1)
         d = dx;
     else if (ins->mode == 2)
@@ -257,7 +257,7 @@ void shader_op_bump(const phos_shader_instruction *ins, shader_context *ctx)
     if (ins->flags & 1)
         distance = -distance;
     vec3 dx, dy;
-    bump_steps(g, &dx, &dy);
+    shader_bump_steps(g, &dx, &dy);
     vec3 rx = v3_cross(dy, n), ry = v3_cross(n, dx);
     float det = v3_dot(dx, rx);
     vec3 grad = v3_add(v3_scale(rx, hx - h), v3_scale(ry, hy - h));
