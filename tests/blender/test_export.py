@@ -775,3 +775,32 @@ def test_object_attributes_split_shared_meshes(scene):
     ortho_top_camera(scene)
     ctx = export(scene)
     assert ctx.stats["instances"] == 4 and ctx.stats["meshes"] == 2, ctx.stats
+
+
+def test_shared_mesh_with_object_materials_reading_other_attributes(scene, monkeypatch):
+    """Objects sharing mesh data whose object-linked materials read different
+    attributes get a core mesh each, with the attribute its material reads;
+    with the same material they share one."""
+    from phos import core
+    exported = []
+    original = core.Scene.add_mesh
+
+    def spy(self, *args, **kwargs):
+        exported.append(sorted(a[0] for a in kwargs.get("attributes", ())))
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(core.Scene, "add_mesh", spy)
+    first = pt.add_plane(scene, "First", size=0.5, material=_attribute_material("Reads A", "A"))
+    first.data.attributes.new("A", 'FLOAT', 'POINT')
+    first.data.attributes.new("B", 'FLOAT', 'POINT')
+    for i, name in enumerate(("B", "A")):
+        ob = pt.link(scene, bpy.data.objects.new("Copy %d" % i, first.data))
+        ob.location = (0.6 * (i + 1), 0.0, 0.0)
+        ob.material_slots[0].link = 'OBJECT'
+        ob.material_slots[0].material = bpy.data.materials["Reads %s" % name] if name == "A" else \
+            _attribute_material("Reads B", "B")
+    ortho_top_camera(scene)
+    ctx = export(scene)
+    ids = ctx.attribute_ids
+    assert ctx.stats["instances"] == 3
+    assert sorted(exported) == sorted([[ids[("name", "A")]], [ids[("name", "B")]]]), exported

@@ -74,9 +74,7 @@ def _materials(ob, ctx):
 
 
 def _attribute_keys(material_ids, ctx):
-    """The mesh attributes the materials read (mesh_attributes.py). A mesh
-    shared by objects whose object-linked materials differ exports those of
-    the first object's materials."""
+    """The mesh attributes the materials read (mesh_attributes.py)."""
     keys = set()
     for mat_id in material_ids:
         keys |= ctx.material_attributes.get(mat_id, frozenset())
@@ -134,11 +132,13 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
         if mats is None:
             mats = material_lists[mat_key] = _materials(ob, ctx)
         attribute_keys = _attribute_keys(mats, ctx)
-        object_keys = sorted(k for k in attribute_keys if k[0] == "object")
-        if object_keys:
-            # Object attributes are constants of the object: one mesh per
-            # distinct set of values, shared by the objects that agree.
-            key = (key, tuple(mesh_attributes.object_rgba(ob, k[1]) for k in object_keys))
+        if attribute_keys:
+            # Objects sharing mesh data share a core mesh when their
+            # materials read the same attributes (object-linked materials may
+            # not), and Object attributes, constants of each object, agree.
+            object_keys = sorted(k for k in attribute_keys if k[0] == "object")
+            key = (key, frozenset(attribute_keys),
+                   tuple(mesh_attributes.object_rgba(ob, k[1]) for k in object_keys))
         if key not in ctx.meshes:
             ctx.meshes[key] = mesh.add_mesh(ob, ctx, attribute_keys)
         mesh_id = ctx.meshes[key]
