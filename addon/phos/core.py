@@ -338,11 +338,12 @@ class Scene(_Handle):
         return out.value
 
     def add_mesh(self, positions, indices, normals=None, uvs=None, material_slots=None, tangents=None,
-                 texspace=None):
+                 texspace=None, attributes=()):
         """Add a triangle mesh in object space; returns the mesh id.
 
         positions (V*3), indices (T*3), per-corner normals (T*9) and UVs (T*6),
-        per-triangle slots (T); the optional ones may be None.
+        per-triangle slots (T); the optional ones may be None. attributes:
+        (id, enum phos_attribute_type, T*12 per-corner values) each.
         """
         pos = np.ascontiguousarray(positions, dtype=np.float32).reshape(-1)
         idx = np.ascontiguousarray(indices, dtype=np.uint32).reshape(-1)
@@ -362,6 +363,12 @@ class Scene(_Handle):
         d.uvs = _ptr(uv, ctypes.c_float)
         d.material_slots = _ptr(slots, ctypes.c_uint32)
         d.tangents = _ptr(tan, ctypes.c_float)
+        attr_values = [_as_array(values, np.float32, t * 12, "attribute values") for _, _, values in attributes]
+        attrs = (phos_mesh_attribute * max(len(attr_values), 1))()
+        for k, ((attr_id, kind, _), values) in enumerate(zip(attributes, attr_values)):
+            attrs[k].id, attrs[k].type, attrs[k].values = attr_id, kind, _ptr(values, ctypes.c_float)
+        d.attribute_count = len(attr_values)
+        d.attributes = ctypes.cast(attrs, ctypes.POINTER(phos_mesh_attribute)) if attr_values else None
         if texspace is not None:
             d.texspace_location[:] = [float(x) for x in texspace[0]]
             d.texspace_size[:] = [float(x) for x in texspace[1]]

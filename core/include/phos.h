@@ -268,7 +268,9 @@ enum phos_shader_op {
                                     out vector(3). mode enum phos_mapping */
     PHOS_OP_NORMAL_MAP = 39,     /* in strength, color(3); out normal(3). mode enum phos_normal_map_space;
                                     flags 1 = tangent space applies Strength in tangent space (Blender 4+;
-                                    before, the normal is blended from the shading normal) */
+                                    before, the normal is blended from the shading normal); flags 2 = the
+                                    tangents of another UV map: the mesh attribute `table`, per corner
+                                    (x, y, z, bitangent sign) in object space */
     PHOS_OP_BUMP = 40,           /* in strength, distance, height, height_dx, height_dy, normal(3); out
                                     normal(3). flags 1 = invert, 2 = keep the viewer's reflection above the
                                     surface (Blender before 4.0). The heights at the point and at the point
@@ -283,7 +285,13 @@ enum phos_shader_op {
     PHOS_OP_VECTOR_TRANSFORM = 43,/* in vector(3); out vector(3). mode enum phos_vector_transform_type;
                                     flags: bits 0-3 from space, bits 4-7 to space (enum phos_space) */
     PHOS_OP_NORMAL = 44,         /* in normal(3); out normal(3) (param[0..2]), dot */
-    PHOS_OP_COUNT = 45
+    PHOS_OP_ATTRIBUTE = 45,      /* out color(3), vector(3), fac, alpha: the mesh attribute whose id is `table`
+                                    (phos_mesh_attribute), as Cycles' Attribute node converts its type; a mesh
+                                    without it gives 0 and alpha 1 (flags 1: alpha 0, the Color Attribute
+                                    node's). mode 0: at the point; 1, 2: at a Bump's moved points
+                                    (BUMP_OFFSET's modes and param[0], its filter width), the
+                                    barycentrics moved with them */
+    PHOS_OP_COUNT = 46
 };
 
 /* Node enums, named as Blender names their items so the add-on maps them by name. */
@@ -415,6 +423,25 @@ PHOS_API void phos_material_desc_init(phos_material_desc *desc);
 PHOS_API phos_status phos_scene_add_material(phos_scene *scene, const phos_material_desc *desc,
                                              uint32_t *out_material_id);
 
+/* A named per-corner attribute of a mesh (colour attributes, float and
+ * vector attributes, other UV maps, and what Cycles derives at export:
+ * pointiness, random per island), as the Attribute node reads it. The
+ * add-on numbers the names a scene's programs read; ATTRIBUTE instructions
+ * read the attribute by that number, interpolated barycentrically. */
+enum phos_attribute_type {
+    PHOS_ATTRIBUTE_FLOAT = 0,    /* one value */
+    PHOS_ATTRIBUTE_FLOAT2 = 1,   /* x, y (a UV map) */
+    PHOS_ATTRIBUTE_VECTOR = 2,   /* x, y, z */
+    PHOS_ATTRIBUTE_COLOR = 3,    /* linear r, g, b, alpha */
+    PHOS_ATTRIBUTE_TYPE_COUNT = 4
+};
+typedef struct phos_mesh_attribute {
+    uint32_t id;                 /* the number ATTRIBUTE instructions read it by; unique within the mesh */
+    uint32_t type;               /* enum phos_attribute_type */
+    const float *values;         /* triangle_count*12: 4 floats per corner (unused ones ignored) */
+} phos_mesh_attribute;
+#define PHOS_MAX_MESH_ATTRIBUTES 64
+
 /* A triangle mesh in its own (object) space. */
 typedef struct phos_mesh_desc {
     uint32_t vertex_count;
@@ -429,6 +456,8 @@ typedef struct phos_mesh_desc {
     float texspace_location[3];  /* the texture space: Generated coordinates are
                                     (p − location) / size · ½ + ½ in object space */
     float texspace_size[3];      /* all 0: the bounding box of the positions (Blender's automatic texture space) */
+    uint32_t attribute_count;    /* <= PHOS_MAX_MESH_ATTRIBUTES */
+    const phos_mesh_attribute *attributes;
 } phos_mesh_desc;
 PHOS_API void phos_mesh_desc_init(phos_mesh_desc *desc);
 PHOS_API phos_status phos_scene_add_mesh(phos_scene *scene, const phos_mesh_desc *desc,

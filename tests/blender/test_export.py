@@ -709,3 +709,98 @@ def test_one_program_per_material(scene, tmp_path):
     ctx = export(scene)
     assert ctx.stats["instances"] == 1000
     assert ctx.stats["materials"] == 1
+
+
+def _attribute_material(name, attribute):
+    mat = bpy.data.materials.new(name)
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    emission = nt.nodes.new("ShaderNodeEmission")
+    nt.links.new(emission.outputs[0], out.inputs["Surface"])
+    if attribute is not None:
+        attr = nt.nodes.new("ShaderNodeAttribute")
+        attr.attribute_name = attribute
+        nt.links.new(attr.outputs["Color"], emission.inputs["Color"])
+    return mat
+
+
+def test_attributes_exported_only_when_read(scene, monkeypatch):
+    """A mesh exports the attributes its materials read, and only those: the
+    same mesh data under a material that reads none exports none. A name
+    the mesh lacks is one warning naming the object and the attribute (it
+    renders 0, as in Cycles: test_shader_nodes.py's "attribute missing")."""
+    from phos import core
+    exported = {}
+    original = core.Scene.add_mesh
+
+    def spy(self, *args, **kwargs):
+        mesh_id = original(self, *args, **kwargs)
+        exported[mesh_id] = [(a[0], a[1]) for a in kwargs.get("attributes", ())]
+        return mesh_id
+
+    monkeypatch.setattr(core.Scene, "add_mesh", spy)
+    for i, attribute in enumerate(("Paint", None, "Nope")):
+        ob = pt.add_plane(scene, "Plane %d" % i, size=1.0, location=(1.2 * i, 0.0, 0.0),
+                          material=_attribute_material("Reads %s" % attribute, attribute))
+        ob.data.color_attributes.new("Paint", 'FLOAT_COLOR', 'POINT')
+        ob.data.attributes.new("Unread", 'FLOAT', 'FACE')
+    ortho_top_camera(scene)
+    ctx = export(scene)
+    assert sorted(len(a) for a in exported.values()) == [0, 0, 1], exported
+    (only,) = [a for a in exported.values() if a]
+    assert only == [(ctx.attribute_ids[("name", "Paint")], core.PHOS_ATTRIBUTE_COLOR)]
+    assert set(ctx.attribute_ids) == {("name", "Paint"), ("name", "Nope")}
+    assert any("Plane 2" in w and "'Nope'" in w for w in ctx.warnings), ctx.warnings
+    assert not any("Plane 0" in w or "Plane 1" in w for w in ctx.warnings), ctx.warnings
+
+
+def test_object_attributes_split_shared_meshes(scene):
+    """An Object attribute is a constant of each object, exported as a mesh
+    attribute: objects sharing mesh data share one core mesh while their
+    values agree, and get one each where they differ; a material that reads
+    no Object attribute keeps the data shared whatever the properties."""
+    mat = _attribute_material("Reads tint", None)
+    attr = mat.node_tree.nodes.new("ShaderNodeAttribute")
+    attr.attribute_type = 'OBJECT'
+    attr.attribute_name = "tint"
+    mat.node_tree.links.new(attr.outputs["Color"], mat.node_tree.nodes["Emission"].inputs["Color"])
+    first = pt.add_plane(scene, "First", size=0.5, material=mat)
+    for i, tint in enumerate((0.25, 0.25, 0.75)):
+        ob = pt.link(scene, bpy.data.objects.new("Copy %d" % i, first.data))
+        ob.location = (0.6 * (i + 1), 0.0, 0.0)
+        ob["tint"] = tint
+    first["tint"] = 0.25
+    ortho_top_camera(scene)
+    ctx = export(scene)
+    assert ctx.stats["instances"] == 4 and ctx.stats["meshes"] == 2, ctx.stats
+
+
+def test_shared_mesh_with_object_materials_reading_other_attributes(scene, monkeypatch):
+    """Objects sharing mesh data whose object-linked materials read different
+    attributes get a core mesh each, with the attribute its material reads;
+    with the same material they share one."""
+    from phos import core
+    exported = []
+    original = core.Scene.add_mesh
+
+    def spy(self, *args, **kwargs):
+        exported.append(sorted(a[0] for a in kwargs.get("attributes", ())))
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(core.Scene, "add_mesh", spy)
+    first = pt.add_plane(scene, "First", size=0.5, material=_attribute_material("Reads A", "A"))
+    first.data.attributes.new("A", 'FLOAT', 'POINT')
+    first.data.attributes.new("B", 'FLOAT', 'POINT')
+    for i, name in enumerate(("B", "A")):
+        ob = pt.link(scene, bpy.data.objects.new("Copy %d" % i, first.data))
+        ob.location = (0.6 * (i + 1), 0.0, 0.0)
+        ob.material_slots[0].link = 'OBJECT'
+        ob.material_slots[0].material = bpy.data.materials["Reads %s" % name] if name == "A" else \
+            _attribute_material("Reads B", "B")
+    ortho_top_camera(scene)
+    ctx = export(scene)
+    ids = ctx.attribute_ids
+    assert ctx.stats["instances"] == 3
+    assert sorted(exported) == sorted([[ids[("name", "A")]], [ids[("name", "B")]]]), exported

@@ -110,21 +110,25 @@ class Tree:
 
 
 def render_grid(builders, tmp_path, name):
-    """Build the cases (name, builder(name) → material) in a fresh file and
-    render them with both engines; the per-case crops."""
+    """Build the cases (name, builder(name) → material[, make(scene, name,
+    location, material) → the object, a unit plane by default]) in a fresh
+    file and render them with both engines; the per-case crops."""
     pt.reset_file()
     scene = bpy.context.scene
-    cases = [(case, build(case)) for case, build in builders]
+    pt.set_world(scene, (0.0, 0.0, 0.0))
+    cases = [(entry[0], entry[1](entry[0]), entry[2] if len(entry) > 2 else None) for entry in builders]
     n = len(cases)
     cols = int(math.ceil(math.sqrt(n)))
     rows = int(math.ceil(n / cols))
-    for i, (case, mat) in enumerate(cases):
+    for i, (case, mat, make) in enumerate(cases):
         c, r = i % cols, i // cols
-        pt.add_plane(scene, case, size=1.0, location=(c + 0.5, r + 0.5, 0.0), material=mat)
+        if make is None:
+            pt.add_plane(scene, case, size=1.0, location=(c + 0.5, r + 0.5, 0.0), material=mat)
+        else:
+            make(scene, case, (c + 0.5, r + 0.5, 0.0), mat)
     cam = pt.add_camera(scene, location=(cols / 2, rows / 2, 5.0), target=(cols / 2, rows / 2, 0.0),
                         ortho_scale=float(max(cols, rows)))
     cam.rotation_euler = (0.0, 0.0, 0.0)
-    pt.set_world(scene, (0.0, 0.0, 0.0))
     pt.configure_output(scene, cols * CELL, rows * CELL)
     if cols != rows:  # the ortho scale spans the larger side
         cam.data.sensor_fit = "HORIZONTAL" if cols >= rows else "VERTICAL"
@@ -133,7 +137,7 @@ def render_grid(builders, tmp_path, name):
     cyc = pt.render_array(scene, tmp_path, engine="CYCLES", name=name + "_cycles")[..., :3]
     pho = pt.render_array(scene, tmp_path, engine="PHOS", name=name + "_phos")[..., :3]
     crops = {}
-    for i, (case, _) in enumerate(cases):
+    for i, (case, *_) in enumerate(cases):
         c, r = i % cols, i // cols
         ys, xs = slice(r * CELL + 1, (r + 1) * CELL - 1), slice(c * CELL + 1, (c + 1) * CELL - 1)
         crops[case] = (pho[ys, xs].astype(np.float64), cyc[ys, xs].astype(np.float64))
@@ -604,7 +608,7 @@ def test_bump_seen_in_mirror(addon, tmp_path):
     check({"reflected": (pho[covered][None].astype(np.float64), cyc[covered][None].astype(np.float64))})
 
 
-def _normal_map(space):
+def _normal_map(space, uv_map=""):
     def build(name):
         t = Tree(name)
         img = bpy.data.images.get("normal_image")
@@ -621,6 +625,10 @@ def _normal_map(space):
         tex = t.node("ShaderNodeTexImage", interpolation="Linear")
         tex.image = img
         nm = t.node("ShaderNodeNormalMap", {"Strength": 0.7}, space=space)
+        if uv_map:
+            uv = t.node("ShaderNodeUVMap", uv_map=uv_map)
+            t.link(sock(uv.outputs, "UV"), sock(tex.inputs, "Vector"))
+            nm.uv_map = uv_map
         t.link(sock(tex.outputs, "Color"), sock(nm.inputs, "Color"))
         return t.show(t.absolute(sock(nm.outputs, "Normal")))
     return build
@@ -661,3 +669,205 @@ def vector_cases(tmp_path):
 def test_vector_and_inputs(addon, tmp_path):
     cases = vector_cases(tmp_path)
     check(render_grid(cases, tmp_path, "vector"))
+
+
+# ----------------------------------------------------------------- attributes
+
+def _grid_object(scene, name, location, mat, segments=6, islands=False, relief=False):
+    """A unit grid of segments² faces (each face its own island when
+    `islands`; heights of a smooth bump when `relief`), with a second UV map
+    and colour and generic attributes of every domain, from positions."""
+    import bmesh
+    bm = bmesh.new()
+    bmesh.ops.create_grid(bm, x_segments=segments, y_segments=segments, size=0.5)
+    if relief:
+        for v in bm.verts:
+            v.co.z = 0.15 * math.cos(3.0 * v.co.x) * math.sin(4.0 * v.co.y + 0.5) + 0.05 * v.co.x * v.co.x
+    if islands:
+        bmesh.ops.split_edges(bm, edges=bm.edges[:])
+    me = pt.mesh_from_bmesh(name, bm)
+    me.uv_layers.new(name="UVMap")
+    second = me.uv_layers.new(name="Second")
+    uv = np.array([(0.5 + 0.7 * me.vertices[l.vertex_index].co.x, 0.6 - 0.5 * me.vertices[l.vertex_index].co.y)
+                   for l in me.loops], np.float32)
+    second.data.foreach_set("uv", uv.ravel())
+    co = np.array([v.co[:] for v in me.vertices], np.float32)
+    point = me.color_attributes.new("PointColor", 'FLOAT_COLOR', 'POINT')
+    rgba = np.stack([0.5 + co[:, 0], 0.5 + co[:, 1], 0.3 + 0.4 * co[:, 0] * co[:, 1], 0.25 + co[:, 0] ** 2], 1)
+    point.data.foreach_set("color", rgba.ravel())
+    corner = me.color_attributes.new("CornerBytes", 'BYTE_COLOR', 'CORNER')
+    loops = np.array([l.vertex_index for l in me.loops])
+    rgba_c = np.stack([0.9 - co[loops, 0] ** 2, 0.2 + 0.5 * (loops % 3) / 2.0, 0.5 + co[loops, 1],
+                       np.full(len(loops), 1.0)], 1)
+    corner.data.foreach_set("color", np.clip(rgba_c, 0, 1).astype(np.float32).ravel())
+    me.color_attributes.render_color_index = me.color_attributes.find("CornerBytes")
+    face = me.attributes.new("FaceValue", 'FLOAT', 'FACE')
+    face.data.foreach_set("value", np.array([0.1 + 0.8 * ((i * 7) % 11) / 10.0 for i in range(len(me.polygons))],
+                                            np.float32))
+    vec = me.attributes.new("PointVector", 'FLOAT_VECTOR', 'POINT')
+    vec.data.foreach_set("vector", np.stack([0.5 + co[:, 1], 0.2 + 0.0 * co[:, 0], 0.5 - co[:, 0]], 1).ravel())
+    if mat:
+        me.materials.append(mat)
+    ob = bpy.data.objects.new(name, me)
+    ob.location = location
+    return pt.link(scene, ob)
+
+
+def _islands(scene, name, location, mat):
+    return _grid_object(scene, name, location, mat, segments=4, islands=True)
+
+
+def _relief(scene, name, location, mat):
+    return _grid_object(scene, name, location, mat, segments=12, relief=True)
+
+
+def _relief_seams(scene, name, location, mat):
+    """The relief with every face split off and the copies of each vertex
+    moved apart by up to 1.4·10⁻⁴ along (1, −1, 0), which keeps x + y + z:
+    Cycles welds vertices closer than 3.4·10⁻⁴ whose sums agree within
+    3·FLT_EPSILON before measuring Pointiness."""
+    ob = _grid_object(scene, name, location, mat, segments=12, relief=True, islands=True)
+    co = np.empty(len(ob.data.vertices) * 3, np.float32)
+    ob.data.vertices.foreach_get("co", co)
+    co = co.reshape(-1, 3)
+    shift = (np.random.default_rng(5).random(co.shape[0]).astype(np.float32) - 0.5) * 1e-4
+    co[:, 0] += shift
+    co[:, 1] -= shift
+    ob.data.vertices.foreach_set("co", co.ravel())
+    ob.data.update()
+    return ob
+
+
+def _shifted_grid(scene, name, location, mat):
+    """The grid moved off the pixel grid: Parametric jumps at every
+    triangle edge, which must not run through pixel centres."""
+    return _grid_object(scene, name, (location[0] + 0.0123, location[1] + 0.0271, 0.0), mat)
+
+
+def _smooth_sphere(scene, name, location, mat):
+    return pt.add_sphere(scene, name, radius=0.45, location=location, material=mat, segments=16, rings=8)
+
+
+def _object_with_property(value):
+    """Objects sharing one mesh, each with its own custom property 'tint':
+    Object attributes differ per object over the same mesh."""
+    def make(scene, name, location, mat):
+        me = bpy.data.meshes.get("shared plane")
+        if me is None:
+            ob = pt.add_plane(scene, name, size=1.0, location=location, material=mat)
+            ob.data.name = "shared plane"
+        else:
+            ob = pt.link(scene, bpy.data.objects.new(name, me))
+            ob.location = location
+            ob.material_slots[0].link = 'OBJECT'
+            ob.material_slots[0].material = mat
+        ob["tint"] = value
+        return ob
+    return make
+
+
+def _view_layer_properties(scene, name, location, mat):
+    scene["glow"] = (0.3, 0.6, 0.9)
+    scene.world["level"] = 0.45
+    scene["shade"] = 0.9
+    scene.view_layers[0]["shade"] = (0.25, 0.5)  # the view layer's comes first
+    return pt.add_plane(scene, name, size=1.0, location=location, material=mat)
+
+
+def _attribute_case(node, output, absolute=False, **props):
+    def build(name):
+        t = Tree(name)
+        n = t.node(node, **props)
+        out = sock(n.outputs, output)
+        return t.show(t.absolute(out) if absolute else out)
+    return build
+
+
+def _object_coordinates(name):
+    t = Tree(name)
+    target = bpy.data.objects.get("coordinate_target")
+    if target is None:
+        target = bpy.data.objects.new("coordinate_target", None)
+        target.location = (1.3, -0.4, 0.2)
+        target.rotation_euler = (0.3, -0.2, 0.9)
+        target.scale = (0.7, 1.6, 1.1)
+        bpy.context.scene.collection.objects.link(target)
+    tc = t.node("ShaderNodeTexCoord")
+    tc.object = target
+    return t.show(t.absolute(sock(tc.outputs, "Object")))
+
+
+def _bumped_by_attribute(name):
+    """A Bump whose height is a point colour attribute: the attribute is
+    read at the bump's moved points too."""
+    t = Tree(name)
+    attr = t.node("ShaderNodeAttribute", attribute_name="PointColor")
+    bump = t.node("ShaderNodeBump", {"Strength": 1.0, "Distance": 0.3})
+    t.link(sock(attr.outputs, "Fac"), sock(bump.inputs, "Height"))
+    return t.show(t.absolute(sock(bump.outputs, "Normal")))
+
+
+def attribute_cases():
+    cases = [
+        ("colour attribute point float", _attribute_case("ShaderNodeVertexColor", "Color", layer_name="PointColor"),
+         _grid_object),
+        ("colour attribute corner byte", _attribute_case("ShaderNodeVertexColor", "Color",
+                                                         layer_name="CornerBytes"), _grid_object),
+        ("colour attribute render", _attribute_case("ShaderNodeVertexColor", "Color"), _grid_object),
+        ("colour attribute alpha", _attribute_case("ShaderNodeVertexColor", "Alpha", layer_name="PointColor"),
+         _grid_object),
+        ("colour attribute missing alpha", _attribute_case("ShaderNodeVertexColor", "Alpha", layer_name="Nope"),
+         _grid_object),
+        ("attribute colour fac", _attribute_case("ShaderNodeAttribute", "Fac", attribute_name="PointColor"),
+         _grid_object),
+        ("attribute colour alpha", _attribute_case("ShaderNodeAttribute", "Alpha", attribute_name="PointColor"),
+         _grid_object),
+        ("attribute face float", _attribute_case("ShaderNodeAttribute", "Color", attribute_name="FaceValue"),
+         _grid_object),
+        ("attribute point vector", _attribute_case("ShaderNodeAttribute", "Vector", attribute_name="PointVector"),
+         _grid_object),
+        ("attribute point vector fac", _attribute_case("ShaderNodeAttribute", "Fac", attribute_name="PointVector"),
+         _grid_object),
+        ("attribute second uv", _attribute_case("ShaderNodeAttribute", "Vector", attribute_name="Second"),
+         _grid_object),
+        ("attribute missing", _attribute_case("ShaderNodeAttribute", "Color", attribute_name="Nope"), _grid_object),
+        ("attribute missing alpha", _attribute_case("ShaderNodeAttribute", "Alpha", attribute_name="Nope"),
+         _grid_object),
+        ("attribute object colour", _attribute_case("ShaderNodeAttribute", "Color", attribute_type='OBJECT',
+                                                    attribute_name="tint"), _object_with_property((0.2, 0.7, 0.4))),
+        ("attribute object number", _attribute_case("ShaderNodeAttribute", "Color", attribute_type='OBJECT',
+                                                    attribute_name="tint"), _object_with_property(0.35)),
+        ("attribute object rna path", _attribute_case("ShaderNodeAttribute", "Vector", attribute_type='OBJECT',
+                                                      attribute_name="location", absolute=True),
+         _object_with_property(0.1)),
+        ("attribute object missing alpha", _attribute_case("ShaderNodeAttribute", "Alpha", attribute_type='OBJECT',
+                                                           attribute_name="nope"), _object_with_property(0.1)),
+        ("attribute view layer", _attribute_case("ShaderNodeAttribute", "Color", attribute_type='VIEW_LAYER',
+                                                 attribute_name="glow"), _view_layer_properties),
+        ("attribute view layer world fac", _attribute_case("ShaderNodeAttribute", "Fac",
+                                                           attribute_type='VIEW_LAYER', attribute_name="level"),
+         _view_layer_properties),
+        ("attribute view layer first", _attribute_case("ShaderNodeAttribute", "Color",
+                                                       attribute_type='VIEW_LAYER', attribute_name="shade"),
+         _view_layer_properties),
+        ("attribute view layer missing alpha", _attribute_case("ShaderNodeAttribute", "Alpha",
+                                                               attribute_type='VIEW_LAYER', attribute_name="nope"),
+         _view_layer_properties),
+        ("uv map second", _attribute_case("ShaderNodeUVMap", "UV", uv_map="Second"), _grid_object),
+        ("normal map and image on the second uv map", _normal_map("TANGENT", uv_map="Second"), _grid_object),
+        ("object coordinates of another object", _object_coordinates),
+        ("bump of an attribute", _bumped_by_attribute, _grid_object),
+        ("random per island", _attribute_case("ShaderNodeNewGeometry", "Random Per Island"), _islands),
+        ("pointiness", _attribute_case("ShaderNodeNewGeometry", "Pointiness"), _relief),
+        ("pointiness welded", _attribute_case("ShaderNodeNewGeometry", "Pointiness"), _relief_seams),
+        ("parametric", _attribute_case("ShaderNodeNewGeometry", "Parametric"), _shifted_grid),
+        # On a smooth mesh: on flat non-planar quads Phos shades with the
+        # quad's normal where Cycles takes each triangle's (mesh.py), and
+        # Tangent is made perpendicular to it.
+        ("tangent", _attribute_case("ShaderNodeNewGeometry", "Tangent", absolute=True), _smooth_sphere),
+    ]
+    return cases
+
+
+def test_attributes(addon, tmp_path):
+    check(render_grid(attribute_cases(), tmp_path, "attributes"))

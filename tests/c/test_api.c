@@ -9,6 +9,8 @@
 #include <time.h>
 
 #include "render/memory.h"
+#include "cache/fingerprint.h"
+#include "scene/scene.h"
 #include "test_scenes.h"
 #include "test_util.h"
 
@@ -61,6 +63,69 @@ static void test_null_handles(void)
     phos_scene *s = phos_scene_create();
     CHECK(phos_scene_add_mesh(s, NULL, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
     CHECK(contains(phos_scene_error(s), "NULL"));
+    phos_scene_destroy(s);
+}
+
+/* Mesh attributes: a known type, finite values, ids unique in the mesh,
+ * at most PHOS_MAX_MESH_ATTRIBUTES; each refusal names what is wrong. */
+static void test_bad_mesh_attributes(void)
+{
+    phos_scene *s = phos_scene_create();
+    float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    uint32_t idx[3] = {0, 1, 2};
+    float values[12] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 0.5f};
+    phos_mesh_attribute attrs[2] = {{3, PHOS_ATTRIBUTE_COLOR, values}, {4, PHOS_ATTRIBUTE_FLOAT, values}};
+    phos_mesh_desc md;
+    phos_mesh_desc_init(&md);
+    md.vertex_count = 3, md.positions = pos, md.triangle_count = 1, md.indices = idx;
+    md.attribute_count = 2;
+    md.attributes = NULL;
+    CHECK(phos_scene_add_mesh(s, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "attributes are NULL"), "%s", phos_scene_error(s));
+    md.attributes = attrs;
+    attrs[1].type = PHOS_ATTRIBUTE_TYPE_COUNT;
+    CHECK(phos_scene_add_mesh(s, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "unknown type"), "%s", phos_scene_error(s));
+    attrs[1].type = PHOS_ATTRIBUTE_FLOAT;
+    attrs[1].id = 3;
+    CHECK(phos_scene_add_mesh(s, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "same id 3"), "%s", phos_scene_error(s));
+    attrs[1].id = 4;
+    attrs[1].values = NULL;
+    CHECK(phos_scene_add_mesh(s, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "no values"), "%s", phos_scene_error(s));
+    attrs[1].values = values;
+    values[7] = INFINITY;
+    CHECK(phos_scene_add_mesh(s, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "finite"), "%s", phos_scene_error(s));
+    values[7] = 1.0f;
+    md.attribute_count = PHOS_MAX_MESH_ATTRIBUTES + 1;
+    CHECK(phos_scene_add_mesh(s, &md, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "at most"), "%s", phos_scene_error(s));
+    md.attribute_count = 2;
+    uint32_t id = 99;
+    CHECK(phos_scene_add_mesh(s, &md, &id) == PHOS_OK && id == 0);
+    values[0] = 7.0f; /* copied: the caller's array may change after the call */
+    CHECK(s->meshes[0].attribute_count == 2 && s->meshes[0].attributes[0].values[0] == 1.0f);
+
+    /* A saved cache's fingerprint sees the attributes: the same mesh with
+     * one value changed, or without them, is another scene. */
+    uint64_t with = scene_fingerprint_of(s).geometry;
+    phos_scene *t = phos_scene_create();
+    CHECK(phos_scene_add_mesh(t, &md, NULL) == PHOS_OK); /* values[0] is now 7 */
+    CHECK(scene_fingerprint_of(t).geometry != with);
+    phos_scene_destroy(t);
+    values[0] = 1.0f;
+    md.attribute_count = 0;
+    t = phos_scene_create();
+    CHECK(phos_scene_add_mesh(t, &md, NULL) == PHOS_OK);
+    CHECK(scene_fingerprint_of(t).geometry != with);
+    phos_scene_destroy(t);
+    md.attribute_count = 2;
+    t = phos_scene_create();
+    CHECK(phos_scene_add_mesh(t, &md, NULL) == PHOS_OK);
+    CHECK(scene_fingerprint_of(t).geometry == with);
+    phos_scene_destroy(t);
     phos_scene_destroy(s);
 }
 
@@ -643,6 +708,7 @@ int main(void)
     test_version_and_layout();
     test_null_handles();
     test_bad_meshes();
+    test_bad_mesh_attributes();
     test_bad_materials_lights_camera();
     test_lifecycle_errors();
     test_field_layout();

@@ -220,8 +220,145 @@ static void test_uv_emission_render(void)
     phos_scene_destroy(s);
 }
 
+/* The ATTRIBUTE op at a point of a triangle whose corners hold
+ * (1,0,0,0), (0,1,0,1), (0,0,1,0.5): barycentric interpolation, and each
+ * type's outputs (Cycles' Attribute node: Fac the mean of three numbers,
+ * a 2D attribute's first; Alpha a colour's fourth, else 1); a mesh
+ * without the id reads 0 with alpha 1. */
+static void test_attribute_op(void)
+{
+    float corners[12] = {1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 0.5f};
+    mesh_attribute attr = {5, PHOS_ATTRIBUTE_COLOR, corners};
+    mesh m;
+    memset(&m, 0, sizeof(m));
+    m.triangle_count = 1;
+    m.attribute_count = 1;
+    m.attributes = &attr;
+    shader_globals g;
+    memset(&g, 0, sizeof(g));
+    g.mesh = &m;
+    g.b1 = 0.2f, g.b2 = 0.3f; /* b0 = 0.5 */
+    phos_shader_instruction ins = instruction(PHOS_OP_ATTRIBUTE, 0);
+    ins.table = 5;
+    ins.outputs[0] = 0, ins.outputs[1] = 3, ins.outputs[2] = 6, ins.outputs[3] = 7;
+    shader_program p;
+    memset(&p, 0, sizeof(p));
+    p.register_count = 8;
+    p.instruction_count = 1;
+    p.instructions = &ins;
+    float r[8];
+    const float expect[4][4] = {/* color/vector x, y, z, fac, alpha by type FLOAT, FLOAT2, VECTOR, COLOR */
+                                {0.5f, 0.5f, 0.5f, 0.5f}, {0.5f, 0.2f, 0.0f, 0.5f},
+                                {0.5f, 0.2f, 0.3f, 1.0f / 3.0f}, {0.5f, 0.2f, 0.3f, 1.0f / 3.0f}};
+    const float alpha[4] = {1.0f, 1.0f, 1.0f, 0.2f + 0.15f};
+    for (uint32_t type = 0; type < PHOS_ATTRIBUTE_TYPE_COUNT; type++) {
+        attr.type = type;
+        shader_program_eval(&p, NULL, &g, r);
+        for (int k = 0; k < 3; k++) {
+            CHECK_MSG(fabsf(r[k] - expect[type][k]) < 1e-6f && r[3 + k] == r[k], "type %u component %d: %g",
+                      type, k, (double)r[k]);
+        }
+        CHECK_MSG(fabsf(r[6] - expect[type][3]) < 1e-6f, "type %u fac %g", type, (double)r[6]);
+        CHECK_MSG(fabsf(r[7] - alpha[type]) < 1e-6f, "type %u alpha %g", type, (double)r[7]);
+    }
+    ins.table = 6; /* another name: not on this mesh */
+    shader_program_eval(&p, NULL, &g, r);
+    CHECK(r[0] == 0.0f && r[1] == 0.0f && r[2] == 0.0f && r[6] == 0.0f && r[7] == 1.0f);
+    ins.flags = 1; /* the Color Attribute node's missing alpha */
+    shader_program_eval(&p, NULL, &g, r);
+    CHECK(r[0] == 0.0f && r[7] == 0.0f);
+    ins.flags = 0;
+    g.mesh = NULL; /* the globals of a program that does not read attributes */
+    ins.table = 5;
+    shader_program_eval(&p, NULL, &g, r);
+    CHECK(r[0] == 0.0f && r[7] == 1.0f);
+
+    /* At a Bump's moved points (modes 1, 2): the triangle (0,0,0), (1,0,0),
+     * (0,1,0) with steps of 0.1 along x and y moves b1, then b2, by
+     * 0.1; a FLOAT attribute of corners (0, 1, 0) reads b1. */
+    float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    uint32_t indices[3] = {0, 1, 2};
+    float b1_corners[12] = {0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0};
+    mesh_attribute b1_attr = {5, PHOS_ATTRIBUTE_FLOAT, b1_corners};
+    m.positions = positions, m.indices = indices, m.vertex_count = 3;
+    m.attributes = &b1_attr;
+    g.mesh = &m;
+    g.Ng = g.N = v3(0.0f, 0.0f, 1.0f);
+    g.dPdx = v3(0.1f, 0.0f, 0.0f); /* the footprint's steps, taken whole (filter width 1) */
+    g.dPdy = v3(0.0f, 0.1f, 0.0f);
+    ins.param[0] = 1.0f;
+    const float moved[3] = {0.2f, 0.3f, 0.2f}; /* b1 at the point, after dx, after dy */
+    for (uint32_t mode = 0; mode < 3; mode++) {
+        ins.mode = mode;
+        shader_program_eval(&p, NULL, &g, r);
+        CHECK_MSG(fabsf(r[6] - moved[mode]) < 1e-6f, "mode %u: %g", mode, (double)r[6]);
+    }
+}
+
+/* A quad whose corners carry a colour attribute equal to their UVs (and
+ * blue 0.25) renders, through ATTRIBUTE → emission, the same picture as
+ * test_uv_emission_render: the attribute reaches the render, interpolated
+ * per pixel, only for the program that reads it (its needs mask). */
+static void test_attribute_emission_render(void)
+{
+    phos_scene *s = phos_scene_create();
+    float pos[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+    uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    float colors[24] = {0, 0, 0.25f, 1, 1, 0, 0.25f, 1, 1, 1, 0.25f, 1,
+                        0, 0, 0.25f, 1, 1, 1, 0.25f, 1, 0, 1, 0.25f, 1};
+    phos_mesh_attribute attr = {2, PHOS_ATTRIBUTE_COLOR, colors};
+    phos_mesh_desc md;
+    phos_mesh_desc_init(&md);
+    md.vertex_count = 4, md.positions = pos, md.triangle_count = 2, md.indices = idx;
+    md.attribute_count = 1, md.attributes = &attr;
+    uint32_t mesh = 0;
+    CHECK(phos_scene_add_mesh(s, &md, &mesh) == PHOS_OK);
+
+    phos_closure_desc c = emission();
+    phos_shader_instruction ins = instruction(PHOS_OP_ATTRIBUTE, 0);
+    ins.table = 2;
+    ins.outputs[0] = 3;
+    phos_shader_binding bind = {0, PHOS_FIELD_WEIGHT, 3};
+    phos_shader_program_desc p;
+    memset(&p, 0, sizeof(p));
+    p.register_count = 6;
+    p.instructions = &ins;
+    p.instruction_count = 1;
+    p.bindings = &bind;
+    p.binding_count = 1;
+    uint32_t mat = 0;
+    CHECK(add(s, &c, &p, &mat) == PHOS_OK);
+    CHECK(s->materials[mat].has_program && (s->materials[mat].program.needs & SHADER_NEEDS_ATTRIBUTES));
+    test_add_instance(s, mesh, mat, 0.0f, 0.0f, 0.0f);
+    test_set_camera(s, 0.0f, 0.0f, 2.0f, 0.5f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 16;
+    rs.samples = 4;
+    rs.filter_width = 0.01f;
+    float *img = test_render(s, &rs);
+    CHECK(img != NULL);
+    if (img) {
+        double worst = 0.0;
+        for (int y = 0; y < 16; y++)
+            for (int x = 0; x < 16; x++) {
+                const float *px = img + 4 * (y * 16 + x);
+                worst = fmax(worst, fabs(px[0] - (x + 0.5) / 16.0));
+                worst = fmax(worst, fabs(px[1] - (y + 0.5) / 16.0));
+                worst = fmax(worst, fabs(px[2] - 0.25));
+            }
+        CHECK_MSG(worst < 2e-3, "a pixel differs from its corner colours' interpolation by %g", worst);
+        free(img);
+    }
+    phos_scene_destroy(s);
+}
+
 int main(void)
 {
+    test_attribute_op();
+    test_attribute_emission_render();
     test_refusals();
     test_folding();
     test_uv_emission_render();

@@ -240,12 +240,34 @@ static void fuzz_materials(reader *r, phos_scene *s)
 
 #define MAX_VERTICES 24
 #define MAX_TRIANGLES 24
+#define MAX_ATTRIBUTES 3
+
+/* Extras bit 32: up to MAX_ATTRIBUTES attributes, each an id among a few
+ * (so duplicates occur), a type one past the known ones at times, values
+ * or NULL; a count byte with its top bit set claims more attributes than
+ * the core allows (the core must refuse before reading the array). */
+static uint32_t take_attributes(reader *r, uint32_t triangle_count, phos_mesh_attribute *attrs,
+                                float values[MAX_ATTRIBUTES][12 * MAX_TRIANGLES])
+{
+    uint8_t count_byte = take_u8(r);
+    uint32_t n = count_byte % (MAX_ATTRIBUTES + 1);
+    for (uint32_t k = 0; k < n; k++) {
+        attrs[k].id = take_u8(r) % 4;
+        uint8_t type = take_u8(r);
+        attrs[k].type = type % (PHOS_ATTRIBUTE_TYPE_COUNT + 1);
+        take_floats(r, values[k], 12 * triangle_count);
+        attrs[k].values = (type & 0x80) ? NULL : values[k];
+    }
+    return (count_byte & 0x80) ? PHOS_MAX_MESH_ATTRIBUTES + 1 : n;
+}
 
 static void fuzz_meshes(reader *r, phos_scene *s)
 {
     uint32_t n = take_u8(r) % 4;
     for (uint32_t i = 0; i < n; i++) {
         float pos[3 * MAX_VERTICES], nrm[9 * MAX_TRIANGLES], uv[6 * MAX_TRIANGLES];
+        float attr_values[MAX_ATTRIBUTES][12 * MAX_TRIANGLES];
+        phos_mesh_attribute attrs[MAX_ATTRIBUTES];
         uint32_t idx[3 * MAX_TRIANGLES], slots[MAX_TRIANGLES];
         phos_mesh_desc d;
         phos_mesh_desc_init(&d);
@@ -267,6 +289,10 @@ static void fuzz_meshes(reader *r, phos_scene *s)
         d.normals = (extras & 1) ? nrm : NULL;
         d.uvs = (extras & 2) ? uv : NULL;
         d.material_slots = (extras & 4) ? slots : NULL;
+        if (extras & 32) {
+            d.attribute_count = take_attributes(r, d.triangle_count, attrs, attr_values);
+            d.attributes = attrs;
+        }
         uint32_t id;
         phos_status st = phos_scene_add_mesh(s, &d, &id);
         SAY("mesh %u×%u: %s %s\n", d.vertex_count, d.triangle_count, phos_status_string(st), phos_scene_error(s));

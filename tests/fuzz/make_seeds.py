@@ -140,7 +140,8 @@ def noise_program(s):
     s.u8(0), s.u8(0), s.u8(19)
 
 
-def mesh(s, positions, tris, slots=None):
+def mesh(s, positions, tris, slots=None, attributes=None):
+    """attributes: (id, type, 12 floats per triangle) each (fuzz_api.c, take_attributes)."""
     s.u8(len(positions))
     s.u8(len(tris))
     for p in positions:
@@ -148,10 +149,16 @@ def mesh(s, positions, tris, slots=None):
     for t in tris:
         for i in t:
             s.u8(i)
-    s.u8(4 if slots else 0)
+    s.u8((4 if slots else 0) | (32 if attributes is not None else 0))
     if slots:
         for k in slots:
             s.u8(k)
+    if attributes is not None:
+        s.u8(len(attributes))
+        for attr_id, kind, values in attributes:
+            s.u8(attr_id)
+            s.u8(kind)
+            s.fs(values)
 
 
 def instance(s, mesh_id, mats, transform=None):
@@ -303,6 +310,13 @@ SEEDS = {
     "bad_material_slots": scene(meshes=[(BOX, BOX_TRIS, [5] * 12)], renders=[(PHOTON, 0)]),
     "bad_mesh_id": scene(instances=[(4, [0])]),
     "empty_mesh": scene(meshes=[([], [], None)], renders=[(PHOTON, 0)]),
+    # Per-corner attributes: a colour and a float, valid; then a duplicate id
+    # and, after a valid one, a non-finite value, each refused.
+    "mesh_attributes": scene(meshes=[(BOX, BOX_TRIS, None, [(1, 3, [0.5, 0.25, 1, 1] * 36),
+                                                            (2, 0, [0.125] * 144)]),
+                                     (BOX, BOX_TRIS, None, [(1, 0, [0] * 144), (1, 2, [0] * 144)]),
+                                     (BOX, BOX_TRIS, None, [(1, 1, ["nan"] + [0] * 143), (0, 0x80, [0] * 144)])],
+                             instances=[(0, [0])]),
     "no_geometry": scene(meshes=[], instances=[], renders=[(PHOTON, 0)]),
     "zero_light_power": scene(lights=[{"color": (0, 0, 0)}], renders=[(PHOTON, 0)]),
     "negative_light_power": scene(lights=[{"color": (-10, 10, 10)}]),

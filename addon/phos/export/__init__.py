@@ -55,6 +55,7 @@ def export_scene(depsgraph, core_scene, camera_object, camera_matrix, is_preview
     Raises core.PhosError if the core rejects something.
     """
     ctx = ExportContext(depsgraph.scene, core_scene, is_preview)
+    ctx.view_layer = depsgraph.view_layer
     _check_render_settings(ctx)
     camera.export_camera(camera_object, camera_matrix, ctx)
     world.export_world(ctx)

@@ -24,6 +24,9 @@ class ExportContext:
         self.materials = {}                 # material pointer → material id
         self.images = {}                    # image pointer → image id or None
         self.tangents_wanted = False        # a material reads tangents (a Normal Map in tangent space)
+        self.view_layer = None              # the view layer rendered (its properties: Attribute nodes)
+        self.attribute_ids = {}             # attribute key → the number programs read it by (mesh_attributes.py)
+        self.material_attributes = {}       # material id → the attribute keys its program reads
         self.image_pixels = {}              # image pointer → (pixels, width, height) or None
         self.default_material = None        # id of the grey default, added on first use
         self.world_emits = False            # the world's colour is not black

@@ -20,7 +20,8 @@ import time
 import numpy as np
 
 from .. import core
-from . import light, material, mesh
+from . import light, material, mesh, mesh_attributes
+from .hashing import hash_uint2
 
 # How often (wall time, s) the export asks `cancelled` and reports progress.
 # Counted over every depsgraph instance, not over objects: one object can
@@ -40,27 +41,6 @@ _VISIBILITY = ("visible_camera", "visible_diffuse", "visible_glossy", "visible_t
                "visible_shadow")
 
 
-def _hash_uint2(kx, ky):
-    """Bob Jenkins' lookup3 hash of two words (its final mix), as Cycles'
-    hash_uint2."""
-    m = 0xFFFFFFFF
-
-    def rot(x, k):
-        return ((x << k) | (x >> (32 - k))) & m
-
-    a = b = c = (0xDEADBEEF + (2 << 2) + 13) & m
-    b = (b + ky) & m
-    a = (a + kx) & m
-    c ^= b; c = (c - rot(b, 14)) & m
-    a ^= c; a = (a - rot(c, 11)) & m
-    b ^= a; b = (b - rot(a, 25)) & m
-    c ^= b; c = (c - rot(b, 16)) & m
-    a ^= c; a = (a - rot(c, 4)) & m
-    b ^= a; b = (b - rot(a, 14)) & m
-    c ^= b; c = (c - rot(b, 24)) & m
-    return c
-
-
 def _hash_string(text):
     h = 0
     for ch in text.encode("utf-8"):
@@ -71,7 +51,7 @@ def _hash_string(text):
 def object_random(inst, ob):
     """Object Info's Random as Cycles computes it: an instance's random id,
     or for an object itself the hash of its name, over 2^32 − 1."""
-    rid = inst.random_id & 0xFFFFFFFF if inst.is_instance else _hash_uint2(_hash_string(ob.name), 0)
+    rid = inst.random_id & 0xFFFFFFFF if inst.is_instance else hash_uint2(_hash_string(ob.name), 0)
     return float(np.float32(rid * (1.0 / 0xFFFFFFFF)))
 
 
@@ -91,6 +71,14 @@ def _materials(ob, ctx):
     """Core material ids per material slot (respecting Object/Data links)."""
     ids = [material.add_material(slot.material, ctx) for slot in ob.material_slots]
     return ids or [material.default_material(ctx)]
+
+
+def _attribute_keys(material_ids, ctx):
+    """The mesh attributes the materials read (mesh_attributes.py)."""
+    keys = set()
+    for mat_id in material_ids:
+        keys |= ctx.material_attributes.get(mat_id, frozenset())
+    return keys
 
 
 def export_instances(depsgraph, ctx, progress=None, cancelled=None):
@@ -137,17 +125,26 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
             ctx.warn("Phos: object '%s': its transform is not finite (NaN/Inf); skipped" % ob.name)
             continue
 
+        # Materials first: the mesh exports the attributes they read.
         key = ob.data.as_pointer()
-        if key not in ctx.meshes:
-            ctx.meshes[key] = mesh.add_mesh(ob, ctx)
-        mesh_id = ctx.meshes[key]
-        if mesh_id is None:
-            continue
-
         mat_key = (ob.original.as_pointer(), key)
         mats = material_lists.get(mat_key)
         if mats is None:
             mats = material_lists[mat_key] = _materials(ob, ctx)
+        attribute_keys = _attribute_keys(mats, ctx)
+        if attribute_keys:
+            # Objects sharing mesh data share a core mesh when their
+            # materials read the same attributes (object-linked materials may
+            # not), and Object attributes, constants of each object, agree.
+            object_keys = sorted(k for k in attribute_keys if k[0] == "object")
+            key = (key, frozenset(attribute_keys),
+                   tuple(mesh_attributes.object_rgba(ob, k[1]) for k in object_keys))
+        if key not in ctx.meshes:
+            ctx.meshes[key] = mesh.add_mesh(ob, ctx, attribute_keys)
+        mesh_id = ctx.meshes[key]
+        if mesh_id is None:
+            continue
+
         try:
             random = object_random(inst, ob)
             ctx.core.add_instance(mesh_id, core.matrix_to_3x4(matrix), mats, random=random,

@@ -810,6 +810,7 @@ def add_material(mat, ctx):
     except core.PhosError as ex:
         raise core.PhosError("material '%s': %s" % (mat.name, ex), ex.status) from None
     ctx.materials[key] = mat_id
+    ctx.material_attributes[mat_id] = frozenset(program.attributes)
     ctx.stats["materials"] += 1
     if any(c.type == core.PHOS_CLOSURE_EMISSION for c in closures):
         ctx.stats["emissive_materials"] += 1

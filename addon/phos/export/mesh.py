@@ -24,6 +24,7 @@ import math
 import numpy as np
 
 from .. import core
+from . import mesh_attributes
 
 # A triangle is degenerate when |e1 × e2| ≤ DEGENERATE_SINE · |e1| · |e2|,
 # e1 and e2 its edges from the first corner, computed in float64 from the
@@ -200,11 +201,12 @@ def _degenerate(p, tri):
     return degenerate
 
 
-def _drop_broken(name, positions, indices, normals, uvs, slots, ctx, tangents=None):
+def _drop_broken(name, positions, indices, normals, uvs, slots, ctx, tangents=None, attributes=()):
     """Drop triangles with a non-finite vertex and degenerate ones; repair the rest.
 
     Arrays are flat (positions V*3, indices T*3, normals T*9, uvs T*6 or None,
-    slots T). Returns them, possibly filtered (T may become 0), after one
+    slots T; tangents T*12 or None; attributes (id, type, T*12) each).
+    Returns them, possibly filtered (T may become 0), after one
     warning naming the object and the counts. Vertices that are not finite
     are set to 0 (no triangle uses them any more, and the core refuses
     them); non-finite normals of the triangles kept become the triangle's
@@ -241,6 +243,8 @@ def _drop_broken(name, positions, indices, normals, uvs, slots, ctx, tangents=No
             uvs = np.ascontiguousarray(uvs.reshape(-1, 6)[keep]).reshape(-1)
         if tangents is not None:
             tangents = np.ascontiguousarray(tangents.reshape(-1, 12)[keep]).reshape(-1)
+        attributes = [(i, kind, np.ascontiguousarray(values.reshape(-1, 12)[keep]).reshape(-1))
+                      for i, kind, values in attributes]
         if slots is not None:
             slots = slots[keep]
         if bad_vertex is not None:
@@ -261,7 +265,9 @@ def _drop_broken(name, positions, indices, normals, uvs, slots, ctx, tangents=No
         uvs[~np.isfinite(uvs)] = 0.0
     if tangents is not None and not np.isfinite(tangents).all():
         tangents[~np.isfinite(tangents)] = 0.0
-    return positions, indices, normals, uvs, slots, tangents
+    for _, _, values in attributes:
+        values[~np.isfinite(values)] = 0.0
+    return positions, indices, normals, uvs, slots, tangents, attributes
 
 
 def _texture_space(me):
@@ -316,13 +322,14 @@ def _corner_tangents(me, ob, uv_layer, corners, ctx):
     return np.ascontiguousarray(loops[corners].reshape(-1))
 
 
-def read_mesh(ob, ctx):
+def read_mesh(ob, ctx, attribute_keys=()):
     """Triangle arrays of an evaluated object, or None if it has no triangles.
 
     Returns a dict with positions (V*3 float32), indices (T*3 uint32),
     normals (T*9 float32: per-corner split normals, which are the face normal
     on flat-shaded faces and the smoothed/custom normal elsewhere), uvs
-    (T*6 float32 or None) and material_slots (T uint32 or None).
+    (T*6 float32 or None), material_slots (T uint32 or None) and the
+    attributes of `attribute_keys` that the mesh has (mesh_attributes.py).
     """
     try:
         me = ob.to_mesh()
@@ -349,7 +356,7 @@ def read_mesh(ob, ctx):
         polys = me.polygons
         smooth = _foreach(polys, "use_smooth", len(polys), bool)
         corners = loop_vertices = None
-        if uv_layer is not None or smooth.any():
+        if uv_layer is not None or smooth.any() or attribute_keys:
             # Triangle corners as loops, then loops → vertices: faster than
             # the triangles' own "vertices" (3 ints per item through RNA),
             # and the loops are needed for UVs and smooth normals anyway.
@@ -373,8 +380,16 @@ def read_mesh(ob, ctx):
             if _reads_tangents(ob):
                 tangents = _corner_tangents(me, ob, uv_layer, corners, ctx)
 
-        positions, indices, normals, uvs, slots, tangents = _drop_broken(
-            ob.name, positions, indices, normals, uvs, slots, ctx, tangents)
+        attributes = []
+        if attribute_keys:
+            tri_faces = _foreach(tris, "polygon_index", triangle_count, np.int64)
+            topo = mesh_attributes.Topology(me, corners, loop_vertices, tri_faces)
+            vertex_normals = _foreach(me.vertices, "normal", vertex_count * 3, np.float32).reshape(-1, 3)
+            attributes = mesh_attributes.read_attributes(ob, topo, attribute_keys, positions, vertex_normals,
+                                                         ctx)
+
+        positions, indices, normals, uvs, slots, tangents, attributes = _drop_broken(
+            ob.name, positions, indices, normals, uvs, slots, ctx, tangents, attributes)
         if indices.size == 0:
             return None
 
@@ -384,6 +399,7 @@ def read_mesh(ob, ctx):
             "normals": normals,
             "uvs": uvs,
             "tangents": tangents,
+            "attributes": attributes,
             "texspace": _texture_space(me),
             # Material slot 0 everywhere is the core's default: skip the array then.
             "material_slots": slots.view(np.uint32) if slots.any() else None,
@@ -392,9 +408,10 @@ def read_mesh(ob, ctx):
         ob.to_mesh_clear()
 
 
-def add_mesh(ob, ctx):
-    """Add the evaluated object's geometry to the core scene; the mesh id or None."""
-    arrays = read_mesh(ob, ctx)
+def add_mesh(ob, ctx, attribute_keys=()):
+    """Add the evaluated object's geometry to the core scene, with the
+    attributes its materials read; the mesh id or None."""
+    arrays = read_mesh(ob, ctx, attribute_keys)
     if arrays is None:
         return None
     try:

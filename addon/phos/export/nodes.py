@@ -24,6 +24,7 @@ import math
 import numpy as np
 
 from .. import core
+from .mesh_attributes import attribute_id
 from .program import Value, constant, is_const
 
 _GENERATED, _NORMAL, _UV, _OBJECT, _CAMERA = range(5)
@@ -145,6 +146,21 @@ class NodeCompiler:
 
     def normal(self):
         return self.p.emit(core.PHOS_OP_GEOMETRY, [], [3, 3, 3, 3, 1])[1]
+
+    def attribute(self, key, flags=0):
+        """Color, Vector, Fac and Alpha of a mesh attribute (mesh_attributes.py),
+        at the point or at a Bump's moved point;
+        the program remembers the key, so the meshes of its material export it.
+        flags 1: a missing attribute's alpha is 0 (the Color Attribute node)."""
+        self.p.attributes.add(key)
+        return self.p.emit(core.PHOS_OP_ATTRIBUTE, [], [3, 3, 1, 1], mode=self.bump, flags=flags,
+                           table=attribute_id(self.ctx, key), param=(self.bump_width if self.bump else 0.0,))
+
+    def vector_math(self, operation, a, b=None):
+        """The vector output of a Vector Math operation on Values."""
+        zero = constant((0.0, 0.0, 0.0))
+        return self.p.emit(core.PHOS_OP_VECTOR_MATH, [a, zero if b is None else b, zero, constant(1.0)], [3, 1],
+                           mode=getattr(core, "PHOS_VECTOR_MATH_" + operation), flags=self.version_flags())[0]
 
     def mode(self, node, prefix, identifier):
         """The core enum of a node setting (PHOS_<prefix><identifier>), or 0
@@ -528,30 +544,109 @@ def _tex_gradient(nc, node, stack):
 
 # --------------------------------------------------------------------- inputs
 
+def _affine(nc, matrix, point):
+    """A constant affine map of a point Value: rows of the 3x4 matrix as dot
+    products, then the translation."""
+    rows = [nc.p.emit(core.PHOS_OP_VECTOR_MATH, [point, constant(tuple(matrix[r][:3])), constant((0.0,) * 3),
+                                                 constant(1.0)], [3, 1], mode=core.PHOS_VECTOR_MATH_DOT_PRODUCT,
+                      flags=nc.version_flags())[1] for r in range(3)]
+    combined = nc.p.emit(core.PHOS_OP_COMBINE_XYZ, rows, [3])[0]
+    return combined + constant(tuple(matrix[r][3] for r in range(3)))
+
+
 def _tex_coord(nc, node, stack):
-    if getattr(node, "object", None) is not None:
-        nc.walker.note(node, "coordinates from another object are not supported; its own are used")
     (gen, normal, uv, obj, cam), pos = nc.coordinates()
+    other = getattr(node, "object", None)
+    if other is not None:
+        # Cycles: the world position in the named object's space (its
+        # inverse world matrix, a constant of the render).
+        inverse = other.matrix_world.inverted_safe()
+        obj = _affine(nc, [list(inverse[r]) for r in range(3)], pos)
+    if getattr(node, "from_instancer", False):
+        nc.walker.note(node, "'From Instancer' is not supported; the instance's own coordinates are used")
     window, reflection = nc.p.emit(core.PHOS_OP_TEXTURE_COORDINATE, [], [3, 3], mode=1)
     return {"Generated": gen, "Normal": normal, "UV": uv, "Object": obj, "Camera": cam, "Window": window,
             "Reflection": reflection}
 
 
 def _uv_map(nc, node, stack):
-    if getattr(node, "uv_map", ""):
-        nc.walker.note(node, "UV map '%s' is read as the active render UV map" % node.uv_map)
-    return {"UV": nc.uv()}
+    if getattr(node, "from_instancer", False):
+        nc.walker.note(node, "'From Instancer' is not supported; the mesh's own UV map is used")
+    name = getattr(node, "uv_map", "")
+    if not name:
+        return {"UV": nc.uv()}
+    return {"UV": nc.attribute(("name", name))[1]}
+
+
+def _rgba_outputs(rgba):
+    """The Attribute node's outputs of a constant RGBA, as Cycles converts a
+    colour: Fac the mean of RGB, Alpha the fourth number."""
+    rgb = constant(rgba[:3])
+    return {"Color": rgb, "Vector": rgb, "Fac": constant(sum(rgba[:3]) / 3.0), "Alpha": constant(rgba[3])}
+
+
+def _attribute(nc, node, stack):
+    """The Attribute node: Geometry attributes by name, Object properties
+    (a constant mesh attribute per object), View Layer properties (a
+    constant of the render); Instancer ones read the object's, with a
+    warning."""
+    kind = getattr(node, "attribute_type", 'GEOMETRY')
+    name = node.attribute_name
+    if not name:
+        return _rgba_outputs((0.0, 0.0, 0.0, 1.0))
+    if kind == 'VIEW_LAYER':
+        from .mesh_attributes import view_layer_rgba
+        value = view_layer_rgba(nc.ctx, name)
+        if value is None:
+            nc.walker.note(node, "no view layer, scene or world property '%s'; it reads 0" % name)
+            value = (0.0, 0.0, 0.0, 0.0)
+        return _rgba_outputs(value)
+    if kind in {'OBJECT', 'INSTANCER'}:
+        if kind == 'INSTANCER':
+            nc.walker.note(node, "instancer attributes are read from the instanced object itself")
+        key = ("object", name)
+    else:
+        key = ("name", name)
+    color, vector, fac, alpha = nc.attribute(key)
+    return {"Color": color, "Vector": vector, "Fac": fac, "Alpha": alpha}
+
+
+def _vertex_color(nc, node, stack):
+    """The Color Attribute node: a colour attribute by name, or the one
+    marked for rendering; a mesh without it reads black, alpha 0 (Cycles)."""
+    name = getattr(node, "layer_name", "")
+    color, _, _, alpha = nc.attribute(("name", name) if name else ("render_color",), flags=1)
+    return {"Color": color, "Alpha": alpha}
+
+
+def _generated_tangent(nc, normal):
+    """Geometry's Tangent as Cycles makes it on a mesh: the direction around
+    the texture space's Z axis, d = (½ − generated.y, generated.x − ½, 0)
+    taken to world space as a normal is, made perpendicular to the shading
+    normal: N × normalize(d × N)."""
+    g = _separate(nc, nc.generated(), ("x", "y", "z"))
+    d = nc.p.emit(core.PHOS_OP_COMBINE_XYZ, [0.5 - g["y"], g["x"] - 0.5, constant(0.0)], [3])[0]
+    world = core.PHOS_SPACE_OBJECT | (core.PHOS_SPACE_WORLD << 4)
+    d = nc.p.emit(core.PHOS_OP_VECTOR_TRANSFORM, [d], [3], mode=core.PHOS_VECTOR_TRANSFORM_NORMAL, flags=world)[0]
+    side = nc.vector_math("NORMALIZE", nc.vector_math("CROSS_PRODUCT", d, normal))
+    return nc.vector_math("CROSS_PRODUCT", normal, side)
 
 
 def _geometry(nc, node, stack):
     coords, pos = nc.coordinates()
     _, normal, true_normal, incoming, backfacing = nc.p.emit(core.PHOS_OP_GEOMETRY, [], [3, 3, 3, 3, 1])
+    out = {"Position": pos, "Normal": normal, "True Normal": true_normal, "Incoming": incoming,
+           "Backfacing": backfacing}
     linked = {s.identifier for s in node.outputs if s.is_linked}
-    unsupported = linked - {"Position", "Normal", "True Normal", "Incoming", "Backfacing"}
-    if unsupported:
-        nc.walker.note(node, "outputs %s are not supported; 0 is used" % ", ".join(sorted(unsupported)))
-    return {"Position": pos, "Normal": normal, "True Normal": true_normal, "Incoming": incoming,
-            "Backfacing": backfacing}
+    if "Pointiness" in linked:
+        out["Pointiness"] = nc.attribute(("pointiness",))[2]
+    if "Random Per Island" in linked:
+        out["Random Per Island"] = nc.attribute(("random_per_island",))[2]
+    if "Parametric" in linked:
+        out["Parametric"] = nc.attribute(("parametric",))[1]
+    if "Tangent" in linked:
+        out["Tangent"] = _generated_tangent(nc, normal)
+    return out
 
 
 def _object_info(nc, node, stack):
@@ -622,7 +717,15 @@ def _normal_map(nc, node, stack):
         nc.ctx.tangents_wanted = True
     ins = [nc.input(node, "Strength", 1, stack), nc.input(node, "Color", 3, stack)]
     flags = 1 if nc.ctx.at_least(4, 0) else 0  # where Strength applies (phos.h)
-    return {"Normal": nc.p.emit(core.PHOS_OP_NORMAL_MAP, ins, [3], mode=mode, flags=flags)[0]}
+    table = 0
+    uv_map = getattr(node, "uv_map", "")
+    if mode == core.PHOS_NORMAL_MAP_TANGENT and uv_map:
+        # Another UV map's tangents come as a mesh attribute (phos.h, flags 2).
+        key = ("tangent", uv_map)
+        nc.p.attributes.add(key)
+        flags |= 2
+        table = attribute_id(nc.ctx, key)
+    return {"Normal": nc.p.emit(core.PHOS_OP_NORMAL_MAP, ins, [3], mode=mode, flags=flags, table=table)[0]}
 
 
 def _bump_filter_width(nc, node):
@@ -708,6 +811,8 @@ _HANDLERS = {
     'ShaderNodeTexGradient': _tex_gradient,
     'ShaderNodeTexCoord': _tex_coord,
     'ShaderNodeUVMap': _uv_map,
+    'ShaderNodeAttribute': _attribute,
+    'ShaderNodeVertexColor': _vertex_color,
     'ShaderNodeNewGeometry': _geometry,
     'ShaderNodeObjectInfo': _object_info,
     'ShaderNodeFresnel': _fresnel,

@@ -132,6 +132,7 @@ class Program:
         self.table = []              # floats
         self.bindings = []           # (closure, field, ref)
         self.memo = {}               # (op, mode, flags, table, param, inputs) → outputs
+        self.attributes = set()      # the mesh attributes' keys it reads (mesh_attributes.py)
         self._keep = None
 
     # ----------------------------------------------------------- registers

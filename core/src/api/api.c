@@ -348,6 +348,53 @@ static void *copy_array(const void *src, size_t bytes)
     return p;
 }
 
+/* Why a mesh's attributes are refused, or NULL: at most
+ * PHOS_MAX_MESH_ATTRIBUTES, each of a known type, with finite values and an
+ * id no other attribute of the mesh has (an instruction reads one). */
+static const char *mesh_attributes_invalid(const phos_mesh_desc *d, char *msg, size_t n)
+{
+    if (d->attribute_count > PHOS_MAX_MESH_ATTRIBUTES)
+        return (snprintf(msg, n, "%u attributes, at most %d", d->attribute_count, PHOS_MAX_MESH_ATTRIBUTES), msg);
+    if (d->attribute_count && !d->attributes)
+        return "attributes are NULL";
+    size_t floats = 12 * (size_t)d->triangle_count;
+    for (uint32_t k = 0; k < d->attribute_count; k++) {
+        const phos_mesh_attribute *a = &d->attributes[k];
+        if (a->type >= PHOS_ATTRIBUTE_TYPE_COUNT)
+            return (snprintf(msg, n, "attribute %u has unknown type %u", k, a->type), msg);
+        if (floats && !a->values)
+            return (snprintf(msg, n, "attribute %u has no values", k), msg);
+        if (floats && !all_finite(a->values, floats))
+            return (snprintf(msg, n, "attribute %u (id %u) must be finite", k, a->id), msg);
+        for (uint32_t j = 0; j < k; j++)
+            if (d->attributes[j].id == a->id)
+                return (snprintf(msg, n, "attributes %u and %u have the same id %u", j, k, a->id), msg);
+    }
+    return NULL;
+}
+
+/* Copies the desc's attributes into the mesh; 0 when memory runs out
+ * (what was copied is the mesh's, for mesh_free). */
+static int mesh_copy_attributes(mesh *m, const phos_mesh_desc *d)
+{
+    if (!d->attribute_count)
+        return 1;
+    m->attributes = calloc(d->attribute_count, sizeof(mesh_attribute));
+    if (!m->attributes)
+        return 0;
+    size_t bytes = sizeof(float) * 12 * (size_t)d->triangle_count;
+    for (uint32_t k = 0; k < d->attribute_count; k++) {
+        mesh_attribute *a = &m->attributes[m->attribute_count];
+        a->id = d->attributes[k].id;
+        a->type = d->attributes[k].type;
+        a->values = copy_array(d->attributes[k].values, bytes);
+        if (!a->values)
+            return 0;
+        m->attribute_count++;
+    }
+    return 1;
+}
+
 phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t *out_id)
 {
     CHECK_EDITABLE(s, "phos_scene_add_mesh", d);
@@ -374,6 +421,10 @@ phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: tangents must be finite");
     if (!all_finite(d->texspace_location, 3) || !all_finite_nonnegative(d->texspace_size, 3))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: the texture space must be finite, its size >= 0");
+    char msg[160];
+    const char *bad_attribute = mesh_attributes_invalid(d, msg, sizeof(msg));
+    if (bad_attribute)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: %s", bad_attribute);
     if (!grow((void **)&s->meshes, s->mesh_count, &s->mesh_capacity, sizeof(mesh)))
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "mesh: out of memory");
     mesh m;
@@ -388,14 +439,10 @@ phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t
     m.tangents = d->tangents ? copy_array(d->tangents, sizeof(float) * 12 * nt) : NULL;
     memcpy(m.texspace_location, d->texspace_location, sizeof(m.texspace_location));
     memcpy(m.texspace_size, d->texspace_size, sizeof(m.texspace_size));
+    int attributes_copied = mesh_copy_attributes(&m, d);
     if (!m.positions || !m.indices || (d->normals && !m.normals) || (d->uvs && !m.uvs) ||
-        (d->material_slots && !m.slots) || (d->tangents && !m.tangents)) {
-        free(m.positions);
-        free(m.indices);
-        free(m.normals);
-        free(m.uvs);
-        free(m.slots);
-        free(m.tangents);
+        (d->material_slots && !m.slots) || (d->tangents && !m.tangents) || !attributes_copied) {
+        mesh_free(&m);
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "mesh: out of memory for %u triangles", d->triangle_count);
     }
     s->meshes[s->mesh_count] = m;

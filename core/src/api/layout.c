@@ -43,10 +43,11 @@ static const layout_field fields[] = {
     FIELD(phos_shader_program_desc, table) FIELD(phos_shader_program_desc, binding_count)
     FIELD(phos_shader_program_desc, bindings)
 
+    FIELD(phos_mesh_attribute, id) FIELD(phos_mesh_attribute, type) FIELD(phos_mesh_attribute, values)
     FIELD(phos_mesh_desc, vertex_count) FIELD(phos_mesh_desc, positions) FIELD(phos_mesh_desc, triangle_count)
     FIELD(phos_mesh_desc, indices) FIELD(phos_mesh_desc, normals) FIELD(phos_mesh_desc, uvs)
     FIELD(phos_mesh_desc, material_slots) FIELD(phos_mesh_desc, tangents) FIELD(phos_mesh_desc, texspace_location)
-    FIELD(phos_mesh_desc, texspace_size)
+    FIELD(phos_mesh_desc, texspace_size) FIELD(phos_mesh_desc, attribute_count) FIELD(phos_mesh_desc, attributes)
 
     FIELD(phos_instance_desc, mesh_id) FIELD(phos_instance_desc, transform)
     FIELD(phos_instance_desc, material_count) FIELD(phos_instance_desc, materials)
@@ -90,6 +91,7 @@ static const struct {
     {"phos_shader_instruction", sizeof(phos_shader_instruction)},
     {"phos_shader_binding", sizeof(phos_shader_binding)},
     {"phos_shader_program_desc", sizeof(phos_shader_program_desc)},
+    {"phos_mesh_attribute", sizeof(phos_mesh_attribute)},
     {"phos_mesh_desc", sizeof(phos_mesh_desc)},
     {"phos_instance_desc", sizeof(phos_instance_desc)},
     {"phos_light_desc", sizeof(phos_light_desc)},

@@ -81,6 +81,12 @@ scene_fingerprint scene_fingerprint_of(const scene *s)
         f.geometry = hash_array(f.geometry, m->tangents, 12 * (size_t)m->triangle_count);
         f.geometry = hash_words(f.geometry, m->texspace_location, 3);
         f.geometry = hash_words(f.geometry, m->texspace_size, 3);
+        f.geometry = hash_u32(f.geometry, m->attribute_count);
+        for (uint32_t k = 0; k < m->attribute_count; k++) {
+            const mesh_attribute *a = &m->attributes[k];
+            f.geometry = hash_u32(hash_u32(f.geometry, a->id), a->type);
+            f.geometry = hash_words(f.geometry, a->values, 12 * (size_t)m->triangle_count);
+        }
     }
     for (uint32_t i = 0; i < s->instance_count; i++) {
         const instance *in = &s->instances[i];

@@ -5,7 +5,14 @@
 #ifndef PHOS_GEOMETRY_H
 #define PHOS_GEOMETRY_H
 
+#include <stddef.h>
 #include <stdint.h>
+
+/* A per-corner attribute (phos.h, phos_mesh_attribute). */
+typedef struct mesh_attribute {
+    uint32_t id, type;          /* the number programs read it by; enum phos_attribute_type */
+    float *values;              /* triangle_count*12: 4 floats per corner */
+} mesh_attribute;
 
 typedef struct mesh {
     uint32_t vertex_count, triangle_count;
@@ -16,7 +23,20 @@ typedef struct mesh {
     uint32_t *slots;            /* triangle_count, or NULL */
     float *tangents;            /* triangle_count*12 per-corner MikkTSpace (tangent xyz, sign), or NULL */
     float texspace_location[3], texspace_size[3]; /* the texture space Generated coordinates map to [0,1]³ */
+    uint32_t attribute_count;
+    mesh_attribute *attributes;
 } mesh;
+
+/* The mesh's attribute of that id, or NULL. */
+static inline const mesh_attribute *mesh_find_attribute(const mesh *m, uint32_t id)
+{
+    for (uint32_t k = 0; k < m->attribute_count; k++)
+        if (m->attributes[k].id == id)
+            return &m->attributes[k];
+    return NULL;
+}
+
+void mesh_free(mesh *m);
 
 typedef struct instance {
     uint32_t mesh_id;

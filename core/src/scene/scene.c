@@ -180,16 +180,24 @@ void scene_prepare(scene *s)
     s->bump_offset = 1e-4f * fmaxf(v3_length(v3_sub(s->bounds_max, s->bounds_min)), 1e-3f);
 }
 
+void mesh_free(mesh *m)
+{
+    free(m->positions);
+    free(m->indices);
+    free(m->normals);
+    free(m->uvs);
+    free(m->slots);
+    free(m->tangents);
+    for (uint32_t k = 0; k < m->attribute_count; k++)
+        free(m->attributes[k].values);
+    free(m->attributes);
+    memset(m, 0, sizeof(*m));
+}
+
 static void scene_free(scene *s)
 {
     for (uint32_t i = 0; i < s->mesh_count; i++) {
-        mesh *m = &s->meshes[i];
-        free(m->positions);
-        free(m->indices);
-        free(m->normals);
-        free(m->uvs);
-        free(m->slots);
-        free(m->tangents);
+        mesh_free(&s->meshes[i]);
     }
     for (uint32_t i = 0; i < s->material_count; i++)
         shader_program_free(&s->materials[i].program);

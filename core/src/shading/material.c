@@ -280,6 +280,12 @@ void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, 
     }
     if (needs & SHADER_NEEDS_WINDOW)
         g->window = window_coordinates(s, sf->p);
+    if (needs & SHADER_NEEDS_ATTRIBUTES) {
+        g->mesh = m;
+        g->prim = sf->prim;
+        g->b1 = b1;
+        g->b2 = b2;
+    }
     g->object_location = v3(inst->transform[3], inst->transform[7], inst->transform[11]);
     g->object_random = inst->random;
     g->object_index = inst->pass_index;

@@ -76,6 +76,7 @@ const shader_op_info shader_ops[PHOS_OP_COUNT] = {
     [PHOS_OP_VECTOR_TRANSFORM] = {"Vector Transform", shader_op_vector_transform, {W3}, {W3}, 1,
                                   PHOS_VECTOR_TRANSFORM_COUNT},
     [PHOS_OP_NORMAL] = {"Normal", shader_op_normal, {W3}, {W3, W1}, 0, 0},
+    [PHOS_OP_ATTRIBUTE] = {"Attribute", shader_op_attribute, {0}, {W3, W3, W1, W1}, 1, 3},
 };
 
 /* Width of each closure field (phos.h, enum phos_closure_field). */
@@ -278,9 +279,11 @@ static void shader_program_needs(shader_program *p)
         if (ins->op == PHOS_OP_BUMP || ins->op == PHOS_OP_BUMP_OFFSET)
             p->needs |= SHADER_NEEDS_UV_TANGENTS;
         else if (ins->op == PHOS_OP_NORMAL_MAP)
-            p->needs |= SHADER_NEEDS_TANGENT;
+            p->needs |= (ins->flags & 2) ? SHADER_NEEDS_ATTRIBUTES : SHADER_NEEDS_TANGENT;
         else if (ins->op == PHOS_OP_TEXTURE_COORDINATE && ins->mode == 1)
             p->needs |= SHADER_NEEDS_WINDOW;
+        else if (ins->op == PHOS_OP_ATTRIBUTE)
+            p->needs |= SHADER_NEEDS_ATTRIBUTES;
     }
 }
 

@@ -16,6 +16,7 @@
 #include "util/vec.h"
 
 struct phos_scene;
+struct mesh;
 
 /* What the inputs of a node tree read at a shading point. Vectors are in
  * world space unless named otherwise; N faces the viewer (Cycles). */
@@ -46,6 +47,9 @@ typedef struct shader_globals {
     uint32_t ray_depth, transparent_depth;
     vec3 dPdx, dPdy;         /* position differentials: the pixel's footprint along two orthogonal axes
                                 of the plane ⊥ Ng (scene units), the steps of Bump (Cycles' sd->dP) */
+    const struct mesh *mesh; /* the mesh hit and where on it (attributes), or NULL */
+    uint32_t prim;           /* triangle */
+    float b1, b2;            /* barycentric weights of corners 1 and 2 */
 } shader_globals;
 
 enum shader_ray_flags {
@@ -77,7 +81,8 @@ typedef struct shader_program {
 enum shader_needs {
     SHADER_NEEDS_UV_TANGENTS = 1 << 0, /* dPdu, dPdv (Bump) */
     SHADER_NEEDS_TANGENT = 1 << 1,     /* the MikkTSpace tangent (Normal Map) */
-    SHADER_NEEDS_WINDOW = 1 << 2       /* window coordinates (Texture Coordinate's Window) */
+    SHADER_NEEDS_WINDOW = 1 << 2,      /* window coordinates (Texture Coordinate's Window) */
+    SHADER_NEEDS_ATTRIBUTES = 1 << 3   /* the mesh and the point on it (Attribute) */
 };
 
 /* The state one op sees. */
@@ -211,5 +216,20 @@ void shader_op_bump_offset(const phos_shader_instruction *ins, shader_context *c
 void shader_op_vector_rotate(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_vector_transform(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_normal(const phos_shader_instruction *ins, shader_context *ctx);
+void shader_op_attribute(const phos_shader_instruction *ins, shader_context *ctx);
+
+/* The two steps a Bump evaluates its height at (world space, in the
+ * plane ⊥ Ng): the position differentials times the filter width, the
+ * fraction of the pixel's footprint the Blender version steps
+ * (shading/nodes/vector.c). */
+void shader_bump_steps(float filter_width, const shader_globals *g, vec3 *dx, vec3 *dy);
+
+/* The MikkTSpace tangent of a UV map other than the render one, from the
+ * mesh attribute `id` (object-space x, y, z and the bitangent sign per
+ * corner): in world space, perpendicular to the shading normal and unit,
+ * as material_shader_globals makes the render map's. 0 when the mesh has
+ * no such attribute. */
+
+int shader_attribute_tangent(const shader_globals *g, uint32_t id, vec3 *tangent, float *sign);
 
 #endif /* PHOS_SHADER_PROGRAM_H */

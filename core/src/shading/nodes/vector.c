@@ -170,7 +170,11 @@ void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ct
     vec3 n;
     int blend_strength = 1;
     if (ins->mode == PHOS_NORMAL_MAP_TANGENT) {
-        if (v3_is_zero(g->tangent)) {
+        vec3 tangent = g->tangent;
+        float sign = g->tangent_sign;
+        if ((ins->flags & 2) && !shader_attribute_tangent(g, ins->table, &tangent, &sign))
+            tangent = v3s(0.0f);
+        if (v3_is_zero(tangent)) {
             SHADER_OUT3(0, g->N); /* no tangents: the unperturbed normal */
             return;
         }
@@ -184,8 +188,8 @@ void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ct
         }
         /* The frame is the one the map was baked in, seen from the front. */
         vec3 normal = g->backfacing ? v3_neg(g->N) : g->N;
-        vec3 b = v3_scale(v3_cross(normal, g->tangent), g->tangent_sign);
-        n = safe_normalize3(v3_add(v3_add(v3_scale(g->tangent, c.x), v3_scale(b, c.y)), v3_scale(normal, c.z)));
+        vec3 b = v3_scale(v3_cross(normal, tangent), sign);
+        n = safe_normalize3(v3_add(v3_add(v3_scale(tangent, c.x), v3_scale(b, c.y)), v3_scale(normal, c.z)));
     } else if (ins->mode == PHOS_NORMAL_MAP_OBJECT) {
         n = safe_normalize3(g->normal_to_world ? mat3_mul(g->normal_to_world, c) : c);
     } else {
@@ -202,14 +206,14 @@ void shader_op_normal_map(const phos_shader_instruction *ins, shader_context *ct
 
 /* The two offsets a bump evaluates its height at: the position
  * differentials (the pixel's footprint, Cycles' dPdx and dPdy) times the
- * instruction's filter width param[0], the fraction of the footprint the
+ * filter width (the instruction's param[0]), the fraction of the footprint the
  * Blender version steps (the whole footprint before 4.4, then the node's
  * Filter Width, 0.1 by default; 0 reads as 1). A forward difference over that step is the
  * height's derivative half a step away, which is why the step must be
  * Cycles' where heights vary within a pixel. */
-static void bump_steps(const phos_shader_instruction *ins, const shader_globals *g, vec3 *dx, vec3 *dy)
+void shader_bump_steps(float filter_width, const shader_globals *g, vec3 *dx, vec3 *dy)
 {
-    float width = ins->param[0] > 0.0f ? ins->param[0] : 1.0f;
+    float width = filter_width > 0.0f ? filter_width : 1.0f;
     *dx = v3_scale(g->dPdx, width);
     *dy = v3_scale(g->dPdy, width);
 }
@@ -220,7 +224,7 @@ void shader_op_bump_offset(const phos_shader_instruction *ins, shader_context *c
 {
     const shader_globals *g = ctx->g;
     vec3 dx, dy, d = v3s(0.0f);
-    bump_steps(ins, g, &dx, &dy);
+    shader_bump_steps(ins->param[0], g, &dx, &dy);
     if (ins->mode == 1)
         d = dx;
     else if (ins->mode == 2)
@@ -295,7 +299,7 @@ void shader_op_bump(const phos_shader_instruction *ins, shader_context *ctx)
     if (ins->flags & 1)
         distance = -distance;
     vec3 dx, dy;
-    bump_steps(ins, g, &dx, &dy);
+    shader_bump_steps(ins->param[0], g, &dx, &dy);
     vec3 rx = v3_cross(dy, n), ry = v3_cross(n, dx);
     float det = v3_dot(dx, rx);
     vec3 grad = v3_add(v3_scale(rx, hx - h), v3_scale(ry, hy - h));
