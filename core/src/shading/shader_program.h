@@ -44,6 +44,7 @@ typedef struct shader_globals {
     uint32_t ray_flags;      /* enum shader_ray_flags of the ray that found the point */
     float ray_length;        /* scene units */
     uint32_t ray_depth, transparent_depth;
+    uint32_t diffuse_depth, glossy_depth, transmission_depth; /* surface.h: by kind of event */
     float bump_offset;       /* scene units the bump offsets move P by */
 } shader_globals;
 
