@@ -966,7 +966,8 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
     out->weight = weight;
     out->pdf = pdf;
     out->flags = s.flags;
-    out->eta = (s.flags & BSDF_TRANSMISSION) ? c->eta : 1.0f;
+    /* Diffuse transmission does not refract: no η (no η² for photons). */
+    out->eta = (s.flags & BSDF_TRANSMISSION) && !(s.flags & BSDF_DIFFUSE) ? c->eta : 1.0f;
     return 1;
 }
 
