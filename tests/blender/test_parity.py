@@ -194,11 +194,14 @@ def test_material(name, scene, tmp_path):
     compare("material/" + name, scene, tmp_path)
 
 
+@pytest.mark.parametrize("film_transparent", [True, False], ids=["transparent_film", "opaque_film"])
 @pytest.mark.parametrize("name", list(parity_scenes.RGBA_SCENES))
-def test_rgba(name, scene, tmp_path):
-    """Holdout with a transparent film: colour and alpha against Cycles."""
+def test_rgba(name, film_transparent, scene, tmp_path):
+    """Holdout: colour and alpha against Cycles, whose holdout makes the
+    pixel transparent whether the film is or not (3.4 and 4.5 alike)."""
     parity_scenes.RGBA_SCENES[name](scene)
-    compare("rgba/" + name, scene, tmp_path, channels=4, film_transparent=True)
+    compare("rgba/" + name + ("" if film_transparent else " opaque"), scene, tmp_path, channels=4,
+            film_transparent=film_transparent)
 
 
 def format_table(rows):
