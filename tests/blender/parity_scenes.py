@@ -241,6 +241,42 @@ def _translucent_leaf(scene):
                  size=0.8)
 
 
+def _depth_coloured(scene):
+    """A sphere whose Diffuse colour is 0.9 − 0.7·min(depth, 1) per channel
+    for Light Path's Diffuse, Glossy and Transmission Depth, on a floor
+    that is half diffuse, half rough glossy: the floor's reflections of the
+    sphere (diffuse or glossy depth 1) see it darker in that channel than
+    the camera does (depth 0)."""
+    mat = bpy.data.materials.new("Depths")
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    lp = nt.nodes.new("ShaderNodeLightPath")
+    combine = nt.nodes.new("ShaderNodeCombineRGB" if bpy.app.version < (3, 3, 0) else "ShaderNodeCombineColor")
+    for k, output in enumerate(("Diffuse Depth", "Glossy Depth", "Transmission Depth")):
+        low = nt.nodes.new("ShaderNodeMath")
+        low.operation = "MINIMUM"
+        low.inputs[1].default_value = 1.0
+        nt.links.new(lp.outputs[output], low.inputs[0])
+        value = nt.nodes.new("ShaderNodeMath")
+        value.operation = "MULTIPLY_ADD"
+        value.inputs[1].default_value = -0.7
+        value.inputs[2].default_value = 0.9
+        nt.links.new(low.outputs[0], value.inputs[0])
+        nt.links.new(value.outputs[0], combine.inputs[k])
+    diffuse = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    nt.links.new(combine.outputs[0], diffuse.inputs["Color"])
+    nt.links.new(diffuse.outputs[0], out.inputs["Surface"])
+    _stage(scene, mat)
+    floor = _two("ShaderNodeMixShader", ("ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.8, 0.8)}, None),
+                 ("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.9, 0.9), "Roughness": 0.2}, None), fac=0.5)(scene)
+    scene.objects["Floor"].data.materials[0] = floor
+    pt.set_world(scene, (0.3, 0.35, 0.4), strength=1.0)
+    pt.add_light(scene, "AREA", 200.0, location=(1.5, -1.5, 3.0), target=SPHERE_CENTRE,
+                 shape="SQUARE", size=1.5)
+
+
 def _holdout(scene):
     """A transparent film: a sphere that is a whole holdout and one mixed
     half with a diffuse, in front of a diffuse cube (the RGBA test)."""
@@ -262,6 +298,7 @@ def _holdout(scene):
 
 MATERIAL_SCENES = {
     "translucent_leaf": _translucent_leaf,
+    "light_path_depths": _depth_coloured,
     "diffuse": _material_scene(_one("ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.3, 0.2)})),
     "glossy_sharp": _material_scene(_one("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.9, 0.9)},
                                          {"distribution": "SHARP"})),
