@@ -120,7 +120,12 @@ enum phos_closure_type {
                                             an extra colour of it (Cycles 4.3-5.0: the albedo again) */
     PHOS_CLOSURE_SHEEN = 10,             /* microfiber sheen of roughness (Zeltner et al. 2022, an LTC
                                             lobe; its weight is scaled by the lobe's albedo) */
-    PHOS_CLOSURE_TYPE_COUNT = 11
+    PHOS_CLOSURE_TRANSLUCENT = 11,       /* Lambertian transmission, f = weight/π toward the side
+                                            opposite wo (Translucent BSDF) */
+    PHOS_CLOSURE_HOLDOUT = 12,           /* not light: a camera ray that meets it, directly or through
+                                            transparency, makes the pixel transparent by the average of
+                                            weight × throughput and gets no light from it (Holdout) */
+    PHOS_CLOSURE_TYPE_COUNT = 13
 };
 
 /* How GLASS splits reflection and refraction. */
@@ -263,7 +268,8 @@ enum phos_shader_op {
     PHOS_OP_LAYER_WEIGHT = 36,   /* in blend, normal(3); out fresnel, facing */
     PHOS_OP_LIGHT_PATH = 37,     /* out is_camera, is_shadow, is_diffuse, is_glossy, is_singular (a second
                                     instruction with mode 1: is_reflection, is_transmission, ray_length,
-                                    ray_depth, transparent_depth) */
+                                    ray_depth, transparent_depth; mode 2: diffuse_depth, glossy_depth,
+                                    transmission_depth) */
     PHOS_OP_MAPPING = 38,        /* in vector(3), location(3), rotation(3) (Euler XYZ, radians), scale(3);
                                     out vector(3). mode enum phos_mapping */
     PHOS_OP_NORMAL_MAP = 39,     /* in strength, color(3); out normal(3). mode enum phos_normal_map_space;

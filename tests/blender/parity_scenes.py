@@ -304,7 +304,89 @@ def _principled(inputs, props=None):
     return _one("ShaderNodeBsdfPrincipled", inputs, props)
 
 
+def _translucent_leaf(scene):
+    """A leaf (a plane, Diffuse mixed with Translucent) between a lamp and
+    the camera: most of what the camera sees of it is light that came
+    through from the lamp's side; the floor behind it is lit through it."""
+    pt.add_camera(scene, location=(0.0, -4.2, 1.6), target=(0.0, 0.0, 0.8), lens=50.0)
+    pt.add_plane(scene, "Floor", size=8.0, material=pt.diffuse("Floor", (0.8, 0.8, 0.8)))
+    mat = bpy.data.materials.new("Leaf")
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.6
+    diffuse = pt.setup_node(nt.nodes.new("ShaderNodeBsdfDiffuse"), {"Color": (0.3, 0.6, 0.1)})
+    translucent = pt.setup_node(nt.nodes.new("ShaderNodeBsdfTranslucent"), {"Color": (0.4, 0.8, 0.2)})
+    nt.links.new(diffuse.outputs[0], mix.inputs[1])
+    nt.links.new(translucent.outputs[0], mix.inputs[2])
+    nt.links.new(mix.outputs[0], out.inputs["Surface"])
+    pt.add_plane(scene, "Leaf", size=1.4, location=(0.0, 0.0, 0.8), rotation=(math.radians(80), 0.0, 0.3),
+                 material=mat)
+    pt.set_world(scene, (0.05, 0.05, 0.06), strength=1.0)
+    pt.add_light(scene, "AREA", 150.0, location=(0.4, 2.0, 2.2), target=(0.0, 0.0, 0.8), shape="SQUARE",
+                 size=0.8)
+
+
+def _depth_coloured(scene):
+    """A sphere whose Diffuse colour is 0.9 − 0.7·min(depth, 1) per channel
+    for Light Path's Diffuse, Glossy and Transmission Depth, on a floor
+    that is half diffuse, half rough glossy: the floor's reflections of the
+    sphere (diffuse or glossy depth 1) see it darker in that channel than
+    the camera does (depth 0)."""
+    mat = bpy.data.materials.new("Depths")
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    lp = nt.nodes.new("ShaderNodeLightPath")
+    combine = nt.nodes.new("ShaderNodeCombineRGB" if bpy.app.version < (3, 3, 0) else "ShaderNodeCombineColor")
+    for k, output in enumerate(("Diffuse Depth", "Glossy Depth", "Transmission Depth")):
+        low = nt.nodes.new("ShaderNodeMath")
+        low.operation = "MINIMUM"
+        low.inputs[1].default_value = 1.0
+        nt.links.new(lp.outputs[output], low.inputs[0])
+        value = nt.nodes.new("ShaderNodeMath")
+        value.operation = "MULTIPLY_ADD"
+        value.inputs[1].default_value = -0.7
+        value.inputs[2].default_value = 0.9
+        nt.links.new(low.outputs[0], value.inputs[0])
+        nt.links.new(value.outputs[0], combine.inputs[k])
+    diffuse = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    nt.links.new(combine.outputs[0], diffuse.inputs["Color"])
+    nt.links.new(diffuse.outputs[0], out.inputs["Surface"])
+    _stage(scene, mat)
+    floor = _two("ShaderNodeMixShader", ("ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.8, 0.8)}, None),
+                 ("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.9, 0.9), "Roughness": 0.2}, None), fac=0.5)(scene)
+    scene.objects["Floor"].data.materials[0] = floor
+    pt.set_world(scene, (0.3, 0.35, 0.4), strength=1.0)
+    pt.add_light(scene, "AREA", 200.0, location=(1.5, -1.5, 3.0), target=SPHERE_CENTRE,
+                 shape="SQUARE", size=1.5)
+
+
+def _holdout(scene):
+    """A transparent film: a sphere that is a whole holdout and one mixed
+    half with a diffuse, in front of a diffuse cube (the RGBA test)."""
+    pt.add_camera(scene, location=(0.0, -4.2, 1.2), target=(0.0, 0.0, 0.6), lens=50.0)
+    pt.add_plane(scene, "Floor", size=8.0, material=pt.diffuse("Floor", (0.8, 0.8, 0.8)))
+    pt.add_sphere(scene, "Back", radius=0.9, location=(0.0, 1.5, 0.9),
+                  material=pt.diffuse("Back", (0.8, 0.5, 0.3)), segments=48, rings=24)
+    hold = pt.node_material("Holdout", "ShaderNodeHoldout")
+    pt.add_sphere(scene, "Whole", radius=0.35, location=(-0.5, 0.0, 0.6), material=hold,
+                  segments=48, rings=24)
+    half = _two("ShaderNodeMixShader", ("ShaderNodeBsdfDiffuse", {"Color": (0.2, 0.4, 0.8)}, None),
+                ("ShaderNodeHoldout", None, None), fac=0.5)(scene)
+    pt.add_sphere(scene, "Half", radius=0.35, location=(0.5, 0.0, 0.6), material=half,
+                  segments=48, rings=24)
+    pt.set_world(scene, (0.3, 0.35, 0.4), strength=1.0)
+    pt.add_light(scene, "AREA", 200.0, location=(1.5, -1.5, 3.0), target=SPHERE_CENTRE,
+                 shape="SQUARE", size=1.5)
+
+
 MATERIAL_SCENES = {
+    "translucent_leaf": _translucent_leaf,
+    "light_path_depths": _depth_coloured,
     "diffuse": _material_scene(_one("ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.3, 0.2)})),
     "glossy_sharp": _material_scene(_one("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.9, 0.9)},
                                          {"distribution": "SHARP"})),
@@ -387,6 +469,11 @@ MATERIAL_SCENES.update({
 
 # The Blender a scene needs (its nodes, inputs or light settings): older
 # versions skip it.
+# Compared in RGBA with a transparent film (test_parity.test_rgba).
+RGBA_SCENES = {
+    "holdout": _holdout,
+}
+
 MIN_VERSION = {
     # Cycles 3.x's Multiscatter GGX is a random walk between microfacets;
     # Phos renders 4.x's albedo scaling for it, which matches its brightness

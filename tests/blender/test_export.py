@@ -527,6 +527,7 @@ def test_ggx_roughness_zero_is_sharp(node_type, scene):
 
 
 BLENDER_5 = bpy.app.version >= (5, 0, 0)
+BLENDER_4 = bpy.app.version >= (4, 0, 0)
 
 
 def test_material_without_nodes(scene):
@@ -638,6 +639,60 @@ def test_unsupported_node_report(tmp_path):
     assert len(ours) == 1, "warnings naming the material: %s" % ours
     assert "My Toon Node" in ours[0], ours[0]
     assert not [line for line in out.splitlines() if line.startswith("Error:")], out[-3000:]
+
+
+@pytest.mark.parametrize("node_type, inputs", [
+    ("ShaderNodeBsdfToon", {"Color": (0.2, 0.6, 0.2)}),
+    ("ShaderNodeSubsurfaceScattering", {"Color": (0.7, 0.3, 0.2)}),
+], ids=["toon", "subsurface"])
+def test_approximated_shader_nodes(node_type, inputs, scene):
+    """Toon BSDF and Subsurface Scattering render as a diffuse of their
+    colour, with one warning naming the material and the node."""
+    from phos import core as C
+    mat = pt.node_material("Approx", node_type, inputs)
+    closures, warnings = closures_of(scene, mat)
+    assert _closure_types(closures) == [C.PHOS_CLOSURE_DIFFUSE]
+    assert tuple(closures[0].weight) == pytest.approx(inputs["Color"])
+    ours = [w for w in warnings if "Approx" in w]
+    assert len(ours) == 1 and "diffuse" in ours[0], warnings
+    node_name = mat.node_tree.nodes[1].name
+    assert node_name in ours[0], ours
+
+
+def test_principled_subsurface_warns_once(scene):
+    """Principled subsurface: its share renders as a diffuse, one warning."""
+    from phos import core as C
+    key = "Subsurface Weight" if BLENDER_4 else "Subsurface"
+    mat = pt.node_material("Skin", "ShaderNodeBsdfPrincipled", {key: 0.5, "Base Color": (0.8, 0.5, 0.4)})
+    closures, warnings = closures_of(scene, mat)
+    diffuse_types = {C.PHOS_CLOSURE_DIFFUSE, C.PHOS_CLOSURE_PRINCIPLED_DIFFUSE, C.PHOS_CLOSURE_OREN_NAYAR}
+    assert diffuse_types & set(_closure_types(closures)), _closure_types(closures)
+    ours = [w for w in warnings if "Skin" in w]
+    assert len(ours) == 1 and "Subsurface" in ours[0] and "diffuse" in ours[0], warnings
+
+
+def test_translucent_and_holdout_closures(scene):
+    """Translucent BSDF → TRANSLUCENT of its colour; a Holdout mixed in →
+    HOLDOUT of the mix weight; neither warns."""
+    from phos import core as C
+    mat = bpy.data.materials.new("Leaf")
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    mix.inputs[0].default_value = 0.3
+    hold = nt.nodes.new("ShaderNodeHoldout")
+    tr = nt.nodes.new("ShaderNodeBsdfTranslucent")
+    tr.inputs["Color"].default_value = (0.2, 0.7, 0.1, 1.0)
+    nt.links.new(tr.outputs[0], mix.inputs[1])
+    nt.links.new(hold.outputs[0], mix.inputs[2])
+    nt.links.new(mix.outputs[0], out.inputs["Surface"])
+    closures, warnings = closures_of(scene, mat)
+    assert _closure_types(closures) == [C.PHOS_CLOSURE_TRANSLUCENT, C.PHOS_CLOSURE_HOLDOUT]
+    assert tuple(closures[0].weight) == pytest.approx((0.14, 0.49, 0.07))
+    assert tuple(closures[1].weight) == pytest.approx((0.3, 0.3, 0.3))
+    assert not [w for w in warnings if "Leaf" in w], warnings
 
 
 # ------------------------------------------------------------ shader programs

@@ -80,14 +80,14 @@ NOISE_RATIO_LIMIT = 1.3
 NOISE_RATIO_SCENES = ("light/default_cube", "light/mixed", "material/diffuse")
 
 
-def _render_pair(scene, tmp_path, engine, seed):
+def _render_pair(scene, tmp_path, engine, seed, channels=3):
     if engine == "PHOS":
         pt.configure_phos(scene, SAMPLES, MAX_BOUNCES, seed=seed)
     else:
         pt.configure_cycles(scene, SAMPLES, MAX_BOUNCES, seed=seed)
     t0 = time.time()
     img = pt.render_array(scene, tmp_path, engine=engine, name="%s_%d" % (engine, seed))
-    return img[..., :3].astype(np.float64), time.time() - t0
+    return img[..., :channels].astype(np.float64), time.time() - t0
 
 
 def difference_and_noise(P, C):
@@ -101,15 +101,18 @@ def difference_and_noise(P, C):
     return float(D), float(var_p + var_c), float(var_p), float(var_c)
 
 
-def compare(name, scene, tmp_path):
+def compare(name, scene, tmp_path, channels=3, film_transparent=False):
+    """(a), (b) and (c) on RGB, or with channels=4 on RGBA (alpha is then
+    a fourth channel of the same tests)."""
     pt.configure_output(scene, *RESOLUTION)
+    scene.render.film_transparent = film_transparent
     pt.configure_threads(scene, None)
     P, C, times = [], [], {"PHOS": 0.0, "CYCLES": 0.0}
     for seed in SEEDS:
-        img, t = _render_pair(scene, tmp_path, "PHOS", seed)
+        img, t = _render_pair(scene, tmp_path, "PHOS", seed, channels)
         P.append(img)
         times["PHOS"] += t
-        img, t = _render_pair(scene, tmp_path, "CYCLES", seed)
+        img, t = _render_pair(scene, tmp_path, "CYCLES", seed, channels)
         C.append(img)
         times["CYCLES"] += t
 
@@ -117,8 +120,8 @@ def compare(name, scene, tmp_path):
     assert np.all(np.isfinite(P[0])) and np.all(np.isfinite(P[1])), "Phos produced NaN/inf pixels"
 
     # (a) channel means
-    mean_p = 0.5 * (P[0] + P[1]).reshape(-1, 3).mean(axis=0)
-    mean_c = 0.5 * (C[0] + C[1]).reshape(-1, 3).mean(axis=0)
+    mean_p = 0.5 * (P[0] + P[1]).reshape(-1, channels).mean(axis=0)
+    mean_c = 0.5 * (C[0] + C[1]).reshape(-1, channels).mean(axis=0)
     denom = np.maximum(mean_c, 0.05 * mean_c.max())
     rel = (mean_p - mean_c) / denom
 
@@ -134,7 +137,8 @@ def compare(name, scene, tmp_path):
     z = float((mean_p.mean() - mean_c.mean()) / se) if se > 0 else 0.0
 
     ROWS.append({
-        "scene": name, "mean_c": mean_c.mean(), "rel": rel, "ratio": ratio, "z": z,
+        "scene": name if channels == 3 else "%s (dA %+.2f%%)" % (name, 100 * rel[3]),
+        "mean_c": mean_c[:3].mean(), "rel": rel[:3], "ratio": ratio, "z": z,
         "noise_ratio": var_p / var_c if var_c > 0 else float("inf"),
         "t_phos": times["PHOS"], "t_cycles": times["CYCLES"],
     })
@@ -188,6 +192,16 @@ def test_material(name, scene, tmp_path):
     _needs(name)
     parity_scenes.MATERIAL_SCENES[name](scene)
     compare("material/" + name, scene, tmp_path)
+
+
+@pytest.mark.parametrize("film_transparent", [True, False], ids=["transparent_film", "opaque_film"])
+@pytest.mark.parametrize("name", list(parity_scenes.RGBA_SCENES))
+def test_rgba(name, film_transparent, scene, tmp_path):
+    """Holdout: colour and alpha against Cycles, whose holdout makes the
+    pixel transparent whether the film is or not (3.4 and 4.5 alike)."""
+    parity_scenes.RGBA_SCENES[name](scene)
+    compare("rgba/" + name + ("" if film_transparent else " opaque"), scene, tmp_path, channels=4,
+            film_transparent=film_transparent)
 
 
 def format_table(rows):

@@ -8,7 +8,8 @@ Surface socket, so the materials users already have render without a Phos
 node set.
 
 Shader nodes (Principled BSDF, Diffuse, Glossy, Glass, Refraction, Metallic,
-Emission, Transparent, Mix and Add Shader) become closures; the value nodes
+Emission, Transparent, Translucent, Holdout, Mix and Add Shader) become
+closures; the value nodes
 feeding their inputs (textures, colour, converter, vector and input nodes:
 nodes.py) compile into the material's shader program (program.py), whose
 outputs the core writes into the closures' fields at each shading point.
@@ -614,6 +615,23 @@ class NodeTreeWalker:
         self.check_unused_links(node, consumed)
         return [Closure(core.PHOS_CLOSURE_TRANSPARENT, rgb)]
 
+    def _translucent(self, node, stack):
+        """The Translucent BSDF: Lambertian transmission of its colour."""
+        if self.world:
+            return self._fallback(node)
+        consumed = set()
+        rgb, _, _ = self.color(node, 'Color', consumed)
+        normal = self.normal(node, consumed=consumed)
+        self.check_unused_links(node, consumed)
+        return [Closure(core.PHOS_CLOSURE_TRANSLUCENT, rgb, normal)]
+
+    def _holdout(self, node, stack):
+        """The Holdout: a hole in the film where the camera sees it, by the
+        weight the Mix and Add Shaders give it (Cycles' holdout closure)."""
+        if self.world:
+            return self._fallback(node)
+        return [Closure(core.PHOS_CLOSURE_HOLDOUT, (1.0, 1.0, 1.0))]
+
     def _principled(self, node, stack):
         if self.world:
             return self._fallback(node)
@@ -708,6 +726,8 @@ _HANDLERS = {
     'ShaderNodeEmission': NodeTreeWalker._emission,
     'ShaderNodeBackground': NodeTreeWalker._background,
     'ShaderNodeBsdfTransparent': NodeTreeWalker._transparent,
+    'ShaderNodeBsdfTranslucent': NodeTreeWalker._translucent,
+    'ShaderNodeHoldout': NodeTreeWalker._holdout,
     'ShaderNodeBsdfPrincipled': NodeTreeWalker._principled,
     'ShaderNodeBsdfMetallic': NodeTreeWalker._metallic,
     'ShaderNodeBsdfSheen': NodeTreeWalker._sheen,

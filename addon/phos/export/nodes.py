@@ -670,9 +670,9 @@ def _light_path(nc, node, stack):
     b = nc.p.emit(core.PHOS_OP_LIGHT_PATH, [], [1, 1, 1, 1, 1], mode=1)
     names = ("Is Camera Ray", "Is Shadow Ray", "Is Diffuse Ray", "Is Glossy Ray", "Is Singular Ray",
              "Is Reflection Ray", "Is Transmission Ray", "Ray Length", "Ray Depth", "Transparent Depth")
-    out = dict(zip(names, a + b))
-    out["Diffuse Depth"] = out["Glossy Depth"] = out["Transmission Depth"] = out["Ray Depth"]
-    return out
+    c = nc.p.emit(core.PHOS_OP_LIGHT_PATH, [], [1, 1, 1], mode=2)
+    names += ("Diffuse Depth", "Glossy Depth", "Transmission Depth")
+    return dict(zip(names, a + b + c))
 
 
 # --------------------------------------------------------------------- vector

@@ -234,8 +234,8 @@ def principled_v1(walker, node):
     # Parts of the Principled BSDF the core does not have: named once.
     ignored = []
     subsurface = w.value(node, ('Subsurface',), 0.0, consumed)
-    if prog.may_exceed(subsurface, WEIGHT_CUTOFF):
-        ignored.append("Subsurface")
+    approximated = ("Subsurface scattering is rendered as a diffuse of Subsurface Color mixed in"
+                    if prog.may_exceed(subsurface, WEIGHT_CUTOFF) else "")
     if prog.may_exceed(w.value(node, ('Sheen',), 0.0, consumed), WEIGHT_CUTOFF):
         ignored.append("Sheen")
     if prog.may_exceed(w.value(node, ('Clearcoat',), 0.0, consumed), WEIGHT_CUTOFF):
@@ -247,8 +247,11 @@ def principled_v1(walker, node):
     # Inputs that only matter for ignored features: not worth a second warning.
     consumed |= {s.identifier for s in node.inputs
                  if s.name.startswith(("Subsurface", "Sheen", "Clearcoat", "Anisotropic", "Tangent"))}
-    if ignored:
-        w.note(node, "%s not supported; ignored" % ", ".join(ignored))
+    if ignored or approximated:
+        parts = [approximated] if approximated else []
+        if ignored:
+            parts.append("%s not supported; ignored" % ", ".join(ignored))
+        w.note(node, "; ".join(parts))
     w.check_unused_links(node, consumed)
 
     closures = []

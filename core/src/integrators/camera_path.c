@@ -66,6 +66,41 @@ static int record_features(sample_result *res, const integrator_settings *is, co
     return 0;
 }
 
+/* The scattering events of a path by kind, for the Light Path node's
+ * depths, counted as Cycles' path_state_next does: a transparent
+ * pass-through only as transparent (it is no bounce); a reflection as
+ * diffuse, or glossy (sharp mirrors too); any other transmission
+ * (refraction, translucency) as a transmission, whatever its lobe. */
+typedef struct path_depths {
+    uint32_t diffuse, glossy, transmission, transparent;
+} path_depths;
+
+static void count_event(path_depths *d, uint32_t bsdf_flags)
+{
+    if (bsdf_flags & BSDF_TRANSPARENT)
+        d->transparent++;
+    else if (bsdf_flags & BSDF_TRANSMISSION)
+        d->transmission++;
+    else if (bsdf_flags & BSDF_DIFFUSE)
+        d->diffuse++;
+    else
+        d->glossy++;
+}
+
+/* Holdout (Cycles' integrate_surface_holdout): while the camera ray goes
+ * on only through transparency, a surface's holdout closures make the
+ * pixel transparent by the average over the channels of their weight
+ * times the throughput, film transparent or not (measured on Blender 3.4:
+ * an Emission mixed with a Holdout of weight 0.75 gives colour 0.25 and
+ * alpha 0.25 either way). Returns whether the holdout is whole: then the
+ * surface gives the pixel nothing more, not even its emission. */
+static int apply_holdout(const scene *s, const surface *sf, vec3 beta, float *holdout)
+{
+    vec3 h = material_holdout(s, sf);
+    *holdout += v3_average(v3_mul(h, beta));
+    return h.x >= 1.0f && h.y >= 1.0f && h.z >= 1.0f;
+}
+
 /* MIS weight of emission found by the ray that left the previous vertex
  * with BSDF pdf prev_pdf, against that vertex's next-event estimate. */
 static float emission_weight(int prev_delta, float prev_pdf, float light_pdf)
@@ -109,6 +144,10 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
      * walk that starts on a diffuse vertex (gathers) leaves by a diffuse
      * reflection. */
     uint32_t ray_flags = start->from_camera ? SHADER_RAY_CAMERA : (SHADER_RAY_DIFFUSE | SHADER_RAY_REFLECT);
+    /* A walk from a diffuse vertex does not know the kinds of the events
+     * before it: they count as the diffuse reflections it starts with. */
+    path_depths depths = {start->depth, 0, 0, 0};
+    float holdout = 0.0f;                      /* the camera segment's holdout transparency */
     vec3 feature_beta = v3s(1.0f);
     /* The pixel's footprint as Cycles carries it (compact ray
      * differentials): its radius where the ray left, growing with the
@@ -159,7 +198,15 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         sf.ray_length = h.t;
         sf.ray_depth = p.depth;
         sf.footprint = spread_origin + h.t * spread_per_distance;
+        sf.diffuse_depth = depths.diffuse;
+        sf.glossy_depth = depths.glossy;
+        sf.transmission_depth = depths.transmission;
+        sf.transparent_depth = depths.transparent;
         uint32_t v_index = vertex++;
+        if (camera_segment && sf.mat->holdout && apply_holdout(s, &sf, p.beta, &holdout)) {
+            res.alpha = 1.0f;
+            break;
+        }
         if (sf.mat->emissive) {
             float w = 1.0f;
             if (!prev_delta) {
@@ -197,6 +244,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         if (!v3_is_finite(p.beta) || v3_is_zero(p.beta))
             break;
 
+        count_event(&depths, bs.flags);
         if (bs.flags & BSDF_TRANSPARENT) {
             if (++transparent_steps > CAMERA_PATH_MAX_TRANSPARENT_STEPS)
                 break;
@@ -236,6 +284,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
             p.beta = v3_scale(p.beta, 1.0f / q);
         }
     }
+    res.alpha = clampf(res.alpha - holdout, 0.0f, 1.0f);
     return res;
 #undef ADD_EMISSION
 }

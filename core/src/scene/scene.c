@@ -161,14 +161,17 @@ void scene_prepare(scene *s)
     }
     for (uint32_t i = 0; i < s->material_count; i++) {
         material *m = &s->materials[i];
-        m->emissive = m->transparent = m->transmits = 0;
+        m->emissive = m->transparent = m->transmits = m->holdout = 0;
         for (uint32_t k = 0; k < m->closure_count; k++) {
             if (m->closures[k].type == PHOS_CLOSURE_EMISSION)
                 m->emissive = 1;
             if (m->closures[k].type == PHOS_CLOSURE_TRANSPARENT)
                 m->transparent = 1;
-            if (m->closures[k].type == PHOS_CLOSURE_REFRACTION || m->closures[k].type == PHOS_CLOSURE_GLASS)
+            if (m->closures[k].type == PHOS_CLOSURE_REFRACTION || m->closures[k].type == PHOS_CLOSURE_GLASS ||
+                m->closures[k].type == PHOS_CLOSURE_TRANSLUCENT)
                 m->transmits = 1;
+            if (m->closures[k].type == PHOS_CLOSURE_HOLDOUT)
+                m->holdout = 1;
         }
         if (m->transparent)
             s->has_transparency = 1;

@@ -23,7 +23,9 @@ typedef struct material {
     shader_program program;
     int emissive;               /* has an EMISSION closure */
     int transparent;            /* has a TRANSPARENT closure */
-    int transmits;              /* has a REFRACTION or GLASS closure: scatters light to its other side */
+    int transmits;              /* has a REFRACTION, GLASS or TRANSLUCENT closure: scatters light to its
+                                   other side */
+    int holdout;                /* has a HOLDOUT closure */
 } material;
 
 typedef struct image {

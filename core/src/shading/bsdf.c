@@ -20,6 +20,8 @@
  *   OREN_NAYAR          energy-preserving Oren-Nayar (Fujii 2012 with the
  *                       OpenPBR multiple-scattering term), cosine sampling.
  *   SHEEN               microfiber sheen, an LTC lobe (sheen.c).
+ *   TRANSLUCENT         Lambertian transmission, f = 1/π on the far side,
+ *                       cosine sampling about −n (Cycles' Translucent BSDF).
  *
  * Cycles up to 3.4 uses the separable Smith G1(wo)·G1(wi) for GGX; Cycles 4
  * uses the height-correlated G (Heitz 2014 eq. 99) for every GGX lobe
@@ -345,6 +347,18 @@ static vec3 eval_diffuse(const closure *c, const query *q, float *pdf)
     return v3_scale(c->weight, q->wi.z * PHOS_INV_PI);
 }
 
+/* Lambertian transmission: f = 1/π for wi below both normals, so that a
+ * white closure transmits all the light it receives (albedo 1 into the far
+ * hemisphere, ∫ |cos θi|/π dωi = 1); pdf |cos θi|/π, cosine sampling. */
+static vec3 eval_translucent(const closure *c, const query *q, float *pdf)
+{
+    if (!transmission_side(q))
+        return v3s(0.0f);
+    float cos_i = -q->wi.z;
+    *pdf = cos_i * PHOS_INV_PI;
+    return v3_scale(c->weight, cos_i * PHOS_INV_PI);
+}
+
 /* Burley 2012 diffuse, f = (1/π)[(1 − ½F_L)(1 − ½F_V) + R_R (F_L + F_V + F_L F_V (R_R − 1))]
  * with F = (1 − cos)⁵ and R_R = roughness·(1 + wo·wi) = 2 roughness cos²θd
  * (Burley 2015 §2.3, as Cycles 3.4's PRINCIPLED_DIFFUSE_FULL). */
@@ -501,6 +515,7 @@ static vec3 closure_eval(const closure *c, const query *q, float *pdf)
     case PHOS_CLOSURE_PRINCIPLED_DIFFUSE: return eval_principled_diffuse(c, q, pdf);
     case PHOS_CLOSURE_OREN_NAYAR: return eval_oren_nayar(c, q, pdf);
     case PHOS_CLOSURE_SHEEN: return eval_sheen(c, q, pdf);
+    case PHOS_CLOSURE_TRANSLUCENT: return eval_translucent(c, q, pdf);
     case PHOS_CLOSURE_REFLECTION:
     case PHOS_CLOSURE_REFLECTION_FRESNEL:
     case PHOS_CLOSURE_METAL: return eval_glossy(c, q, pdf);
@@ -624,6 +639,12 @@ static int closure_sample(const closure *c, vec3 wo, float u_lobe, float2 u, lob
         s->wi = sheen_sample(wo, c->roughness, u);
         s->flags = BSDF_DIFFUSE;
         return s->wi.z > 0.0f;
+    case PHOS_CLOSURE_TRANSLUCENT: {
+        vec3 w = warp_cosine_hemisphere(u);
+        s->wi = v3(w.x, w.y, -w.z);
+        s->flags = BSDF_DIFFUSE | BSDF_TRANSMISSION;
+        return s->wi.z < 0.0f;
+    }
     case PHOS_CLOSURE_TRANSPARENT:
         return sample_delta(s, v3_neg(wo), BSDF_TRANSPARENT | BSDF_TRANSMISSION, c->weight, 1.0f);
     default:
@@ -725,6 +746,7 @@ static int closure_has_non_delta(const closure *c)
     case PHOS_CLOSURE_PRINCIPLED_DIFFUSE:
     case PHOS_CLOSURE_OREN_NAYAR:
     case PHOS_CLOSURE_SHEEN:
+    case PHOS_CLOSURE_TRANSLUCENT:
         return 1;
     case PHOS_CLOSURE_TRANSPARENT:
         return 0;
@@ -743,10 +765,15 @@ int bsdf_has_non_delta(const bsdf *b)
     return 0;
 }
 
+int closure_transmits(const closure *c)
+{
+    return c->type == PHOS_CLOSURE_REFRACTION || c->type == PHOS_CLOSURE_GLASS || c->type == PHOS_CLOSURE_TRANSLUCENT;
+}
+
 int bsdf_transmits(const bsdf *b)
 {
     for (uint32_t i = 0; i < b->count; i++)
-        if (b->closures[i].type == PHOS_CLOSURE_REFRACTION || b->closures[i].type == PHOS_CLOSURE_GLASS)
+        if (closure_transmits(&b->closures[i]))
             return 1;
     return 0;
 }
@@ -761,7 +788,8 @@ float bsdf_split_delta(const bsdf *b, bsdf *delta, bsdf *rest)
 
 int bsdf_add_closure(bsdf *b, const closure *c)
 {
-    if (c->type == PHOS_CLOSURE_EMISSION || c->type >= PHOS_CLOSURE_TYPE_COUNT)
+    /* Emission and holdout are not scattering (material.h reads them apart). */
+    if (c->type == PHOS_CLOSURE_EMISSION || c->type == PHOS_CLOSURE_HOLDOUT || c->type >= PHOS_CLOSURE_TYPE_COUNT)
         return 1;
     closure k = *c;
     k.adjoint = 0;
@@ -938,7 +966,8 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
     out->weight = weight;
     out->pdf = pdf;
     out->flags = s.flags;
-    out->eta = (s.flags & BSDF_TRANSMISSION) ? c->eta : 1.0f;
+    /* Diffuse transmission does not refract: no η (no η² for photons). */
+    out->eta = (s.flags & BSDF_TRANSMISSION) && !(s.flags & BSDF_DIFFUSE) ? c->eta : 1.0f;
     return 1;
 }
 

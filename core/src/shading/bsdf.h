@@ -153,9 +153,14 @@ void bsdf_set_adjoint(bsdf *b);
 
 /* Splits b into its diffuse closures (Lambert, Principled diffuse,
  * Oren-Nayar, sheen) and all others (glossy, specular, glass,
- * transparent): the split of Jensen's rendering equation into f_r,d and
- * f_r,s (course notes 2002). The layering between the closures is kept
- * (each part still sees the layers over it). */
+ * transparent, translucent): the split of Jensen's rendering equation into
+ * f_r,d and f_r,s (course notes 2002). The layering between the closures
+ * is kept (each part still sees the layers over it). The diffuse part is
+ * what the indirect-diffuse providers estimate, and they gather over the
+ * hemisphere in front of the surface only (the irradiance cache's records
+ * hold irradiance from that side, Ward et al. 1988): a translucent closure,
+ * whose light comes from behind, goes with the rest, which camera paths
+ * trace on and whose photon estimate reads both sides (final_gather.c). */
 void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other);
 
 /* Whether a closure is one of bsdf_split's diffuse ones. */
@@ -183,9 +188,10 @@ int bsdf_has_non_delta(const bsdf *b);
  * sample of b picks one (0 if b cannot be sampled). */
 float bsdf_split_delta(const bsdf *b, bsdf *delta, bsdf *rest);
 
-/* Whether some closure refracts (REFRACTION, GLASS): light can reach wo
- * from the far side of the surface. */
+/* Whether some closure refracts or transmits diffusely (REFRACTION, GLASS,
+ * TRANSLUCENT): light can reach wo from the far side of the surface. */
 int bsdf_transmits(const bsdf *b);
+int closure_transmits(const closure *c);
 
 /* Sum of transparent closure weights: how much light passes straight
  * through (used by shadow rays). */

@@ -61,6 +61,7 @@ void surface_from_hit(const scene *s, uint32_t instance_id, uint32_t prim, float
     out->ray_length = 0.0f;
     out->ray_depth = 0;
     out->footprint = 0.0f;
+    out->diffuse_depth = out->glossy_depth = out->transmission_depth = out->transparent_depth = 0;
     out->instance = instance_id;
     out->prim = prim;
     out->b1 = b1;
@@ -293,6 +294,10 @@ void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, 
     g->ray_length = sf->ray_length;
     g->ray_depth = sf->ray_depth;
     position_differentials(s, sf, g);
+    g->diffuse_depth = sf->diffuse_depth;
+    g->glossy_depth = sf->glossy_depth;
+    g->transmission_depth = sf->transmission_depth;
+    g->transparent_depth = sf->transparent_depth;
 }
 
 /* The material's closures at the surface: its own when constant, else a
@@ -443,6 +448,20 @@ vec3 material_transparency(const scene *s, const surface *sf)
     const phos_closure_desc *closures = material_eval(s, sf, local, NULL);
     for (uint32_t i = 0; i < m->closure_count; i++)
         if (closures[i].type == PHOS_CLOSURE_TRANSPARENT)
+            sum = v3_add(sum, v3_load(closures[i].weight));
+    return sum;
+}
+
+vec3 material_holdout(const scene *s, const surface *sf)
+{
+    vec3 sum = v3s(0.0f);
+    const material *m = sf->mat;
+    if (!m->holdout)
+        return sum;
+    phos_closure_desc local[PHOS_MAX_CLOSURES];
+    const phos_closure_desc *closures = material_eval(s, sf, local, NULL);
+    for (uint32_t i = 0; i < m->closure_count; i++)
+        if (closures[i].type == PHOS_CLOSURE_HOLDOUT)
             sum = v3_add(sum, v3_load(closures[i].weight));
     return sum;
 }

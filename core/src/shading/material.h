@@ -22,6 +22,11 @@ typedef struct surface {
     uint32_t ray_depth;
     float footprint;        /* radius (scene units) of the camera pixel's footprint here, carried along
                                the path (Cycles' sd->dP); 0 where no pixel's ray found the point */
+    /* Scattering events before the ray by kind, as Cycles counts them
+     * (path_state_next): diffuse and glossy (also sharp) reflections,
+     * transmissions (refraction, translucency), transparent pass-throughs
+     * (which ray_depth does not count). 0 unless the caller sets them. */
+    uint32_t diffuse_depth, glossy_depth, transmission_depth, transparent_depth;
     uint32_t instance, prim;
     const material *mat;
 } surface;
@@ -63,5 +68,9 @@ int scene_can_scatter_delta(const scene *s);
 
 /* How much light passes straight through (transparent closures). */
 vec3 material_transparency(const scene *s, const surface *sf);
+
+/* The sum of the holdout closures' weights (0 without any): how much of
+ * the surface cuts a hole in the film where a camera ray meets it. */
+vec3 material_holdout(const scene *s, const surface *sf);
 
 #endif /* PHOS_MATERIAL_H */

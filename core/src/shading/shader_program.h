@@ -50,6 +50,7 @@ typedef struct shader_globals {
     const struct mesh *mesh; /* the mesh hit and where on it (attributes), or NULL */
     uint32_t prim;           /* triangle */
     float b1, b2;            /* barycentric weights of corners 1 and 2 */
+    uint32_t diffuse_depth, glossy_depth, transmission_depth; /* surface.h: by kind of event */
 } shader_globals;
 
 enum shader_ray_flags {

@@ -84,7 +84,8 @@ void shader_op_layer_weight(const phos_shader_instruction *ins, shader_context *
 
 /* Mode 0: Is Camera, Is Shadow, Is Diffuse, Is Glossy, Is Singular Ray.
  * Mode 1: Is Reflection, Is Transmission Ray, Ray Length, Ray Depth,
- * Transparent Depth. What each integrator sets: README, "Light Path". */
+ * Transparent Depth. Mode 2: Diffuse, Glossy, Transmission Depth. What
+ * each integrator sets: README, "Light Path". */
 void shader_op_light_path(const phos_shader_instruction *ins, shader_context *ctx)
 {
     const shader_globals *g = ctx->g;
@@ -95,11 +96,15 @@ void shader_op_light_path(const phos_shader_instruction *ins, shader_context *ct
         SHADER_OUT(2, (f & SHADER_RAY_DIFFUSE) ? 1.0f : 0.0f);
         SHADER_OUT(3, (f & SHADER_RAY_GLOSSY) ? 1.0f : 0.0f);
         SHADER_OUT(4, (f & SHADER_RAY_SINGULAR) ? 1.0f : 0.0f);
-    } else {
+    } else if (ins->mode == 1) {
         SHADER_OUT(0, (f & SHADER_RAY_REFLECT) ? 1.0f : 0.0f);
         SHADER_OUT(1, (f & SHADER_RAY_TRANSMIT) ? 1.0f : 0.0f);
         SHADER_OUT(2, g->ray_length);
         SHADER_OUT(3, (float)g->ray_depth);
         SHADER_OUT(4, (float)g->transparent_depth);
+    } else {
+        SHADER_OUT(0, (float)g->diffuse_depth);
+        SHADER_OUT(1, (float)g->glossy_depth);
+        SHADER_OUT(2, (float)g->transmission_depth);
     }
 }
