@@ -44,11 +44,10 @@ camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, fl
     return r;
 }
 
-/* How far a unit direction moves when the image-plane point (x, y, −1)
- * it goes through moves by `step` (camera space), in world space. */
-static float direction_change(const phos_camera_desc *c, vec3 through, vec3 step)
+/* How far the unit world direction d0 (through the image-plane point
+ * `through`, camera space) moves when that point moves by `step`. */
+static float direction_change(const phos_camera_desc *c, vec3 d0, vec3 through, vec3 step)
 {
-    vec3 d0 = v3_normalize(xform_vector(c->transform, through));
     vec3 d1 = v3_normalize(xform_vector(c->transform, v3_add(through, step)));
     return v3_length(v3_sub(d1, d0));
 }
@@ -71,8 +70,9 @@ void camera_ray_set_footprint(const phos_camera_desc *c, float fx, float fy, uin
      * camera's centre, so clipping needs no correction. */
     vec3 through = v3(c->frame_min[0] + fx * (c->frame_max[0] - c->frame_min[0]),
                       c->frame_min[1] + fy * (c->frame_max[1] - c->frame_min[1]), -1.0f);
-    float dx = direction_change(c, through, v3(pixel_x, 0.0f, 0.0f));
-    float dy = direction_change(c, through, v3(0.0f, pixel_y, 0.0f));
+    vec3 d0 = v3_normalize(xform_vector(c->transform, through));
+    float dx = direction_change(c, d0, through, v3(pixel_x, 0.0f, 0.0f));
+    float dy = direction_change(c, d0, through, v3(0.0f, pixel_y, 0.0f));
     r->spread_origin = 0.0f;
     r->spread_per_distance = 0.5f * (dx + dy);
 }

@@ -293,7 +293,8 @@ void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, 
     g->ray_flags = sf->ray_flags;
     g->ray_length = sf->ray_length;
     g->ray_depth = sf->ray_depth;
-    position_differentials(s, sf, g);
+    if (needs & SHADER_NEEDS_UV_TANGENTS)
+        position_differentials(s, sf, g);
     g->diffuse_depth = sf->diffuse_depth;
     g->glossy_depth = sf->glossy_depth;
     g->transmission_depth = sf->transmission_depth;

@@ -80,7 +80,7 @@ typedef struct shader_program {
 /* The costlier parts of shader_globals, filled only for a program that
  * reads them. */
 enum shader_needs {
-    SHADER_NEEDS_UV_TANGENTS = 1 << 0, /* dPdu, dPdv (Bump) */
+    SHADER_NEEDS_UV_TANGENTS = 1 << 0, /* dPdu, dPdv and the position differentials (Bump) */
     SHADER_NEEDS_TANGENT = 1 << 1,     /* the MikkTSpace tangent (Normal Map) */
     SHADER_NEEDS_WINDOW = 1 << 2,      /* window coordinates (Texture Coordinate's Window) */
     SHADER_NEEDS_ATTRIBUTES = 1 << 3   /* the mesh and the point on it (Attribute) */

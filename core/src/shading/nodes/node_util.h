@@ -30,6 +30,10 @@
 #define NODE_VECTOR_CLONES
 #endif
 
+/* A helper of the functions above, compiled into each of their copies
+ * (a plain static function would be compiled once, for the baseline). */
+#define NODE_INLINE static inline __attribute__((always_inline))
+
 /* min and max as comparisons: a NaN first operand gives the second. */
 static inline float node_min(float a, float b) { return a < b ? a : b; }
 static inline float node_max(float a, float b) { return a > b ? a : b; }

@@ -25,11 +25,10 @@
 
 /* ------------------------------------------------------------ helpers */
 
-#define NOISE_INLINE static inline __attribute__((always_inline))
 
 /* a·b + c rounded once: fmaf where the hardware has it, else in double,
  * whose product of two floats is exact. */
-static inline float fused_madd(float a, float b, float c)
+NODE_INLINE float fused_madd(float a, float b, float c)
 {
 #ifdef FP_FAST_FMAF
     return fmaf(a, b, c);
@@ -38,39 +37,39 @@ static inline float fused_madd(float a, float b, float c)
 #endif
 }
 
-static inline float lerp(float a, float b, float t) { return a + t * (b - a); }
+NODE_INLINE float lerp(float a, float b, float t) { return a + t * (b - a); }
 
 /* Cell index and offset within the cell; the index wraps as x86's
  * conversion gives it (INT_MIN for NaN and beyond ±2^31). */
-static inline float floorfrac(float x, uint32_t *cell)
+NODE_INLINE float floorfrac(float x, uint32_t *cell)
 {
     float f = floorf(x);
     *cell = (uint32_t)node_float_to_int(f);
     return x - f;
 }
 
-static inline float fade_scalar(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
+NODE_INLINE float fade_scalar(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
 
-static inline float fade_simd(float t)
+NODE_INLINE float fade_simd(float t)
 {
     float a = fused_madd(t, 6.0f, -15.0f);
     float b = fused_madd(t, a, 10.0f);
     return (t * t) * (t * b);
 }
 
-static inline float negate_if(float v, uint32_t cond) { return cond ? -v : v; }
+NODE_INLINE float negate_if(float v, uint32_t cond) { return cond ? -v : v; }
 
 /* Gradients (Perlin 2002 §3, as in Cycles/OSL): 1D slopes ±1..±8; 2D the
  * eight (±1, ±2), (±2, ±1); 3D the twelve cube edge midpoints (four
  * repeated); 4D the thirty-two (0, ±1, ±1, ±1) permutations. */
-static inline float grad1(uint32_t hash, float x)
+NODE_INLINE float grad1(uint32_t hash, float x)
 {
     uint32_t h = hash & 15u;
     float g = (float)(1u + (h & 7u));
     return negate_if(g, h & 8u) * x;
 }
 
-static inline float grad2(uint32_t hash, float x, float y)
+NODE_INLINE float grad2(uint32_t hash, float x, float y)
 {
     uint32_t h = hash & 7u;
     float u = h < 4u ? x : y;
@@ -78,19 +77,11 @@ static inline float grad2(uint32_t hash, float x, float y)
     return negate_if(u, h & 1u) + negate_if(v, h & 2u);
 }
 
-static inline float grad3(uint32_t hash, float x, float y, float z)
-{
-    uint32_t h = hash & 15u;
-    float u = h < 8u ? x : y;
-    float vt = (h == 12u || h == 14u) ? x : z;
-    float v = h < 4u ? y : vt;
-    return negate_if(u, h & 1u) + negate_if(v, h & 2u);
-}
-
-/* grad3 without branches, on the bit patterns: selects by masks and
- * negation by flipping the sign bit (exactly −v), so that eight corners
- * run in vector lanes. */
-static inline float grad3_select(uint32_t hash, float x, float y, float z)
+/* The 3D gradient without branches, on the bit patterns: u is x for
+ * h < 8, else y; v is y for h < 4, x for h = 12 or 14, else z; each is
+ * negated (its sign bit flipped, exactly −v) by bits 0 and 1 of h. Masks
+ * instead of branches let the eight corners run in vector lanes. */
+NODE_INLINE float grad3_select(uint32_t hash, float x, float y, float z)
 {
     uint32_t h = hash & 15u;
     uint32_t bx = noise_float_bits(x), by = noise_float_bits(y), bz = noise_float_bits(z);
@@ -108,7 +99,7 @@ static inline float grad3_select(uint32_t hash, float x, float y, float z)
     return fu + fv;
 }
 
-static inline float grad4(uint32_t hash, float x, float y, float z, float w)
+NODE_INLINE float grad4(uint32_t hash, float x, float y, float z, float w)
 {
     uint32_t h = hash & 31u;
     float u = h < 24u ? x : y;
@@ -119,7 +110,7 @@ static inline float grad4(uint32_t hash, float x, float y, float z, float w)
 
 /* ------------------------------------------------ lattice noise, 1D-4D */
 
-NOISE_INLINE float perlin_lattice_1d_inline(float x)
+NODE_INLINE float perlin_lattice_1d_inline(float x)
 {
     uint32_t X;
     float fx = floorfrac(x, &X);
@@ -127,7 +118,7 @@ NOISE_INLINE float perlin_lattice_1d_inline(float x)
     return lerp(grad1(hash_uint(X), fx), grad1(hash_uint(X + 1u), fx - 1.0f), u);
 }
 
-NOISE_INLINE float perlin_lattice_2d_inline(float x, float y)
+NODE_INLINE float perlin_lattice_2d_inline(float x, float y)
 {
     uint32_t X, Y;
     float fx = floorfrac(x, &X), fy = floorfrac(y, &Y);
@@ -140,7 +131,7 @@ NOISE_INLINE float perlin_lattice_2d_inline(float x, float y)
 }
 
 /* Trilinear blend of corner values c[x][y][z]: x, then y, then z. */
-static inline float blend3(const float c[2][2][2], float u, float v, float w)
+NODE_INLINE float blend3(const float c[2][2][2], float u, float v, float w)
 {
     float s00 = lerp(c[0][0][0], c[1][0][0], u);
     float s01 = lerp(c[0][0][1], c[1][0][1], u);
@@ -153,7 +144,7 @@ static inline float blend3(const float c[2][2][2], float u, float v, float w)
  * arrays, the way Cycles' SIMD kernel does, so that the compiler keeps
  * them in vector registers (lookup3 needs only add, xor and rotate); the
  * values are the same as corner by corner. */
-NOISE_INLINE float perlin_lattice_3d_inline(float x, float y, float z)
+NODE_INLINE float perlin_lattice_3d_inline(float x, float y, float z)
 {
     uint32_t X, Y, Z;
     float fx = floorfrac(x, &X), fy = floorfrac(y, &Y), fz = floorfrac(z, &Z);
@@ -179,7 +170,7 @@ NOISE_INLINE float perlin_lattice_3d_inline(float x, float y, float z)
     return blend3(c, fade_simd(fx), fade_simd(fy), fade_simd(fz));
 }
 
-NOISE_INLINE float perlin_lattice_4d_inline(float x, float y, float z, float w)
+NODE_INLINE float perlin_lattice_4d_inline(float x, float y, float z, float w)
 {
     uint32_t X, Y, Z, W;
     float fx = floorfrac(x, &X), fy = floorfrac(y, &Y), fz = floorfrac(z, &Z), fw = floorfrac(w, &W);
@@ -200,7 +191,7 @@ NOISE_INLINE float perlin_lattice_4d_inline(float x, float y, float z, float w)
 
 /* Wrap a coordinate to (−10⁵, 10⁵), shifting those beyond 10⁶ by half a
  * cell so the wrapped lattice does not line up with the original. */
-static inline float wrap_coordinate(float p)
+NODE_INLINE float wrap_coordinate(float p)
 {
     if (fabsf(p) < 100000.0f) /* fmodf is then p itself, exactly: skip the call */
         return p;
@@ -208,54 +199,54 @@ static inline float wrap_coordinate(float p)
     return fmodf(p, 100000.0f) + correction;
 }
 
-static inline float finite_or_zero(float x) { return isfinite(x) ? x : 0.0f; }
+NODE_INLINE float finite_or_zero(float x) { return isfinite(x) ? x : 0.0f; }
 
 #define NOISE_SCALE_1D 0.2500f
 #define NOISE_SCALE_2D 0.6616f
 #define NOISE_SCALE_3D 0.9820f
 #define NOISE_SCALE_4D 0.8344f
 
-NOISE_INLINE float perlin_signed_1d_inline(float p) { return NOISE_SCALE_1D * perlin_lattice_1d_inline(wrap_coordinate(p)); }
+NODE_INLINE float perlin_signed_1d_inline(float p) { return NOISE_SCALE_1D * perlin_lattice_1d_inline(wrap_coordinate(p)); }
 
-NOISE_INLINE float perlin_signed_2d_inline(float x, float y)
+NODE_INLINE float perlin_signed_2d_inline(float x, float y)
 {
     return NOISE_SCALE_2D * perlin_lattice_2d_inline(wrap_coordinate(x), wrap_coordinate(y));
 }
 
-NOISE_INLINE float perlin_signed_3d_inline(vec3 p)
+NODE_INLINE float perlin_signed_3d_inline(vec3 p)
 {
     return NOISE_SCALE_3D * perlin_lattice_3d_inline(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z));
 }
 
-NOISE_INLINE float perlin_signed_4d_inline(vec3 p, float w)
+NODE_INLINE float perlin_signed_4d_inline(vec3 p, float w)
 {
     return NOISE_SCALE_4D * perlin_lattice_4d_inline(wrap_coordinate(p.x), wrap_coordinate(p.y), wrap_coordinate(p.z),
                                               wrap_coordinate(w));
 }
 
-NOISE_INLINE float perlin_1d_inline(float p) { return 0.5f * perlin_signed_1d_inline(p) + 0.5f; }
-NOISE_INLINE float perlin_2d_inline(float x, float y) { return 0.5f * perlin_signed_2d_inline(x, y) + 0.5f; }
-NOISE_INLINE float perlin_3d_inline(vec3 p) { return 0.5f * perlin_signed_3d_inline(p) + 0.5f; }
-NOISE_INLINE float perlin_4d_inline(vec3 p, float w) { return 0.5f * perlin_signed_4d_inline(p, w) + 0.5f; }
+NODE_INLINE float perlin_1d_inline(float p) { return 0.5f * perlin_signed_1d_inline(p) + 0.5f; }
+NODE_INLINE float perlin_2d_inline(float x, float y) { return 0.5f * perlin_signed_2d_inline(x, y) + 0.5f; }
+NODE_INLINE float perlin_3d_inline(vec3 p) { return 0.5f * perlin_signed_3d_inline(p) + 0.5f; }
+NODE_INLINE float perlin_4d_inline(vec3 p, float w) { return 0.5f * perlin_signed_4d_inline(p, w) + 0.5f; }
 
-NOISE_INLINE float perlin_signed_legacy_1d_inline(float p) { return NOISE_SCALE_1D * finite_or_zero(perlin_lattice_1d_inline(p)); }
+NODE_INLINE float perlin_signed_legacy_1d_inline(float p) { return NOISE_SCALE_1D * finite_or_zero(perlin_lattice_1d_inline(p)); }
 
-NOISE_INLINE float perlin_signed_legacy_2d_inline(float x, float y)
+NODE_INLINE float perlin_signed_legacy_2d_inline(float x, float y)
 {
     return NOISE_SCALE_2D * finite_or_zero(perlin_lattice_2d_inline(x, y));
 }
 
-NOISE_INLINE float perlin_signed_legacy_3d_inline(vec3 p)
+NODE_INLINE float perlin_signed_legacy_3d_inline(vec3 p)
 {
     return NOISE_SCALE_3D * finite_or_zero(perlin_lattice_3d_inline(p.x, p.y, p.z));
 }
 
-NOISE_INLINE float perlin_signed_legacy_4d_inline(vec3 p, float w)
+NODE_INLINE float perlin_signed_legacy_4d_inline(vec3 p, float w)
 {
     return NOISE_SCALE_4D * finite_or_zero(perlin_lattice_4d_inline(p.x, p.y, p.z, w));
 }
 
-NOISE_INLINE float perlin_signed_inline(vec4f p, int dims)
+NODE_INLINE float perlin_signed_inline(vec4f p, int dims)
 {
     switch (dims) {
     case 1: return perlin_signed_1d_inline(p.x);
@@ -266,7 +257,7 @@ NOISE_INLINE float perlin_signed_inline(vec4f p, int dims)
     }
 }
 
-NOISE_INLINE float perlin_signed_legacy_inline(vec4f p, int dims)
+NODE_INLINE float perlin_signed_legacy_inline(vec4f p, int dims)
 {
     switch (dims) {
     case 1: return perlin_signed_legacy_1d_inline(p.x);
@@ -301,11 +292,11 @@ NODE_VECTOR_CLONES float perlin_signed_legacy(vec4f p, int dims) { return perlin
 
 /* ----------------------------------------------------- fractal noise */
 
-static inline vec4f v4f_scale(vec4f p, float s) { return v4f(p.x * s, p.y * s, p.z * s, p.w * s); }
+NODE_INLINE vec4f v4f_scale(vec4f p, float s) { return v4f(p.x * s, p.y * s, p.z * s, p.w * s); }
 
 /* detail's integer part, the loop bound of the octaves (callers clamp
  * detail to [0, 15]; NaN and out-of-range values give 0, defined). */
-static inline int whole_octaves(float detail) { return detail >= 0.0f && detail < 1024.0f ? (int)detail : 0; }
+NODE_INLINE int whole_octaves(float detail) { return detail >= 0.0f && detail < 1024.0f ? (int)detail : 0; }
 
 NODE_VECTOR_CLONES float noise_fbm(vec4f p, int dims, float detail, float roughness, float lacunarity, int normalize)
 {
@@ -387,7 +378,7 @@ NODE_VECTOR_CLONES float noise_hybrid_multi_fractal(vec4f p, int dims, float det
     return value;
 }
 
-static inline float saturate(float x) { return node_clamp(x, 0.0f, 1.0f); }
+NODE_INLINE float saturate(float x) { return node_clamp(x, 0.0f, 1.0f); }
 
 NODE_VECTOR_CLONES float noise_ridged_multi_fractal(vec4f p, int dims, float detail, float roughness, float lacunarity,
                                  float offset, float gain)
@@ -426,7 +417,7 @@ NODE_VECTOR_CLONES float noise_fractal(uint32_t type, vec4f p, int dims, float d
 
 /* ------------------------------------------ Blender 3.x Noise Texture */
 
-static inline float perlin_unsigned_legacy(vec4f p, int dims) { return 0.5f * perlin_signed_legacy_inline(p, dims) + 0.5f; }
+NODE_INLINE float perlin_unsigned_legacy(vec4f p, int dims) { return 0.5f * perlin_signed_legacy_inline(p, dims) + 0.5f; }
 
 NODE_VECTOR_CLONES float noise_fbm_legacy(vec4f p, int dims, float octaves, float roughness)
 {
@@ -455,7 +446,7 @@ NODE_VECTOR_CLONES float noise_fbm_legacy(vec4f p, int dims, float octaves, floa
 /* ------------------------------------- Blender 3.x/4.0 Musgrave Texture */
 
 /* fBM: Σ_{i<octaves} lacunarity^(−iH) · snoise(lacunarity^i · p). */
-static float musgrave_fbm(vec4f p, int dims, float H, float lacunarity, float octaves)
+NODE_INLINE float musgrave_fbm(vec4f p, int dims, float H, float lacunarity, float octaves)
 {
     float value = 0.0f, pwr = 1.0f, pwHL = powf(lacunarity, -H);
     int n = whole_octaves(octaves);
@@ -470,7 +461,7 @@ static float musgrave_fbm(vec4f p, int dims, float H, float lacunarity, float oc
     return value;
 }
 
-static float musgrave_multi_fractal(vec4f p, int dims, float H, float lacunarity, float octaves)
+NODE_INLINE float musgrave_multi_fractal(vec4f p, int dims, float H, float lacunarity, float octaves)
 {
     float value = 1.0f, pwr = 1.0f, pwHL = powf(lacunarity, -H);
     int n = whole_octaves(octaves);
@@ -485,7 +476,7 @@ static float musgrave_multi_fractal(vec4f p, int dims, float H, float lacunarity
     return value;
 }
 
-static float musgrave_hetero_terrain(vec4f p, int dims, float H, float lacunarity, float octaves, float offset)
+NODE_INLINE float musgrave_hetero_terrain(vec4f p, int dims, float H, float lacunarity, float octaves, float offset)
 {
     float pwHL = powf(lacunarity, -H);
     float pwr = pwHL;
@@ -506,7 +497,7 @@ static float musgrave_hetero_terrain(vec4f p, int dims, float H, float lacunarit
     return value;
 }
 
-static float musgrave_hybrid_multi_fractal(vec4f p, int dims, float H, float lacunarity, float octaves,
+NODE_INLINE float musgrave_hybrid_multi_fractal(vec4f p, int dims, float H, float lacunarity, float octaves,
                                            float offset, float gain)
 {
     float pwHL = powf(lacunarity, -H);
@@ -531,7 +522,7 @@ static float musgrave_hybrid_multi_fractal(vec4f p, int dims, float H, float lac
     return value;
 }
 
-static float musgrave_ridged_multi_fractal(vec4f p, int dims, float H, float lacunarity, float octaves,
+NODE_INLINE float musgrave_ridged_multi_fractal(vec4f p, int dims, float H, float lacunarity, float octaves,
                                            float offset, float gain)
 {
     float pwHL = powf(lacunarity, -H);

@@ -42,7 +42,7 @@
 #define NOISE_FLAG_BLENDER3 16u
 
 /* The dimension count of an op's flags, or 0 if it is not 1-4. */
-static int flag_dims(uint32_t flags)
+NODE_INLINE int flag_dims(uint32_t flags)
 {
     int d = (int)(flags & NOISE_FLAG_DIMS);
     return d >= 1 && d <= 4 ? d : 0;
@@ -50,7 +50,7 @@ static int flag_dims(uint32_t flags)
 
 /* The node's input point: W alone in 1D, the vector's x, y in 2D, x, y, z
  * in 3D, and (x, y, z, W) in 4D; 1D keeps W in x. */
-static vec4f node_point(vec3 v, float w, int dims)
+NODE_INLINE vec4f node_point(vec3 v, float w, int dims)
 {
     if (dims == 1)
         return v4f(w, 0.0f, 0.0f, 0.0f);
@@ -59,7 +59,7 @@ static vec4f node_point(vec3 v, float w, int dims)
 
 /* ------------------------------------------------------- Noise Texture */
 
-static vec4f random_offset(float seed, int dims)
+NODE_INLINE vec4f random_offset(float seed, int dims)
 {
     if (dims == 1)
         return v4f(100.0f + hash_float_to_float(seed) * 100.0f, 0.0f, 0.0f, 0.0f);
@@ -69,12 +69,12 @@ static vec4f random_offset(float seed, int dims)
     return v4f(o[0], o[1], o[2], o[3]);
 }
 
-static vec4f v4f_add(vec4f a, vec4f b) { return v4f(a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w); }
+NODE_INLINE vec4f v4f_add(vec4f a, vec4f b) { return v4f(a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w); }
 
-static float component(vec4f p, int i) { return i == 0 ? p.x : i == 1 ? p.y : i == 2 ? p.z : p.w; }
+NODE_INLINE float component(vec4f p, int i) { return i == 0 ? p.x : i == 1 ? p.y : i == 2 ? p.z : p.w; }
 
 /* p += distortion · (snoise(p + offset(0)), …, snoise(p + offset(d−1))). */
-static vec4f distort(vec4f p, int dims, float distortion, int blender3)
+NODE_INLINE vec4f distort(vec4f p, int dims, float distortion, int blender3)
 {
     float d[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     for (int i = 0; i < dims; i++) {
@@ -93,7 +93,7 @@ typedef struct noise_params {
     float detail, roughness, lacunarity, offset, gain;
 } noise_params;
 
-static float noise_value(const noise_params *np, vec4f p)
+NODE_INLINE float noise_value(const noise_params *np, vec4f p)
 {
     if (np->blender3)
         return noise_fbm_legacy(p, np->dims, np->detail, np->roughness);

@@ -62,11 +62,11 @@
 
 /* ------------------------------------------------------------ scalars */
 
-static float saturatef(float a) { return node_clamp(a, 0.0f, 1.0f); }
-static float mixf(float a, float b, float t) { return a + t * (b - a); }
+NODE_INLINE float saturatef(float a) { return node_clamp(a, 0.0f, 1.0f); }
+NODE_INLINE float mixf(float a, float b, float t) { return a + t * (b - a); }
 
 /* smoothstep(0, 1, x): 0 below 0, 1 from 1 on, (3 − 2x)x² between (NaN stays NaN). */
-static float smoothstep01(float x)
+NODE_INLINE float smoothstep01(float x)
 {
     if (x < 0.0f)
         return 0.0f;
@@ -76,7 +76,7 @@ static float smoothstep01(float x)
 }
 
 /* Cycles' smoothstepf (Brick): 3f² − 2f³ on (0, 1). */
-static float smoothstepf_c(float f)
+NODE_INLINE float smoothstepf_c(float f)
 {
     if (f <= 0.0f)
         return 0.0f;
@@ -88,21 +88,21 @@ static float smoothstepf_c(float f)
 
 /* float → int as x86's conversions do: truncation, and INT_MIN for NaN or
  * out of range (where a C cast is undefined). */
-static int32_t float_to_int_x86(float f)
+NODE_INLINE int32_t float_to_int_x86(float f)
 {
     if (!(f > -2147483904.0f && f < 2147483648.0f))
         return INT32_MIN;
     return (int32_t)f;
 }
 
-static vec3 v3_mix(vec3 a, vec3 b, float t) { return v3_add(a, v3_scale(v3_sub(b, a), t)); }
+NODE_INLINE vec3 v3_mix(vec3 a, vec3 b, float t) { return v3_add(a, v3_scale(v3_sub(b, a), t)); }
 
 /* ------------------------------------------------------------ Checker */
 
 /* Parity of the unit cell of p: 1 where the cell's integer coordinates
  * satisfy (x even ⇔ y even) ⇔ z odd, so neighbouring cells alternate.
  * p is nudged by (p + 1e-6)·0.999999 so unit coordinates stay stable. */
-static float checker(vec3 p)
+NODE_INLINE float checker(vec3 p)
 {
     p.x = (p.x + 0.000001f) * 0.999999f;
     p.y = (p.y + 0.000001f) * 0.999999f;
@@ -124,7 +124,7 @@ NODE_VECTOR_CLONES void shader_op_tex_checker(const phos_shader_instruction *ins
 
 /* ----------------------------------------------------------- Gradient */
 
-static float gradient(vec3 p, uint32_t type)
+NODE_INLINE float gradient(vec3 p, uint32_t type)
 {
     float x = p.x, y = p.y, z = p.z;
     switch (type) {
@@ -169,7 +169,7 @@ NODE_VECTOR_CLONES void shader_op_tex_gradient(const phos_shader_instruction *in
 /* Magic texture: three sines of the coordinates, then up to ten rounds of
  * feeding them back through sin/cos ("turbulence depth"), each scaled by
  * the distortion. */
-static vec3 magic(vec3 p, float scale, int depth, float distortion, int scale_in_wrap)
+NODE_INLINE vec3 magic(vec3 p, float scale, int depth, float distortion, int scale_in_wrap)
 {
     /* the coordinates wrapped to [0, 2π) against precision loss (and the
      * NaNs of sin/cos of huge arguments); 3.4-5.0 scale after the wrap */
@@ -230,10 +230,10 @@ NODE_VECTOR_CLONES void shader_op_tex_magic(const phos_shader_instruction *ins, 
 /* -------------------------------------------------------------- Brick */
 
 /* A float node setting that Blender stores as an int (the frequencies). */
-static int param_int(float f) { return (int)fminf(fmaxf(f, -1.0e9f), 1.0e9f); }
+NODE_INLINE int param_int(float f) { return (int)fminf(fmaxf(f, -1.0e9f), 1.0e9f); }
 
 /* a % b as C computes it, without INT_MIN % −1's trap. */
-static int32_t rem_i32(int32_t a, int32_t b) { return b == -1 ? 0 : a % b; }
+NODE_INLINE int32_t rem_i32(int32_t a, int32_t b) { return b == -1 ? 0 : a % b; }
 
 typedef struct brick_result {
     float tint;   /* brick colour blend, [0, 1] */
@@ -251,7 +251,7 @@ typedef struct brick_result {
  * where f < mortar_smooth and is 1 elsewhere, so a negative smoothing
  * gives solid mortar; from 4.0 the smoothstep is clamped, and a negative
  * smoothing gives none. */
-static float mortar_edge(float f, float mortar_smooth, int blender3)
+NODE_INLINE float mortar_edge(float f, float mortar_smooth, int blender3)
 {
     if (blender3) {
         if (!(f < mortar_smooth))
@@ -262,7 +262,7 @@ static float mortar_edge(float f, float mortar_smooth, int blender3)
     return smoothstepf_c(f / mortar_smooth);
 }
 
-static brick_result brick(vec3 p, float mortar_size, float mortar_smooth, float bias, float brick_width,
+NODE_INLINE brick_result brick(vec3 p, float mortar_size, float mortar_smooth, float bias, float brick_width,
                           float row_height, float offset_amount, int offset_frequency, float squash_amount,
                           int squash_frequency, int blender3)
 {
@@ -316,7 +316,7 @@ NODE_VECTOR_CLONES void shader_op_tex_brick(const phos_shader_instruction *ins, 
  * diagonal) for bands, 20 per unit of distance from an axis (or the
  * origin) for rings; distortion adds fractal noise; the profile maps n to
  * [0, 1] as a sine, a saw or a triangle of period 2π. */
-static float wave(uint32_t type, uint32_t bands_dir, uint32_t rings_dir, uint32_t profile, vec3 p,
+NODE_INLINE float wave(uint32_t type, uint32_t bands_dir, uint32_t rings_dir, uint32_t profile, vec3 p,
                   float distortion, float detail, float dscale, float droughness, float phase, int legacy)
 {
     p.x = (p.x + 0.000001f) * 0.999999f; /* stable at unit coordinates */
@@ -384,10 +384,6 @@ NODE_VECTOR_CLONES void shader_op_tex_wave(const phos_shader_instruction *ins, s
 #define VORONOI_METRIC_SHIFT 5u
 #define VORONOI_FLAG_INT_CELLS 128u  /* Blender 5.0+: PCG hashes of integer cells (2D-4D) */
 
-/* The Voronoi search's helpers are inlined into each dimension's copy of
- * an octave (voronoi_octave). */
-#define VORONOI_INLINE static inline __attribute__((always_inline))
-
 /* PCG hashes of integer cells (Jarzynski & Olano 2020) as Blender 5.0's
  * Voronoi uses them: an LCG step per component, then the components mix
  * by products (by a constant in 2D) before and after an xorshift by 16
@@ -396,10 +392,10 @@ NODE_VECTOR_CLONES void shader_op_tex_wave(const phos_shader_instruction *ins, s
 #define PCG_MUL 1664525u
 #define PCG_ADD 1013904223u
 
-VORONOI_INLINE uint32_t sar16(uint32_t v) { return (v >> 16) | ((v & 0x80000000u) ? 0xFFFF0000u : 0u); }
-VORONOI_INLINE float pcg_unit(uint32_t h) { return (float)(int32_t)(h & 0x7FFFFFFFu) * (1.0f / 2147483648.0f); }
+NODE_INLINE uint32_t sar16(uint32_t v) { return (v >> 16) | ((v & 0x80000000u) ? 0xFFFF0000u : 0u); }
+NODE_INLINE float pcg_unit(uint32_t h) { return (float)(int32_t)(h & 0x7FFFFFFFu) * (1.0f / 2147483648.0f); }
 
-VORONOI_INLINE void pcg2(const int32_t k[2], float out[2])
+NODE_INLINE void pcg2(const int32_t k[2], float out[2])
 {
     uint32_t x = (uint32_t)k[0] * PCG_MUL + PCG_ADD, y = (uint32_t)k[1] * PCG_MUL + PCG_ADD;
     x += y * PCG_MUL;
@@ -411,7 +407,7 @@ VORONOI_INLINE void pcg2(const int32_t k[2], float out[2])
     out[0] = pcg_unit(x), out[1] = pcg_unit(y);
 }
 
-VORONOI_INLINE void pcg3(const int32_t k[3], float out[3])
+NODE_INLINE void pcg3(const int32_t k[3], float out[3])
 {
     uint32_t x = (uint32_t)k[0] * PCG_MUL + PCG_ADD, y = (uint32_t)k[1] * PCG_MUL + PCG_ADD,
              z = (uint32_t)k[2] * PCG_MUL + PCG_ADD;
@@ -427,7 +423,7 @@ VORONOI_INLINE void pcg3(const int32_t k[3], float out[3])
     out[0] = pcg_unit(x), out[1] = pcg_unit(y), out[2] = pcg_unit(z);
 }
 
-VORONOI_INLINE void pcg4(const int32_t k[4], float out[4])
+NODE_INLINE void pcg4(const int32_t k[4], float out[4])
 {
     uint32_t x = (uint32_t)k[0] * PCG_MUL + PCG_ADD, y = (uint32_t)k[1] * PCG_MUL + PCG_ADD,
              z = (uint32_t)k[2] * PCG_MUL + PCG_ADD, w = (uint32_t)k[3] * PCG_MUL + PCG_ADD;
@@ -471,7 +467,7 @@ typedef struct voronoi_result {
     float position[4]; /* the feature point (1D: in [0]) */
 } voronoi_result;
 
-VORONOI_INLINE voronoi_cell voronoi_cell_of(const voronoi_params *v, const float p[4])
+NODE_INLINE voronoi_cell voronoi_cell_of(const voronoi_params *v, const float p[4])
 {
     voronoi_cell c = {{0}, {0}, {0}};
     for (int k = 0; k < v->dims; k++) {
@@ -484,7 +480,7 @@ VORONOI_INLINE voronoi_cell voronoi_cell_of(const voronoi_params *v, const float
 
 /* Next neighbour offset in [lo, hi]^dims, x fastest (Cycles' loop order:
  * the last axis outermost). Returns 0 after the last. */
-VORONOI_INLINE int next_offset(int off[4], int dims, int lo, int hi)
+NODE_INLINE int next_offset(int off[4], int dims, int lo, int hi)
 {
     for (int k = 0; k < dims; k++) {
         if (off[k] < hi) {
@@ -496,14 +492,14 @@ VORONOI_INLINE int next_offset(int off[4], int dims, int lo, int hi)
     return 0;
 }
 
-VORONOI_INLINE void first_offset(int off[4], int dims, int lo)
+NODE_INLINE void first_offset(int off[4], int dims, int lo)
 {
     for (int k = 0; k < 4; k++)
         off[k] = k < dims ? lo : 0;
 }
 
 /* The feature point's jitter in [0, 1]^dims for cell + off. */
-VORONOI_INLINE void cell_jitter(const voronoi_params *v, const voronoi_cell *c, const int off[4], float h[4])
+NODE_INLINE void cell_jitter(const voronoi_params *v, const voronoi_cell *c, const int off[4], float h[4])
 {
     if (v->int_cells && v->dims >= 2) {
         int32_t k[4];
@@ -535,7 +531,7 @@ VORONOI_INLINE void cell_jitter(const voronoi_params *v, const voronoi_cell *c, 
 }
 
 /* The cell's colour output, [0, 1]³. */
-VORONOI_INLINE vec3 cell_color(const voronoi_params *v, const voronoi_cell *c, const int off[4])
+NODE_INLINE vec3 cell_color(const voronoi_params *v, const voronoi_cell *c, const int off[4])
 {
     if (v->int_cells && v->dims >= 2) {
         int32_t k[4] = {0, 0, 0, 0};
@@ -560,7 +556,7 @@ VORONOI_INLINE vec3 cell_color(const voronoi_params *v, const voronoi_cell *c, c
 }
 
 /* The feature point of cell + off, relative to the cell: off + jitter·randomness. */
-VORONOI_INLINE void feature_point(const voronoi_params *v, const voronoi_cell *c, const int off[4], float pp[4])
+NODE_INLINE void feature_point(const voronoi_params *v, const voronoi_cell *c, const int off[4], float pp[4])
 {
     float h[4] = {0, 0, 0, 0};
     cell_jitter(v, c, off, h);
@@ -570,7 +566,7 @@ VORONOI_INLINE void feature_point(const voronoi_params *v, const voronoi_cell *c
 
 /* Σ a in Cycles' order: 4-wide pairs (x + y) + (z + w), except 3.x's
  * componentwise 4D Manhattan/Minkowski sums, left to right. */
-VORONOI_INLINE float vsum(const float *a, int dims, int legacy)
+NODE_INLINE float vsum(const float *a, int dims, int legacy)
 {
     switch (dims) {
     case 1: return a[0];
@@ -581,7 +577,7 @@ VORONOI_INLINE float vsum(const float *a, int dims, int legacy)
 }
 
 /* a·b in Cycles' order (SSE dot product: (x² + y²) + (z² + w²)). */
-VORONOI_INLINE float vdot(const float *a, const float *b, int dims)
+NODE_INLINE float vdot(const float *a, const float *b, int dims)
 {
     switch (dims) {
     case 1: return a[0] * b[0];
@@ -591,7 +587,7 @@ VORONOI_INLINE float vdot(const float *a, const float *b, int dims)
     }
 }
 
-VORONOI_INLINE float vmax(const float *a, int dims)
+NODE_INLINE float vmax(const float *a, int dims)
 {
     float m = a[0];
     for (int k = 1; k < dims; k++)
@@ -603,7 +599,7 @@ VORONOI_INLINE float vmax(const float *a, int dims)
  * ‖a − b‖₁, Chebychev ‖a − b‖∞, Minkowski (Σ|aᵢ − bᵢ|^e)^(1/e). 1D is
  * always |b − a|. With `bound`, a monotone stand-in that ranks candidates
  * the same (squared length, Minkowski without the root; Blender 4.5+'s F1). */
-VORONOI_INLINE float voronoi_distance(const voronoi_params *v, const float *a, const float *b, int bound)
+NODE_INLINE float voronoi_distance(const voronoi_params *v, const float *a, const float *b, int bound)
 {
     int d = v->dims;
     if (d == 1)
@@ -636,7 +632,7 @@ VORONOI_INLINE float voronoi_distance(const voronoi_params *v, const float *a, c
 }
 
 /* Euclidean distance, or its square (N-Sphere Radius in 4.5+). */
-VORONOI_INLINE float euclid(const voronoi_params *v, const float *a, const float *b, int squared)
+NODE_INLINE float euclid(const voronoi_params *v, const float *a, const float *b, int squared)
 {
     float t[4] = {0, 0, 0, 0};
     for (int k = 0; k < v->dims; k++)
@@ -645,16 +641,16 @@ VORONOI_INLINE float euclid(const voronoi_params *v, const float *a, const float
     return squared ? s : sqrtf(s);
 }
 
-VORONOI_INLINE float search_start(const voronoi_params *v) { return v->legacy ? 8.0f : FLT_MAX; }
+NODE_INLINE float search_start(const voronoi_params *v) { return v->legacy ? 8.0f : FLT_MAX; }
 
-VORONOI_INLINE void copy4(float *dst, const float *src) { dst[0] = src[0], dst[1] = src[1], dst[2] = src[2], dst[3] = src[3]; }
+NODE_INLINE void copy4(float *dst, const float *src) { dst[0] = src[0], dst[1] = src[1], dst[2] = src[2], dst[3] = src[3]; }
 
 /* Cycles 4.0+ carries every position as a float4, and a 3D one gets w = 1
  * (make_float4 of a float3), which reaches the W output through the
  * fractal sums and the division by the scale. */
-VORONOI_INLINE float position_w3(const voronoi_params *v) { return v->dims == 3 && !v->legacy ? 1.0f : 0.0f; }
+NODE_INLINE float position_w3(const voronoi_params *v) { return v->dims == 3 && !v->legacy ? 1.0f : 0.0f; }
 
-VORONOI_INLINE void set_position(const voronoi_params *v, const voronoi_cell *c, const float *pp, voronoi_result *r)
+NODE_INLINE void set_position(const voronoi_params *v, const voronoi_cell *c, const float *pp, voronoi_result *r)
 {
     for (int k = 0; k < 4; k++)
         r->position[k] = k < v->dims ? pp[k] + c->cell[k] : 0.0f;
@@ -663,7 +659,7 @@ VORONOI_INLINE void set_position(const voronoi_params *v, const voronoi_cell *c,
 }
 
 /* F1 (Worley 1996): the nearest feature point among the 3^dims cells. */
-VORONOI_INLINE voronoi_result voronoi_f1(const voronoi_params *v, const float p[4])
+NODE_INLINE voronoi_result voronoi_f1(const voronoi_params *v, const float p[4])
 {
     voronoi_cell c = voronoi_cell_of(v, p);
     int bound = !v->legacy && v->dims >= 2;
@@ -689,7 +685,7 @@ VORONOI_INLINE voronoi_result voronoi_f1(const voronoi_params *v, const float p[
 }
 
 /* F2: the second nearest feature point. */
-VORONOI_INLINE voronoi_result voronoi_f2(const voronoi_params *v, const float p[4])
+NODE_INLINE voronoi_result voronoi_f2(const voronoi_params *v, const float p[4])
 {
     voronoi_cell c = voronoi_cell_of(v, p);
     float d1 = search_start(v), d2 = d1, pp1[4] = {0, 0, 0, 0}, pp2[4] = {0, 0, 0, 0};
@@ -721,7 +717,7 @@ VORONOI_INLINE voronoi_result voronoi_f2(const voronoi_params *v, const float p[
  * of width s (Quilez' smin): h = smoothstep(½ + ½(D − d)/s),
  * D ← mix(D, d, h) − s·h(1 − h); colour and position follow with the
  * correction divided by 1 + 3s. */
-VORONOI_INLINE voronoi_result voronoi_smooth_f1(const voronoi_params *v, const float p[4])
+NODE_INLINE voronoi_result voronoi_smooth_f1(const voronoi_params *v, const float p[4])
 {
     voronoi_cell c = voronoi_cell_of(v, p);
     float s = v->smoothness;
@@ -756,7 +752,7 @@ VORONOI_INLINE voronoi_result voronoi_smooth_f1(const voronoi_params *v, const f
 
 /* Distance to Edge, 1D: to the midpoints between this cell's point and its
  * neighbours'. */
-static float voronoi_edge_1d(const voronoi_params *v, float p)
+NODE_INLINE float voronoi_edge_1d(const voronoi_params *v, float p)
 {
     float cell = floorf(p), local = p - cell;
     float mid = hash_float_to_float(cell) * v->randomness;
@@ -770,7 +766,7 @@ static float voronoi_edge_1d(const voronoi_params *v, float p)
 /* Distance to Edge (Euclidean): find the nearest point's vector c, then
  * for every other point q the distance to the bisector of c and q,
  * ((c + q)/2)·(q − c)/‖q − c‖; the least of them. */
-static float voronoi_edge(const voronoi_params *v, const float p[4])
+NODE_INLINE float voronoi_edge(const voronoi_params *v, const float p[4])
 {
     if (v->dims == 1)
         return voronoi_edge_1d(v, p[0]);
@@ -813,7 +809,7 @@ static float voronoi_edge(const voronoi_params *v, const float p[4])
 
 /* N-Sphere Radius: half the (Euclidean) distance from the nearest point to
  * the point nearest to it, the largest sphere around it inside its cell. */
-static float voronoi_n_sphere_radius(const voronoi_params *v, const float p[4])
+NODE_INLINE float voronoi_n_sphere_radius(const voronoi_params *v, const float p[4])
 {
     int d = v->dims, squared = !v->legacy;
     voronoi_cell c = voronoi_cell_of(v, p);
@@ -853,7 +849,7 @@ static float voronoi_n_sphere_radius(const voronoi_params *v, const float p[4])
     return euclid(v, other, closest, 0) / 2.0f;
 }
 
-VORONOI_INLINE voronoi_result voronoi_octave_of(const voronoi_params *v, const float p[4])
+NODE_INLINE voronoi_result voronoi_octave_of(const voronoi_params *v, const float p[4])
 {
     if (v->feature == PHOS_VORONOI_F2)
         return voronoi_f2(v, p);
@@ -880,7 +876,7 @@ static NODE_VECTOR_CLONES voronoi_result voronoi_octave(const voronoi_params *v,
     }
 }
 
-static void scale4(float *out, const float *p, float s, int dims)
+NODE_INLINE void scale4(float *out, const float *p, float s, int dims)
 {
     for (int k = 0; k < 4; k++)
         out[k] = k < dims ? p[k] * s : 0.0f;
@@ -891,7 +887,7 @@ static void scale4(float *out, const float *p, float s, int dims)
  * lerps), the fraction of `detail` blending in one more octave;
  * `normalize` divides by the total weight (and the distance by its
  * largest value). */
-static voronoi_result voronoi_fractal(const voronoi_params *v, const float p[4])
+NODE_INLINE voronoi_result voronoi_fractal(const voronoi_params *v, const float p[4])
 {
     float amp = 1.0f, max_amp = 0.0f, scale = 1.0f;
     voronoi_result out = {0.0f, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 0.0f}};
@@ -936,7 +932,7 @@ static voronoi_result voronoi_fractal(const voronoi_params *v, const float p[4])
 
 /* Fractal Distance to Edge: the least edge distance over the octaves (each
  * divided by its frequency), blended in by the octave weights. */
-static float voronoi_fractal_edge(const voronoi_params *v, const float p[4])
+NODE_INLINE float voronoi_fractal_edge(const voronoi_params *v, const float p[4])
 {
     float amp = 1.0f, max_amp = v->max_distance, scale = 1.0f, dist = 8.0f;
     int zero_input = v->detail == 0.0f || v->roughness == 0.0f;
@@ -979,7 +975,7 @@ typedef struct voronoi_outputs {
  * by the scale (safe: 0 for scale 0) as the float width of each dimension
  * divides in Cycles: 1D and 3D per component in 3.x, otherwise by the
  * reciprocal. */
-static void position_outputs(const voronoi_params *v, const float pos[4], float scale, int true_div,
+NODE_INLINE void position_outputs(const voronoi_params *v, const float pos[4], float scale, int true_div,
                              voronoi_outputs *o)
 {
     float q[4] = {0, 0, 0, 0};
@@ -997,7 +993,7 @@ static void position_outputs(const voronoi_params *v, const float pos[4], float 
 }
 
 /* Blender 3.x: one octave of the feature at the scaled point. */
-static voronoi_outputs voronoi_legacy(const voronoi_params *v, const float p[4], float scale)
+NODE_INLINE voronoi_outputs voronoi_legacy(const voronoi_params *v, const float p[4], float scale)
 {
     voronoi_outputs o = {0.0f, {0, 0, 0}, {0, 0, 0}, 0.0f, 0.0f};
     if (v->feature == PHOS_VORONOI_DISTANCE_TO_EDGE) {
@@ -1014,7 +1010,7 @@ static voronoi_outputs voronoi_legacy(const voronoi_params *v, const float p[4],
 }
 
 /* Blender 4.0+: fractal features; N-Sphere Radius stays one octave. */
-static voronoi_outputs voronoi_modern(voronoi_params *v, const float p[4], float scale)
+NODE_INLINE voronoi_outputs voronoi_modern(voronoi_params *v, const float p[4], float scale)
 {
     voronoi_outputs o = {0.0f, {0, 0, 0}, {0, 0, 0}, 0.0f, 0.0f};
     float m = 0.5f + 0.5f * v->randomness;
