@@ -92,6 +92,17 @@ static void make_bsdf(bsdf *b, const closure *cl, int n, vec3 ns, vec3 ng)
         bsdf_add_closure(b, &cl[i]);
 }
 
+/* make_bsdf with a shading normal per closure: cn[i] = 0 keeps ns. */
+static void make_bsdf_framed(bsdf *b, const closure *cl, const vec3 *cn, int n, vec3 ns, vec3 ng)
+{
+    bsdf_init(b, v3_normalize(ns), v3_normalize(ng));
+    for (int i = 0; i < n; i++) {
+        closure c = cl[i];
+        c.frame = v3_length2(cn[i]) > 0.0f ? bsdf_add_frame(b, v3_normalize(cn[i]), v3s(0.0f)) : 0;
+        bsdf_add_closure(b, &c);
+    }
+}
+
 /* Direction at cos θ = z and azimuth phi in the frame f. */
 static vec3 dir_in_frame(const frame *f, double z, double phi)
 {
@@ -124,7 +135,7 @@ typedef struct integrand {
 static double pdf_at(const integrand *g, double z, double phi)
 {
     float pdf;
-    bsdf_eval(g->b, g->wo, dir_in_frame(&g->b->shading, z, phi), &pdf);
+    bsdf_eval(g->b, g->wo, dir_in_frame(&g->b->frames[0], z, phi), &pdf);
     return pdf;
 }
 
@@ -224,7 +235,7 @@ static double chi2_fit(const bsdf *b, vec3 wo, double delta_mass, uint32_t seed,
             observed[delta_cell] += 1.0;
             w = avg3(bs.weight);
         } else {
-            vec3 l = frame_to_local(&b->shading, bs.wi);
+            vec3 l = frame_to_local(&b->frames[0], bs.wi);
             int iz = (int)((clampf(l.z, -1.0f, 1.0f) + 1.0f) * 0.5f * COS_BINS);
             double phi = atan2(l.y, l.x);
             if (phi < 0.0)
@@ -307,6 +318,7 @@ static double chi2_fit(const bsdf *b, vec3 wo, double delta_mass, uint32_t seed,
 typedef struct scenario {
     char name[96];
     closure cl[4];
+    vec3 cn[4];         /* a closure's own shading normal; 0: the surface's (ns) */
     int n;
     vec3 ns, ng;
     int albedo_bounded; /* Burley diffuse is not energy conserving */
@@ -395,6 +407,17 @@ static int build_scenarios(scenario *sc)
         weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 0.5f),
         weighted(make_closure(PHOS_CLOSURE_REFLECTION, 0.5f, 1.0f), 0.5f));
     sc[n - 1].ns = v3_normalize(v3(0.35f, 0.1f, 1.0f));
+    /* One shading frame per closure (a Mix of BSDFs with different Bump
+     * normals): the mixture's density sums each closure's in its frame. */
+    ADD("mix diffuse + glossy, each its own normal",
+        weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 0.4f),
+        weighted(make_closure(PHOS_CLOSURE_REFLECTION, 0.3f, 1.0f), 0.6f));
+    sc[n - 1].cn[0] = v3_normalize(v3(-0.3f, 0.2f, 1.0f));
+    sc[n - 1].cn[1] = v3_normalize(v3(0.4f, -0.1f, 1.0f));
+    ADD("mix glossy + glass, the glass's own normal",
+        weighted(make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, 0.2f, 1.45f), 0.5f),
+        weighted(make_glass(0.3f, 1.5f, PHOS_GLASS_FRESNEL_MICROFACET), 0.5f));
+    sc[n - 1].cn[1] = v3_normalize(v3(0.1f, 0.35f, 1.0f));
 #undef ADD
     return n;
 }
@@ -408,7 +431,7 @@ static void test_chi2_all(void)
     uint32_t seed = 1;
     for (int s = 0; s < n; s++) {
         bsdf b;
-        make_bsdf(&b, sc[s].cl, sc[s].n, sc[s].ns, sc[s].ng);
+        make_bsdf_framed(&b, sc[s].cl, sc[s].cn, sc[s].n, sc[s].ns, sc[s].ng);
         for (int a = 0; a < 3; a++) {
             vec3 wo = view_dir(sc[s].ns, COS_VIEW[a]);
             if (v3_dot(wo, sc[s].ng) <= 0.0f)
@@ -423,7 +446,7 @@ static void test_chi2_all(void)
                     delta_mass += pick;
                 else if (c->type == PHOS_CLOSURE_GLASS && c->glass_fresnel == PHOS_GLASS_FRESNEL_MACRO &&
                          c->alpha < BSDF_SHARP_ALPHA && c->alpha_t >= BSDF_SHARP_ALPHA)
-                    delta_mass += pick * fresnel_dielectric(v3_dot(wo, b.shading.n), c->eta);
+                    delta_mass += pick * fresnel_dielectric(v3_dot(wo, b.frames[0].n), c->eta);
             }
             fit_stats st;
             double p = chi2_fit(&b, wo, delta_mass, seed++, &st);
@@ -451,7 +474,7 @@ static double albedo_quadrature(const bsdf *b, vec3 wo, int nz, int np)
     for (int i = 0; i < nz; i++)
         for (int j = 0; j < np; j++) {
             double z = -1.0 + 2.0 * (i + 0.5) / nz, phi = 2.0 * PHOS_PI * (j + 0.5) / np;
-            vec3 f = bsdf_eval(b, wo, dir_in_frame(&b->shading, z, phi), NULL);
+            vec3 f = bsdf_eval(b, wo, dir_in_frame(&b->frames[0], z, phi), NULL);
             sum += avg3(f);
         }
     return sum * (2.0 / nz) * (2.0 * PHOS_PI / np);
@@ -648,8 +671,8 @@ static void test_light_leaks(void)
         /* Includes exact poles and horizons. */
         double zo = (i % 7 == 0) ? 1.0 : (i % 11 == 0) ? 0.0 : 2.0 * a.x - 1.0;
         double zi = (i % 5 == 0) ? -1.0 : (i % 13 == 0) ? 0.0 : 2.0 * c.x - 1.0;
-        vec3 o = dir_in_frame(&b.shading, zo, 2.0 * PHOS_PI * a.y);
-        vec3 w = dir_in_frame(&b.shading, zi, 2.0 * PHOS_PI * c.y);
+        vec3 o = dir_in_frame(&b.frames[0], zo, 2.0 * PHOS_PI * a.y);
+        vec3 w = dir_in_frame(&b.frames[0], zi, 2.0 * PHOS_PI * c.y);
         vec3 f = bsdf_eval(&b, o, w, &pdf);
         if (!v3_is_finite(f) || !isfinite(pdf) || pdf < 0.0f)
             bad++;
@@ -658,6 +681,90 @@ static void test_light_leaks(void)
             bad++;
     }
     CHECK_MSG(bad == 0, "%d non-finite results", bad);
+}
+
+/* ------------------------------------------- one frame per closure */
+
+/* A closure in its own frame is the closure of a BSDF whose surface normal
+ * is that frame's: same values, densities and samples; the mixture is the
+ * sum of its closures; a layer sees wo from its own closure's normal; a
+ * delta sample reports its closure's normal (photon weights use it). */
+static void test_closure_frames(void)
+{
+    const vec3 z = v3(0.0f, 0.0f, 1.0f), na = v3_normalize(v3(0.3f, -0.2f, 1.0f));
+    closure glossy = weighted(make_closure(PHOS_CLOSURE_REFLECTION, 0.4f, 1.0f), 0.6f);
+    closure diffuse = weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 0.4f);
+    bsdf own, alone, base, mix;
+    make_bsdf(&alone, &glossy, 1, na, z);
+    make_bsdf(&base, &diffuse, 1, z, z);
+    closure both[2] = {glossy, diffuse};
+    vec3 cn[2] = {na, v3s(0.0f)};
+    make_bsdf_framed(&own, &glossy, cn, 1, z, z);
+    make_bsdf_framed(&mix, both, cn, 2, z, z);
+    CHECK(own.frame_count == 2 && own.closures[0].frame == 1);
+    CHECK(bsdf_add_frame(&own, own.frames[1].n, v3s(0.0f)) == 1 && own.frame_count == 2); /* shared, not added */
+    int mismatches = 0;
+    for (int i = 0; i < 4000; i++) {
+        sampler s = sampler_independent(21, 0, (uint64_t)i);
+        vec3 wo = dir_in_frame(&base.frames[0], 0.05 + 0.95 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
+        vec3 wi = dir_in_frame(&base.frames[0], 0.05 + 0.95 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
+        float p_own, p_alone, p_base, p_mix;
+        vec3 f_own = bsdf_eval(&own, wo, wi, &p_own), f_alone = bsdf_eval(&alone, wo, wi, &p_alone);
+        vec3 f_base = bsdf_eval(&base, wo, wi, &p_base), f_mix = bsdf_eval(&mix, wo, wi, &p_mix);
+        if (fabsf(f_own.x - f_alone.x) > 1e-6f * (1.0f + f_alone.x) || fabsf(p_own - p_alone) > 1e-6f * (1.0f + p_alone))
+            mismatches++;
+        /* Sample weights 0.6 and 0.4: the pdf is the weighted sum. */
+        float p_expect = 0.6f * p_alone + 0.4f * p_base;
+        if (fabsf(f_mix.x - (f_alone.x + f_base.x)) > 1e-5f * (1.0f + f_mix.x) ||
+            fabsf(p_mix - p_expect) > 1e-5f * (1.0f + p_expect))
+            mismatches++;
+        bsdf_sample a, b;
+        int ka = bsdf_sample_direction(&own, wo, 0.5f, sampler_2d(&s, 4), &a);
+        int kb = bsdf_sample_direction(&alone, wo, 0.5f, sampler_2d(&s, 4), &b);
+        if (ka != kb || (ka && (v3_length(v3_sub(a.wi, b.wi)) > 1e-6f || v3_length(v3_sub(a.ns, na)) > 1e-6f)))
+            mismatches++;
+    }
+    CHECK_MSG(mismatches == 0, "%d mismatches between a closure in its own frame and alone", mismatches);
+
+    /* A coat layer in the tilted frame over a diffuse in the surface's: its
+     * scale depends on cos θo about the coat's normal. */
+    bsdf layered;
+    bsdf_init(&layered, z, z);
+    bsdf_layer coat;
+    memset(&coat, 0, sizeof coat);
+    coat.type = PHOS_CLOSURE_REFLECTION_FRESNEL;
+    coat.roughness = 0.2f;
+    coat.eta = 1.5f;
+    coat.f0 = v3s(fresnel_f0_from_ior(1.5f));
+    coat.fss = v3s(1.0f);
+    coat.weight = v3s(1.0f);
+    coat.tint = v3(0.5f, 0.8f, 1.0f);
+    coat.tint_weight = 1.0f;
+    coat.frame = bsdf_add_frame(&layered, na, v3s(0.0f));
+    CHECK(bsdf_add_layer(&layered, &coat) == 0);
+    bsdf flat;
+    bsdf_init(&flat, na, z);
+    coat.frame = 0;
+    bsdf_add_layer(&flat, &coat);
+    vec3 wo = view_dir(z, 0.4f);
+    vec3 s_tilted = bsdf_layer_scale(&layered, 1u, wo), s_flat = bsdf_layer_scale(&flat, 1u, wo);
+    CHECK(v3_length(v3_sub(s_tilted, s_flat)) < 1e-6f);
+    coat.frame = 0;
+    bsdf untilted;
+    bsdf_init(&untilted, z, z);
+    bsdf_add_layer(&untilted, &coat);
+    CHECK(fabsf(bsdf_layer_scale(&untilted, 1u, wo).x - s_tilted.x) > 1e-3f); /* the frame matters */
+
+    /* A sharp mirror in its own frame: the delta sample reflects about it. */
+    closure mirror = make_closure(PHOS_CLOSURE_REFLECTION, 0.0f, 1.0f);
+    vec3 cm[1] = {na};
+    bsdf m;
+    make_bsdf_framed(&m, &mirror, cm, 1, z, z);
+    bsdf_sample bs;
+    CHECK(bsdf_sample_direction(&m, wo, 0.5f, (float2){0.5f, 0.5f}, &bs) && (bs.flags & BSDF_DELTA));
+    vec3 mirrored = v3_sub(v3_scale(na, 2.0f * v3_dot(wo, na)), wo);
+    CHECK(v3_length(v3_sub(bs.wi, mirrored)) < 1e-5f && v3_length(v3_sub(bs.ns, na)) < 1e-6f);
+    CHECK(v3_length(v3_sub(bsdf_normal(&m), na)) < 1e-6f);
 }
 
 /* ---------------------------------------------------- reciprocity */
@@ -677,8 +784,8 @@ static void test_reciprocity(void)
         make_bsdf(&b, &refl[k], 1, z, z);
         for (int i = 0; i < 2000; i++) {
             sampler s = sampler_independent(11, (uint32_t)k, (uint64_t)i);
-            vec3 wo = dir_in_frame(&b.shading, 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
-            vec3 wi = dir_in_frame(&b.shading, 0.02 + 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
+            vec3 wo = dir_in_frame(&b.frames[0], 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
+            vec3 wi = dir_in_frame(&b.frames[0], 0.02 + 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
             /* eval includes |cos θi|: f(wo,wi) = eval(wo,wi) / cos θi. */
             vec3 a = v3_scale(bsdf_eval(&b, wo, wi, NULL), 1.0f / wi.z);
             vec3 c = v3_scale(bsdf_eval(&b, wi, wo, NULL), 1.0f / wo.z);
@@ -706,8 +813,8 @@ static void test_reciprocity(void)
         make_bsdf(&back, &inv, 1, v3_neg(z), v3_neg(z));
         for (int i = 0; i < 2000; i++) {
             sampler s = sampler_independent(12, (uint32_t)k, (uint64_t)i);
-            vec3 wo = dir_in_frame(&front.shading, 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
-            vec3 wi = dir_in_frame(&front.shading, -0.02 - 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
+            vec3 wo = dir_in_frame(&front.frames[0], 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
+            vec3 wi = dir_in_frame(&front.frames[0], -0.02 - 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
             double a = avg3(bsdf_eval(&front, wo, wi, NULL)) / fabs(wi.z);
             double c = avg3(bsdf_eval(&back, wi, wo, NULL)) / fabs(wo.z);
             double eta = refr[k].eta;
@@ -757,7 +864,7 @@ static void test_adjoint_albedo(void)
             double quad = 0.0;
             for (int iz = 0; iz < nz; iz++)
                 for (int ip = 0; ip < np; ip++) {
-                    vec3 w_to = dir_in_frame(&b.shading, -1.0 + 2.0 * (iz + 0.5) / nz, 2.0 * PHOS_PI * (ip + 0.5) / np);
+                    vec3 w_to = dir_in_frame(&b.frames[0], -1.0 + 2.0 * (iz + 0.5) / nz, 2.0 * PHOS_PI * (ip + 0.5) / np);
                     quad += avg3(bsdf_adjoint_weight(&b, w_from, w_to, 1.0f));
                 }
             quad *= (2.0 / nz) * (2.0 * PHOS_PI / np);
@@ -954,6 +1061,7 @@ int main(void)
     test_reciprocity();
     test_adjoint_albedo();
     test_light_leaks();
+    test_closure_frames();
     test_chi2_all();
     return test_summary("test_bsdf");
 }

@@ -33,6 +33,12 @@
  * MIS, balance heuristic over closures, as Cycles does), a delta pick by
  * its own value over the probability of having picked it.
  *
+ * Frames: each closure is evaluated and sampled in its own shading frame
+ * (bsdf.frames[closure.frame]), as each Cycles closure carries its own N,
+ * so a Mix of BSDFs with different Bump normals, or a coat over a bumped
+ * base, shades each part about its own normal; the mixture's pdf sums the
+ * closures' densities, each taken in its frame.
+ *
  * Robustness: a reflected wi must lie above both the shading and the
  * geometric normal, a transmitted wi below both; otherwise the closure has
  * no value and no density there, so eval and sample stay consistent.
@@ -236,11 +242,20 @@ static vec3 layer_scale(const bsdf_layer *l, float mu)
     return scale;
 }
 
-/* Scales of every layer for wo (local), so a mixture evaluates each once. */
-static void layer_scales(const bsdf *b, float mu, vec3 *out)
+/* Scales of every layer, so a mixture evaluates each once; mu[f] is
+ * cos θo in the bsdf's frame f, and a layer sees wo from its own closure's
+ * frame (Cycles' bsdf_albedo reads the layer closure's N). */
+static void layer_scales(const bsdf *b, const float *mu, vec3 *out)
 {
     for (uint32_t j = 0; j < b->layer_count; j++)
-        out[j] = layer_scale(&b->layers[j], clampf(mu, 0.0f, 1.0f));
+        out[j] = layer_scale(&b->layers[j], clampf(mu[b->layers[j].frame], 0.0f, 1.0f));
+}
+
+/* cos θo of wo (world) in each of the bsdf's frames. */
+static void frame_cosines(const bsdf *b, vec3 wo, float *mu)
+{
+    for (uint32_t f = 0; f < b->frame_count; f++)
+        mu[f] = v3_dot(wo, b->frames[f].n);
 }
 
 static vec3 scale_under(const vec3 *scales, uint32_t under_layers)
@@ -257,7 +272,9 @@ vec3 bsdf_layer_scale(const bsdf *b, uint32_t under_layers, vec3 wo)
     if (!under_layers)
         return v3s(1.0f);
     vec3 scales[BSDF_MAX_LAYERS];
-    layer_scales(b, v3_dot(wo, b->shading.n), scales);
+    float mu[BSDF_MAX_FRAMES];
+    frame_cosines(b, wo, mu);
+    layer_scales(b, mu, scales);
     return scale_under(scales, under_layers);
 }
 
@@ -272,7 +289,7 @@ static vec3 closure_albedo_estimate(const closure *c, float mu)
     case PHOS_CLOSURE_REFLECTION:
     case PHOS_CLOSURE_REFLECTION_FRESNEL: {
         bsdf_layer l = {c->type, c->roughness, c->eta, c->microfacet, c->f0, c->fss, c->film_thickness,
-                        c->film_ior, v3s(1.0f), v3s(1.0f), 0.0f};
+                        c->film_ior, v3s(1.0f), v3s(1.0f), 0.0f, 0};
         return c->type == PHOS_CLOSURE_REFLECTION ? v3s(1.0f) : layer_albedo(&l, mu);
     }
     case PHOS_CLOSURE_METAL:
@@ -307,12 +324,14 @@ static int closure_diffuse_like(const closure *c)
 void bsdf_denoising_features(const bsdf *b, vec3 wo, bsdf_features *out)
 {
     memset(out, 0, sizeof(*out));
-    float mu = clampf(v3_dot(wo, b->shading.n), 0.0f, 1.0f);
+    float mus[BSDF_MAX_FRAMES];
+    frame_cosines(b, wo, mus);
     vec3 scales[BSDF_MAX_LAYERS];
     if (b->layer_count)
-        layer_scales(b, mu, scales);
+        layer_scales(b, mus, scales);
     for (uint32_t k = 0; k < b->count; k++) {
         const closure *c = &b->closures[k];
+        float mu = clampf(mus[c->frame], 0.0f, 1.0f);
         vec3 albedo = v3_mul(c->weight, closure_albedo_estimate(c, mu));
         if (c->under_layers)
             albedo = v3_mul(albedo, scale_under(scales, c->under_layers));
@@ -332,6 +351,8 @@ int bsdf_add_layer(bsdf *b, const bsdf_layer *layer)
     if (b->layer_count >= BSDF_MAX_LAYERS)
         return -1;
     b->layers[b->layer_count] = *layer;
+    if (layer->frame >= b->frame_count)
+        b->layers[b->layer_count].frame = 0;
     return (int)b->layer_count++;
 }
 
@@ -644,27 +665,34 @@ static int closure_sample(const closure *c, vec3 wo, float u_lobe, float2 u, lob
 
 /* ----------------------------------------------------------- mixture */
 
-static query make_query(const bsdf *b, vec3 wo, vec3 wi)
+/* The pair (wo, wi) in the bsdf's frame f. */
+static query make_query(const bsdf *b, uint32_t f, vec3 wo, vec3 wi)
 {
     query q;
-    q.wo = frame_to_local(&b->shading, wo);
-    q.wi = frame_to_local(&b->shading, wi);
+    q.wo = frame_to_local(&b->frames[f], wo);
+    q.wi = frame_to_local(&b->frames[f], wi);
     q.ng_wi = v3_dot(b->ng, wi);
     return q;
 }
 
-/* Σ f·|cos θi| over the closures (each scaled by the layers over it) and
- * Σ (sample_weight_k / sum) pdf_k. */
-static vec3 eval_mixture(const bsdf *b, const query *q, float *pdf)
+/* Σ f·|cos θi| over the closures, each in its own frame and scaled by the
+ * layers over it, and Σ (sample_weight_k / sum) pdf_k. */
+static vec3 eval_mixture(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
 {
     vec3 value = v3s(0.0f);
     float p = 0.0f;
+    query q[BSDF_MAX_FRAMES];
+    float mu[BSDF_MAX_FRAMES];
+    for (uint32_t f = 0; f < b->frame_count; f++) {
+        q[f] = make_query(b, f, wo, wi);
+        mu[f] = q[f].wo.z;
+    }
     vec3 scales[BSDF_MAX_LAYERS];
     if (b->layer_count)
-        layer_scales(b, q->wo.z, scales);
+        layer_scales(b, mu, scales);
     for (uint32_t k = 0; k < b->count; k++) {
         float pk;
-        vec3 v = closure_eval(&b->closures[k], q, &pk);
+        vec3 v = closure_eval(&b->closures[k], &q[b->closures[k].frame], &pk);
         if (b->closures[k].under_layers)
             v = v3_mul(v, scale_under(scales, b->closures[k].under_layers));
         value = v3_add(value, v);
@@ -680,17 +708,51 @@ static vec3 eval_mixture(const bsdf *b, const query *q, float *pdf)
 
 void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric)
 {
-    b->shading = frame_from_normal(n_shading);
+    b->frames[0] = frame_from_normal(n_shading);
+    b->frame_count = 1;
     b->ng = n_geometric;
     b->count = 0;
     b->sample_weight_sum = 0.0f;
     b->layer_count = 0;
 }
 
+uint32_t bsdf_add_frame(bsdf *b, vec3 n, vec3 t)
+{
+    frame f = frame_from_normal(n);
+    vec3 x = v3_sub(t, v3_scale(n, v3_dot(t, n)));
+    if (v3_is_finite(x) && v3_length2(x) > 1e-12f) {
+        f.t = v3_normalize(x);
+        f.b = v3_cross(n, f.t);
+    }
+    for (uint32_t k = 0; k < b->frame_count; k++)
+        if (memcmp(&b->frames[k], &f, sizeof(f)) == 0)
+            return k;
+    if (b->frame_count >= BSDF_MAX_FRAMES)
+        return 0;
+    b->frames[b->frame_count] = f;
+    return b->frame_count++;
+}
+
+vec3 bsdf_normal(const bsdf *b)
+{
+    uint32_t first = b->count ? b->closures[0].frame : 0;
+    vec3 sum = v3s(0.0f);
+    int shared = 1;
+    for (uint32_t k = 0; k < b->count; k++) {
+        sum = v3_add(sum, v3_scale(b->frames[b->closures[k].frame].n, b->closures[k].sample_weight));
+        shared &= b->closures[k].frame == first;
+    }
+    if (shared || !(v3_length2(sum) > 0.0f))
+        return b->frames[first].n;
+    return v3_normalize(sum);
+}
+
 /* Splits b's closures into those `in_first` accepts and the others. */
 static void split_closures(const bsdf *b, int (*in_first)(const closure *), bsdf *first, bsdf *second)
 {
-    first->shading = second->shading = b->shading;
+    first->frame_count = second->frame_count = b->frame_count;
+    for (uint32_t f = 0; f < b->frame_count; f++)
+        first->frames[f] = second->frames[f] = b->frames[f];
     first->ng = second->ng = b->ng;
     first->count = second->count = 0;
     first->sample_weight_sum = second->sample_weight_sum = 0.0f;
@@ -765,6 +827,8 @@ int bsdf_add_closure(bsdf *b, const closure *c)
         return 1;
     closure k = *c;
     k.adjoint = 0;
+    if (k.frame >= b->frame_count)
+        k.frame = 0;
     if (!v3_is_finite(k.weight))
         return 1;
     /* Clamp parameters into their domains as Cycles' setup functions do. */
@@ -791,10 +855,8 @@ vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
 {
     float p = 0.0f;
     vec3 value = v3s(0.0f);
-    if (b->count > 0) {
-        query q = make_query(b, wo, wi);
-        value = eval_mixture(b, &q, &p);
-    }
+    if (b->count > 0)
+        value = eval_mixture(b, wo, wi, &p);
     if (pdf)
         *pdf = p;
     return value;
@@ -813,7 +875,7 @@ vec3 bsdf_photon_weight(const bsdf *b, vec3 w_from, const bsdf_sample *bs, float
         *eta_scale = 1.0f / (bs->eta * bs->eta);
         return v3_scale(w, bs->eta * bs->eta);
     }
-    vec3 ns = b->shading.n;
+    vec3 ns = bs->ns;
     float ng_from = fabsf(v3_dot(b->ng, w_from)), ns_to = fabsf(v3_dot(ns, bs->wi));
     if (!(ng_from > 0.0f) || !(ns_to > 0.0f))
         return v3s(0.0f);
@@ -833,7 +895,8 @@ void bsdf_set_adjoint(bsdf *b)
 static void bsdf_other_side(const bsdf *b, bsdf *out)
 {
     *out = *b;
-    out->shading = frame_from_normal(v3_neg(b->shading.n));
+    for (uint32_t f = 0; f < b->frame_count; f++) /* (t, −b, −n): still right-handed */
+        out->frames[f] = (frame){b->frames[f].t, v3_neg(b->frames[f].b), v3_neg(b->frames[f].n)};
     out->ng = v3_neg(b->ng);
     for (uint32_t i = 0; i < out->count; i++) /* a coating's IOR is seen from outside only */
         if (out->closures[i].type == PHOS_CLOSURE_GLASS || out->closures[i].type == PHOS_CLOSURE_REFRACTION)
@@ -891,10 +954,11 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
     lobe_sample s;
     s.value = v3s(0.0f);
     s.prob = 0.0f;
-    vec3 wo_local = frame_to_local(&b->shading, wo);
+    const frame *fr = &b->frames[c->frame];
+    vec3 wo_local = frame_to_local(fr, wo);
     if (!closure_sample(c, wo_local, u_lobe, u, &s))
         return 0;
-    vec3 wi = v3_normalize(frame_to_world(&b->shading, s.wi));
+    vec3 wi = v3_normalize(frame_to_world(fr, s.wi));
     if (!v3_is_finite(wi) || v3_length2(wi) == 0.0f)
         return 0;
 
@@ -914,6 +978,7 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
         out->pdf = p;
         out->flags = s.flags;
         out->eta = (s.flags & BSDF_TRANSMISSION) && !(s.flags & BSDF_TRANSPARENT) ? c->eta : 1.0f;
+        out->ns = fr->n;
         return 1;
     }
 
@@ -921,14 +986,14 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
      * has density — on that lobe's side of both normals (a reflection that
      * dips below the horizon is lost, not mistaken for a transmission) and
      * where its closure's eval is nonzero — then the mixture weights it. */
-    query q = make_query(b, wo, wi);
+    query q = make_query(b, c->frame, wo, wi);
     if (!((s.flags & BSDF_TRANSMISSION) ? transmission_side(&q) : reflection_side(&q)))
         return 0;
     float pdf_own, pdf;
     closure_eval(c, &q, &pdf_own);
     if (!(pdf_own > 0.0f))
         return 0;
-    vec3 value = eval_mixture(b, &q, &pdf);
+    vec3 value = eval_mixture(b, wo, wi, &pdf);
     if (!(pdf > 0.0f))
         return 0;
     vec3 weight = v3_scale(value, 1.0f / pdf);
@@ -939,6 +1004,7 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
     out->pdf = pdf;
     out->flags = s.flags;
     out->eta = (s.flags & BSDF_TRANSMISSION) ? c->eta : 1.0f;
+    out->ns = fr->n;
     return 1;
 }
 

@@ -68,7 +68,7 @@ void surface_from_hit(const scene *s, uint32_t instance_id, uint32_t prim, float
 }
 
 /* A layer closure's parameters as bsdf.c's layering reads them. */
-static bsdf_layer layer_of(const phos_closure_desc *d, float eta)
+static bsdf_layer layer_of(const phos_closure_desc *d, float eta, uint32_t frame)
 {
     bsdf_layer l;
     l.type = d->type;
@@ -82,6 +82,7 @@ static bsdf_layer layer_of(const phos_closure_desc *d, float eta)
     l.weight = v3_load(d->layer_weight);
     l.tint = v3_load(d->layer_tint);
     l.tint_weight = d->layer_tint_weight;
+    l.frame = frame;
     return l;
 }
 
@@ -143,7 +144,7 @@ static void closure_set_field(phos_closure_desc *c, uint32_t field, const float 
     case PHOS_FIELD_LAYER_TINT_WEIGHT:
         c->layer_tint_weight = fmaxf(x, 0.0f);
         break;
-    default: /* PHOS_FIELD_NORMAL is the BSDF's, not a closure's (material_eval) */
+    default: /* PHOS_FIELD_NORMAL sets the closure's shading frame (material_eval) */
         break;
     }
 }
@@ -262,13 +263,25 @@ void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, 
     g->bump_offset = s->bump_offset;
 }
 
+/* A closure's bound Normal as its shading normal: kept when finite and on
+ * the viewer's side of the geometric surface, else the surface's. */
+static vec3 bound_normal(const surface *sf, const float *r)
+{
+    vec3 n = v3_load(r);
+    if (v3_is_finite(n) && v3_length2(n) > 0.5f && v3_dot(n, sf->ng) > 0.0f)
+        return v3_normalize(n);
+    return sf->ns;
+}
+
 /* The material's closures at the surface: its own when constant, else a
- * copy with the program's values written in (and the shading normal the
- * program sets, if it sets one). */
+ * copy with the program's values written in, and each closure's shading
+ * normal (ns, when given: the surface's unless the program binds one). */
 static const phos_closure_desc *material_eval(const scene *s, const surface *sf, phos_closure_desc *local,
                                               vec3 *ns)
 {
     const material *m = sf->mat;
+    for (uint32_t i = 0; ns && i < m->closure_count; i++)
+        ns[i] = sf->ns;
     if (!m->has_program)
         return m->closures;
     shader_globals g;
@@ -276,19 +289,12 @@ static const phos_closure_desc *material_eval(const scene *s, const surface *sf,
     float r[PHOS_SHADER_MAX_REGISTERS];
     shader_program_eval(&m->program, s, &g, r);
     memcpy(local, m->closures, sizeof(phos_closure_desc) * m->closure_count);
-    int normal_set = 0;
     for (uint32_t b = 0; b < m->program.binding_count; b++) {
         const phos_shader_binding *bd = &m->program.bindings[b];
-        if (bd->field != PHOS_FIELD_NORMAL) {
+        if (bd->field != PHOS_FIELD_NORMAL)
             closure_set_field(&local[bd->closure], bd->field, r + bd->reg);
-        } else if (!normal_set && ns) {
-            /* One shading frame per BSDF: the first closure's normal sets it,
-             * kept on the viewer's side of the geometric surface. */
-            vec3 n = v3_load(r + bd->reg);
-            if (v3_is_finite(n) && v3_length2(n) > 0.5f && v3_dot(n, sf->ng) > 0.0f)
-                *ns = v3_normalize(n);
-            normal_set = 1;
-        }
+        else if (ns)
+            ns[bd->closure] = bound_normal(sf, r + bd->reg);
     }
     return local;
 }
@@ -296,9 +302,9 @@ static const phos_closure_desc *material_eval(const scene *s, const surface *sf,
 void material_bsdf(const scene *s, const surface *sf, bsdf *out)
 {
     phos_closure_desc local[PHOS_MAX_CLOSURES];
-    vec3 ns = sf->ns;
-    const phos_closure_desc *closures = material_eval(s, sf, local, &ns);
-    bsdf_init(out, ns, sf->ng);
+    vec3 ns[PHOS_MAX_CLOSURES];
+    const phos_closure_desc *closures = material_eval(s, sf, local, ns);
+    bsdf_init(out, sf->ns, sf->ng);
     const material *m = sf->mat;
     /* under[i]: the layers over closure i (bit j: the bsdf's layers[j]). */
     uint32_t under[PHOS_MAX_CLOSURES] = {0};
@@ -308,8 +314,10 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
          * only; dielectric interfaces invert it when hit from inside. */
         int interface = d->type == PHOS_CLOSURE_GLASS || d->type == PHOS_CLOSURE_REFRACTION;
         float eta = (sf->backfacing && interface) ? 1.0f / d->ior : d->ior;
+        /* Each closure in its own frame (bsdf.h): shared when normals agree. */
+        uint32_t frame = bsdf_add_frame(out, ns[i], v3s(0.0f));
         if (d->layer_span) {
-            bsdf_layer layer = layer_of(d, eta);
+            bsdf_layer layer = layer_of(d, eta, frame);
             int j = bsdf_add_layer(out, &layer);
             for (uint32_t k = i + 1; j >= 0 && k <= i + d->layer_span && k < m->closure_count; k++)
                 under[k] |= 1u << j;
@@ -337,6 +345,7 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
         c.under_layers = under[i];
         c.sample_weight = 0.0f;
         c.adjoint = 0;
+        c.frame = frame;
         bsdf_add_closure(out, &c);
     }
 }
