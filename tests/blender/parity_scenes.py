@@ -211,6 +211,37 @@ def _mixed_by_texture(scene):
     return procedural_materials.glazed_ceramic()
 
 
+def _mix_two_bumps(scene):
+    """Mix Shaders of two Diffuses, each under its own Bump (a coarse noise,
+    wave ridges), and an unbumped Glossy: each closure shades about its own
+    normal, as Cycles' closures carry their own N. (A bumped Glossy is left
+    out: Cycles bends a microfacet closure's normal so that its mirror
+    direction stays above the surface, which Phos does not do yet.)"""
+    mat = bpy.data.materials.new("Test Mix Two Bumps")
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    outer, inner = nt.nodes.new("ShaderNodeMixShader"), nt.nodes.new("ShaderNodeMixShader")
+    outer.inputs["Fac"].default_value = inner.inputs["Fac"].default_value = 0.5
+    orange = pt.setup_node(nt.nodes.new("ShaderNodeBsdfDiffuse"), {"Color": (0.8, 0.4, 0.2)})
+    blue = pt.setup_node(nt.nodes.new("ShaderNodeBsdfDiffuse"), {"Color": (0.2, 0.4, 0.9)})
+    glossy = pt.setup_node(nt.nodes.new("ShaderNodeBsdfGlossy"), {"Color": (0.9, 0.9, 0.9), "Roughness": 0.25},
+                           {"distribution": "GGX"})
+    noise = pt.setup_node(nt.nodes.new("ShaderNodeTexNoise"), {"Scale": 4.0})
+    wave = pt.setup_node(nt.nodes.new("ShaderNodeTexWave"), {"Scale": 3.0})
+    for tex, strength, bsdf in ((noise, 0.8, orange), (wave, 0.6, blue)):
+        bump = pt.setup_node(nt.nodes.new("ShaderNodeBump"), {"Strength": strength, "Distance": 0.1})
+        nt.links.new(tex.outputs["Fac"], bump.inputs["Height"])
+        nt.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    nt.links.new(blue.outputs[0], inner.inputs[1])
+    nt.links.new(glossy.outputs[0], inner.inputs[2])
+    nt.links.new(orange.outputs[0], outer.inputs[1])
+    nt.links.new(inner.outputs[0], outer.inputs[2])
+    nt.links.new(outer.outputs[0], out.inputs["Surface"])
+    return mat
+
+
 def _principled(inputs, props=None):
     """A Principled BSDF with the given inputs (4.x names) and properties."""
     return _one("ShaderNodeBsdfPrincipled", inputs, props)
@@ -258,6 +289,7 @@ MATERIAL_SCENES = {
                                        {"distribution": "MICROFIBER"})),
     "textured_walnut": _material_scene(_walnut),
     "textured_mix": _material_scene(_mixed_by_texture),
+    "mix_two_bumps": _material_scene(_mix_two_bumps),
 }
 
 # Multiscatter GGX at roughness 0.2, 0.5 and 1: a white Glossy (no Fresnel),
