@@ -242,6 +242,23 @@ def _mix_two_bumps(scene):
     return mat
 
 
+def _principled_coat_over_bump(scene):
+    """A Principled BSDF (4.x) whose Normal is bumped by a noise and whose
+    coat has no Coat Normal: Cycles 4.x lays the coat along the surface's own
+    normal, so the bumped diffuse shows through a smooth coat. No specular
+    (IOR Level 0), whose bumped normal Cycles would bend (see _mix_two_bumps)."""
+    mat = pt.node_material("Test Principled Coat Over Bump", "ShaderNodeBsdfPrincipled",
+                           {"Base Color": (0.7, 0.25, 0.1), "Roughness": 0.5, "Specular IOR Level": 0.0,
+                            "Coat Weight": 1.0, "Coat Roughness": 0.1, "Coat IOR": 1.5})
+    nt = mat.node_tree
+    bsdf = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
+    noise = pt.setup_node(nt.nodes.new("ShaderNodeTexNoise"), {"Scale": 4.0})
+    bump = pt.setup_node(nt.nodes.new("ShaderNodeBump"), {"Strength": 0.8, "Distance": 0.1})
+    nt.links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    nt.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    return mat
+
+
 def _principled(inputs, props=None):
     """A Principled BSDF with the given inputs (4.x names) and properties."""
     return _one("ShaderNodeBsdfPrincipled", inputs, props)
@@ -309,6 +326,7 @@ MATERIAL_SCENES.update({
     "principled_coat": _material_scene(_principled(
         {"Base Color": (0.8, 0.1, 0.1), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Roughness": 0.1,
          "Coat IOR": 1.6, "Coat Tint": (0.6, 0.8, 1.0)})),
+    "principled_coat_over_bump": _material_scene(_principled_coat_over_bump),
     "principled_sheen": _material_scene(_principled(
         {"Base Color": (0.05, 0.1, 0.4), "Roughness": 0.7, "Sheen Weight": 1.0, "Sheen Roughness": 0.4,
          "Sheen Tint": (1.0, 0.9, 0.8)})),
@@ -339,6 +357,7 @@ MIN_VERSION = {
     "point_sphere": (4, 1, 0),
     "spot_sphere": (4, 1, 0),
     "principled_coat": (4, 0, 0),
+    "principled_coat_over_bump": (4, 0, 0),
     "principled_sheen": (4, 0, 0),
     "sheen_bsdf": (4, 0, 0),
     "principled_specular_tint": (4, 0, 0),

@@ -93,8 +93,16 @@ def principled_v2(walker, node):
         consumed.add(socket.identifier)
         if socket.is_linked:
             ignored.append("Tangent")
-    if coat_normal is not None and coat_normal is not normal:
-        ignored.append("Coat Normal (the Normal input is used for the coat)")
+    # The coat's shading normal: Coat Normal when linked; unlinked, Cycles 4.x
+    # takes the surface's own normal, not the Normal input (svm closure.h of
+    # 4.0-4.5: sd->N); Phos keeps the Normal input from 5.0, as before.
+    if coat_normal is None and ctx.at_least(5, 0):
+        coat_normal = normal
+    # From 4.2 Cycles tilts the sheen's normal toward the coat's by the Coat
+    # Weight; Phos keeps the Normal input for the sheen.
+    if (ctx.at_least(4, 2) and coat_normal is not normal and prog.may_exceed(sheen, WEIGHT_CUTOFF)
+            and prog.may_exceed(coat, WEIGHT_CUTOFF)):
+        ignored.append("the Sheen's normal tilted toward the Coat Normal")
     if prog.may_exceed(subsurface, WEIGHT_CUTOFF):
         w.note(node, "Subsurface scattering is not supported; its share is rendered as a diffuse "
                      "of the Base Color (as Cycles does for tiny radii)")
@@ -129,7 +137,7 @@ def principled_v2(walker, node):
         # Cycles compensates the coat's energy whatever the distribution from 4.5.
         coat_model = (core.PHOS_MICROFACET_GGX_MULTISCATTER if ctx.at_least(4, 5)
                       else microfacet_model(ctx, 'GGX'))
-        add_layer(Closure(core.PHOS_CLOSURE_REFLECTION_FRESNEL, coat * weight, normal,
+        add_layer(Closure(core.PHOS_CLOSURE_REFLECTION_FRESNEL, coat * weight, coat_normal,
                           roughness=_clamp01(w.value(node, ('Coat Roughness',), 0.03, consumed)),
                           ior=coat_ior, specular_color=_full3(f0), microfacet=coat_model,
                           multiscatter_fresnel=_full3(prog.clamp(dielectric_fss(coat_ior), 0.0, 1.0)),
