@@ -98,7 +98,7 @@ static int refract_about(vec3 wo, vec3 m, float eta, vec3 *wi)
 static int reflection_side(const query *q) { return q->wi.z > 0.0f && q->ng_wi > 0.0f; }
 static int transmission_side(const query *q) { return q->wi.z < 0.0f && q->ng_wi < 0.0f; }
 
-static int closure_is_sharp(const closure *c) { return c->alpha < BSDF_SHARP_ALPHA; }
+static int closure_is_sharp(const closure *c) { return c->alpha * c->alpha_y < BSDF_SHARP_ALPHA * BSDF_SHARP_ALPHA; }
 /* Cycles 4's GGX (height-correlated G) rather than 3.x's (separable). */
 static int closure_correlated(const closure *c) { return c->microfacet != PHOS_MICROFACET_GGX_SEPARABLE; }
 static int closure_has_thin_film(const closure *c) { return c->film_thickness > THIN_FILM_MIN_THICKNESS; }
@@ -117,19 +117,21 @@ static int glass_per_microfacet(const closure *c)
 
 /* ---------------------------------------------------- microfacet lobes */
 
-/* GGX reflection without Fresnel: returns f·cos θi = D G / (4 cos θo)
- * (Walter 2007 eq. 20 times cos θi) and the solid-angle pdf of sampling wi
- * through the visible normals, D_wo(h) / (4 wo·h) (Heitz 2018 eq. 17). */
-static float ggx_reflection(const query *q, float alpha, int correlated, vec3 *h, float *pdf)
+/* GGX reflection without Fresnel, roughness ax along the frame's x axis
+ * and ay along y: returns f·cos θi = D G / (4 cos θo) (Walter 2007 eq. 20
+ * times cos θi) and the solid-angle pdf of sampling wi through the visible
+ * normals, D_wo(h) / (4 wo·h) (Heitz 2018 eq. 17). */
+static float ggx_reflection(const query *q, float ax, float ay, int correlated, vec3 *h, float *pdf)
 {
     *pdf = 0.0f;
     if (q->wo.z <= 0.0f || !reflection_side(q) || !microfacet_reflect_half_vector(q->wo, q->wi, h))
         return 0.0f;
-    float D = ggx_D(*h, alpha);
+    float D = ggx_D_aniso(*h, ax, ay);
     if (!(D > 0.0f))
         return 0.0f;
-    float G = correlated ? ggx_G_correlated(q->wo, q->wi, alpha) : ggx_G_separable(q->wo, q->wi, alpha);
-    *pdf = ggx_visible_normal_pdf(q->wo, *h, alpha) * microfacet_reflect_jacobian(q->wo, *h);
+    float G = correlated ? ggx_G_correlated_aniso(q->wo, q->wi, ax, ay)
+                         : ggx_G_separable_aniso(q->wo, q->wi, ax, ay);
+    *pdf = ggx_visible_normal_pdf_aniso(q->wo, *h, ax, ay) * microfacet_reflect_jacobian(q->wo, *h);
     return D * G / (4.0f * q->wo.z);
 }
 
@@ -315,7 +317,7 @@ static int closure_diffuse_like(const closure *c)
     case PHOS_CLOSURE_METAL:
     case PHOS_CLOSURE_REFRACTION:
     case PHOS_CLOSURE_GLASS:
-        return c->alpha > 0.075f;
+        return c->alpha * c->alpha_y > 0.075f * 0.075f; /* √(αx αy) > 0.075 */
     default:
         return 1;
     }
@@ -439,7 +441,7 @@ static vec3 eval_glossy(const closure *c, const query *q, float *pdf)
     if (closure_is_sharp(c))
         return v3s(0.0f);
     vec3 h;
-    float v = ggx_reflection(q, c->alpha, closure_correlated(c), &h, pdf);
+    float v = ggx_reflection(q, c->alpha, c->alpha_y, closure_correlated(c), &h, pdf);
     if (v == 0.0f)
         return v3s(0.0f);
     vec3 colour = v3_mul(c->weight, reflection_fresnel(c, v3_dot(q->wi, h)));
@@ -476,7 +478,7 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
          * the mean over the channels of F(wo·h). */
         int reflect = q->wi.z > 0.0f;
         if (reflect)
-            v = ggx_reflection(q, c->alpha, 1, &h, pdf);
+            v = ggx_reflection(q, c->alpha, c->alpha, 1, &h, pdf);
         else
             v = ggx_refraction(q, c->alpha, c->eta, 1, &h, pdf);
         if (v == 0.0f)
@@ -493,7 +495,7 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
          * normal; sampling picks them with macro_reflect_pick. */
         float F = fresnel_dielectric(q->wo.z, c->eta), pick = macro_reflect_pick(c, F);
         if (q->wi.z > 0.0f) {
-            v = closure_is_sharp(c) ? 0.0f : ggx_reflection(q, c->alpha, 0, &h, pdf);
+            v = closure_is_sharp(c) ? 0.0f : ggx_reflection(q, c->alpha, c->alpha, 0, &h, pdf);
             lobe = F;
             *pdf *= pick;
         } else {
@@ -546,7 +548,7 @@ static int sample_glossy(const closure *c, vec3 wo, float2 u, lobe_sample *s)
 {
     if (closure_is_sharp(c))
         return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_mul(c->weight, reflection_fresnel(c, wo.z)), 1.0f);
-    vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+    vec3 h = ggx_sample_visible_normal_aniso(wo, c->alpha, c->alpha_y, u);
     if (v3_dot(wo, h) <= 0.0f)
         return 0;
     s->wi = reflect_about(wo, h);
@@ -821,6 +823,13 @@ float bsdf_split_delta(const bsdf *b, bsdf *delta, bsdf *rest)
     return b->sample_weight_sum > 0.0f ? delta->sample_weight_sum / b->sample_weight_sum : 0.0f;
 }
 
+/* Cycles has anisotropic GGX for its reflection closures only. */
+static int closure_may_be_anisotropic(const closure *c)
+{
+    return c->type == PHOS_CLOSURE_REFLECTION || c->type == PHOS_CLOSURE_REFLECTION_FRESNEL ||
+           c->type == PHOS_CLOSURE_METAL;
+}
+
 int bsdf_add_closure(bsdf *b, const closure *c)
 {
     if (c->type == PHOS_CLOSURE_EMISSION || c->type >= PHOS_CLOSURE_TYPE_COUNT)
@@ -833,6 +842,11 @@ int bsdf_add_closure(bsdf *b, const closure *c)
         return 1;
     /* Clamp parameters into their domains as Cycles' setup functions do. */
     k.alpha = k.alpha > 0.0f ? fminf(k.alpha, 1.0f) : 0.0f;
+    k.alpha_y = closure_may_be_anisotropic(&k) && k.alpha_y > 0.0f ? fminf(k.alpha_y, 1.0f) : k.alpha;
+    /* Cycles reads the albedo tables of an anisotropic lobe (Multiscatter
+     * GGX, layering) at the roughness (αx αy)^¼ (bsdf_microfacet.h). */
+    if (k.alpha_y != k.alpha)
+        k.roughness = sqrtf(sqrtf(k.alpha * k.alpha_y));
     k.alpha_t = k.alpha_t > 0.0f ? fminf(k.alpha_t, 1.0f) : 0.0f;
     k.transmission_tint = v3_max(k.transmission_tint, v3s(0.0f));
     k.roughness = k.roughness > 0.0f ? fminf(k.roughness, 1.0f) : 0.0f;

@@ -28,7 +28,8 @@ enum bsdf_flags {
     BSDF_GLOSSY = 1 << 4
 };
 
-/* Below this GGX alpha a microfacet lobe is treated as perfectly sharp. */
+/* Below this GGX alpha (anisotropic: √(αx αy), as Cycles compares αx αy)
+ * a microfacet lobe is treated as perfectly sharp. */
 #define BSDF_SHARP_ALPHA 1e-4f
 /* |η − 1| below this: the interface does not bend light, refraction is a
  * straight pass-through whatever the roughness (as Cycles 3.4). */
@@ -37,8 +38,10 @@ enum bsdf_flags {
 typedef struct closure {
     uint32_t type;          /* enum phos_closure_type */
     vec3 weight;            /* linear RGB, textures already applied */
-    float roughness;        /* Blender roughness in [0,1] */
-    float alpha;            /* GGX alpha = roughness² */
+    float roughness;        /* Blender roughness in [0,1]; anisotropic: (αx αy)^¼, set by bsdf_add_closure */
+    float alpha;            /* GGX alpha = roughness²; anisotropic: αx, along the frame's tangent */
+    float alpha_y;          /* REFLECTION, REFLECTION_FRESNEL, METAL: αy, across the tangent
+                               (anisotropic GGX); 0 or other types: alpha */
     float alpha_t;          /* GLASS (MACRO): GGX alpha of the refraction lobe */
     vec3 transmission_tint; /* GLASS: colour applied to refracted light only */
     float eta;              /* relative IOR across the surface as seen from wo's side */

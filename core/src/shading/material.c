@@ -329,6 +329,7 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
         c.weight = v3_load(d->weight);
         c.roughness = clampf(d->roughness, 0.0f, 1.0f);
         c.alpha = c.roughness * c.roughness;
+        c.alpha_y = c.alpha; /* isotropic: materials bind no tangent yet */
         float rt = d->transmission_roughness < 0.0f ? c.roughness : d->transmission_roughness;
         c.alpha_t = rt * rt;
         c.transmission_tint = v3_load(d->transmission_tint);

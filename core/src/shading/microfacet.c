@@ -1,33 +1,48 @@
 /*
- * microfacet.c — isotropic GGX: D, Smith Λ/G1/G, visible-normal sampling
- * and the half-vector Jacobians. See microfacet.h for the references.
+ * microfacet.c — GGX, isotropic and anisotropic: D, Smith Λ/G1/G,
+ * visible-normal sampling and the half-vector Jacobians. See microfacet.h
+ * for the references. The anisotropic forms (roughness αx along the
+ * frame's x axis, αy along y) reduce to the isotropic ones at αx = αy; the
+ * isotropic functions call them so.
  *
  * All directions are unit vectors in the local shading frame (z = normal).
  * Angles never appear explicitly: tan²θ = (x² + y²) / z² on unit vectors.
  */
 #include "shading/microfacet.h"
 
-/* D(h) = α² / (π (α² cos²θh + sin²θh)²) — Walter 2007 eq. 33 rewritten
- * without tan so that it stays finite at θh = 0 for tiny α. Units 1/sr. */
-float ggx_D(vec3 h, float alpha)
+/* D(h) = 1 / (π αx αy (hx²/αx² + hy²/αy² + hz²)²) (Heitz 2014 eq. 85 on
+ * unit vectors), written as αx³αy³ / (π (αy² hx² + αx² hy² + αx²αy² hz²)²)
+ * so that it stays finite for tiny α; at αx = αy = α it is Walter 2007
+ * eq. 33, α² / (π (sin²θh + α² cos²θh)²). Units 1/sr. */
+float ggx_D_aniso(vec3 h, float ax, float ay)
 {
     if (h.z <= 0.0f)
         return 0.0f;
-    float a2 = alpha * alpha;
-    float sin2 = h.x * h.x + h.y * h.y;
-    float denom = sin2 + a2 * h.z * h.z;
+    float axy = ax * ay;
+    float denom = ay * ay * h.x * h.x + ax * ax * h.y * h.y + axy * axy * h.z * h.z;
     if (denom <= 0.0f)
         return 0.0f;
-    return a2 / (PHOS_PI * denom * denom);
+    return axy * axy * axy / (PHOS_PI * denom * denom);
 }
 
-/* Λ(w) = (√(1 + α² tan²θ) − 1) / 2 (Heitz 2014 eq. 72), written as
- * α²tan²θ / (2 (√(1 + α² tan²θ) + 1)) to avoid cancellation near θ = 0. */
-float ggx_lambda(vec3 w, float alpha)
+float ggx_D(vec3 h, float alpha)
+{
+    return ggx_D_aniso(h, alpha, alpha);
+}
+
+/* Λ(w) = (√(1 + a²) − 1) / 2 with a² = (αx² wx² + αy² wy²) / wz², the
+ * roughness projected on w's azimuth times tan²θ (Heitz 2014 eq. 72, 86),
+ * written as a² / (2 (√(1 + a²) + 1)) to avoid cancellation near θ = 0. */
+float ggx_lambda_aniso(vec3 w, float ax, float ay)
 {
     float z2 = fmaxf(w.z * w.z, 1e-20f);
-    float a2_tan2 = alpha * alpha * (w.x * w.x + w.y * w.y) / z2;
+    float a2_tan2 = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / z2;
     return 0.5f * a2_tan2 / (sqrtf(1.0f + a2_tan2) + 1.0f);
+}
+
+float ggx_lambda(vec3 w, float alpha)
+{
+    return ggx_lambda_aniso(w, alpha, alpha);
 }
 
 /* G1 = 1 / (1 + Λ) = 2 / (1 + √(1 + α² tan²θ)) (Walter 2007 eq. 34). */
@@ -38,25 +53,36 @@ float ggx_G1(vec3 w, float alpha)
 
 /* G = G1(wo) G1(wi), masking and shadowing treated as uncorrelated
  * (Heitz 2014 eq. 98; Walter 2007 eq. 23). */
+float ggx_G_separable_aniso(vec3 wo, vec3 wi, float ax, float ay)
+{
+    return 1.0f / ((1.0f + ggx_lambda_aniso(wo, ax, ay)) * (1.0f + ggx_lambda_aniso(wi, ax, ay)));
+}
+
 float ggx_G_separable(vec3 wo, vec3 wi, float alpha)
 {
-    return ggx_G1(wo, alpha) * ggx_G1(wi, alpha);
+    return ggx_G_separable_aniso(wo, wi, alpha, alpha);
 }
 
 /* G = 1 / (1 + Λ(wo) + Λ(wi)), height-correlated (Heitz 2014 eq. 99). */
+float ggx_G_correlated_aniso(vec3 wo, vec3 wi, float ax, float ay)
+{
+    return 1.0f / (1.0f + ggx_lambda_aniso(wo, ax, ay) + ggx_lambda_aniso(wi, ax, ay));
+}
+
 float ggx_G_correlated(vec3 wo, vec3 wi, float alpha)
 {
-    return 1.0f / (1.0f + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
+    return ggx_G_correlated_aniso(wo, wi, alpha, alpha);
 }
 
 /* Heitz 2018, listing 1: stretch the view to the α = 1 configuration,
  * sample the projected area of the visible hemisphere (a disk whose lower
  * half is squashed by (1 + cosθ)/2), lift onto the hemisphere and unstretch
- * the resulting normal. Exact for GGX with the Smith G1 above. */
-vec3 ggx_sample_visible_normal(vec3 wo, float alpha, float2 u)
+ * the resulting normal. Exact for GGX with the Smith G1 above; the
+ * stretch by (αx, αy) makes it exact for anisotropic GGX too. */
+vec3 ggx_sample_visible_normal_aniso(vec3 wo, float ax, float ay, float2 u)
 {
     /* Section 3.2: the view in the hemisphere configuration. */
-    vec3 vh = v3_normalize(v3(alpha * wo.x, alpha * wo.y, wo.z));
+    vec3 vh = v3_normalize(v3(ax * wo.x, ay * wo.y, wo.z));
 
     /* Section 4.1: orthonormal basis around vh (any basis at normal incidence). */
     float len2 = vh.x * vh.x + vh.y * vh.y;
@@ -77,16 +103,26 @@ vec3 ggx_sample_visible_normal(vec3 wo, float alpha, float2 u)
     vec3 nh = v3_add(v3_add(v3_scale(t1, p1), v3_scale(t2, p2)), v3_scale(vh, pz));
 
     /* Section 3.4: back to the ellipsoid configuration. */
-    return v3_normalize(v3(alpha * nh.x, alpha * nh.y, fmaxf(0.0f, nh.z)));
+    return v3_normalize(v3(ax * nh.x, ay * nh.y, fmaxf(0.0f, nh.z)));
+}
+
+vec3 ggx_sample_visible_normal(vec3 wo, float alpha, float2 u)
+{
+    return ggx_sample_visible_normal_aniso(wo, alpha, alpha, u);
 }
 
 /* D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θo (Heitz 2014 eq. 16). */
-float ggx_visible_normal_pdf(vec3 wo, vec3 h, float alpha)
+float ggx_visible_normal_pdf_aniso(vec3 wo, vec3 h, float ax, float ay)
 {
     float cos_oh = v3_dot(wo, h);
     if (wo.z <= 0.0f || cos_oh <= 0.0f)
         return 0.0f;
-    return ggx_G1(wo, alpha) * cos_oh * ggx_D(h, alpha) / wo.z;
+    return cos_oh * ggx_D_aniso(h, ax, ay) / ((1.0f + ggx_lambda_aniso(wo, ax, ay)) * wo.z);
+}
+
+float ggx_visible_normal_pdf(vec3 wo, vec3 h, float alpha)
+{
+    return ggx_visible_normal_pdf_aniso(wo, h, alpha, alpha);
 }
 
 int microfacet_reflect_half_vector(vec3 wo, vec3 wi, vec3 *h)
