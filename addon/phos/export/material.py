@@ -12,7 +12,10 @@ Emission, Transparent, Mix and Add Shader) become closures; the value nodes
 feeding their inputs (textures, colour, converter, vector and input nodes:
 nodes.py) compile into the material's shader program (program.py), whose
 outputs the core writes into the closures' fields at each shading point.
-An input that folds to a constant costs nothing. Anything unsupported
+A closure's Normal input (Bump, Normal Map) gives that closure its own
+shading normal, as Cycles' closures each carry their own N; closures without
+one shade about the surface's normal. An input that folds to a constant
+costs nothing. Anything unsupported
 renders with the closest match and one warning per (material, node), so a
 user sees what was approximated.
 
