@@ -170,6 +170,15 @@ typedef struct phos_closure_desc {
                                   Weight × Sheen Tint, 1 for the Principled specular) */
     float layer_tint[3];       /* colour of light crossing the layer once at normal incidence */
     float layer_tint_weight;   /* how much of the tint applies (Coat Weight) */
+    /* Anisotropic GGX (REFLECTION, REFLECTION_FRESNEL, METAL; Cycles'
+     * Anisotropy): roughness_y < 0 is isotropic; otherwise roughness is
+     * along the closure's tangent (αx = roughness²) and roughness_y across
+     * it (αy = roughness_y²), in [0,1]. The tangent is the program's
+     * (PHOS_FIELD_TANGENT), else Cycles' default (Geometry's Tangent: about
+     * the object's Z axis through its generated coordinates), turned about
+     * the closure's normal by tangent_rotation turns (×2π radians). */
+    float roughness_y;
+    float tangent_rotation;
 } phos_closure_desc;
 PHOS_API void phos_closure_desc_init(phos_closure_desc *desc);
 
@@ -379,7 +388,8 @@ enum phos_closure_field {
     PHOS_FIELD_TRANSMISSION_TINT = 4, PHOS_FIELD_TRANSMISSION_ROUGHNESS = 5,
     PHOS_FIELD_MULTISCATTER_FRESNEL = 6, PHOS_FIELD_SPECULAR_TINT = 7, PHOS_FIELD_THIN_FILM_THICKNESS = 8,
     PHOS_FIELD_THIN_FILM_IOR = 9, PHOS_FIELD_LAYER_WEIGHT = 10, PHOS_FIELD_LAYER_TINT = 11,
-    PHOS_FIELD_LAYER_TINT_WEIGHT = 12, PHOS_FIELD_NORMAL = 13, PHOS_FIELD_COUNT = 14
+    PHOS_FIELD_LAYER_TINT_WEIGHT = 12, PHOS_FIELD_NORMAL = 13, PHOS_FIELD_ROUGHNESS_Y = 14,
+    PHOS_FIELD_TANGENT_ROTATION = 15, PHOS_FIELD_TANGENT = 16, PHOS_FIELD_COUNT = 17
 };
 
 typedef struct phos_shader_binding {

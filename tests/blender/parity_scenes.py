@@ -259,6 +259,20 @@ def _principled_coat_over_bump(scene):
     return mat
 
 
+def _anisotropic_metal(scene):
+    """A Principled metal (3.x and 4.x names alike) with Anisotropic 0.8 along
+    the default tangent, its Anisotropic Rotation textured by a noise: the
+    highlights follow Cycles' tangent field, turned point by point."""
+    mat = pt.node_material("Test Anisotropic Metal", "ShaderNodeBsdfPrincipled",
+                           {"Base Color": (0.9, 0.6, 0.3), "Metallic": 1.0, "Roughness": 0.4,
+                            "Anisotropic": 0.8})
+    nt = mat.node_tree
+    bsdf = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
+    noise = pt.setup_node(nt.nodes.new("ShaderNodeTexNoise"), {"Scale": 3.0})
+    nt.links.new(noise.outputs["Fac"], bsdf.inputs["Anisotropic Rotation"])
+    return mat
+
+
 def _principled(inputs, props=None):
     """A Principled BSDF with the given inputs (4.x names) and properties."""
     return _one("ShaderNodeBsdfPrincipled", inputs, props)
@@ -307,6 +321,11 @@ MATERIAL_SCENES = {
     "textured_walnut": _material_scene(_walnut),
     "textured_mix": _material_scene(_mixed_by_texture),
     "mix_two_bumps": _material_scene(_mix_two_bumps),
+    "anisotropic_metal": _material_scene(_anisotropic_metal),
+    # 3.x's Anisotropic BSDF, 4.x's Glossy: Anisotropy < 0 stretches across the tangent.
+    "anisotropic_glossy": _material_scene(_one("ShaderNodeBsdfAnisotropic",
+                                               {"Color": (0.9, 0.9, 0.9), "Roughness": 0.3, "Anisotropy": -0.6,
+                                                "Rotation": 0.15}, {"distribution": "GGX"})),
 }
 
 # Multiscatter GGX at roughness 0.2, 0.5 and 1: a white Glossy (no Fresnel),
@@ -341,6 +360,9 @@ MATERIAL_SCENES.update({
          "Thin Film IOR": 1.33})),
     "principled_diffuse_roughness": _material_scene(_principled(
         {"Base Color": (0.8, 0.5, 0.3), "Roughness": 0.5, "Diffuse Roughness": 1.0})),
+    "metallic_anisotropic": _material_scene(_one(
+        "ShaderNodeBsdfMetallic", {"Base Color": (0.8, 0.8, 0.85), "Roughness": 0.3, "Anisotropy": 0.6,
+                                   "Rotation": 0.25})),
     "metallic_bsdf": _material_scene(_one(
         "ShaderNodeBsdfMetallic", {"Base Color": (0.9, 0.7, 0.4), "Edge Tint": (0.9, 0.9, 1.0), "Roughness": 0.4})),
     "diffuse_roughness": _material_scene(_one("ShaderNodeBsdfDiffuse", {"Color": (0.7, 0.7, 0.7), "Roughness": 0.8})),
@@ -365,5 +387,6 @@ MIN_VERSION = {
     "principled_thin_film": (4, 2, 0),
     "principled_diffuse_roughness": (4, 3, 0),
     "metallic_bsdf": (4, 3, 0),
+    "metallic_anisotropic": (4, 3, 0),
     "diffuse_roughness": (4, 3, 0),
 }

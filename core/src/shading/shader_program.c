@@ -84,7 +84,8 @@ static const uint8_t field_width[PHOS_FIELD_COUNT] = {
     [PHOS_FIELD_TRANSMISSION_TINT] = 3, [PHOS_FIELD_TRANSMISSION_ROUGHNESS] = 1,
     [PHOS_FIELD_MULTISCATTER_FRESNEL] = 3, [PHOS_FIELD_SPECULAR_TINT] = 3, [PHOS_FIELD_THIN_FILM_THICKNESS] = 1,
     [PHOS_FIELD_THIN_FILM_IOR] = 1, [PHOS_FIELD_LAYER_WEIGHT] = 3, [PHOS_FIELD_LAYER_TINT] = 3,
-    [PHOS_FIELD_LAYER_TINT_WEIGHT] = 1, [PHOS_FIELD_NORMAL] = 3,
+    [PHOS_FIELD_LAYER_TINT_WEIGHT] = 1, [PHOS_FIELD_NORMAL] = 3, [PHOS_FIELD_ROUGHNESS_Y] = 1,
+    [PHOS_FIELD_TANGENT_ROTATION] = 1, [PHOS_FIELD_TANGENT] = 3,
 };
 
 uint32_t shader_field_width(uint32_t field) { return field < PHOS_FIELD_COUNT ? field_width[field] : 0; }
@@ -244,10 +245,12 @@ static void fold(shader_program *p, const struct phos_scene *s, float *r, uint8_
 }
 
 /* A binding whose value is known can be written into its closure once;
- * a normal is the BSDF's, not a closure field, and stays a binding. */
+ * a normal or tangent sets the closure's frame, not a field, and stays a
+ * binding. */
 static int bakeable(const phos_shader_binding *bd, const uint8_t *known)
 {
-    return bd->field != PHOS_FIELD_NORMAL && all_set(known, bd->reg, field_width[bd->field]);
+    return bd->field != PHOS_FIELD_NORMAL && bd->field != PHOS_FIELD_TANGENT &&
+           all_set(known, bd->reg, field_width[bd->field]);
 }
 
 /* Bindings whose registers are all known: their values, for the caller to
