@@ -134,9 +134,11 @@ enum phos_glass_fresnel {
 enum phos_microfacet {
     PHOS_MICROFACET_GGX_SEPARABLE = 0,   /* Smith G1(wo)·G1(wi): Cycles up to 3.x */
     PHOS_MICROFACET_GGX = 1,             /* height-correlated Smith G (Heitz 2014): Cycles 4+ */
-    PHOS_MICROFACET_GGX_MULTISCATTER = 2 /* GGX with the light that scatters between microfacets
+    PHOS_MICROFACET_GGX_MULTISCATTER = 2, /* GGX with the light that scatters between microfacets
                                             restored by albedo scaling (Kulla & Conty 2017): Cycles 4+'s
                                             Multiscatter GGX; not for REFRACTION */
+    PHOS_MICROFACET_BECKMANN_SEPARABLE = 3, /* Beckmann (Walter 2007), separable G: Cycles up to 3.x */
+    PHOS_MICROFACET_BECKMANN = 4,        /* Beckmann, height-correlated G: Cycles 4+ */
 };
 
 typedef struct phos_closure_desc {

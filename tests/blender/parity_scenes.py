@@ -322,6 +322,10 @@ MATERIAL_SCENES = {
     "textured_mix": _material_scene(_mixed_by_texture),
     "mix_two_bumps": _material_scene(_mix_two_bumps),
     "anisotropic_metal": _material_scene(_anisotropic_metal),
+    "glossy_beckmann": _material_scene(_one("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.8, 0.6), "Roughness": 0.35},
+                                            {"distribution": "BECKMANN"})),
+    "glass_beckmann": _material_scene(_one("ShaderNodeBsdfGlass", {"IOR": 1.5, "Roughness": 0.3},
+                                           {"distribution": "BECKMANN"})),
     # 3.x's Anisotropic BSDF, 4.x's Glossy: Anisotropy < 0 stretches across the tangent.
     "anisotropic_glossy": _material_scene(_one("ShaderNodeBsdfAnisotropic",
                                                {"Color": (0.9, 0.9, 0.9), "Roughness": 0.3, "Anisotropy": -0.6,

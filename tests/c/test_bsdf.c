@@ -462,6 +462,26 @@ static int build_scenarios(scenario *sc)
         weighted(make_aniso(PHOS_CLOSURE_REFLECTION, 0.1f, 0.5f, PHOS_MICROFACET_GGX), 0.5f));
     sc[n - 1].cn[1] = v3_normalize(v3(0.2f, -0.3f, 1.0f));
     sc[n - 1].ct[1] = v3(0.0f, 1.0f, 0.3f);
+    /* Beckmann (Cycles 3.x: separable G, 4.x: correlated), sampled by
+     * D·cos θh: reflection, anisotropic, refraction and both glasses. */
+    for (int r = 0; r < 2; r++) {
+        float rough = r ? 0.6f : 0.25f;
+        snprintf(name, sizeof name, "beckmann reflection r=%.2f separable", rough);
+        ADD(name, make_cycles4(PHOS_CLOSURE_REFLECTION, rough, 1.0f, PHOS_MICROFACET_BECKMANN_SEPARABLE));
+        snprintf(name, sizeof name, "beckmann fresnel r=%.2f correlated", rough);
+        ADD(name, make_cycles4(PHOS_CLOSURE_REFLECTION_FRESNEL, rough, 1.45f, PHOS_MICROFACET_BECKMANN));
+        snprintf(name, sizeof name, "beckmann refraction r=%.2f", rough);
+        ADD(name, make_cycles4(PHOS_CLOSURE_REFRACTION, rough, 1.5f, PHOS_MICROFACET_BECKMANN_SEPARABLE));
+        snprintf(name, sizeof name, "beckmann glass macro r=%.2f eta=1/1.5", rough);
+        ADD(name, make_glass(rough, 1.0f / 1.5f, PHOS_GLASS_FRESNEL_MACRO));
+        sc[n - 1].cl[0].microfacet = PHOS_MICROFACET_BECKMANN_SEPARABLE;
+        snprintf(name, sizeof name, "beckmann glass microfacet r=%.2f", rough);
+        ADD(name, make_glass(rough, 1.5f, PHOS_GLASS_FRESNEL_MICROFACET));
+        sc[n - 1].cl[0].microfacet = PHOS_MICROFACET_BECKMANN;
+    }
+    ADD("beckmann anisotropic ax=0.4 ay=0.05", make_aniso(PHOS_CLOSURE_REFLECTION, 0.4f, 0.05f,
+                                                          PHOS_MICROFACET_BECKMANN));
+    sc[n - 1].ct[0] = tangent;
 #undef ADD
     return n;
 }
@@ -1080,6 +1100,37 @@ static void test_microfacet(void)
             my2 += hs.y * hs.y;
         }
         CHECK(mx2 > 20.0 * my2);
+    }
+
+    /* Beckmann: ∫ D(h) cos θh dω = 1 (Walter 2007 eq. 25), which is also
+     * the total of the normal sampler's density; Λ is 0 where a ≥ 1.6 and
+     * G1 = 1/(1 + Λ) is Walter's eq. 27 below it. */
+    for (int k = 0; k < 3; k++) {
+        float ax = axy[k][0], ay = axy[k][1], alpha = fminf(ax, ay);
+        double proj = 0.0, sampled = 0.0;
+        const int nt = 2000, np = 1024;
+        for (int i = 0; i < nt; i++) {
+            double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
+            double theta = atan(alpha * tan(u));
+            double dtheta = alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
+            double s = sin(theta), c = cos(theta);
+            for (int j = 0; j < np; j++) {
+                double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
+                vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
+                double dw = s * dtheta * 2.0 * PHOS_PI / np;
+                proj += beckmann_D_aniso(h, ax, ay) * c * dw;
+                sampled += beckmann_normal_pdf_aniso(h, ax, ay) * dw;
+            }
+        }
+        CHECK_REL(proj, 1.0, 3e-3);
+        CHECK_REL(sampled, 1.0, 3e-3);
+    }
+    {
+        vec3 steep = v3_normalize(v3(0.2f, 0.0f, 1.0f)), grazing = v3_normalize(v3(2.0f, 0.0f, 1.0f));
+        CHECK(beckmann_lambda_aniso(steep, 0.3f, 0.3f) == 0.0f); /* a = 1/(0.3·0.2) ≥ 1.6 */
+        double a = 1.0 / (0.5 * 2.0);
+        double g1 = (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a);
+        CHECK_REL(1.0 / (1.0 + beckmann_lambda_aniso(grazing, 0.5f, 0.5f)), g1, 1e-5);
     }
 
     /* Λ and G1 against the tan form of Walter 2007 eq. 34. */

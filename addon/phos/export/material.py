@@ -28,13 +28,13 @@ GGX roughness along and across the closure's tangent as each Cycles does
 (microfacet.py); the tangent is a linked Tangent, else Cycles' default,
 which the core computes, turned by the node's rotation.
 
-Microfacet distributions (Glossy, Glass, Refraction, Principled): the core
-has GGX only, and a GGX whose alpha = roughness² is below 1e-4 is a perfect
-mirror/refraction. 'SHARP' (3.x only) is GGX with roughness 0, as is 4.x's
-way of making a sharp BSDF (GGX or Multiscatter GGX with roughness 0).
-'MULTI_GGX' (Multiscatter GGX, the 4.x default) is rendered as GGX without a
-warning on 4.x; on 3.x, and for 'BECKMANN' and 'ASHIKHMIN_SHIRLEY' in any
-version, GGX is used with one warning naming the distribution.
+Microfacet distributions (Glossy, Glass, Refraction, Metallic, Principled):
+the core has GGX and Beckmann, and a lobe whose alpha = roughness² is below
+1e-4 is a perfect mirror/refraction. 'SHARP' (3.x only) is GGX with
+roughness 0, as is 4.x's way of making a sharp BSDF (roughness 0).
+'MULTI_GGX' (Multiscatter GGX, the 4.x default) is 4.x's energy-compensated
+GGX; on 3.x it is rendered so too, with one warning. 'ASHIKHMIN_SHIRLEY' is
+rendered as GGX with one warning naming the distribution.
 """
 
 import math
@@ -501,7 +501,7 @@ class NodeTreeWalker:
             self.note(node, "Oren-Nayar roughness before Blender 4.3 is not supported; rendered as Lambertian")
         return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, normal)]
 
-    def distribution(self, node, allowed=('GGX', 'MULTI_GGX')):
+    def distribution(self, node, allowed=('GGX', 'MULTI_GGX', 'BECKMANN')):
         """(microfacet model, roughness override) of a node's distribution:
         'SHARP' (3.x) is GGX of roughness 0; one warning names any other
         distribution the core does not have, rendered as GGX."""

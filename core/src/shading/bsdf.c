@@ -100,7 +100,14 @@ static int transmission_side(const query *q) { return q->wi.z < 0.0f && q->ng_wi
 
 static int closure_is_sharp(const closure *c) { return c->alpha * c->alpha_y < BSDF_SHARP_ALPHA * BSDF_SHARP_ALPHA; }
 /* Cycles 4's GGX (height-correlated G) rather than 3.x's (separable). */
-static int closure_correlated(const closure *c) { return c->microfacet != PHOS_MICROFACET_GGX_SEPARABLE; }
+static int closure_correlated(const closure *c)
+{
+    return c->microfacet != PHOS_MICROFACET_GGX_SEPARABLE && c->microfacet != PHOS_MICROFACET_BECKMANN_SEPARABLE;
+}
+static int closure_beckmann(const closure *c)
+{
+    return c->microfacet == PHOS_MICROFACET_BECKMANN || c->microfacet == PHOS_MICROFACET_BECKMANN_SEPARABLE;
+}
 static int closure_has_thin_film(const closure *c) { return c->film_thickness > THIN_FILM_MIN_THICKNESS; }
 static int is_white(vec3 v) { return v.x == 1.0f && v.y == 1.0f && v.z == 1.0f; }
 /* The refraction lobe of a MACRO glass has its own roughness (Cycles 3.4
@@ -117,42 +124,84 @@ static int glass_per_microfacet(const closure *c)
 
 /* ---------------------------------------------------- microfacet lobes */
 
-/* GGX reflection without Fresnel, roughness ax along the frame's x axis
- * and ay along y: returns f·cos θi = D G / (4 cos θo) (Walter 2007 eq. 20
- * times cos θi) and the solid-angle pdf of sampling wi through the visible
- * normals, D_wo(h) / (4 wo·h) (Heitz 2018 eq. 17). */
-static float ggx_reflection(const query *q, float ax, float ay, int correlated, vec3 *h, float *pdf)
+/* One microfacet lobe: its distribution (GGX or Beckmann), roughness ax
+ * along the frame's x axis and ay along y, and its Smith G. */
+typedef struct mf_lobe {
+    float ax, ay;
+    int beckmann;   /* Beckmann, else GGX */
+    int correlated; /* height-correlated G (Cycles 4), else separable (3.x) */
+} mf_lobe;
+
+static mf_lobe lobe_of(const closure *c, float ax, float ay, int correlated)
+{
+    mf_lobe m = {ax, ay, closure_beckmann(c), correlated};
+    return m;
+}
+
+static float lobe_D(const mf_lobe *m, vec3 h)
+{
+    return m->beckmann ? beckmann_D_aniso(h, m->ax, m->ay) : ggx_D_aniso(h, m->ax, m->ay);
+}
+
+static float lobe_lambda(const mf_lobe *m, vec3 w)
+{
+    return m->beckmann ? beckmann_lambda_aniso(w, m->ax, m->ay) : ggx_lambda_aniso(w, m->ax, m->ay);
+}
+
+/* Smith G (Heitz 2014 eq. 98 or 99). */
+static float lobe_G(const mf_lobe *m, vec3 wo, vec3 wi)
+{
+    float lo = lobe_lambda(m, wo), li = lobe_lambda(m, wi);
+    return m->correlated ? 1.0f / (1.0f + lo + li) : 1.0f / ((1.0f + lo) * (1.0f + li));
+}
+
+/* A half vector for wo: GGX's visible normals (Heitz 2018); Beckmann's
+ * normals by D·cos θh (Walter 2007 eq. 28). */
+static vec3 lobe_sample_h(const mf_lobe *m, vec3 wo, float2 u)
+{
+    return m->beckmann ? beckmann_sample_normal_aniso(m->ax, m->ay, u)
+                       : ggx_sample_visible_normal_aniso(wo, m->ax, m->ay, u);
+}
+
+/* The density of lobe_sample_h (1/sr of h). */
+static float lobe_h_pdf(const mf_lobe *m, vec3 wo, vec3 h)
+{
+    return m->beckmann ? beckmann_normal_pdf_aniso(h, m->ax, m->ay)
+                       : ggx_visible_normal_pdf_aniso(wo, h, m->ax, m->ay);
+}
+
+/* Microfacet reflection without Fresnel: returns f·cos θi = D G / (4 cos θo)
+ * (Walter 2007 eq. 20 times cos θi) and the solid-angle pdf of sampling wi
+ * through lobe_sample_h, p(h) / (4 wo·h) (Walter 2007 eq. 14; for GGX's
+ * visible normals Heitz 2018 eq. 17). */
+static float microfacet_reflection(const query *q, const mf_lobe *m, vec3 *h, float *pdf)
 {
     *pdf = 0.0f;
     if (q->wo.z <= 0.0f || !reflection_side(q) || !microfacet_reflect_half_vector(q->wo, q->wi, h))
         return 0.0f;
-    float D = ggx_D_aniso(*h, ax, ay);
+    float D = lobe_D(m, *h);
     if (!(D > 0.0f))
         return 0.0f;
-    float G = correlated ? ggx_G_correlated_aniso(q->wo, q->wi, ax, ay)
-                         : ggx_G_separable_aniso(q->wo, q->wi, ax, ay);
-    *pdf = ggx_visible_normal_pdf_aniso(q->wo, *h, ax, ay) * microfacet_reflect_jacobian(q->wo, *h);
-    return D * G / (4.0f * q->wo.z);
+    *pdf = lobe_h_pdf(m, q->wo, *h) * microfacet_reflect_jacobian(q->wo, *h);
+    return D * lobe_G(m, q->wo, q->wi) / (4.0f * q->wo.z);
 }
 
-/* GGX refraction without Fresnel: f·|cos θi| =
+/* Microfacet refraction without Fresnel: f·|cos θi| =
  * |wo·h| |wi·h| η² D G / (cos θo (wo·h + η wi·h)²) (Walter 2007 eq. 21 times
  * |cos θi|, without the 1/η² radiance scaling, as Cycles), and the pdf
- * D_wo(h) |dω_h/dω_i|. */
-static float ggx_refraction(const query *q, float alpha, float eta, int correlated, vec3 *h,
-                            float *pdf)
+ * p(h) |dω_h/dω_i| of sampling wi through lobe_sample_h. */
+static float microfacet_refraction(const query *q, const mf_lobe *m, float eta, vec3 *h, float *pdf)
 {
     *pdf = 0.0f;
     if (q->wo.z <= 0.0f || !transmission_side(q) ||
         !microfacet_refract_half_vector(q->wo, q->wi, eta, h))
         return 0.0f;
-    float D = ggx_D(*h, alpha);
+    float D = lobe_D(m, *h);
     if (!(D > 0.0f))
         return 0.0f;
-    float G = correlated ? ggx_G_correlated(q->wo, q->wi, alpha) : ggx_G_separable(q->wo, q->wi, alpha);
     float jacobian = microfacet_refract_jacobian(q->wo, q->wi, *h, eta);
-    *pdf = ggx_visible_normal_pdf(q->wo, *h, alpha) * jacobian;
-    return v3_dot(q->wo, *h) * D * G / q->wo.z * jacobian;
+    *pdf = lobe_h_pdf(m, q->wo, *h) * jacobian;
+    return v3_dot(q->wo, *h) * D * lobe_G(m, q->wo, q->wi) / q->wo.z * jacobian;
 }
 
 /* -------------------------------------------------------- Fresnel */
@@ -441,7 +490,8 @@ static vec3 eval_glossy(const closure *c, const query *q, float *pdf)
     if (closure_is_sharp(c))
         return v3s(0.0f);
     vec3 h;
-    float v = ggx_reflection(q, c->alpha, c->alpha_y, closure_correlated(c), &h, pdf);
+    mf_lobe m = lobe_of(c, c->alpha, c->alpha_y, closure_correlated(c));
+    float v = microfacet_reflection(q, &m, &h, pdf);
     if (v == 0.0f)
         return v3s(0.0f);
     vec3 colour = v3_mul(c->weight, reflection_fresnel(c, v3_dot(q->wi, h)));
@@ -453,7 +503,8 @@ static vec3 eval_refraction(const closure *c, const query *q, float *pdf)
     if (closure_is_sharp(c) || closure_index_matched(c))
         return v3s(0.0f);
     vec3 h;
-    return v3_scale(c->weight, ggx_refraction(q, c->alpha, c->eta, closure_correlated(c), &h, pdf));
+    mf_lobe m = lobe_of(c, c->alpha, c->alpha, closure_correlated(c));
+    return v3_scale(c->weight, microfacet_refraction(q, &m, c->eta, &h, pdf));
 }
 
 /* The probability with which a MACRO glass picks its reflection lobe: F at
@@ -477,10 +528,11 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
         /* Walter 2007 eq. 20/21 with F(wo·h); sampling picks the lobe with
          * the mean over the channels of F(wo·h). */
         int reflect = q->wi.z > 0.0f;
+        mf_lobe m = lobe_of(c, c->alpha, c->alpha, 1);
         if (reflect)
-            v = ggx_reflection(q, c->alpha, c->alpha, 1, &h, pdf);
+            v = microfacet_reflection(q, &m, &h, pdf);
         else
-            v = ggx_refraction(q, c->alpha, c->eta, 1, &h, pdf);
+            v = microfacet_refraction(q, &m, c->eta, &h, pdf);
         if (v == 0.0f)
             return v3s(0.0f);
         float cos_oh = v3_dot(q->wo, h);
@@ -495,13 +547,15 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
          * normal; sampling picks them with macro_reflect_pick. */
         float F = fresnel_dielectric(q->wo.z, c->eta), pick = macro_reflect_pick(c, F);
         if (q->wi.z > 0.0f) {
-            v = closure_is_sharp(c) ? 0.0f : ggx_reflection(q, c->alpha, c->alpha, 0, &h, pdf);
+            mf_lobe m = lobe_of(c, c->alpha, c->alpha, 0);
+            v = closure_is_sharp(c) ? 0.0f : microfacet_reflection(q, &m, &h, pdf);
             lobe = F;
             *pdf *= pick;
         } else {
             v = (closure_index_matched(c) || refraction_is_sharp(c))
                     ? 0.0f
-                    : ggx_refraction(q, c->alpha_t, c->eta, 0, &h, pdf);
+                    : microfacet_refraction(q, &(mf_lobe){c->alpha_t, c->alpha_t, closure_beckmann(c), 0}, c->eta,
+                                            &h, pdf);
             lobe = fresnel_dielectric_transmittance(q->wo.z, c->eta);
             *pdf *= pick < F ? 1.0f - pick : lobe; /* lobe: 1 − F without cancellation */
         }
@@ -548,7 +602,8 @@ static int sample_glossy(const closure *c, vec3 wo, float2 u, lobe_sample *s)
 {
     if (closure_is_sharp(c))
         return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_mul(c->weight, reflection_fresnel(c, wo.z)), 1.0f);
-    vec3 h = ggx_sample_visible_normal_aniso(wo, c->alpha, c->alpha_y, u);
+    mf_lobe m = lobe_of(c, c->alpha, c->alpha_y, closure_correlated(c));
+    vec3 h = lobe_sample_h(&m, wo, u);
     if (v3_dot(wo, h) <= 0.0f)
         return 0;
     s->wi = reflect_about(wo, h);
@@ -564,7 +619,8 @@ static int sample_refraction(const closure *c, vec3 wo, float2 u, lobe_sample *s
             return 0;
         return sample_delta(s, wi, BSDF_TRANSMISSION, c->weight, 1.0f);
     }
-    vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+    mf_lobe m = lobe_of(c, c->alpha, c->alpha, closure_correlated(c));
+    vec3 h = lobe_sample_h(&m, wo, u);
     if (!refract_about(wo, h, c->eta, &wi))
         return 0; /* total internal reflection at this microfacet: no light */
     s->wi = wi;
@@ -580,7 +636,8 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
         /* Walter 2007 §5.3 with visible normals: pick h, then reflect with
          * probability F(wo·h) (the channels' mean), otherwise refract
          * through h; a sharp glass has h = n. */
-        vec3 h = closure_is_sharp(c) ? n : ggx_sample_visible_normal(wo, c->alpha, u);
+        mf_lobe m = lobe_of(c, c->alpha, c->alpha, 1);
+        vec3 h = closure_is_sharp(c) ? n : lobe_sample_h(&m, wo, u);
         float cos_oh = v3_dot(wo, h);
         if (cos_oh <= 0.0f)
             return 0;
@@ -611,7 +668,8 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
     if (u_lobe < macro_reflect_pick(c, F)) {
         if (closure_is_sharp(c))
             return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_scale(c->weight, F), F);
-        vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+        mf_lobe m = lobe_of(c, c->alpha, c->alpha, 0);
+        vec3 h = lobe_sample_h(&m, wo, u);
         if (v3_dot(wo, h) <= 0.0f)
             return 0;
         s->wi = reflect_about(wo, h);
@@ -625,7 +683,8 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
         float T = fresnel_dielectric_transmittance(wo.z, c->eta);
         return sample_delta(s, wi, BSDF_TRANSMISSION, v3_scale(tinted, T), T);
     }
-    vec3 h = ggx_sample_visible_normal(wo, c->alpha_t, u);
+    mf_lobe mt = lobe_of(c, c->alpha_t, c->alpha_t, 0);
+    vec3 h = lobe_sample_h(&mt, wo, u);
     if (!refract_about(wo, h, c->eta, &wi))
         return 0;
     s->wi = wi;

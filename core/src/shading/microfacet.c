@@ -1,5 +1,5 @@
 /*
- * microfacet.c — GGX, isotropic and anisotropic: D, Smith Λ/G1/G,
+ * microfacet.c — GGX, isotropic and anisotropic, and Beckmann: D, Smith Λ/G1/G,
  * visible-normal sampling and the half-vector Jacobians. See microfacet.h
  * for the references. The anisotropic forms (roughness αx along the
  * frame's x axis, αy along y) reduce to the isotropic ones at αx = αy; the
@@ -170,4 +170,48 @@ float microfacet_refract_jacobian(vec3 wo, vec3 wi, vec3 h, float eta)
     if (!(denom > 0.0f))
         return 0.0f;
     return eta * eta * fabsf(cos_ih) / denom;
+}
+
+/* ------------------------------------------------------------ Beckmann */
+
+/* D(h) = exp(−(hx²/αx² + hy²/αy²)/hz²) / (π αx αy hz⁴) (Walter 2007 eq. 25,
+ * anisotropic as Heitz 2014 eq. 85). Units 1/sr. */
+float beckmann_D_aniso(vec3 h, float ax, float ay)
+{
+    if (h.z <= 0.0f)
+        return 0.0f;
+    float z2 = h.z * h.z;
+    float e = (h.x * h.x / (ax * ax) + h.y * h.y / (ay * ay)) / z2;
+    if (!(e < 80.0f)) /* exp(−80) is below any float that matters */
+        return 0.0f;
+    return expf(-e) / (PHOS_PI * ax * ay * z2 * z2);
+}
+
+/* Λ(w) by Walter 2007's rational approximation (eq. 27, as Cycles 3.x and
+ * 4.x use it): with a = 1/(α tanθ), α projected on w's azimuth,
+ * Λ = (1 − 1.259a + 0.396a²)/(3.535a + 2.181a²) for a < 1.6, else 0. */
+float beckmann_lambda_aniso(vec3 w, float ax, float ay)
+{
+    float z2 = fmaxf(w.z * w.z, 1e-20f);
+    float a2_tan2 = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / z2;
+    if (a2_tan2 < 0.39f) /* a ≥ 1.6 */
+        return 0.0f;
+    float a = 1.0f / sqrtf(a2_tan2);
+    return (1.0f - 1.259f * a + 0.396f * a * a) / (3.535f * a + 2.181f * a * a);
+}
+
+/* The slopes (−hx/hz, −hy/hz) of Beckmann microfacets are Gaussian with
+ * variances αx²/2, αy²/2 (Walter 2007 §5.2, eq. 28): a slope of radius
+ * √(−ln(1 − u1)) in the stretched space, azimuth 2π u2. */
+vec3 beckmann_sample_normal_aniso(float ax, float ay, float2 u)
+{
+    float r = sqrtf(-logf(fmaxf(1.0f - u.x, 1e-30f)));
+    float phi = 2.0f * PHOS_PI * u.y;
+    return v3_normalize(v3(-ax * r * cosf(phi), -ay * r * sinf(phi), 1.0f));
+}
+
+/* The density of beckmann_sample_normal_aniso: D(h)·cos θh (1/sr of h). */
+float beckmann_normal_pdf_aniso(vec3 h, float ax, float ay)
+{
+    return beckmann_D_aniso(h, ax, ay) * fmaxf(h.z, 0.0f);
 }

@@ -58,6 +58,15 @@ float ggx_G_correlated_aniso(vec3 wo, vec3 wi, float ax, float ay);
 vec3 ggx_sample_visible_normal_aniso(vec3 wo, float ax, float ay, float2 u);
 float ggx_visible_normal_pdf_aniso(vec3 wo, vec3 h, float ax, float ay);
 
+/* Beckmann (Walter 2007 eq. 25, 27, 28), anisotropic as GGX above: D; Λ
+ * by Walter's rational approximation (as Cycles); a sampler of D(h)·cos θh
+ * through Gaussian slopes, and its density (1/sr of h). Smith G from Λ as
+ * for GGX: 1/((1 + Λo)(1 + Λi)) or 1/(1 + Λo + Λi). */
+float beckmann_D_aniso(vec3 h, float ax, float ay);
+float beckmann_lambda_aniso(vec3 w, float ax, float ay);
+vec3 beckmann_sample_normal_aniso(float ax, float ay, float2 u);
+float beckmann_normal_pdf_aniso(vec3 h, float ax, float ay);
+
 /* Half vector of a reflection pair, normalize(wo + wi); 0 if degenerate. */
 int microfacet_reflect_half_vector(vec3 wo, vec3 wi, vec3 *h);
 
