@@ -139,6 +139,7 @@ enum phos_microfacet {
                                             Multiscatter GGX; not for REFRACTION */
     PHOS_MICROFACET_BECKMANN_SEPARABLE = 3, /* Beckmann (Walter 2007), separable G: Cycles up to 3.x */
     PHOS_MICROFACET_BECKMANN = 4,        /* Beckmann, height-correlated G: Cycles 4+ */
+    PHOS_MICROFACET_ASHIKHMIN_SHIRLEY = 5, /* Ashikhmin & Shirley 2000, REFLECTION only (Glossy) */
 };
 
 typedef struct phos_closure_desc {

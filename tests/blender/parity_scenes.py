@@ -324,6 +324,9 @@ MATERIAL_SCENES = {
     "anisotropic_metal": _material_scene(_anisotropic_metal),
     "glossy_beckmann": _material_scene(_one("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.8, 0.6), "Roughness": 0.35},
                                             {"distribution": "BECKMANN"})),
+    "glossy_ashikhmin_shirley": _material_scene(_one(
+        "ShaderNodeBsdfAnisotropic", {"Color": (0.8, 0.9, 0.9), "Roughness": 0.4, "Anisotropy": 0.5,
+                                      "Rotation": 0.1}, {"distribution": "ASHIKHMIN_SHIRLEY"})),
     "glass_beckmann": _material_scene(_one("ShaderNodeBsdfGlass", {"IOR": 1.5, "Roughness": 0.3},
                                            {"distribution": "BECKMANN"})),
     # 3.x's Anisotropic BSDF, 4.x's Glossy: Anisotropy < 0 stretches across the tangent.

@@ -482,6 +482,12 @@ static int build_scenarios(scenario *sc)
     ADD("beckmann anisotropic ax=0.4 ay=0.05", make_aniso(PHOS_CLOSURE_REFLECTION, 0.4f, 0.05f,
                                                           PHOS_MICROFACET_BECKMANN));
     sc[n - 1].ct[0] = tangent;
+    /* Ashikhmin-Shirley (Cycles' Glossy): isotropic, anisotropic, rough. */
+    ADD("ashikhmin-shirley r=0.3", make_cycles4(PHOS_CLOSURE_REFLECTION, 0.3f, 1.0f, PHOS_MICROFACET_ASHIKHMIN_SHIRLEY));
+    ADD("ashikhmin-shirley r=0.9", make_cycles4(PHOS_CLOSURE_REFLECTION, 0.9f, 1.0f, PHOS_MICROFACET_ASHIKHMIN_SHIRLEY));
+    ADD("ashikhmin-shirley anisotropic ax=0.3 ay=0.05",
+        make_aniso(PHOS_CLOSURE_REFLECTION, 0.3f, 0.05f, PHOS_MICROFACET_ASHIKHMIN_SHIRLEY));
+    sc[n - 1].ct[0] = tangent;
 #undef ADD
     return n;
 }
@@ -1124,6 +1130,21 @@ static void test_microfacet(void)
         }
         CHECK_REL(proj, 1.0, 3e-3);
         CHECK_REL(sampled, 1.0, 3e-3);
+    }
+    /* Ashikhmin-Shirley: p(h) is a density of h (eq. 6), isotropic or not. */
+    static const float ns[3][2] = {{10.0f, 10.0f}, {200.0f, 5.0f}, {0.0f, 0.0f}};
+    for (int k = 0; k < 3; k++) {
+        double total = 0.0;
+        const int nt = 4000, np = 1024;
+        for (int i = 0; i < nt; i++) {
+            double theta = 0.5 * PHOS_PI * (i + 0.5) / nt, dtheta = 0.5 * PHOS_PI / nt;
+            for (int j = 0; j < np; j++) {
+                double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
+                vec3 h = v3((float)(sin(theta) * cos(phi)), (float)(sin(theta) * sin(phi)), (float)cos(theta));
+                total += ashikhmin_shirley_h_pdf(h, ns[k][0], ns[k][1]) * sin(theta) * dtheta * 2.0 * PHOS_PI / np;
+            }
+        }
+        CHECK_REL(total, 1.0, 3e-3);
     }
     {
         vec3 steep = v3_normalize(v3(0.2f, 0.0f, 1.0f)), grazing = v3_normalize(v3(2.0f, 0.0f, 1.0f));

@@ -29,12 +29,11 @@ GGX roughness along and across the closure's tangent as each Cycles does
 which the core computes, turned by the node's rotation.
 
 Microfacet distributions (Glossy, Glass, Refraction, Metallic, Principled):
-the core has GGX and Beckmann, and a lobe whose alpha = roughness² is below
-1e-4 is a perfect mirror/refraction. 'SHARP' (3.x only) is GGX with
+the core has GGX, Beckmann and (Glossy only) Ashikhmin-Shirley, and a lobe
+whose alpha = roughness² is below 1e-4 is a perfect mirror/refraction. 'SHARP' (3.x only) is GGX with
 roughness 0, as is 4.x's way of making a sharp BSDF (roughness 0).
 'MULTI_GGX' (Multiscatter GGX, the 4.x default) is 4.x's energy-compensated
-GGX; on 3.x it is rendered so too, with one warning. 'ASHIKHMIN_SHIRLEY' is
-rendered as GGX with one warning naming the distribution.
+GGX; on 3.x it is rendered so too, with one warning.
 """
 
 import math
@@ -501,7 +500,7 @@ class NodeTreeWalker:
             self.note(node, "Oren-Nayar roughness before Blender 4.3 is not supported; rendered as Lambertian")
         return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, normal)]
 
-    def distribution(self, node, allowed=('GGX', 'MULTI_GGX', 'BECKMANN')):
+    def distribution(self, node, allowed=('GGX', 'MULTI_GGX', 'BECKMANN', 'ASHIKHMIN_SHIRLEY')):
         """(microfacet model, roughness override) of a node's distribution:
         'SHARP' (3.x) is GGX of roughness 0; one warning names any other
         distribution the core does not have, rendered as GGX."""

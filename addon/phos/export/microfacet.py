@@ -36,11 +36,13 @@ WEIGHT_CUTOFF = 1e-5
 
 def microfacet_model(ctx, distribution):
     """The core's enum phos_microfacet for a node's distribution ('GGX',
-    'MULTI_GGX', 'BECKMANN') in the running Blender (separable Smith G up
-    to 3.x, height-correlated from 4.0); other distributions are GGX (the
-    caller warns)."""
+    'MULTI_GGX', 'BECKMANN', 'ASHIKHMIN_SHIRLEY') in the running Blender
+    (separable Smith G up to 3.x, height-correlated from 4.0); other
+    distributions are GGX (the caller warns)."""
     if distribution == 'MULTI_GGX':
         return core.PHOS_MICROFACET_GGX_MULTISCATTER
+    if distribution == 'ASHIKHMIN_SHIRLEY':
+        return core.PHOS_MICROFACET_ASHIKHMIN_SHIRLEY
     if distribution == 'BECKMANN':
         return core.PHOS_MICROFACET_BECKMANN if ctx.at_least(4, 0) else core.PHOS_MICROFACET_BECKMANN_SEPARABLE
     return core.PHOS_MICROFACET_GGX if ctx.at_least(4, 0) else core.PHOS_MICROFACET_GGX_SEPARABLE

@@ -275,7 +275,7 @@ static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32
     if (!isfinite(c->transmission_roughness) || c->transmission_roughness > 1.0f)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u transmission roughness %g must be <= 1", i,
              (double)c->transmission_roughness);
-    if (c->microfacet > PHOS_MICROFACET_BECKMANN)
+    if (c->microfacet > PHOS_MICROFACET_ASHIKHMIN_SHIRLEY)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown microfacet model %u", i,
              c->microfacet);
     if (!all_finite_in(c->multiscatter_fresnel, 3, 0.0f, 1.0f))

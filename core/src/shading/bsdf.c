@@ -124,17 +124,32 @@ static int glass_per_microfacet(const closure *c)
 
 /* ---------------------------------------------------- microfacet lobes */
 
+/* Cycles has anisotropic GGX for its reflection closures only. */
+static int closure_may_be_anisotropic(const closure *c)
+{
+    return c->type == PHOS_CLOSURE_REFLECTION || c->type == PHOS_CLOSURE_REFLECTION_FRESNEL ||
+           c->type == PHOS_CLOSURE_METAL;
+}
+
 /* One microfacet lobe: its distribution (GGX or Beckmann), roughness ax
  * along the frame's x axis and ay along y, and its Smith G. */
 typedef struct mf_lobe {
     float ax, ay;
     int beckmann;   /* Beckmann, else GGX */
     int correlated; /* height-correlated G (Cycles 4), else separable (3.x) */
+    int ashikhmin;  /* Ashikhmin-Shirley (reflection only), exponents nx, ny */
+    float nx, ny;
 } mf_lobe;
 
 static mf_lobe lobe_of(const closure *c, float ax, float ay, int correlated)
 {
-    mf_lobe m = {ax, ay, closure_beckmann(c), correlated};
+    /* Ashikhmin-Shirley is a reflection model; elsewhere it stands for GGX. */
+    int ashikhmin = c->microfacet == PHOS_MICROFACET_ASHIKHMIN_SHIRLEY && closure_may_be_anisotropic(c);
+    mf_lobe m = {ax, ay, closure_beckmann(c), correlated, ashikhmin, 0.0f, 0.0f};
+    if (m.ashikhmin) {
+        m.nx = ashikhmin_shirley_exponent(ax);
+        m.ny = ashikhmin_shirley_exponent(ay);
+    }
     return m;
 }
 
@@ -159,6 +174,8 @@ static float lobe_G(const mf_lobe *m, vec3 wo, vec3 wi)
  * normals by D·cos θh (Walter 2007 eq. 28). */
 static vec3 lobe_sample_h(const mf_lobe *m, vec3 wo, float2 u)
 {
+    if (m->ashikhmin)
+        return ashikhmin_shirley_sample_h(m->nx, m->ny, u);
     return m->beckmann ? beckmann_sample_normal_aniso(m->ax, m->ay, u)
                        : ggx_sample_visible_normal_aniso(wo, m->ax, m->ay, u);
 }
@@ -166,6 +183,8 @@ static vec3 lobe_sample_h(const mf_lobe *m, vec3 wo, float2 u)
 /* The density of lobe_sample_h (1/sr of h). */
 static float lobe_h_pdf(const mf_lobe *m, vec3 wo, vec3 h)
 {
+    if (m->ashikhmin)
+        return ashikhmin_shirley_h_pdf(h, m->nx, m->ny);
     return m->beckmann ? beckmann_normal_pdf_aniso(h, m->ax, m->ay)
                        : ggx_visible_normal_pdf_aniso(wo, h, m->ax, m->ay);
 }
@@ -179,6 +198,15 @@ static float microfacet_reflection(const query *q, const mf_lobe *m, vec3 *h, fl
     *pdf = 0.0f;
     if (q->wo.z <= 0.0f || !reflection_side(q) || !microfacet_reflect_half_vector(q->wo, q->wi, h))
         return 0.0f;
+    if (m->ashikhmin) {
+        /* Ashikhmin & Shirley 2000 eq. 4 without Fresnel (Cycles' Glossy):
+         * f·cos θi = cos θi · p(h) / (4 (h·wo) max(cos θo, cos θi)). */
+        float ph = ashikhmin_shirley_h_pdf(*h, m->nx, m->ny), cos_oh = fmaxf(v3_dot(q->wo, *h), 1e-6f);
+        if (!(ph > 0.0f))
+            return 0.0f;
+        *pdf = ph * microfacet_reflect_jacobian(q->wo, *h);
+        return q->wi.z * ph / (4.0f * cos_oh * fmaxf(fmaxf(q->wo.z, q->wi.z), 1e-6f));
+    }
     float D = lobe_D(m, *h);
     if (!(D > 0.0f))
         return 0.0f;
@@ -554,7 +582,7 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
         } else {
             v = (closure_index_matched(c) || refraction_is_sharp(c))
                     ? 0.0f
-                    : microfacet_refraction(q, &(mf_lobe){c->alpha_t, c->alpha_t, closure_beckmann(c), 0}, c->eta,
+                    : microfacet_refraction(q, &(mf_lobe){c->alpha_t, c->alpha_t, closure_beckmann(c), 0, 0, 0.0f, 0.0f}, c->eta,
                                             &h, pdf);
             lobe = fresnel_dielectric_transmittance(q->wo.z, c->eta);
             *pdf *= pick < F ? 1.0f - pick : lobe; /* lobe: 1 − F without cancellation */
@@ -880,13 +908,6 @@ float bsdf_split_delta(const bsdf *b, bsdf *delta, bsdf *rest)
 {
     split_closures(b, closure_is_delta, delta, rest);
     return b->sample_weight_sum > 0.0f ? delta->sample_weight_sum / b->sample_weight_sum : 0.0f;
-}
-
-/* Cycles has anisotropic GGX for its reflection closures only. */
-static int closure_may_be_anisotropic(const closure *c)
-{
-    return c->type == PHOS_CLOSURE_REFLECTION || c->type == PHOS_CLOSURE_REFLECTION_FRESNEL ||
-           c->type == PHOS_CLOSURE_METAL;
 }
 
 int bsdf_add_closure(bsdf *b, const closure *c)

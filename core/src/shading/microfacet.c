@@ -215,3 +215,39 @@ float beckmann_normal_pdf_aniso(vec3 h, float ax, float ay)
 {
     return beckmann_D_aniso(h, ax, ay) * fmaxf(h.z, 0.0f);
 }
+
+/* ------------------------------------------------- Ashikhmin-Shirley */
+
+float ashikhmin_shirley_exponent(float alpha)
+{
+    float a = clampf(alpha, 1e-4f, 1.0f); /* Cycles' range for this closure */
+    return 2.0f / (a * a) - 2.0f;
+}
+
+/* p(h) = √((nx + 1)(ny + 1)) / (2π) · cos θh^((nx hx² + ny hy²)/(hx² + hy²))
+ * (Ashikhmin & Shirley 2000 eq. 6, 2): a normalised density of h. */
+float ashikhmin_shirley_h_pdf(vec3 h, float nx, float ny)
+{
+    if (h.z <= 0.0f)
+        return 0.0f;
+    float s2 = h.x * h.x + h.y * h.y;
+    float lobe = s2 > 0.0f ? powf(fminf(h.z, 1.0f), (nx * h.x * h.x + ny * h.y * h.y) / s2) : 1.0f;
+    return sqrtf((nx + 1.0f) * (ny + 1.0f)) * lobe / (2.0f * PHOS_PI);
+}
+
+/* Ashikhmin & Shirley 2000 eq. 9: in the first quadrant
+ * φ = atan(√((nx + 1)/(ny + 1)) tan(π u/2)), cos θ = v^(1/(nx cos²φ + ny sin²φ + 1));
+ * u chooses the quadrant, which mirrors φ. */
+vec3 ashikhmin_shirley_sample_h(float nx, float ny, float2 u)
+{
+    float scaled = 4.0f * u.x;
+    int quadrant = (int)fminf(scaled, 3.0f);
+    float uq = scaled - (float)quadrant;
+    float phi = atanf(sqrtf((nx + 1.0f) / (ny + 1.0f)) * tanf(0.5f * PHOS_PI * fminf(uq, 0.99999994f)));
+    float c = cosf(phi), sn = sinf(phi);
+    float cos_t = powf(u.y, 1.0f / (nx * c * c + ny * sn * sn + 1.0f));
+    float sin_t = safe_sqrtf(1.0f - cos_t * cos_t);
+    float sx = quadrant == 1 || quadrant == 2 ? -c : c;
+    float sy = quadrant >= 2 ? -sn : sn;
+    return v3(sin_t * sx, sin_t * sy, cos_t);
+}

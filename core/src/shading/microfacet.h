@@ -67,6 +67,14 @@ float beckmann_lambda_aniso(vec3 w, float ax, float ay);
 vec3 beckmann_sample_normal_aniso(float ax, float ay, float2 u);
 float beckmann_normal_pdf_aniso(vec3 h, float ax, float ay);
 
+/* Ashikhmin-Shirley (2000), Cycles' ASHIKHMIN_SHIRLEY: the Phong exponent
+ * n = 2/α² − 2 of α (clamped to [1e-4, 1] as Cycles); the density p(h)
+ * of half vectors (eq. 2, 6) and its sampler (eq. 9), exponents nx along
+ * x and ny along y. */
+float ashikhmin_shirley_exponent(float alpha);
+float ashikhmin_shirley_h_pdf(vec3 h, float nx, float ny);
+vec3 ashikhmin_shirley_sample_h(float nx, float ny, float2 u);
+
 /* Half vector of a reflection pair, normalize(wo + wi); 0 if degenerate. */
 int microfacet_reflect_half_vector(vec3 wo, vec3 wi, vec3 *h);
 
