@@ -290,7 +290,9 @@ enum phos_shader_op {
     PHOS_OP_VECTOR_TRANSFORM = 43,/* in vector(3); out vector(3). mode enum phos_vector_transform_type;
                                     flags: bits 0-3 from space, bits 4-7 to space (enum phos_space) */
     PHOS_OP_NORMAL = 44,         /* in normal(3); out normal(3) (param[0..2]), dot */
-    PHOS_OP_COUNT = 45
+    PHOS_OP_TANGENT = 45,        /* out tangent(3). mode enum phos_tangent (Tangent node; Geometry's
+                                    Tangent is RADIAL_Z) */
+    PHOS_OP_COUNT = 46
 };
 
 /* Node enums, named as Blender names their items so the add-on maps them by name. */
@@ -366,6 +368,8 @@ enum phos_gradient {
 };
 enum phos_mapping { PHOS_MAPPING_POINT = 0, PHOS_MAPPING_TEXTURE = 1, PHOS_MAPPING_VECTOR = 2,
                     PHOS_MAPPING_NORMAL = 3, PHOS_MAPPING_COUNT = 4 };
+enum phos_tangent { PHOS_TANGENT_RADIAL_X = 0, PHOS_TANGENT_RADIAL_Y = 1, PHOS_TANGENT_RADIAL_Z = 2,
+                    PHOS_TANGENT_UV_MAP = 3, PHOS_TANGENT_COUNT = 4 };
 enum phos_normal_map_space { PHOS_NORMAL_MAP_TANGENT = 0, PHOS_NORMAL_MAP_OBJECT = 1, PHOS_NORMAL_MAP_WORLD = 2,
                              PHOS_NORMAL_MAP_COUNT = 3 };
 enum phos_vector_rotate { PHOS_VECTOR_ROTATE_AXIS_ANGLE = 0, PHOS_VECTOR_ROTATE_X_AXIS = 1,

@@ -538,11 +538,28 @@ def _geometry(nc, node, stack):
     coords, pos = nc.coordinates()
     _, normal, true_normal, incoming, backfacing = nc.p.emit(core.PHOS_OP_GEOMETRY, [], [3, 3, 3, 3, 1])
     linked = {s.identifier for s in node.outputs if s.is_linked}
-    unsupported = linked - {"Position", "Normal", "True Normal", "Incoming", "Backfacing"}
+    unsupported = linked - {"Position", "Normal", "True Normal", "Incoming", "Backfacing", "Tangent"}
     if unsupported:
         nc.walker.note(node, "outputs %s are not supported; 0 is used" % ", ".join(sorted(unsupported)))
-    return {"Position": pos, "Normal": normal, "True Normal": true_normal, "Incoming": incoming,
-            "Backfacing": backfacing}
+    out = {"Position": pos, "Normal": normal, "True Normal": true_normal, "Incoming": incoming,
+           "Backfacing": backfacing}
+    if "Tangent" in linked:  # Cycles' primitive_tangent: radial about the object's Z axis
+        out["Tangent"] = nc.p.emit(core.PHOS_OP_TANGENT, [], [3], mode=core.PHOS_TANGENT_RADIAL_Z)[0]
+    return out
+
+
+def _tangent(nc, node, stack):
+    """The Tangent node: radial about an object axis, or the UV map's
+    MikkTSpace tangent (the render UV map's)."""
+    if node.direction_type == 'UV_MAP':
+        if getattr(node, "uv_map", ""):
+            nc.walker.note(node, "UV map '%s' is read as the active render UV map" % node.uv_map)
+        nc.ctx.tangents_wanted = True
+        mode = core.PHOS_TANGENT_UV_MAP
+    else:
+        mode = {'X': core.PHOS_TANGENT_RADIAL_X, 'Y': core.PHOS_TANGENT_RADIAL_Y}.get(node.axis,
+                                                                                  core.PHOS_TANGENT_RADIAL_Z)
+    return {"Tangent": nc.p.emit(core.PHOS_OP_TANGENT, [], [3], mode=mode)[0]}
 
 
 def _object_info(nc, node, stack):
@@ -672,6 +689,7 @@ _HANDLERS = {
     'ShaderNodeTexCoord': _tex_coord,
     'ShaderNodeUVMap': _uv_map,
     'ShaderNodeNewGeometry': _geometry,
+    'ShaderNodeTangent': _tangent,
     'ShaderNodeObjectInfo': _object_info,
     'ShaderNodeFresnel': _fresnel,
     'ShaderNodeLayerWeight': _layer_weight,

@@ -76,6 +76,7 @@ const shader_op_info shader_ops[PHOS_OP_COUNT] = {
     [PHOS_OP_VECTOR_TRANSFORM] = {"Vector Transform", shader_op_vector_transform, {W3}, {W3}, 1,
                                   PHOS_VECTOR_TRANSFORM_COUNT},
     [PHOS_OP_NORMAL] = {"Normal", shader_op_normal, {W3}, {W3, W1}, 0, 0},
+    [PHOS_OP_TANGENT] = {"Tangent", shader_op_tangent, {0}, {W3}, 1, PHOS_TANGENT_COUNT},
 };
 
 /* Width of each closure field (phos.h, enum phos_closure_field). */
@@ -278,7 +279,7 @@ static void shader_program_needs(shader_program *p)
         const phos_shader_instruction *ins = &p->instructions[i];
         if (ins->op == PHOS_OP_BUMP || ins->op == PHOS_OP_BUMP_OFFSET)
             p->needs |= SHADER_NEEDS_UV_TANGENTS;
-        else if (ins->op == PHOS_OP_NORMAL_MAP)
+        else if (ins->op == PHOS_OP_NORMAL_MAP || (ins->op == PHOS_OP_TANGENT && ins->mode == PHOS_TANGENT_UV_MAP))
             p->needs |= SHADER_NEEDS_TANGENT;
         else if (ins->op == PHOS_OP_TEXTURE_COORDINATE && ins->mode == 1)
             p->needs |= SHADER_NEEDS_WINDOW;
