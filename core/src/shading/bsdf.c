@@ -26,7 +26,10 @@
  * (microfacet GGX and GGX_MULTISCATTER here, and the MICROFACET glass), and
  * its Multiscatter GGX scales a lobe by 1 + F_ms (1 − E(μo))/E(μo)
  * (ggx_albedo.h). Microfacet lobes sample the visible normals (Heitz 2018),
- * see microfacet.c.
+ * see microfacet.c. The microfacet closures may instead be Beckmann
+ * (Walter 2007; sampled by D·cos θh) and the reflection ones anisotropic
+ * (αx along the closure frame's tangent, αy across) or, for Cycles'
+ * Glossy, Ashikhmin-Shirley (2000): enum phos_microfacet, mf_lobe below.
  *
  * Mixture: a closure is picked with probability sample_weight / sum; a
  * non-delta pick is weighted by the whole non-delta mixture (one-sample
