@@ -139,9 +139,12 @@ enum phos_glass_fresnel {
 enum phos_microfacet {
     PHOS_MICROFACET_GGX_SEPARABLE = 0,   /* Smith G1(wo)·G1(wi): Cycles up to 3.x */
     PHOS_MICROFACET_GGX = 1,             /* height-correlated Smith G (Heitz 2014): Cycles 4+ */
-    PHOS_MICROFACET_GGX_MULTISCATTER = 2 /* GGX with the light that scatters between microfacets
+    PHOS_MICROFACET_GGX_MULTISCATTER = 2, /* GGX with the light that scatters between microfacets
                                             restored by albedo scaling (Kulla & Conty 2017): Cycles 4+'s
                                             Multiscatter GGX; not for REFRACTION */
+    PHOS_MICROFACET_BECKMANN_SEPARABLE = 3, /* Beckmann (Walter 2007), separable G: Cycles up to 3.x */
+    PHOS_MICROFACET_BECKMANN = 4,        /* Beckmann, height-correlated G: Cycles 4+ */
+    PHOS_MICROFACET_ASHIKHMIN_SHIRLEY = 5, /* Ashikhmin & Shirley 2000, REFLECTION only (Glossy) */
 };
 
 typedef struct phos_closure_desc {
@@ -175,6 +178,15 @@ typedef struct phos_closure_desc {
                                   Weight × Sheen Tint, 1 for the Principled specular) */
     float layer_tint[3];       /* colour of light crossing the layer once at normal incidence */
     float layer_tint_weight;   /* how much of the tint applies (Coat Weight) */
+    /* Anisotropic GGX (REFLECTION, REFLECTION_FRESNEL, METAL; Cycles'
+     * Anisotropy): roughness_y < 0 is isotropic; otherwise roughness is
+     * along the closure's tangent (αx = roughness²) and roughness_y across
+     * it (αy = roughness_y²), in [0,1]. The tangent is the program's
+     * (PHOS_FIELD_TANGENT), else Cycles' default (Geometry's Tangent: about
+     * the object's Z axis through its generated coordinates), turned about
+     * the closure's normal by tangent_rotation turns (×2π radians). */
+    float roughness_y;
+    float tangent_rotation;
 } phos_closure_desc;
 PHOS_API void phos_closure_desc_init(phos_closure_desc *desc);
 
@@ -297,7 +309,9 @@ enum phos_shader_op {
                                     node's). mode 0: at the point; 1, 2: at a Bump's moved points
                                     (BUMP_OFFSET's modes and param[0], its filter width), the
                                     barycentrics moved with them */
-    PHOS_OP_COUNT = 46
+    PHOS_OP_TANGENT = 46,        /* out tangent(3). mode enum phos_tangent (Tangent node; Geometry's
+                                    Tangent is RADIAL_Z) */
+    PHOS_OP_COUNT = 47
 };
 
 /* Node enums, named as Blender names their items so the add-on maps them by name. */
@@ -373,6 +387,8 @@ enum phos_gradient {
 };
 enum phos_mapping { PHOS_MAPPING_POINT = 0, PHOS_MAPPING_TEXTURE = 1, PHOS_MAPPING_VECTOR = 2,
                     PHOS_MAPPING_NORMAL = 3, PHOS_MAPPING_COUNT = 4 };
+enum phos_tangent { PHOS_TANGENT_RADIAL_X = 0, PHOS_TANGENT_RADIAL_Y = 1, PHOS_TANGENT_RADIAL_Z = 2,
+                    PHOS_TANGENT_UV_MAP = 3, PHOS_TANGENT_COUNT = 4 };
 enum phos_normal_map_space { PHOS_NORMAL_MAP_TANGENT = 0, PHOS_NORMAL_MAP_OBJECT = 1, PHOS_NORMAL_MAP_WORLD = 2,
                              PHOS_NORMAL_MAP_COUNT = 3 };
 enum phos_vector_rotate { PHOS_VECTOR_ROTATE_AXIS_ANGLE = 0, PHOS_VECTOR_ROTATE_X_AXIS = 1,
@@ -398,7 +414,8 @@ enum phos_closure_field {
     PHOS_FIELD_TRANSMISSION_TINT = 4, PHOS_FIELD_TRANSMISSION_ROUGHNESS = 5,
     PHOS_FIELD_MULTISCATTER_FRESNEL = 6, PHOS_FIELD_SPECULAR_TINT = 7, PHOS_FIELD_THIN_FILM_THICKNESS = 8,
     PHOS_FIELD_THIN_FILM_IOR = 9, PHOS_FIELD_LAYER_WEIGHT = 10, PHOS_FIELD_LAYER_TINT = 11,
-    PHOS_FIELD_LAYER_TINT_WEIGHT = 12, PHOS_FIELD_NORMAL = 13, PHOS_FIELD_COUNT = 14
+    PHOS_FIELD_LAYER_TINT_WEIGHT = 12, PHOS_FIELD_NORMAL = 13, PHOS_FIELD_ROUGHNESS_Y = 14,
+    PHOS_FIELD_TANGENT_ROTATION = 15, PHOS_FIELD_TANGENT = 16, PHOS_FIELD_COUNT = 17
 };
 
 typedef struct phos_shader_binding {

@@ -299,6 +299,68 @@ def _white_noise_cells():
     return n.surface(bsdf)
 
 
+def _mix_two_bumps(scene):
+    """Mix Shaders of two Diffuses, each under its own Bump (a coarse noise,
+    wave ridges), and an unbumped Glossy: each closure shades about its own
+    normal, as Cycles' closures carry their own N. (A bumped Glossy is left
+    out: Cycles bends a microfacet closure's normal so that its mirror
+    direction stays above the surface, which Phos does not do yet.)"""
+    mat = bpy.data.materials.new("Test Mix Two Bumps")
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    outer, inner = nt.nodes.new("ShaderNodeMixShader"), nt.nodes.new("ShaderNodeMixShader")
+    outer.inputs["Fac"].default_value = inner.inputs["Fac"].default_value = 0.5
+    orange = pt.setup_node(nt.nodes.new("ShaderNodeBsdfDiffuse"), {"Color": (0.8, 0.4, 0.2)})
+    blue = pt.setup_node(nt.nodes.new("ShaderNodeBsdfDiffuse"), {"Color": (0.2, 0.4, 0.9)})
+    glossy = pt.setup_node(nt.nodes.new("ShaderNodeBsdfGlossy"), {"Color": (0.9, 0.9, 0.9), "Roughness": 0.25},
+                           {"distribution": "GGX"})
+    noise = pt.setup_node(nt.nodes.new("ShaderNodeTexNoise"), {"Scale": 4.0})
+    wave = pt.setup_node(nt.nodes.new("ShaderNodeTexWave"), {"Scale": 3.0})
+    for tex, strength, bsdf in ((noise, 0.8, orange), (wave, 0.6, blue)):
+        bump = pt.setup_node(nt.nodes.new("ShaderNodeBump"), {"Strength": strength, "Distance": 0.1})
+        nt.links.new(tex.outputs["Fac"], bump.inputs["Height"])
+        nt.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    nt.links.new(blue.outputs[0], inner.inputs[1])
+    nt.links.new(glossy.outputs[0], inner.inputs[2])
+    nt.links.new(orange.outputs[0], outer.inputs[1])
+    nt.links.new(inner.outputs[0], outer.inputs[2])
+    nt.links.new(outer.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def _principled_coat_over_bump(scene):
+    """A Principled BSDF (4.x) whose Normal is bumped by a noise and whose
+    coat has no Coat Normal: Cycles 4.x lays the coat along the surface's own
+    normal, so the bumped diffuse shows through a smooth coat. No specular
+    (IOR Level 0), whose bumped normal Cycles would bend (see _mix_two_bumps)."""
+    mat = pt.node_material("Test Principled Coat Over Bump", "ShaderNodeBsdfPrincipled",
+                           {"Base Color": (0.7, 0.25, 0.1), "Roughness": 0.5, "Specular IOR Level": 0.0,
+                            "Coat Weight": 1.0, "Coat Roughness": 0.1, "Coat IOR": 1.5})
+    nt = mat.node_tree
+    bsdf = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
+    noise = pt.setup_node(nt.nodes.new("ShaderNodeTexNoise"), {"Scale": 4.0})
+    bump = pt.setup_node(nt.nodes.new("ShaderNodeBump"), {"Strength": 0.8, "Distance": 0.1})
+    nt.links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    nt.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    return mat
+
+
+def _anisotropic_metal(scene):
+    """A Principled metal (3.x and 4.x names alike) with Anisotropic 0.8 along
+    the default tangent, its Anisotropic Rotation textured by a noise: the
+    highlights follow Cycles' tangent field, turned point by point."""
+    mat = pt.node_material("Test Anisotropic Metal", "ShaderNodeBsdfPrincipled",
+                           {"Base Color": (0.9, 0.6, 0.3), "Metallic": 1.0, "Roughness": 0.4,
+                            "Anisotropic": 0.8})
+    nt = mat.node_tree
+    bsdf = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
+    noise = pt.setup_node(nt.nodes.new("ShaderNodeTexNoise"), {"Scale": 3.0})
+    nt.links.new(noise.outputs["Fac"], bsdf.inputs["Anisotropic Rotation"])
+    return mat
+
+
 def _principled(inputs, props=None):
     """A Principled BSDF with the given inputs (4.x names) and properties."""
     return _one("ShaderNodeBsdfPrincipled", inputs, props)
@@ -429,6 +491,19 @@ MATERIAL_SCENES = {
     "textured_walnut": _material_scene(_walnut),
     "textured_mix": _material_scene(_mixed_by_texture),
     "texture_families": _texture_families,
+    "mix_two_bumps": _material_scene(_mix_two_bumps),
+    "anisotropic_metal": _material_scene(_anisotropic_metal),
+    "glossy_beckmann": _material_scene(_one("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.8, 0.6), "Roughness": 0.35},
+                                            {"distribution": "BECKMANN"})),
+    "glossy_ashikhmin_shirley": _material_scene(_one(
+        "ShaderNodeBsdfAnisotropic", {"Color": (0.8, 0.9, 0.9), "Roughness": 0.4, "Anisotropy": 0.5,
+                                      "Rotation": 0.1}, {"distribution": "ASHIKHMIN_SHIRLEY"})),
+    "glass_beckmann": _material_scene(_one("ShaderNodeBsdfGlass", {"IOR": 1.5, "Roughness": 0.3},
+                                           {"distribution": "BECKMANN"})),
+    # 3.x's Anisotropic BSDF, 4.x's Glossy: Anisotropy < 0 stretches across the tangent.
+    "anisotropic_glossy": _material_scene(_one("ShaderNodeBsdfAnisotropic",
+                                               {"Color": (0.9, 0.9, 0.9), "Roughness": 0.3, "Anisotropy": -0.6,
+                                                "Rotation": 0.15}, {"distribution": "GGX"})),
 }
 
 # Multiscatter GGX at roughness 0.2, 0.5 and 1: a white Glossy (no Fresnel),
@@ -448,6 +523,7 @@ MATERIAL_SCENES.update({
     "principled_coat": _material_scene(_principled(
         {"Base Color": (0.8, 0.1, 0.1), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Roughness": 0.1,
          "Coat IOR": 1.6, "Coat Tint": (0.6, 0.8, 1.0)})),
+    "principled_coat_over_bump": _material_scene(_principled_coat_over_bump),
     "principled_sheen": _material_scene(_principled(
         {"Base Color": (0.05, 0.1, 0.4), "Roughness": 0.7, "Sheen Weight": 1.0, "Sheen Roughness": 0.4,
          "Sheen Tint": (1.0, 0.9, 0.8)})),
@@ -462,6 +538,9 @@ MATERIAL_SCENES.update({
          "Thin Film IOR": 1.33})),
     "principled_diffuse_roughness": _material_scene(_principled(
         {"Base Color": (0.8, 0.5, 0.3), "Roughness": 0.5, "Diffuse Roughness": 1.0})),
+    "metallic_anisotropic": _material_scene(_one(
+        "ShaderNodeBsdfMetallic", {"Base Color": (0.8, 0.8, 0.85), "Roughness": 0.3, "Anisotropy": 0.6,
+                                   "Rotation": 0.25})),
     "metallic_bsdf": _material_scene(_one(
         "ShaderNodeBsdfMetallic", {"Base Color": (0.9, 0.7, 0.4), "Edge Tint": (0.9, 0.9, 1.0), "Roughness": 0.4})),
     "diffuse_roughness": _material_scene(_one("ShaderNodeBsdfDiffuse", {"Color": (0.7, 0.7, 0.7), "Roughness": 0.8})),
@@ -483,6 +562,7 @@ MIN_VERSION = {
     "point_sphere": (4, 1, 0),
     "spot_sphere": (4, 1, 0),
     "principled_coat": (4, 0, 0),
+    "principled_coat_over_bump": (4, 0, 0),
     "principled_sheen": (4, 0, 0),
     "sheen_bsdf": (4, 0, 0),
     "principled_specular_tint": (4, 0, 0),
@@ -490,5 +570,6 @@ MIN_VERSION = {
     "principled_thin_film": (4, 2, 0),
     "principled_diffuse_roughness": (4, 3, 0),
     "metallic_bsdf": (4, 3, 0),
+    "metallic_anisotropic": (4, 3, 0),
     "diffuse_roughness": (4, 3, 0),
 }

@@ -476,22 +476,23 @@ def test_principled_closures(scene):
 
 
 # Distributions of this Blender's nodes → (roughness Phos uses or None for the
-# node's own, warned?). GGX only in the core; SHARP (3.x) is GGX roughness 0.
+# node's own, warned?). SHARP (3.x) is GGX roughness 0.
 _DISTRIBUTIONS = {
     "SHARP": (0.0, False),
     "GGX": (None, False),
     "MULTI_GGX": (None, not pt.BLENDER_4),  # GGX with its energy compensation; 3.x: noted (a random walk there)
-    "BECKMANN": (None, True),
-    "ASHIKHMIN_SHIRLEY": (None, True),
+    "BECKMANN": (None, False),
+    "ASHIKHMIN_SHIRLEY": (None, False),
 }
 
 
 @pytest.mark.parametrize("node_type", ["ShaderNodeBsdfGlossy", "ShaderNodeBsdfGlass",
                                        "ShaderNodeBsdfRefraction"])
 def test_distributions(node_type, scene):
-    """Every distribution this Blender offers maps to GGX (SHARP: roughness 0);
-    only those that render differently in Cycles are warned about, once,
-    by their UI name."""
+    """Every distribution this Blender offers maps to the core's (SHARP: GGX
+    of roughness 0; Beckmann and Ashikhmin-Shirley their own, with the Smith
+    G of the version); only those that render differently in Cycles are
+    warned about, once, by their UI name."""
     from phos import core as C
     probe = bpy.data.materials.new("probe")
     pt.use_nodes(probe)
@@ -508,6 +509,10 @@ def test_distributions(node_type, scene):
         assert closures[0].roughness == pytest.approx(expected), item.identifier
         multiscatter = item.identifier == "MULTI_GGX" and node_type != "ShaderNodeBsdfRefraction"
         assert (closures[0].microfacet == C.PHOS_MICROFACET_GGX_MULTISCATTER) == multiscatter, item.identifier
+        beckmann = C.PHOS_MICROFACET_BECKMANN if pt.BLENDER_4 else C.PHOS_MICROFACET_BECKMANN_SEPARABLE
+        assert (closures[0].microfacet == beckmann) == (item.identifier == "BECKMANN"), item.identifier
+        assert ((closures[0].microfacet == C.PHOS_MICROFACET_ASHIKHMIN_SHIRLEY)
+                == (item.identifier == "ASHIKHMIN_SHIRLEY")), item.identifier
         if warned:
             assert len(warnings) == 1 and item.name in warnings[0], (item.identifier, warnings)
         else:

@@ -643,6 +643,16 @@ def _input_node(kind, output, inputs=None):
     return build
 
 
+def _tangent_node(direction, axis):
+    def build(name):
+        t = Tree(name)
+        n = t.node("ShaderNodeTangent")
+        n.direction_type = direction
+        n.axis = axis
+        return t.show(t.absolute(sock(n.outputs, "Tangent")))
+    return build
+
+
 def vector_cases(tmp_path):
     cases = [("coordinates %s" % o.lower(), _coordinate(o)) for o in ("Generated", "Normal", "UV", "Object",
                                                                        "Camera", "Window", "Reflection")]
@@ -660,6 +670,9 @@ def vector_cases(tmp_path):
               ("layer weight facing", _input_node("ShaderNodeLayerWeight", "Facing", {"Blend": 0.7})),
               ("geometry position", _input_node("ShaderNodeNewGeometry", "Position")),
               ("geometry incoming", _input_node("ShaderNodeNewGeometry", "Incoming")),
+              ("geometry tangent", _input_node("ShaderNodeNewGeometry", "Tangent")),
+              ("tangent radial z", _tangent_node('RADIAL', 'Z')),
+              ("tangent uv map", _tangent_node('UV_MAP', 'Z')),
               ("object info location", _input_node("ShaderNodeObjectInfo", "Location")),
               ("object info random", _input_node("ShaderNodeObjectInfo", "Random")),
               ("light path camera", _input_node("ShaderNodeLightPath", "Is Camera Ray"))]

@@ -3,6 +3,7 @@
  * right status with a message that names the problem, nothing crashes, and
  * the render lifecycle (start, stream tiles, cancel, wait, destroy) holds.
  */
+#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <string.h>
@@ -194,6 +195,23 @@ static void test_bad_materials_lights_camera(void)
     c.weight[1] = -1.0f;
     CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
     c.weight[1] = 0.5f;
+    /* Anisotropic GGX: roughness across the tangent at most 1 (< 0:
+     * isotropic), a finite rotation. */
+    c.type = PHOS_CLOSURE_METAL;
+    c.roughness_y = 1.5f;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "across the tangent"), "%s", phos_scene_error(s));
+    c.roughness_y = NAN;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    c.roughness_y = 0.2f;
+    c.tangent_rotation = INFINITY;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "rotation"), "%s", phos_scene_error(s));
+    c.tangent_rotation = 0.3f;
+    CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_OK);
+    c.roughness_y = -1.0f;
+    c.tangent_rotation = 0.0f;
+    c.type = PHOS_CLOSURE_GLASS;
     m.closure_count = PHOS_MAX_CLOSURES + 1;
     CHECK(phos_scene_add_material(s, &m, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
     m.closure_count = 1;

@@ -92,6 +92,38 @@ static void make_bsdf(bsdf *b, const closure *cl, int n, vec3 ns, vec3 ng)
         bsdf_add_closure(b, &cl[i]);
 }
 
+/* make_bsdf with a shading frame per closure: normal cn[i] (0: ns) and,
+ * when ct is given and ct[i] is not 0, the tangent ct[i]. */
+static void make_bsdf_tangent(bsdf *b, const closure *cl, const vec3 *cn, const vec3 *ct, int n, vec3 ns,
+                              vec3 ng)
+{
+    bsdf_init(b, v3_normalize(ns), v3_normalize(ng));
+    for (int i = 0; i < n; i++) {
+        closure c = cl[i];
+        vec3 t = ct ? ct[i] : v3s(0.0f);
+        int own = v3_length2(cn[i]) > 0.0f || v3_length2(t) > 0.0f;
+        vec3 nrm = v3_length2(cn[i]) > 0.0f ? v3_normalize(cn[i]) : b->frames[0].n;
+        c.frame = own ? bsdf_add_frame(b, nrm, t) : 0;
+        bsdf_add_closure(b, &c);
+    }
+}
+
+static void make_bsdf_framed(bsdf *b, const closure *cl, const vec3 *cn, int n, vec3 ns, vec3 ng)
+{
+    make_bsdf_tangent(b, cl, cn, NULL, n, ns, ng);
+}
+
+/* An anisotropic GGX reflection closure: αx along the tangent, αy across. */
+static closure make_aniso(uint32_t type, float ax, float ay, uint32_t microfacet)
+{
+    closure c = make_closure(type, sqrtf(ax), 1.45f);
+    c.alpha = ax;
+    c.alpha_y = ay;
+    c.microfacet = microfacet;
+    c.specular_tint = v3(0.9f, 0.6f, 0.3f);
+    return c;
+}
+
 /* Direction at cos θ = z and azimuth phi in the frame f. */
 static vec3 dir_in_frame(const frame *f, double z, double phi)
 {
@@ -124,7 +156,7 @@ typedef struct integrand {
 static double pdf_at(const integrand *g, double z, double phi)
 {
     float pdf;
-    bsdf_eval(g->b, g->wo, dir_in_frame(&g->b->shading, z, phi), &pdf);
+    bsdf_eval(g->b, g->wo, dir_in_frame(&g->b->frames[0], z, phi), &pdf);
     return pdf;
 }
 
@@ -224,7 +256,7 @@ static double chi2_fit(const bsdf *b, vec3 wo, double delta_mass, uint32_t seed,
             observed[delta_cell] += 1.0;
             w = avg3(bs.weight);
         } else {
-            vec3 l = frame_to_local(&b->shading, bs.wi);
+            vec3 l = frame_to_local(&b->frames[0], bs.wi);
             int iz = (int)((clampf(l.z, -1.0f, 1.0f) + 1.0f) * 0.5f * COS_BINS);
             double phi = atan2(l.y, l.x);
             if (phi < 0.0)
@@ -312,6 +344,8 @@ static double chi2_fit(const bsdf *b, vec3 wo, double delta_mass, uint32_t seed,
 typedef struct scenario {
     char name[96];
     closure cl[4];
+    vec3 cn[4];         /* a closure's own shading normal; 0: the surface's (ns) */
+    vec3 ct[4];         /* its tangent (anisotropic GGX's x axis); 0: any */
     int n;
     vec3 ns, ng;
     int albedo_bounded; /* Burley diffuse is not energy conserving */
@@ -406,6 +440,65 @@ static int build_scenarios(scenario *sc)
         weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 0.5f),
         weighted(make_closure(PHOS_CLOSURE_REFLECTION, 0.5f, 1.0f), 0.5f));
     sc[n - 1].ns = v3_normalize(v3(0.35f, 0.1f, 1.0f));
+    /* One shading frame per closure (a Mix of BSDFs with different Bump
+     * normals): the mixture's density sums each closure's in its frame. */
+    ADD("mix diffuse + glossy, each its own normal",
+        weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 0.4f),
+        weighted(make_closure(PHOS_CLOSURE_REFLECTION, 0.3f, 1.0f), 0.6f));
+    sc[n - 1].cn[0] = v3_normalize(v3(-0.3f, 0.2f, 1.0f));
+    sc[n - 1].cn[1] = v3_normalize(v3(0.4f, -0.1f, 1.0f));
+    ADD("mix glossy + glass, the glass's own normal",
+        weighted(make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, 0.2f, 1.45f), 0.5f),
+        weighted(make_glass(0.3f, 1.5f, PHOS_GLASS_FRESNEL_MICROFACET), 0.5f));
+    sc[n - 1].cn[1] = v3_normalize(v3(0.1f, 0.35f, 1.0f));
+    /* Anisotropic GGX (Cycles' Anisotropic/Glossy with Anisotropy,
+     * Principled, Metallic): αx along a tangent turned 0.6 rad from the
+     * frame's default x axis; separable (3.x), correlated (4.x), F82 metal,
+     * Multiscatter, and on a tilted normal. */
+    const vec3 tangent = v3(cosf(0.6f), sinf(0.6f), 0.0f);
+    ADD("anisotropic reflection ax=0.05 ay=0.4", make_aniso(PHOS_CLOSURE_REFLECTION, 0.05f, 0.4f,
+                                                           PHOS_MICROFACET_GGX_SEPARABLE));
+    sc[n - 1].ct[0] = tangent;
+    ADD("anisotropic reflection ax=0.6 ay=0.12 correlated",
+        make_aniso(PHOS_CLOSURE_REFLECTION, 0.6f, 0.12f, PHOS_MICROFACET_GGX));
+    sc[n - 1].ct[0] = tangent;
+    ADD("anisotropic metal F82 ax=0.3 ay=0.03", make_aniso(PHOS_CLOSURE_METAL, 0.3f, 0.03f, PHOS_MICROFACET_GGX));
+    sc[n - 1].ct[0] = tangent;
+    ADD("anisotropic multiscatter fresnel ax=0.2 ay=0.7",
+        make_aniso(PHOS_CLOSURE_REFLECTION_FRESNEL, 0.2f, 0.7f, PHOS_MICROFACET_GGX_MULTISCATTER));
+    sc[n - 1].ct[0] = tangent;
+    sc[n - 1].albedo_bounded = 0;
+    ADD("mix diffuse + anisotropic reflection, tilted tangent frame",
+        weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 0.5f),
+        weighted(make_aniso(PHOS_CLOSURE_REFLECTION, 0.1f, 0.5f, PHOS_MICROFACET_GGX), 0.5f));
+    sc[n - 1].cn[1] = v3_normalize(v3(0.2f, -0.3f, 1.0f));
+    sc[n - 1].ct[1] = v3(0.0f, 1.0f, 0.3f);
+    /* Beckmann (Cycles 3.x: separable G, 4.x: correlated), sampled by
+     * D·cos θh: reflection, anisotropic, refraction and both glasses. */
+    for (int r = 0; r < 2; r++) {
+        float rough = r ? 0.6f : 0.25f;
+        snprintf(name, sizeof name, "beckmann reflection r=%.2f separable", rough);
+        ADD(name, make_cycles4(PHOS_CLOSURE_REFLECTION, rough, 1.0f, PHOS_MICROFACET_BECKMANN_SEPARABLE));
+        snprintf(name, sizeof name, "beckmann fresnel r=%.2f correlated", rough);
+        ADD(name, make_cycles4(PHOS_CLOSURE_REFLECTION_FRESNEL, rough, 1.45f, PHOS_MICROFACET_BECKMANN));
+        snprintf(name, sizeof name, "beckmann refraction r=%.2f", rough);
+        ADD(name, make_cycles4(PHOS_CLOSURE_REFRACTION, rough, 1.5f, PHOS_MICROFACET_BECKMANN_SEPARABLE));
+        snprintf(name, sizeof name, "beckmann glass macro r=%.2f eta=1/1.5", rough);
+        ADD(name, make_glass(rough, 1.0f / 1.5f, PHOS_GLASS_FRESNEL_MACRO));
+        sc[n - 1].cl[0].microfacet = PHOS_MICROFACET_BECKMANN_SEPARABLE;
+        snprintf(name, sizeof name, "beckmann glass microfacet r=%.2f", rough);
+        ADD(name, make_glass(rough, 1.5f, PHOS_GLASS_FRESNEL_MICROFACET));
+        sc[n - 1].cl[0].microfacet = PHOS_MICROFACET_BECKMANN;
+    }
+    ADD("beckmann anisotropic ax=0.4 ay=0.05", make_aniso(PHOS_CLOSURE_REFLECTION, 0.4f, 0.05f,
+                                                          PHOS_MICROFACET_BECKMANN));
+    sc[n - 1].ct[0] = tangent;
+    /* Ashikhmin-Shirley (Cycles' Glossy): isotropic, anisotropic, rough. */
+    ADD("ashikhmin-shirley r=0.3", make_cycles4(PHOS_CLOSURE_REFLECTION, 0.3f, 1.0f, PHOS_MICROFACET_ASHIKHMIN_SHIRLEY));
+    ADD("ashikhmin-shirley r=0.9", make_cycles4(PHOS_CLOSURE_REFLECTION, 0.9f, 1.0f, PHOS_MICROFACET_ASHIKHMIN_SHIRLEY));
+    ADD("ashikhmin-shirley anisotropic ax=0.3 ay=0.05",
+        make_aniso(PHOS_CLOSURE_REFLECTION, 0.3f, 0.05f, PHOS_MICROFACET_ASHIKHMIN_SHIRLEY));
+    sc[n - 1].ct[0] = tangent;
 #undef ADD
     return n;
 }
@@ -419,7 +512,7 @@ static void test_chi2_all(void)
     uint32_t seed = 1;
     for (int s = 0; s < n; s++) {
         bsdf b;
-        make_bsdf(&b, sc[s].cl, sc[s].n, sc[s].ns, sc[s].ng);
+        make_bsdf_tangent(&b, sc[s].cl, sc[s].cn, sc[s].ct, sc[s].n, sc[s].ns, sc[s].ng);
         for (int a = 0; a < 3; a++) {
             vec3 wo = view_dir(sc[s].ns, COS_VIEW[a]);
             if (v3_dot(wo, sc[s].ng) <= 0.0f)
@@ -434,7 +527,7 @@ static void test_chi2_all(void)
                     delta_mass += pick;
                 else if (c->type == PHOS_CLOSURE_GLASS && c->glass_fresnel == PHOS_GLASS_FRESNEL_MACRO &&
                          c->alpha < BSDF_SHARP_ALPHA && c->alpha_t >= BSDF_SHARP_ALPHA)
-                    delta_mass += pick * fresnel_dielectric(v3_dot(wo, b.shading.n), c->eta);
+                    delta_mass += pick * fresnel_dielectric(v3_dot(wo, b.frames[0].n), c->eta);
             }
             fit_stats st;
             double p = chi2_fit(&b, wo, delta_mass, seed++, &st);
@@ -462,7 +555,7 @@ static double albedo_quadrature(const bsdf *b, vec3 wo, int nz, int np)
     for (int i = 0; i < nz; i++)
         for (int j = 0; j < np; j++) {
             double z = -1.0 + 2.0 * (i + 0.5) / nz, phi = 2.0 * PHOS_PI * (j + 0.5) / np;
-            vec3 f = bsdf_eval(b, wo, dir_in_frame(&b->shading, z, phi), NULL);
+            vec3 f = bsdf_eval(b, wo, dir_in_frame(&b->frames[0], z, phi), NULL);
             sum += avg3(f);
         }
     return sum * (2.0 / nz) * (2.0 * PHOS_PI / np);
@@ -717,8 +810,8 @@ static void test_light_leaks(void)
         /* Includes exact poles and horizons. */
         double zo = (i % 7 == 0) ? 1.0 : (i % 11 == 0) ? 0.0 : 2.0 * a.x - 1.0;
         double zi = (i % 5 == 0) ? -1.0 : (i % 13 == 0) ? 0.0 : 2.0 * c.x - 1.0;
-        vec3 o = dir_in_frame(&b.shading, zo, 2.0 * PHOS_PI * a.y);
-        vec3 w = dir_in_frame(&b.shading, zi, 2.0 * PHOS_PI * c.y);
+        vec3 o = dir_in_frame(&b.frames[0], zo, 2.0 * PHOS_PI * a.y);
+        vec3 w = dir_in_frame(&b.frames[0], zi, 2.0 * PHOS_PI * c.y);
         vec3 f = bsdf_eval(&b, o, w, &pdf);
         if (!v3_is_finite(f) || !isfinite(pdf) || pdf < 0.0f)
             bad++;
@@ -727,6 +820,121 @@ static void test_light_leaks(void)
             bad++;
     }
     CHECK_MSG(bad == 0, "%d non-finite results", bad);
+}
+
+/* ------------------------------------------- one frame per closure */
+
+/* A closure in its own frame is the closure of a BSDF whose surface normal
+ * is that frame's: same values, densities and samples; the mixture is the
+ * sum of its closures; a layer sees wo from its own closure's normal; a
+ * delta sample reports its closure's normal (photon weights use it). */
+static void test_closure_frames(void)
+{
+    const vec3 z = v3(0.0f, 0.0f, 1.0f), na = v3_normalize(v3(0.3f, -0.2f, 1.0f));
+    closure glossy = weighted(make_closure(PHOS_CLOSURE_REFLECTION, 0.4f, 1.0f), 0.6f);
+    closure diffuse = weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 0.4f);
+    bsdf own, alone, base, mix;
+    make_bsdf(&alone, &glossy, 1, na, z);
+    make_bsdf(&base, &diffuse, 1, z, z);
+    closure both[2] = {glossy, diffuse};
+    vec3 cn[2] = {na, v3s(0.0f)};
+    make_bsdf_framed(&own, &glossy, cn, 1, z, z);
+    make_bsdf_framed(&mix, both, cn, 2, z, z);
+    CHECK(own.frame_count == 2 && own.closures[0].frame == 1);
+    CHECK(bsdf_add_frame(&own, own.frames[1].n, v3s(0.0f)) == 1 && own.frame_count == 2); /* shared, not added */
+    int mismatches = 0;
+    for (int i = 0; i < 4000; i++) {
+        sampler s = sampler_independent(21, 0, (uint64_t)i);
+        vec3 wo = dir_in_frame(&base.frames[0], 0.05 + 0.95 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
+        vec3 wi = dir_in_frame(&base.frames[0], 0.05 + 0.95 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
+        float p_own, p_alone, p_base, p_mix;
+        vec3 f_own = bsdf_eval(&own, wo, wi, &p_own), f_alone = bsdf_eval(&alone, wo, wi, &p_alone);
+        vec3 f_base = bsdf_eval(&base, wo, wi, &p_base), f_mix = bsdf_eval(&mix, wo, wi, &p_mix);
+        if (fabsf(f_own.x - f_alone.x) > 1e-6f * (1.0f + f_alone.x) || fabsf(p_own - p_alone) > 1e-6f * (1.0f + p_alone))
+            mismatches++;
+        /* Sample weights 0.6 and 0.4: the pdf is the weighted sum. */
+        float p_expect = 0.6f * p_alone + 0.4f * p_base;
+        if (fabsf(f_mix.x - (f_alone.x + f_base.x)) > 1e-5f * (1.0f + f_mix.x) ||
+            fabsf(p_mix - p_expect) > 1e-5f * (1.0f + p_expect))
+            mismatches++;
+        bsdf_sample a, b;
+        int ka = bsdf_sample_direction(&own, wo, 0.5f, sampler_2d(&s, 4), &a);
+        int kb = bsdf_sample_direction(&alone, wo, 0.5f, sampler_2d(&s, 4), &b);
+        if (ka != kb || (ka && (v3_length(v3_sub(a.wi, b.wi)) > 1e-6f || v3_length(v3_sub(a.ns, na)) > 1e-6f)))
+            mismatches++;
+    }
+    CHECK_MSG(mismatches == 0, "%d mismatches between a closure in its own frame and alone", mismatches);
+
+    /* A coat layer in the tilted frame over a diffuse in the surface's: its
+     * scale depends on cos θo about the coat's normal. */
+    bsdf layered;
+    bsdf_init(&layered, z, z);
+    bsdf_layer coat;
+    memset(&coat, 0, sizeof coat);
+    coat.type = PHOS_CLOSURE_REFLECTION_FRESNEL;
+    coat.roughness = 0.2f;
+    coat.eta = 1.5f;
+    coat.f0 = v3s(fresnel_f0_from_ior(1.5f));
+    coat.fss = v3s(1.0f);
+    coat.weight = v3s(1.0f);
+    coat.tint = v3(0.5f, 0.8f, 1.0f);
+    coat.tint_weight = 1.0f;
+    coat.frame = bsdf_add_frame(&layered, na, v3s(0.0f));
+    CHECK(bsdf_add_layer(&layered, &coat) == 0);
+    bsdf flat;
+    bsdf_init(&flat, na, z);
+    coat.frame = 0;
+    bsdf_add_layer(&flat, &coat);
+    vec3 wo = view_dir(z, 0.4f);
+    vec3 s_tilted = bsdf_layer_scale(&layered, 1u, wo), s_flat = bsdf_layer_scale(&flat, 1u, wo);
+    CHECK(v3_length(v3_sub(s_tilted, s_flat)) < 1e-6f);
+    coat.frame = 0;
+    bsdf untilted;
+    bsdf_init(&untilted, z, z);
+    bsdf_add_layer(&untilted, &coat);
+    CHECK(fabsf(bsdf_layer_scale(&untilted, 1u, wo).x - s_tilted.x) > 1e-3f); /* the frame matters */
+
+    /* A sharp mirror in its own frame: the delta sample reflects about it. */
+    closure mirror = make_closure(PHOS_CLOSURE_REFLECTION, 0.0f, 1.0f);
+    vec3 cm[1] = {na};
+    bsdf m;
+    make_bsdf_framed(&m, &mirror, cm, 1, z, z);
+    bsdf_sample bs;
+    CHECK(bsdf_sample_direction(&m, wo, 0.5f, (float2){0.5f, 0.5f}, &bs) && (bs.flags & BSDF_DELTA));
+    vec3 mirrored = v3_sub(v3_scale(na, 2.0f * v3_dot(wo, na)), wo);
+    CHECK(v3_length(v3_sub(bs.wi, mirrored)) < 1e-5f && v3_length(v3_sub(bs.ns, na)) < 1e-6f);
+    CHECK(v3_length(v3_sub(bsdf_normal(&m), na)) < 1e-6f);
+
+    /* Anisotropic GGX reflection is reciprocal, f(wo, wi) = f(wi, wo), in
+     * a tangent frame (both G forms are symmetric in wo, wi); and turning
+     * the tangent by 90° swaps the roles of αx and αy. */
+    closure an[2] = {make_aniso(PHOS_CLOSURE_REFLECTION, 0.08f, 0.5f, PHOS_MICROFACET_GGX),
+                     make_aniso(PHOS_CLOSURE_REFLECTION, 0.5f, 0.08f, PHOS_MICROFACET_GGX_SEPARABLE)};
+    const vec3 zero[1] = {v3s(0.0f)};
+    const vec3 tx[1] = {v3(1.0f, 0.2f, 0.0f)}, ty[1] = {v3(-0.2f, 1.0f, 0.0f)};
+    bsdf ab, swapped, rotated;
+    make_bsdf_tangent(&ab, &an[0], zero, tx, 1, z, z);
+    make_bsdf_tangent(&swapped, &an[1], zero, ty, 1, z, z);
+    make_bsdf_tangent(&rotated, &an[0], zero, ty, 1, z, z);
+    CHECK(v3_length(v3_sub(ab.frames[ab.closures[0].frame].t, v3_normalize(tx[0]))) < 1e-6f);
+    int asym = 0, differ = 0;
+    an[1].microfacet = PHOS_MICROFACET_GGX;
+    make_bsdf_tangent(&swapped, &an[1], zero, ty, 1, z, z);
+    for (int i = 0; i < 2000; i++) {
+        sampler s = sampler_independent(22, 0, (uint64_t)i);
+        vec3 a = dir_in_frame(&ab.frames[0], 0.05 + 0.95 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
+        vec3 c = dir_in_frame(&ab.frames[0], 0.05 + 0.95 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
+        double f_ac = avg3(bsdf_eval(&ab, a, c, NULL)) / c.z, f_ca = avg3(bsdf_eval(&ab, c, a, NULL)) / a.z;
+        if (fabs(f_ac - f_ca) > 1e-4 * (1.0 + f_ac))
+            asym++;
+        double f_sw = avg3(bsdf_eval(&swapped, a, c, NULL)) / c.z;
+        if (fabs(f_ac - f_sw) > 1e-4 * (1.0 + f_ac))
+            asym++;
+        if (fabs(f_ac - avg3(bsdf_eval(&rotated, a, c, NULL)) / c.z) > 1e-3 * (1.0 + f_ac))
+            differ++;
+    }
+    CHECK_MSG(asym == 0, "%d anisotropic evaluations not reciprocal or not swapped by the tangent", asym);
+    CHECK(differ > 1000); /* the tangent matters */
 }
 
 /* ---------------------------------------------------- reciprocity */
@@ -746,8 +954,8 @@ static void test_reciprocity(void)
         make_bsdf(&b, &refl[k], 1, z, z);
         for (int i = 0; i < 2000; i++) {
             sampler s = sampler_independent(11, (uint32_t)k, (uint64_t)i);
-            vec3 wo = dir_in_frame(&b.shading, 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
-            vec3 wi = dir_in_frame(&b.shading, 0.02 + 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
+            vec3 wo = dir_in_frame(&b.frames[0], 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
+            vec3 wi = dir_in_frame(&b.frames[0], 0.02 + 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
             /* eval includes |cos θi|: f(wo,wi) = eval(wo,wi) / cos θi. */
             vec3 a = v3_scale(bsdf_eval(&b, wo, wi, NULL), 1.0f / wi.z);
             vec3 c = v3_scale(bsdf_eval(&b, wi, wo, NULL), 1.0f / wo.z);
@@ -775,8 +983,8 @@ static void test_reciprocity(void)
         make_bsdf(&back, &inv, 1, v3_neg(z), v3_neg(z));
         for (int i = 0; i < 2000; i++) {
             sampler s = sampler_independent(12, (uint32_t)k, (uint64_t)i);
-            vec3 wo = dir_in_frame(&front.shading, 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
-            vec3 wi = dir_in_frame(&front.shading, -0.02 - 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
+            vec3 wo = dir_in_frame(&front.frames[0], 0.02 + 0.98 * sampler_1d(&s, 0), 6.3 * sampler_1d(&s, 1));
+            vec3 wi = dir_in_frame(&front.frames[0], -0.02 - 0.98 * sampler_1d(&s, 2), 6.3 * sampler_1d(&s, 3));
             double a = avg3(bsdf_eval(&front, wo, wi, NULL)) / fabs(wi.z);
             double c = avg3(bsdf_eval(&back, wi, wo, NULL)) / fabs(wo.z);
             double eta = refr[k].eta;
@@ -827,7 +1035,7 @@ static void test_adjoint_albedo(void)
             double quad = 0.0;
             for (int iz = 0; iz < nz; iz++)
                 for (int ip = 0; ip < np; ip++) {
-                    vec3 w_to = dir_in_frame(&b.shading, -1.0 + 2.0 * (iz + 0.5) / nz, 2.0 * PHOS_PI * (ip + 0.5) / np);
+                    vec3 w_to = dir_in_frame(&b.frames[0], -1.0 + 2.0 * (iz + 0.5) / nz, 2.0 * PHOS_PI * (ip + 0.5) / np);
                     quad += avg3(bsdf_adjoint_weight(&b, w_from, w_to, 1.0f));
                 }
             quad *= (2.0 / nz) * (2.0 * PHOS_PI / np);
@@ -927,6 +1135,95 @@ static void test_microfacet(void)
         CHECK_REL(proj, 1.0, 2e-3);
         CHECK_REL(visible, 1.0, 2e-3);
     }
+    /* Anisotropic GGX: the same normalisations (Heitz 2014 eq. 4, 16, 85),
+     * the θ substitution at the smaller α, the azimuth finely. */
+    static const float axy[3][2] = {{0.05f, 0.4f}, {0.6f, 0.15f}, {0.3f, 0.3f}};
+    for (int k = 0; k < 3; k++) {
+        float ax = axy[k][0], ay = axy[k][1], alpha = fminf(ax, ay);
+        vec3 wo = v3_normalize(v3(0.6f, 0.2f, 0.4f));
+        double proj = 0.0, visible = 0.0;
+        const int nt = 2000, np = 1024;
+        for (int i = 0; i < nt; i++) {
+            double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
+            double theta = atan(alpha * tan(u));
+            double dtheta = alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
+            double s = sin(theta), c = cos(theta);
+            for (int j = 0; j < np; j++) {
+                double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
+                vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
+                double dw = s * dtheta * 2.0 * PHOS_PI / np;
+                proj += ggx_D_aniso(h, ax, ay) * c * dw;
+                visible += ggx_visible_normal_pdf_aniso(wo, h, ax, ay) * dw;
+            }
+        }
+        CHECK_REL(proj, 1.0, 3e-3);
+        CHECK_REL(visible, 1.0, 3e-3);
+    }
+    {
+        /* At αx = αy the isotropic forms; along x, Λ sees αx only. */
+        vec3 h = v3_normalize(v3(0.3f, -0.2f, 0.9f)), wx = v3_normalize(v3(0.7f, 0.0f, 0.5f));
+        CHECK_REL(ggx_D_aniso(h, 0.3f, 0.3f), ggx_D(h, 0.3f), 1e-5);
+        CHECK_REL(ggx_lambda_aniso(h, 0.3f, 0.3f), ggx_lambda(h, 0.3f), 1e-5);
+        CHECK_REL(ggx_lambda_aniso(wx, 0.5f, 0.05f), ggx_lambda(wx, 0.5f), 1e-5);
+        /* The sampler draws from D_wo: the mean of h over many samples
+         * leans toward the rough axis less than toward the smooth one. */
+        vec3 wo = v3(0.0f, 0.0f, 1.0f);
+        double mx2 = 0.0, my2 = 0.0;
+        for (int i = 0; i < 20000; i++) {
+            sampler sm = sampler_independent(31, 0, (uint64_t)i);
+            vec3 hs = ggx_sample_visible_normal_aniso(wo, 0.5f, 0.05f, sampler_2d(&sm, 0));
+            mx2 += hs.x * hs.x;
+            my2 += hs.y * hs.y;
+        }
+        CHECK(mx2 > 20.0 * my2);
+    }
+
+    /* Beckmann: ∫ D(h) cos θh dω = 1 (Walter 2007 eq. 25), which is also
+     * the total of the normal sampler's density; Λ is 0 where a ≥ 1.6 and
+     * G1 = 1/(1 + Λ) is Walter's eq. 27 below it. */
+    for (int k = 0; k < 3; k++) {
+        float ax = axy[k][0], ay = axy[k][1], alpha = fminf(ax, ay);
+        double proj = 0.0, sampled = 0.0;
+        const int nt = 2000, np = 1024;
+        for (int i = 0; i < nt; i++) {
+            double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
+            double theta = atan(alpha * tan(u));
+            double dtheta = alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
+            double s = sin(theta), c = cos(theta);
+            for (int j = 0; j < np; j++) {
+                double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
+                vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
+                double dw = s * dtheta * 2.0 * PHOS_PI / np;
+                proj += beckmann_D_aniso(h, ax, ay) * c * dw;
+                sampled += beckmann_normal_pdf_aniso(h, ax, ay) * dw;
+            }
+        }
+        CHECK_REL(proj, 1.0, 3e-3);
+        CHECK_REL(sampled, 1.0, 3e-3);
+    }
+    /* Ashikhmin-Shirley: p(h) is a density of h (eq. 6), isotropic or not. */
+    static const float ns[3][2] = {{10.0f, 10.0f}, {200.0f, 5.0f}, {0.0f, 0.0f}};
+    for (int k = 0; k < 3; k++) {
+        double total = 0.0;
+        const int nt = 4000, np = 1024;
+        for (int i = 0; i < nt; i++) {
+            double theta = 0.5 * PHOS_PI * (i + 0.5) / nt, dtheta = 0.5 * PHOS_PI / nt;
+            for (int j = 0; j < np; j++) {
+                double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
+                vec3 h = v3((float)(sin(theta) * cos(phi)), (float)(sin(theta) * sin(phi)), (float)cos(theta));
+                total += ashikhmin_shirley_h_pdf(h, ns[k][0], ns[k][1]) * sin(theta) * dtheta * 2.0 * PHOS_PI / np;
+            }
+        }
+        CHECK_REL(total, 1.0, 3e-3);
+    }
+    {
+        vec3 steep = v3_normalize(v3(0.2f, 0.0f, 1.0f)), grazing = v3_normalize(v3(2.0f, 0.0f, 1.0f));
+        CHECK(beckmann_lambda_aniso(steep, 0.3f, 0.3f) == 0.0f); /* a = 1/(0.3·0.2) ≥ 1.6 */
+        double a = 1.0 / (0.5 * 2.0);
+        double g1 = (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a);
+        CHECK_REL(1.0 / (1.0 + beckmann_lambda_aniso(grazing, 0.5f, 0.5f)), g1, 1e-5);
+    }
+
     /* Λ and G1 against the tan form of Walter 2007 eq. 34. */
     vec3 w = v3_normalize(v3(0.8f, 0.1f, 0.3f));
     double tan2 = (w.x * w.x + w.y * w.y) / (w.z * w.z);
@@ -1025,6 +1322,7 @@ int main(void)
     test_reciprocity();
     test_adjoint_albedo();
     test_light_leaks();
+    test_closure_frames();
     test_chi2_all();
     return test_summary("test_bsdf");
 }

@@ -221,6 +221,10 @@ static void fuzz_materials(reader *r, phos_scene *s)
             if (take_u8(r) & 1)
                 take_floats(r, c[k].layer_tint, 3);
             c[k].layer_tint_weight = take_float(r);
+            if (take_u8(r) & 1) { /* anisotropic GGX */
+                c[k].roughness_y = take_float(r);
+                c[k].tangent_rotation = take_float(r);
+            }
         }
         phos_material_desc m;
         phos_material_desc_init(&m);

@@ -13,7 +13,10 @@ closures; the value nodes
 feeding their inputs (textures, colour, converter, vector and input nodes:
 nodes.py) compile into the material's shader program (program.py), whose
 outputs the core writes into the closures' fields at each shading point.
-An input that folds to a constant costs nothing. Anything unsupported
+A closure's Normal input (Bump, Normal Map) gives that closure its own
+shading normal, as Cycles' closures each carry their own N; closures without
+one shade about the surface's normal. An input that folds to a constant
+costs nothing. Anything unsupported
 renders with the closest match and one warning per (material, node), so a
 user sees what was approximated.
 
@@ -21,13 +24,17 @@ The Principled BSDF is decomposed the way Cycles 3.4 does it (svm_closure.h,
 CLOSURE_BSDF_PRINCIPLED_ID): Burley diffuse, a GGX specular layer with the
 "principled v1" Fresnel, and a glass layer for transmission.
 
-Microfacet distributions (Glossy, Glass, Refraction, Principled): the core
-has GGX only, and a GGX whose alpha = roughness² is below 1e-4 is a perfect
-mirror/refraction. 'SHARP' (3.x only) is GGX with roughness 0, as is 4.x's
-way of making a sharp BSDF (GGX or Multiscatter GGX with roughness 0).
-'MULTI_GGX' (Multiscatter GGX, the 4.x default) is rendered as GGX without a
-warning on 4.x; on 3.x, and for 'BECKMANN' and 'ASHIKHMIN_SHIRLEY' in any
-version, GGX is used with one warning naming the distribution.
+Anisotropy (3.x Anisotropic BSDF, 4.x Glossy, Principled, Metallic) maps to
+GGX roughness along and across the closure's tangent as each Cycles does
+(microfacet.py); the tangent is a linked Tangent, else Cycles' default,
+which the core computes, turned by the node's rotation.
+
+Microfacet distributions (Glossy, Glass, Refraction, Metallic, Principled):
+the core has GGX, Beckmann and (Glossy only) Ashikhmin-Shirley, and a lobe
+whose alpha = roughness² is below 1e-4 is a perfect mirror/refraction. 'SHARP' (3.x only) is GGX with
+roughness 0, as is 4.x's way of making a sharp BSDF (roughness 0).
+'MULTI_GGX' (Multiscatter GGX, the 4.x default) is 4.x's energy-compensated
+GGX; on 3.x it is rendered so too, with one warning.
 """
 
 import math
@@ -37,7 +44,8 @@ import numpy as np
 
 from .. import core
 from . import program as prog
-from .microfacet import conductor_as_f82, f82_fss, microfacet_model, unit_rgb
+from .microfacet import (anisotropic_roughness, conductor_as_f82, f82_fss, glossy_anisotropy, microfacet_model,
+                         principled_anisotropy, unit_rgb)
 from .program import Program, Value
 
 # Closures whose weight is below this are dropped (Cycles: CLOSURE_WEIGHT_CUTOFF).
@@ -70,11 +78,11 @@ class Closure:
                    transmission_roughness=-1.0, microfacet=core.PHOS_MICROFACET_GGX_SEPARABLE,
                    multiscatter_fresnel=(1.0, 1.0, 1.0), specular_tint=(1.0, 1.0, 1.0),
                    thin_film_thickness=0.0, thin_film_ior=1.33, layer_weight=(1.0, 1.0, 1.0),
-                   layer_tint=(1.0, 1.0, 1.0), layer_tint_weight=0.0)
+                   layer_tint=(1.0, 1.0, 1.0), layer_tint_weight=0.0, roughness_y=-1.0, tangent_rotation=0.0)
     _VECTORS = {"specular_color", "transmission_tint", "multiscatter_fresnel", "specular_tint",
                 "layer_weight", "layer_tint"}
 
-    __slots__ = ("type", "weight", "normal", "layer_children") + tuple(_FIELDS)
+    __slots__ = ("type", "weight", "normal", "tangent", "layer_children") + tuple(_FIELDS)
 
     # Fields a shader program may set, with their phos.h field ids and widths.
     _BINDABLE = {"weight": ("PHOS_FIELD_WEIGHT", 3), "roughness": ("PHOS_FIELD_ROUGHNESS", 1),
@@ -86,15 +94,18 @@ class Closure:
                  "thin_film_thickness": ("PHOS_FIELD_THIN_FILM_THICKNESS", 1),
                  "thin_film_ior": ("PHOS_FIELD_THIN_FILM_IOR", 1),
                  "layer_weight": ("PHOS_FIELD_LAYER_WEIGHT", 3), "layer_tint": ("PHOS_FIELD_LAYER_TINT", 3),
-                 "layer_tint_weight": ("PHOS_FIELD_LAYER_TINT_WEIGHT", 1), "normal": ("PHOS_FIELD_NORMAL", 3)}
+                 "layer_tint_weight": ("PHOS_FIELD_LAYER_TINT_WEIGHT", 1), "normal": ("PHOS_FIELD_NORMAL", 3),
+                 "roughness_y": ("PHOS_FIELD_ROUGHNESS_Y", 1),
+                 "tangent_rotation": ("PHOS_FIELD_TANGENT_ROTATION", 1), "tangent": ("PHOS_FIELD_TANGENT", 3)}
 
-    def __init__(self, type, weight, normal=None, layer_children=None, **fields):
+    def __init__(self, type, weight, normal=None, layer_children=None, tangent=None, **fields):
         unknown = set(fields) - set(self._FIELDS)
         if unknown:
             raise TypeError("Closure: unknown fields %s" % sorted(unknown))
         self.type = type
         self.weight = _field(weight, 3)
         self.normal = normal          # a Value (Bump, Normal Map) or None: the surface's own
+        self.tangent = tangent        # a Value (a linked Tangent) or None: Cycles' default
         self.layer_children = layer_children
         for name, default in self._FIELDS.items():
             value = fields.get(name, default)
@@ -140,6 +151,8 @@ class Closure:
         d.layer_weight[:] = [max(float(x), 0.0) for x in c["layer_weight"]]
         d.layer_tint[:] = [max(float(x), 0.0) for x in c["layer_tint"]]
         d.layer_tint_weight = max(float(c["layer_tint_weight"]), 0.0)
+        d.roughness_y = min(float(c["roughness_y"]), 1.0)
+        d.tangent_rotation = float(c["tangent_rotation"])
         return d
 
 
@@ -162,7 +175,8 @@ def _placeholder(name):
     roughness ½, IOR 1.45, no thin film."""
     if name in Closure._VECTORS or name == "weight":
         return np.ones(3)
-    return {"ior": 1.45, "thin_film_ior": 1.33, "roughness": 0.5, "transmission_roughness": 0.5}.get(name, 0.0)
+    return {"ior": 1.45, "thin_film_ior": 1.33, "roughness": 0.5, "transmission_roughness": 0.5,
+            "roughness_y": 0.5}.get(name, 0.0)
 
 
 def closure_descs(closures, program=None):
@@ -376,6 +390,26 @@ class NodeTreeWalker:
         value = self.nodes.socket(socket, 3, self.stack)
         return value if prog.varies(value) else None
 
+    def tangent(self, node, names=('Tangent',), consumed=None):
+        """A linked Tangent input as a Value, else None (Cycles' default,
+        the Geometry node's Tangent, which the core computes)."""
+        return self.normal(node, names, consumed)
+
+    def anisotropy(self, node, roughness, consumed, amount, rotation, mapping):
+        """The closure fields of Cycles' anisotropic GGX for a node whose
+        input `amount` (Anisotropy, Anisotropic) maps to the α scales by
+        `mapping` (microfacet.py), turned by the input `rotation` (turns)
+        about the normal, along its Tangent: roughness along the tangent,
+        roughness_y across it, tangent_rotation, tangent. Isotropic (only
+        roughness) when the amount is 0."""
+        a = self.value(node, amount, 0.0, consumed)
+        rot = self.value(node, rotation, 0.0, consumed)
+        tangent = self.tangent(node, consumed=consumed)
+        if not prog.varies(a) and float(prog.plain(a)) == 0.0:
+            return dict(roughness=roughness)
+        rx, ry = anisotropic_roughness(roughness, mapping(a))
+        return dict(roughness=rx, roughness_y=ry, tangent_rotation=rot, tangent=tangent)
+
     def check_unused_links(self, node, consumed):
         """Warn about links into inputs this node's translation does not read."""
         for socket in node.inputs:
@@ -467,7 +501,7 @@ class NodeTreeWalker:
             self.note(node, "Oren-Nayar roughness before Blender 4.3 is not supported; rendered as Lambertian")
         return [Closure(core.PHOS_CLOSURE_DIFFUSE, rgb, normal)]
 
-    def distribution(self, node, allowed=('GGX', 'MULTI_GGX')):
+    def distribution(self, node, allowed=('GGX', 'MULTI_GGX', 'BECKMANN', 'ASHIKHMIN_SHIRLEY')):
         """(microfacet model, roughness override) of a node's distribution:
         'SHARP' (3.x) is GGX of roughness 0; one warning names any other
         distribution the core does not have, rendered as GGX."""
@@ -483,7 +517,10 @@ class NodeTreeWalker:
                             "random walk: the same brightness, slightly different highlights")
         return microfacet_model(self.ctx, dist), None
 
-    def _glossy(self, node, stack, anisotropy_note="anisotropy is not supported; ignored"):
+    def _glossy(self, node, stack):
+        """The Glossy BSDF, and 3.x's Anisotropic BSDF: GGX, anisotropic by
+        Anisotropy along the Tangent turned by Rotation (4.x Glossy, 3.x
+        Anisotropic; 3.x's Glossy has no such inputs)."""
         if self.world:
             return self._fallback(node)
         consumed = set()
@@ -492,18 +529,18 @@ class NodeTreeWalker:
         model, override = self.distribution(node)
         if override is not None:
             roughness = override
-        if _nonzero(self.value(node, 'Anisotropy', 0.0, consumed)):
-            self.note(node, anisotropy_note)
+        if find_input(node, 'Anisotropy') is not None:
+            fields = self.anisotropy(node, roughness, consumed, 'Anisotropy', 'Rotation', glossy_anisotropy)
+        else:
+            fields = dict(roughness=roughness)
         normal = self.normal(node, consumed=consumed)
         self.check_unused_links(node, consumed)
         # Multiscatter: its colour is the mean Fresnel of the multiply
         # scattered light (Cycles' constant-Fresnel Glossy).
-        return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, normal, roughness=roughness, microfacet=model,
-                        multiscatter_fresnel=unit_rgb(rgb))]
+        return [Closure(core.PHOS_CLOSURE_REFLECTION, rgb, normal, microfacet=model,
+                        multiscatter_fresnel=unit_rgb(rgb), **fields)]
 
-    def _anisotropic(self, node, stack):
-        """The 3.x Anisotropic BSDF: a Glossy BSDF whose anisotropy Phos ignores."""
-        return self._glossy(node, stack, "anisotropy is not supported; rendered as Glossy")
+    _anisotropic = _glossy
 
     def _glass(self, node, stack):
         if self.world:
@@ -565,15 +602,14 @@ class NodeTreeWalker:
             edge, _, _ = self.color(node, 'Edge Tint', consumed)
             f0 = unit_rgb(base)
             tint = unit_rgb(edge)
-        if _nonzero(self.value(node, 'Anisotropy', 0.0, consumed)):
-            self.note(node, "anisotropy is not supported; ignored")
+        fields = self.anisotropy(node, roughness, consumed, 'Anisotropy', 'Rotation', principled_anisotropy)
         if prog.may_exceed(self.value(node, 'Thin Film Thickness', 0.0, consumed), 0.1):
             self.note(node, "a thin film on a metal is not supported; ignored")
         consumed |= {sk.identifier for sk in node.inputs if sk.name.startswith("Thin Film")}
         normal = self.normal(node, consumed=consumed)
         self.check_unused_links(node, consumed)
-        return [Closure(core.PHOS_CLOSURE_METAL, (1.0, 1.0, 1.0), normal, roughness=roughness, microfacet=model,
-                        specular_color=f0, specular_tint=tint, multiscatter_fresnel=f82_fss(f0, tint))]
+        return [Closure(core.PHOS_CLOSURE_METAL, (1.0, 1.0, 1.0), normal, microfacet=model,
+                        specular_color=f0, specular_tint=tint, multiscatter_fresnel=f82_fss(f0, tint), **fields)]
 
     def _sheen(self, node, stack):
         """The Sheen BSDF (4.0+): Microfiber is the core's sheen lobe;

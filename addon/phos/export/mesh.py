@@ -297,10 +297,12 @@ def _tree_has(tree, bl_idname, seen=None):
 
 
 def _reads_tangents(ob):
-    """Whether a material of the object has a tangent-space Normal Map."""
+    """Whether a material of the object has a tangent-space Normal Map or a
+    Tangent node (whose UV map mode reads them)."""
     for slot in getattr(ob, "material_slots", ()):
         mat = slot.material
-        if mat is not None and mat.node_tree is not None and _tree_has(mat.node_tree, 'ShaderNodeNormalMap'):
+        if mat is not None and mat.node_tree is not None and (_tree_has(mat.node_tree, 'ShaderNodeNormalMap') or
+                                                              _tree_has(mat.node_tree, 'ShaderNodeTangent')):
             return True
     return False
 

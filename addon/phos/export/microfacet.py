@@ -36,10 +36,15 @@ WEIGHT_CUTOFF = 1e-5
 
 def microfacet_model(ctx, distribution):
     """The core's enum phos_microfacet for a node's distribution ('GGX',
-    'MULTI_GGX', ...) in the running Blender; other distributions are GGX
-    (the caller warns)."""
+    'MULTI_GGX', 'BECKMANN', 'ASHIKHMIN_SHIRLEY') in the running Blender
+    (separable Smith G up to 3.x, height-correlated from 4.0); other
+    distributions are GGX (the caller warns)."""
     if distribution == 'MULTI_GGX':
         return core.PHOS_MICROFACET_GGX_MULTISCATTER
+    if distribution == 'ASHIKHMIN_SHIRLEY':
+        return core.PHOS_MICROFACET_ASHIKHMIN_SHIRLEY
+    if distribution == 'BECKMANN':
+        return core.PHOS_MICROFACET_BECKMANN if ctx.at_least(4, 0) else core.PHOS_MICROFACET_BECKMANN_SEPARABLE
     return core.PHOS_MICROFACET_GGX if ctx.at_least(4, 0) else core.PHOS_MICROFACET_GGX_SEPARABLE
 
 
@@ -129,3 +134,32 @@ def conductor_as_f82(n, k):
     f82 = conductor_fresnel(n, k, 1.0 / 7.0)
     schlick = f0 + (1.0 - f0) * (6.0 / 7.0) ** 5
     return f0, np.clip(np.where(schlick > 0.0, f82 / np.maximum(schlick, 1e-12), 1.0), 0.0, 1.0)
+
+
+# ------------------------------------------------------------ anisotropy
+
+def glossy_anisotropy(anisotropy):
+    """The factors (sx, sy) by which Cycles scales α = roughness² along and
+    across the tangent for the 3.x Anisotropic BSDF and the 4.x Glossy BSDF
+    (svm closure.h): a = Anisotropy clamped to [−0.99, 0.99]; a < 0 gives
+    (1/(1 + a), 1 + a), a ≥ 0 gives (1 − a, 1/(1 − a)). Written without a
+    branch, so a texture can drive it: with a₋ = min(a, 0) and a₊ = max(a, 0),
+    sx = (1 − a₊)/(1 + a₋) and sy = (1 + a₋)/(1 − a₊)."""
+    a = prog.clamp(anisotropy, -0.99, 0.99)
+    a_pos = prog.maximum(a, 0.0)
+    a_neg = -prog.maximum(-a, 0.0)
+    return (1.0 - a_pos) / (1.0 + a_neg), (1.0 + a_neg) / (1.0 - a_pos)
+
+
+def principled_anisotropy(anisotropic):
+    """(sx, sy) of the Principled BSDF (3.x and 4.x) and the Metallic BSDF:
+    aspect = √(1 − 0.9·Anisotropic), αx = α/aspect, αy = α·aspect."""
+    aspect = prog.sqrt(1.0 - 0.9 * prog.clamp(anisotropic, 0.0, 1.0))
+    return 1.0 / aspect, aspect
+
+
+def anisotropic_roughness(roughness, scales):
+    """(roughness along the tangent, roughness across it) for the core:
+    √(α·s) each, clamped to 1 as Cycles clamps each α to 1."""
+    sx, sy = scales
+    return (prog.clamp(roughness * prog.sqrt(sx), 0.0, 1.0), prog.clamp(roughness * prog.sqrt(sy), 0.0, 1.0))

@@ -619,19 +619,6 @@ def _vertex_color(nc, node, stack):
     return {"Color": color, "Alpha": alpha}
 
 
-def _generated_tangent(nc, normal):
-    """Geometry's Tangent as Cycles makes it on a mesh: the direction around
-    the texture space's Z axis, d = (½ − generated.y, generated.x − ½, 0)
-    taken to world space as a normal is, made perpendicular to the shading
-    normal: N × normalize(d × N)."""
-    g = _separate(nc, nc.generated(), ("x", "y", "z"))
-    d = nc.p.emit(core.PHOS_OP_COMBINE_XYZ, [0.5 - g["y"], g["x"] - 0.5, constant(0.0)], [3])[0]
-    world = core.PHOS_SPACE_OBJECT | (core.PHOS_SPACE_WORLD << 4)
-    d = nc.p.emit(core.PHOS_OP_VECTOR_TRANSFORM, [d], [3], mode=core.PHOS_VECTOR_TRANSFORM_NORMAL, flags=world)[0]
-    side = nc.vector_math("NORMALIZE", nc.vector_math("CROSS_PRODUCT", d, normal))
-    return nc.vector_math("CROSS_PRODUCT", normal, side)
-
-
 def _geometry(nc, node, stack):
     coords, pos = nc.coordinates()
     _, normal, true_normal, incoming, backfacing = nc.p.emit(core.PHOS_OP_GEOMETRY, [], [3, 3, 3, 3, 1])
@@ -645,8 +632,22 @@ def _geometry(nc, node, stack):
     if "Parametric" in linked:
         out["Parametric"] = nc.attribute(("parametric",))[1]
     if "Tangent" in linked:
-        out["Tangent"] = _generated_tangent(nc, normal)
+        out["Tangent"] = nc.p.emit(core.PHOS_OP_TANGENT, [], [3], mode=core.PHOS_TANGENT_RADIAL_Z)[0]
     return out
+
+
+def _tangent(nc, node, stack):
+    """The Tangent node: radial about an object axis, or the UV map's
+    MikkTSpace tangent (the render UV map's)."""
+    if node.direction_type == 'UV_MAP':
+        if getattr(node, "uv_map", ""):
+            nc.walker.note(node, "UV map '%s' is read as the active render UV map" % node.uv_map)
+        nc.ctx.tangents_wanted = True
+        mode = core.PHOS_TANGENT_UV_MAP
+    else:
+        mode = {'X': core.PHOS_TANGENT_RADIAL_X, 'Y': core.PHOS_TANGENT_RADIAL_Y}.get(node.axis,
+                                                                                  core.PHOS_TANGENT_RADIAL_Z)
+    return {"Tangent": nc.p.emit(core.PHOS_OP_TANGENT, [], [3], mode=mode)[0]}
 
 
 def _object_info(nc, node, stack):
@@ -814,6 +815,7 @@ _HANDLERS = {
     'ShaderNodeAttribute': _attribute,
     'ShaderNodeVertexColor': _vertex_color,
     'ShaderNodeNewGeometry': _geometry,
+    'ShaderNodeTangent': _tangent,
     'ShaderNodeObjectInfo': _object_info,
     'ShaderNodeFresnel': _fresnel,
     'ShaderNodeLayerWeight': _layer_weight,

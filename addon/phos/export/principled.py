@@ -41,7 +41,7 @@ from . import program as prog
 from .material import (WEIGHT_CUTOFF, Closure, _clamp01, _enum_name, find_input, oren_nayar_tint,
                        thin_film)
 from .microfacet import (dielectric_fss, f0_from_ior, f82_fss, fresnel_blend_fss, ior_from_f0,
-                         microfacet_model, unit_rgb)
+                         microfacet_model, principled_anisotropy, unit_rgb)
 
 
 def principled(walker, node):
@@ -76,25 +76,30 @@ def principled_v2(walker, node):
     normal = w.normal(node, ('Normal',), consumed)
     coat_normal = w.normal(node, ('Coat Normal',), consumed)
 
+    # Anisotropic GGX for the metal and the specular (Cycles 4: along the
+    # Tangent turned by Anisotropic Rotation about the Normal).
+    aniso = w.anisotropy(node, roughness, consumed, ('Anisotropic',), ('Anisotropic Rotation',),
+                         principled_anisotropy)
+
     # What the core cannot render: said once, naming the inputs.
     ignored = []
-    if prog.may_exceed(w.value(node, ('Anisotropic',), 0.0, consumed), WEIGHT_CUTOFF):
-        ignored.append("Anisotropic")
     # Blender 5.3's thin walls and dispersion.
     if find_input(node, 'Thin Wall') is not None and prog.may_exceed(w.value(node, ('Thin Wall',), 0.0, consumed),
                                                                       0.5):
         ignored.append("Thin Wall")
     if prog.may_exceed(w.value(node, ('Transmission Dispersion Scale',), 0.0, consumed), WEIGHT_CUTOFF):
         ignored.append("Transmission Dispersion")
-    consumed |= {s.identifier for s in node.inputs
-                 if s.name.startswith(("Anisotropic", "Subsurface", "Transmission Dispersion"))}
-    socket = find_input(node, 'Tangent')
-    if socket is not None:
-        consumed.add(socket.identifier)
-        if socket.is_linked:
-            ignored.append("Tangent")
-    if coat_normal is not None and coat_normal is not normal:
-        ignored.append("Coat Normal (the Normal input is used for the coat)")
+    consumed |= {s.identifier for s in node.inputs if s.name.startswith(("Subsurface", "Transmission Dispersion"))}
+    # The coat's shading normal: Coat Normal when linked; unlinked, Cycles 4.x
+    # takes the surface's own normal, not the Normal input (svm closure.h of
+    # 4.0-4.5: sd->N); Phos keeps the Normal input from 5.0, as before.
+    if coat_normal is None and ctx.at_least(5, 0):
+        coat_normal = normal
+    # From 4.2 Cycles tilts the sheen's normal toward the coat's by the Coat
+    # Weight; Phos keeps the Normal input for the sheen.
+    if (ctx.at_least(4, 2) and coat_normal is not normal and prog.may_exceed(sheen, WEIGHT_CUTOFF)
+            and prog.may_exceed(coat, WEIGHT_CUTOFF)):
+        ignored.append("the Sheen's normal tilted toward the Coat Normal")
     if prog.may_exceed(subsurface, WEIGHT_CUTOFF):
         w.note(node, "Subsurface scattering is not supported; its share is rendered as a diffuse "
                      "of the Base Color (as Cycles does for tiny radii)")
@@ -129,7 +134,7 @@ def principled_v2(walker, node):
         # Cycles compensates the coat's energy whatever the distribution from 4.5.
         coat_model = (core.PHOS_MICROFACET_GGX_MULTISCATTER if ctx.at_least(4, 5)
                       else microfacet_model(ctx, 'GGX'))
-        add_layer(Closure(core.PHOS_CLOSURE_REFLECTION_FRESNEL, coat * weight, normal,
+        add_layer(Closure(core.PHOS_CLOSURE_REFLECTION_FRESNEL, coat * weight, coat_normal,
                           roughness=_clamp01(w.value(node, ('Coat Roughness',), 0.03, consumed)),
                           ior=coat_ior, specular_color=_full3(f0), microfacet=coat_model,
                           multiscatter_fresnel=_full3(prog.clamp(dielectric_fss(coat_ior), 0.0, 1.0)),
@@ -143,9 +148,9 @@ def principled_v2(walker, node):
 
     if prog.may_exceed(metallic, WEIGHT_CUTOFF):
         tint = unit_rgb(spec_tint)
-        top.append(Closure(core.PHOS_CLOSURE_METAL, _full3(metallic) * weight, normal, roughness=roughness,
+        top.append(Closure(core.PHOS_CLOSURE_METAL, _full3(metallic) * weight, normal,
                            microfacet=model, specular_color=base_unit, specular_tint=tint,
-                           multiscatter_fresnel=f82_fss(base_unit, tint)))
+                           multiscatter_fresnel=f82_fss(base_unit, tint), **aniso))
         weight = weight * (1.0 - metallic)
 
     if prog.may_exceed(transmission, WEIGHT_CUTOFF):
@@ -166,9 +171,10 @@ def principled_v2(walker, node):
             eta = 1.0 / eta
     if prog.varies(eta) or eta != 1.0 or film:
         spec_f0 = prog.clamp(f0 * spec_tint, 0.0, 1.0)
-        add_layer(Closure(core.PHOS_CLOSURE_REFLECTION_FRESNEL, _copy(weight), normal, roughness=roughness,
+        add_layer(Closure(core.PHOS_CLOSURE_REFLECTION_FRESNEL, _copy(weight), normal,
                           ior=eta, specular_color=spec_f0, microfacet=model,
-                          multiscatter_fresnel=fresnel_blend_fss(spec_f0, eta), layer_weight=np.ones(3), **film))
+                          multiscatter_fresnel=fresnel_blend_fss(spec_f0, eta), layer_weight=np.ones(3),
+                          **film, **aniso))
 
     if prog.may_exceed(subsurface, WEIGHT_CUTOFF):
         top.append(Closure(core.PHOS_CLOSURE_DIFFUSE, base_unit * subsurface * weight, normal))
@@ -240,13 +246,15 @@ def principled_v1(walker, node):
         ignored.append("Sheen")
     if prog.may_exceed(w.value(node, ('Clearcoat',), 0.0, consumed), WEIGHT_CUTOFF):
         ignored.append("Clearcoat")
-    if prog.may_exceed(w.value(node, ('Anisotropic',), 0.0, consumed), WEIGHT_CUTOFF):
-        ignored.append("Anisotropic")
+    # Cycles 3.4 turns the Tangent by Anisotropic Rotation even when
+    # Anisotropic is 0, where it does not matter.
+    aniso = w.anisotropy(node, roughness, consumed, ('Anisotropic',), ('Anisotropic Rotation',),
+                         principled_anisotropy)
     transmission_roughness = w.value(node, ('Transmission Roughness',), 0.0, consumed)
     final_transmission = transmission * (1.0 - metallic)
     # Inputs that only matter for ignored features: not worth a second warning.
     consumed |= {s.identifier for s in node.inputs
-                 if s.name.startswith(("Subsurface", "Sheen", "Clearcoat", "Anisotropic", "Tangent"))}
+                 if s.name.startswith(("Subsurface", "Sheen", "Clearcoat"))}
     if ignored or approximated:
         parts = [approximated] if approximated else []
         if ignored:
@@ -278,8 +286,8 @@ def principled_v1(walker, node):
         tmp = _specular_tint(base, tint_scalar)
         f0 = (specular * 0.08 * tmp) * (1.0 - metallic) + base * metallic
         closures.append(Closure(core.PHOS_CLOSURE_REFLECTION_FRESNEL, _full3(specular_weight), normal,
-                                roughness=roughness, ior=spec_ior, specular_color=f0, microfacet=model,
-                                multiscatter_fresnel=fresnel_blend_fss(unit_rgb(f0), spec_ior)))
+                                ior=spec_ior, specular_color=f0, microfacet=model,
+                                multiscatter_fresnel=fresnel_blend_fss(unit_rgb(f0), spec_ior), **aniso))
 
     if prog.may_exceed(final_transmission, WEIGHT_CUTOFF):
         refraction_roughness = 1.0 - (1.0 - roughness) * (1.0 - _clamp01(transmission_roughness))

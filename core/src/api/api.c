@@ -120,6 +120,7 @@ void phos_closure_desc_init(phos_closure_desc *d)
         d->layer_tint[k] = 1.0f;
     }
     d->thin_film_ior = 1.33f;
+    d->roughness_y = -1.0f; /* isotropic */
 }
 
 void phos_material_desc_init(phos_material_desc *d)
@@ -274,7 +275,7 @@ static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32
     if (!isfinite(c->transmission_roughness) || c->transmission_roughness > 1.0f)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u transmission roughness %g must be <= 1", i,
              (double)c->transmission_roughness);
-    if (c->microfacet > PHOS_MICROFACET_GGX_MULTISCATTER)
+    if (c->microfacet > PHOS_MICROFACET_ASHIKHMIN_SHIRLEY)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown microfacet model %u", i,
              c->microfacet);
     if (!all_finite_in(c->multiscatter_fresnel, 3, 0.0f, 1.0f))
@@ -294,6 +295,12 @@ static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32
     if (c->glass_fresnel > PHOS_GLASS_FRESNEL_MICROFACET)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown glass Fresnel mode %u", i,
              c->glass_fresnel);
+    if (!isfinite(c->roughness_y) || c->roughness_y > 1.0f)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT,
+             "material: closure %u roughness across the tangent %g must be <= 1 (< 0: isotropic)", i,
+             (double)c->roughness_y);
+    if (!isfinite(c->tangent_rotation))
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u tangent rotation must be finite", i);
     return PHOS_OK;
 }
 

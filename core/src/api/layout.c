@@ -30,6 +30,7 @@ static const layout_field fields[] = {
     FIELD(phos_closure_desc, thin_film_thickness) FIELD(phos_closure_desc, thin_film_ior)
     FIELD(phos_closure_desc, layer_span) FIELD(phos_closure_desc, layer_weight)
     FIELD(phos_closure_desc, layer_tint) FIELD(phos_closure_desc, layer_tint_weight)
+    FIELD(phos_closure_desc, roughness_y) FIELD(phos_closure_desc, tangent_rotation)
 
     FIELD(phos_material_desc, closure_count) FIELD(phos_material_desc, closures) FIELD(phos_material_desc, program)
 

@@ -59,10 +59,10 @@ static int record_features(sample_result *res, const integrator_settings *is, co
         return !v3_is_zero(*feature_beta);
     }
     res->denoising_albedo = v3_add(res->denoising_albedo, v3_mul(*feature_beta, f.albedo_diffuse));
-    /* The closures' normal weighted by their sampling weights: all of Phos's
-     * share the shading normal; a surface with none (an emitter) has none. */
+    /* The closures' normals weighted by their sampling weights (bsdf_normal);
+     * a surface with no closure (an emitter) has none. */
     if (f.weight_total > 0.0f)
-        res->denoising_normal = camera_direction_to_camera_space(is->camera, b->shading.n);
+        res->denoising_normal = camera_direction_to_camera_space(is->camera, bsdf_normal(b));
     return 0;
 }
 

@@ -80,7 +80,8 @@ static vec3 diffuse_albedo(const bsdf *b)
     for (uint32_t i = 0; i < b->count; i++)
         if (closure_is_diffuse(&b->closures[i]))
             rho = v3_add(rho, v3_mul(b->closures[i].weight,
-                                     bsdf_layer_scale(b, b->closures[i].under_layers, b->shading.n)));
+                                     bsdf_layer_scale(b, b->closures[i].under_layers,
+                                                      b->frames[b->closures[i].frame].n)));
     return v3_min(rho, v3s(1.0f));
 }
 

@@ -28,12 +28,21 @@
  * (microfacet GGX and GGX_MULTISCATTER here, and the MICROFACET glass), and
  * its Multiscatter GGX scales a lobe by 1 + F_ms (1 − E(μo))/E(μo)
  * (ggx_albedo.h). Microfacet lobes sample the visible normals (Heitz 2018),
- * see microfacet.c.
+ * see microfacet.c. The microfacet closures may instead be Beckmann
+ * (Walter 2007; sampled by D·cos θh) and the reflection ones anisotropic
+ * (αx along the closure frame's tangent, αy across) or, for Cycles'
+ * Glossy, Ashikhmin-Shirley (2000): enum phos_microfacet, mf_lobe below.
  *
  * Mixture: a closure is picked with probability sample_weight / sum; a
  * non-delta pick is weighted by the whole non-delta mixture (one-sample
  * MIS, balance heuristic over closures, as Cycles does), a delta pick by
  * its own value over the probability of having picked it.
+ *
+ * Frames: each closure is evaluated and sampled in its own shading frame
+ * (bsdf.frames[closure.frame]), as each Cycles closure carries its own N,
+ * so a Mix of BSDFs with different Bump normals, or a coat over a bumped
+ * base, shades each part about its own normal; the mixture's pdf sums the
+ * closures' densities, each taken in its frame.
  *
  * Robustness: a reflected wi must lie above both the shading and the
  * geometric normal, a transmitted wi below both; otherwise the closure has
@@ -94,9 +103,16 @@ static int refract_about(vec3 wo, vec3 m, float eta, vec3 *wi)
 static int reflection_side(const query *q) { return q->wi.z > 0.0f && q->ng_wi > 0.0f; }
 static int transmission_side(const query *q) { return q->wi.z < 0.0f && q->ng_wi < 0.0f; }
 
-static int closure_is_sharp(const closure *c) { return c->alpha < BSDF_SHARP_ALPHA; }
+static int closure_is_sharp(const closure *c) { return c->alpha * c->alpha_y < BSDF_SHARP_ALPHA * BSDF_SHARP_ALPHA; }
 /* Cycles 4's GGX (height-correlated G) rather than 3.x's (separable). */
-static int closure_correlated(const closure *c) { return c->microfacet != PHOS_MICROFACET_GGX_SEPARABLE; }
+static int closure_correlated(const closure *c)
+{
+    return c->microfacet != PHOS_MICROFACET_GGX_SEPARABLE && c->microfacet != PHOS_MICROFACET_BECKMANN_SEPARABLE;
+}
+static int closure_beckmann(const closure *c)
+{
+    return c->microfacet == PHOS_MICROFACET_BECKMANN || c->microfacet == PHOS_MICROFACET_BECKMANN_SEPARABLE;
+}
 static int closure_has_thin_film(const closure *c) { return c->film_thickness > THIN_FILM_MIN_THICKNESS; }
 static int is_white(vec3 v) { return v.x == 1.0f && v.y == 1.0f && v.z == 1.0f; }
 /* The refraction lobe of a MACRO glass has its own roughness (Cycles 3.4
@@ -113,40 +129,112 @@ static int glass_per_microfacet(const closure *c)
 
 /* ---------------------------------------------------- microfacet lobes */
 
-/* GGX reflection without Fresnel: returns f·cos θi = D G / (4 cos θo)
+/* Cycles has anisotropic GGX for its reflection closures only. */
+static int closure_may_be_anisotropic(const closure *c)
+{
+    return c->type == PHOS_CLOSURE_REFLECTION || c->type == PHOS_CLOSURE_REFLECTION_FRESNEL ||
+           c->type == PHOS_CLOSURE_METAL;
+}
+
+/* One microfacet lobe: its distribution (GGX or Beckmann), roughness ax
+ * along the frame's x axis and ay along y, and its Smith G. */
+typedef struct mf_lobe {
+    float ax, ay;
+    int beckmann;   /* Beckmann, else GGX */
+    int correlated; /* height-correlated G (Cycles 4), else separable (3.x) */
+    int ashikhmin;  /* Ashikhmin-Shirley (reflection only), exponents nx, ny */
+    float nx, ny;
+} mf_lobe;
+
+static mf_lobe lobe_of(const closure *c, float ax, float ay, int correlated)
+{
+    /* Ashikhmin-Shirley is a reflection model; elsewhere it stands for GGX. */
+    int ashikhmin = c->microfacet == PHOS_MICROFACET_ASHIKHMIN_SHIRLEY && closure_may_be_anisotropic(c);
+    mf_lobe m = {ax, ay, closure_beckmann(c), correlated, ashikhmin, 0.0f, 0.0f};
+    if (m.ashikhmin) {
+        m.nx = ashikhmin_shirley_exponent(ax);
+        m.ny = ashikhmin_shirley_exponent(ay);
+    }
+    return m;
+}
+
+static float lobe_D(const mf_lobe *m, vec3 h)
+{
+    return m->beckmann ? beckmann_D_aniso(h, m->ax, m->ay) : ggx_D_aniso(h, m->ax, m->ay);
+}
+
+static float lobe_lambda(const mf_lobe *m, vec3 w)
+{
+    return m->beckmann ? beckmann_lambda_aniso(w, m->ax, m->ay) : ggx_lambda_aniso(w, m->ax, m->ay);
+}
+
+/* Smith G (Heitz 2014 eq. 98 or 99). */
+static float lobe_G(const mf_lobe *m, vec3 wo, vec3 wi)
+{
+    float lo = lobe_lambda(m, wo), li = lobe_lambda(m, wi);
+    return m->correlated ? 1.0f / (1.0f + lo + li) : 1.0f / ((1.0f + lo) * (1.0f + li));
+}
+
+/* A half vector for wo: GGX's visible normals (Heitz 2018); Beckmann's
+ * normals by D·cos θh (Walter 2007 eq. 28). */
+static vec3 lobe_sample_h(const mf_lobe *m, vec3 wo, float2 u)
+{
+    if (m->ashikhmin)
+        return ashikhmin_shirley_sample_h(m->nx, m->ny, u);
+    return m->beckmann ? beckmann_sample_normal_aniso(m->ax, m->ay, u)
+                       : ggx_sample_visible_normal_aniso(wo, m->ax, m->ay, u);
+}
+
+/* The density of lobe_sample_h (1/sr of h). */
+static float lobe_h_pdf(const mf_lobe *m, vec3 wo, vec3 h)
+{
+    if (m->ashikhmin)
+        return ashikhmin_shirley_h_pdf(h, m->nx, m->ny);
+    return m->beckmann ? beckmann_normal_pdf_aniso(h, m->ax, m->ay)
+                       : ggx_visible_normal_pdf_aniso(wo, h, m->ax, m->ay);
+}
+
+/* Microfacet reflection without Fresnel: returns f·cos θi = D G / (4 cos θo)
  * (Walter 2007 eq. 20 times cos θi) and the solid-angle pdf of sampling wi
- * through the visible normals, D_wo(h) / (4 wo·h) (Heitz 2018 eq. 17). */
-static float ggx_reflection(const query *q, float alpha, int correlated, vec3 *h, float *pdf)
+ * through lobe_sample_h, p(h) / (4 wo·h) (Walter 2007 eq. 14; for GGX's
+ * visible normals Heitz 2018 eq. 17). */
+static float microfacet_reflection(const query *q, const mf_lobe *m, vec3 *h, float *pdf)
 {
     *pdf = 0.0f;
     if (q->wo.z <= 0.0f || !reflection_side(q) || !microfacet_reflect_half_vector(q->wo, q->wi, h))
         return 0.0f;
-    float D = ggx_D(*h, alpha);
+    if (m->ashikhmin) {
+        /* Ashikhmin & Shirley 2000 eq. 4 without Fresnel (Cycles' Glossy):
+         * f·cos θi = cos θi · p(h) / (4 (h·wo) max(cos θo, cos θi)). */
+        float ph = ashikhmin_shirley_h_pdf(*h, m->nx, m->ny), cos_oh = fmaxf(v3_dot(q->wo, *h), 1e-6f);
+        if (!(ph > 0.0f))
+            return 0.0f;
+        *pdf = ph * microfacet_reflect_jacobian(q->wo, *h);
+        return q->wi.z * ph / (4.0f * cos_oh * fmaxf(fmaxf(q->wo.z, q->wi.z), 1e-6f));
+    }
+    float D = lobe_D(m, *h);
     if (!(D > 0.0f))
         return 0.0f;
-    float G = correlated ? ggx_G_correlated(q->wo, q->wi, alpha) : ggx_G_separable(q->wo, q->wi, alpha);
-    *pdf = ggx_visible_normal_pdf(q->wo, *h, alpha) * microfacet_reflect_jacobian(q->wo, *h);
-    return D * G / (4.0f * q->wo.z);
+    *pdf = lobe_h_pdf(m, q->wo, *h) * microfacet_reflect_jacobian(q->wo, *h);
+    return D * lobe_G(m, q->wo, q->wi) / (4.0f * q->wo.z);
 }
 
-/* GGX refraction without Fresnel: f·|cos θi| =
+/* Microfacet refraction without Fresnel: f·|cos θi| =
  * |wo·h| |wi·h| η² D G / (cos θo (wo·h + η wi·h)²) (Walter 2007 eq. 21 times
  * |cos θi|, without the 1/η² radiance scaling, as Cycles), and the pdf
- * D_wo(h) |dω_h/dω_i|. */
-static float ggx_refraction(const query *q, float alpha, float eta, int correlated, vec3 *h,
-                            float *pdf)
+ * p(h) |dω_h/dω_i| of sampling wi through lobe_sample_h. */
+static float microfacet_refraction(const query *q, const mf_lobe *m, float eta, vec3 *h, float *pdf)
 {
     *pdf = 0.0f;
     if (q->wo.z <= 0.0f || !transmission_side(q) ||
         !microfacet_refract_half_vector(q->wo, q->wi, eta, h))
         return 0.0f;
-    float D = ggx_D(*h, alpha);
+    float D = lobe_D(m, *h);
     if (!(D > 0.0f))
         return 0.0f;
-    float G = correlated ? ggx_G_correlated(q->wo, q->wi, alpha) : ggx_G_separable(q->wo, q->wi, alpha);
     float jacobian = microfacet_refract_jacobian(q->wo, q->wi, *h, eta);
-    *pdf = ggx_visible_normal_pdf(q->wo, *h, alpha) * jacobian;
-    return v3_dot(q->wo, *h) * D * G / q->wo.z * jacobian;
+    *pdf = lobe_h_pdf(m, q->wo, *h) * jacobian;
+    return v3_dot(q->wo, *h) * D * lobe_G(m, q->wo, q->wi) / q->wo.z * jacobian;
 }
 
 /* -------------------------------------------------------- Fresnel */
@@ -238,11 +326,20 @@ static vec3 layer_scale(const bsdf_layer *l, float mu)
     return scale;
 }
 
-/* Scales of every layer for wo (local), so a mixture evaluates each once. */
-static void layer_scales(const bsdf *b, float mu, vec3 *out)
+/* Scales of every layer, so a mixture evaluates each once; mu[f] is
+ * cos θo in the bsdf's frame f, and a layer sees wo from its own closure's
+ * frame (Cycles' bsdf_albedo reads the layer closure's N). */
+static void layer_scales(const bsdf *b, const float *mu, vec3 *out)
 {
     for (uint32_t j = 0; j < b->layer_count; j++)
-        out[j] = layer_scale(&b->layers[j], clampf(mu, 0.0f, 1.0f));
+        out[j] = layer_scale(&b->layers[j], clampf(mu[b->layers[j].frame], 0.0f, 1.0f));
+}
+
+/* cos θo of wo (world) in each of the bsdf's frames. */
+static void frame_cosines(const bsdf *b, vec3 wo, float *mu)
+{
+    for (uint32_t f = 0; f < b->frame_count; f++)
+        mu[f] = v3_dot(wo, b->frames[f].n);
 }
 
 static vec3 scale_under(const vec3 *scales, uint32_t under_layers)
@@ -259,7 +356,9 @@ vec3 bsdf_layer_scale(const bsdf *b, uint32_t under_layers, vec3 wo)
     if (!under_layers)
         return v3s(1.0f);
     vec3 scales[BSDF_MAX_LAYERS];
-    layer_scales(b, v3_dot(wo, b->shading.n), scales);
+    float mu[BSDF_MAX_FRAMES];
+    frame_cosines(b, wo, mu);
+    layer_scales(b, mu, scales);
     return scale_under(scales, under_layers);
 }
 
@@ -274,7 +373,7 @@ static vec3 closure_albedo_estimate(const closure *c, float mu)
     case PHOS_CLOSURE_REFLECTION:
     case PHOS_CLOSURE_REFLECTION_FRESNEL: {
         bsdf_layer l = {c->type, c->roughness, c->eta, c->microfacet, c->f0, c->fss, c->film_thickness,
-                        c->film_ior, v3s(1.0f), v3s(1.0f), 0.0f};
+                        c->film_ior, v3s(1.0f), v3s(1.0f), 0.0f, 0};
         return c->type == PHOS_CLOSURE_REFLECTION ? v3s(1.0f) : layer_albedo(&l, mu);
     }
     case PHOS_CLOSURE_METAL:
@@ -300,7 +399,7 @@ static int closure_diffuse_like(const closure *c)
     case PHOS_CLOSURE_METAL:
     case PHOS_CLOSURE_REFRACTION:
     case PHOS_CLOSURE_GLASS:
-        return c->alpha > 0.075f;
+        return c->alpha * c->alpha_y > 0.075f * 0.075f; /* √(αx αy) > 0.075 */
     default:
         return 1;
     }
@@ -309,12 +408,14 @@ static int closure_diffuse_like(const closure *c)
 void bsdf_denoising_features(const bsdf *b, vec3 wo, bsdf_features *out)
 {
     memset(out, 0, sizeof(*out));
-    float mu = clampf(v3_dot(wo, b->shading.n), 0.0f, 1.0f);
+    float mus[BSDF_MAX_FRAMES];
+    frame_cosines(b, wo, mus);
     vec3 scales[BSDF_MAX_LAYERS];
     if (b->layer_count)
-        layer_scales(b, mu, scales);
+        layer_scales(b, mus, scales);
     for (uint32_t k = 0; k < b->count; k++) {
         const closure *c = &b->closures[k];
+        float mu = clampf(mus[c->frame], 0.0f, 1.0f);
         vec3 albedo = v3_mul(c->weight, closure_albedo_estimate(c, mu));
         if (c->under_layers)
             albedo = v3_mul(albedo, scale_under(scales, c->under_layers));
@@ -334,6 +435,8 @@ int bsdf_add_layer(bsdf *b, const bsdf_layer *layer)
     if (b->layer_count >= BSDF_MAX_LAYERS)
         return -1;
     b->layers[b->layer_count] = *layer;
+    if (layer->frame >= b->frame_count)
+        b->layers[b->layer_count].frame = 0;
     return (int)b->layer_count++;
 }
 
@@ -432,7 +535,8 @@ static vec3 eval_glossy(const closure *c, const query *q, float *pdf)
     if (closure_is_sharp(c))
         return v3s(0.0f);
     vec3 h;
-    float v = ggx_reflection(q, c->alpha, closure_correlated(c), &h, pdf);
+    mf_lobe m = lobe_of(c, c->alpha, c->alpha_y, closure_correlated(c));
+    float v = microfacet_reflection(q, &m, &h, pdf);
     if (v == 0.0f)
         return v3s(0.0f);
     vec3 colour = v3_mul(c->weight, reflection_fresnel(c, v3_dot(q->wi, h)));
@@ -444,7 +548,8 @@ static vec3 eval_refraction(const closure *c, const query *q, float *pdf)
     if (closure_is_sharp(c) || closure_index_matched(c))
         return v3s(0.0f);
     vec3 h;
-    return v3_scale(c->weight, ggx_refraction(q, c->alpha, c->eta, closure_correlated(c), &h, pdf));
+    mf_lobe m = lobe_of(c, c->alpha, c->alpha, closure_correlated(c));
+    return v3_scale(c->weight, microfacet_refraction(q, &m, c->eta, &h, pdf));
 }
 
 /* The probability with which a MACRO glass picks its reflection lobe: F at
@@ -468,10 +573,11 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
         /* Walter 2007 eq. 20/21 with F(wo·h); sampling picks the lobe with
          * the mean over the channels of F(wo·h). */
         int reflect = q->wi.z > 0.0f;
+        mf_lobe m = lobe_of(c, c->alpha, c->alpha, 1);
         if (reflect)
-            v = ggx_reflection(q, c->alpha, 1, &h, pdf);
+            v = microfacet_reflection(q, &m, &h, pdf);
         else
-            v = ggx_refraction(q, c->alpha, c->eta, 1, &h, pdf);
+            v = microfacet_refraction(q, &m, c->eta, &h, pdf);
         if (v == 0.0f)
             return v3s(0.0f);
         float cos_oh = v3_dot(q->wo, h);
@@ -486,13 +592,15 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
          * normal; sampling picks them with macro_reflect_pick. */
         float F = fresnel_dielectric(q->wo.z, c->eta), pick = macro_reflect_pick(c, F);
         if (q->wi.z > 0.0f) {
-            v = closure_is_sharp(c) ? 0.0f : ggx_reflection(q, c->alpha, 0, &h, pdf);
+            mf_lobe m = lobe_of(c, c->alpha, c->alpha, 0);
+            v = closure_is_sharp(c) ? 0.0f : microfacet_reflection(q, &m, &h, pdf);
             lobe = F;
             *pdf *= pick;
         } else {
             v = (closure_index_matched(c) || refraction_is_sharp(c))
                     ? 0.0f
-                    : ggx_refraction(q, c->alpha_t, c->eta, 0, &h, pdf);
+                    : microfacet_refraction(q, &(mf_lobe){c->alpha_t, c->alpha_t, closure_beckmann(c), 0, 0, 0.0f, 0.0f}, c->eta,
+                                            &h, pdf);
             lobe = fresnel_dielectric_transmittance(q->wo.z, c->eta);
             *pdf *= pick < F ? 1.0f - pick : lobe; /* lobe: 1 − F without cancellation */
         }
@@ -540,7 +648,8 @@ static int sample_glossy(const closure *c, vec3 wo, float2 u, lobe_sample *s)
 {
     if (closure_is_sharp(c))
         return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_mul(c->weight, reflection_fresnel(c, wo.z)), 1.0f);
-    vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+    mf_lobe m = lobe_of(c, c->alpha, c->alpha_y, closure_correlated(c));
+    vec3 h = lobe_sample_h(&m, wo, u);
     if (v3_dot(wo, h) <= 0.0f)
         return 0;
     s->wi = reflect_about(wo, h);
@@ -556,7 +665,8 @@ static int sample_refraction(const closure *c, vec3 wo, float2 u, lobe_sample *s
             return 0;
         return sample_delta(s, wi, BSDF_TRANSMISSION, c->weight, 1.0f);
     }
-    vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+    mf_lobe m = lobe_of(c, c->alpha, c->alpha, closure_correlated(c));
+    vec3 h = lobe_sample_h(&m, wo, u);
     if (!refract_about(wo, h, c->eta, &wi))
         return 0; /* total internal reflection at this microfacet: no light */
     s->wi = wi;
@@ -572,7 +682,8 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
         /* Walter 2007 §5.3 with visible normals: pick h, then reflect with
          * probability F(wo·h) (the channels' mean), otherwise refract
          * through h; a sharp glass has h = n. */
-        vec3 h = closure_is_sharp(c) ? n : ggx_sample_visible_normal(wo, c->alpha, u);
+        mf_lobe m = lobe_of(c, c->alpha, c->alpha, 1);
+        vec3 h = closure_is_sharp(c) ? n : lobe_sample_h(&m, wo, u);
         float cos_oh = v3_dot(wo, h);
         if (cos_oh <= 0.0f)
             return 0;
@@ -603,7 +714,8 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
     if (u_lobe < macro_reflect_pick(c, F)) {
         if (closure_is_sharp(c))
             return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_scale(c->weight, F), F);
-        vec3 h = ggx_sample_visible_normal(wo, c->alpha, u);
+        mf_lobe m = lobe_of(c, c->alpha, c->alpha, 0);
+        vec3 h = lobe_sample_h(&m, wo, u);
         if (v3_dot(wo, h) <= 0.0f)
             return 0;
         s->wi = reflect_about(wo, h);
@@ -617,7 +729,8 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
         float T = fresnel_dielectric_transmittance(wo.z, c->eta);
         return sample_delta(s, wi, BSDF_TRANSMISSION, v3_scale(tinted, T), T);
     }
-    vec3 h = ggx_sample_visible_normal(wo, c->alpha_t, u);
+    mf_lobe mt = lobe_of(c, c->alpha_t, c->alpha_t, 0);
+    vec3 h = lobe_sample_h(&mt, wo, u);
     if (!refract_about(wo, h, c->eta, &wi))
         return 0;
     s->wi = wi;
@@ -665,27 +778,34 @@ static int closure_sample(const closure *c, vec3 wo, float u_lobe, float2 u, lob
 
 /* ----------------------------------------------------------- mixture */
 
-static query make_query(const bsdf *b, vec3 wo, vec3 wi)
+/* The pair (wo, wi) in the bsdf's frame f. */
+static query make_query(const bsdf *b, uint32_t f, vec3 wo, vec3 wi)
 {
     query q;
-    q.wo = frame_to_local(&b->shading, wo);
-    q.wi = frame_to_local(&b->shading, wi);
+    q.wo = frame_to_local(&b->frames[f], wo);
+    q.wi = frame_to_local(&b->frames[f], wi);
     q.ng_wi = v3_dot(b->ng, wi);
     return q;
 }
 
-/* Σ f·|cos θi| over the closures (each scaled by the layers over it) and
- * Σ (sample_weight_k / sum) pdf_k. */
-static vec3 eval_mixture(const bsdf *b, const query *q, float *pdf)
+/* Σ f·|cos θi| over the closures, each in its own frame and scaled by the
+ * layers over it, and Σ (sample_weight_k / sum) pdf_k. */
+static vec3 eval_mixture(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
 {
     vec3 value = v3s(0.0f);
     float p = 0.0f;
+    query q[BSDF_MAX_FRAMES];
+    float mu[BSDF_MAX_FRAMES];
+    for (uint32_t f = 0; f < b->frame_count; f++) {
+        q[f] = make_query(b, f, wo, wi);
+        mu[f] = q[f].wo.z;
+    }
     vec3 scales[BSDF_MAX_LAYERS];
     if (b->layer_count)
-        layer_scales(b, q->wo.z, scales);
+        layer_scales(b, mu, scales);
     for (uint32_t k = 0; k < b->count; k++) {
         float pk;
-        vec3 v = closure_eval(&b->closures[k], q, &pk);
+        vec3 v = closure_eval(&b->closures[k], &q[b->closures[k].frame], &pk);
         if (b->closures[k].under_layers)
             v = v3_mul(v, scale_under(scales, b->closures[k].under_layers));
         value = v3_add(value, v);
@@ -701,17 +821,51 @@ static vec3 eval_mixture(const bsdf *b, const query *q, float *pdf)
 
 void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric)
 {
-    b->shading = frame_from_normal(n_shading);
+    b->frames[0] = frame_from_normal(n_shading);
+    b->frame_count = 1;
     b->ng = n_geometric;
     b->count = 0;
     b->sample_weight_sum = 0.0f;
     b->layer_count = 0;
 }
 
+uint32_t bsdf_add_frame(bsdf *b, vec3 n, vec3 t)
+{
+    frame f = frame_from_normal(n);
+    vec3 x = v3_sub(t, v3_scale(n, v3_dot(t, n)));
+    if (v3_is_finite(x) && v3_length2(x) > 1e-12f) {
+        f.t = v3_normalize(x);
+        f.b = v3_cross(n, f.t);
+    }
+    for (uint32_t k = 0; k < b->frame_count; k++)
+        if (memcmp(&b->frames[k], &f, sizeof(f)) == 0)
+            return k;
+    if (b->frame_count >= BSDF_MAX_FRAMES)
+        return 0;
+    b->frames[b->frame_count] = f;
+    return b->frame_count++;
+}
+
+vec3 bsdf_normal(const bsdf *b)
+{
+    uint32_t first = b->count ? b->closures[0].frame : 0;
+    vec3 sum = v3s(0.0f);
+    int shared = 1;
+    for (uint32_t k = 0; k < b->count; k++) {
+        sum = v3_add(sum, v3_scale(b->frames[b->closures[k].frame].n, b->closures[k].sample_weight));
+        shared &= b->closures[k].frame == first;
+    }
+    if (shared || !(v3_length2(sum) > 0.0f))
+        return b->frames[first].n;
+    return v3_normalize(sum);
+}
+
 /* Splits b's closures into those `in_first` accepts and the others. */
 static void split_closures(const bsdf *b, int (*in_first)(const closure *), bsdf *first, bsdf *second)
 {
-    first->shading = second->shading = b->shading;
+    first->frame_count = second->frame_count = b->frame_count;
+    for (uint32_t f = 0; f < b->frame_count; f++)
+        first->frames[f] = second->frames[f] = b->frames[f];
     first->ng = second->ng = b->ng;
     first->count = second->count = 0;
     first->sample_weight_sum = second->sample_weight_sum = 0.0f;
@@ -793,10 +947,17 @@ int bsdf_add_closure(bsdf *b, const closure *c)
         return 1;
     closure k = *c;
     k.adjoint = 0;
+    if (k.frame >= b->frame_count)
+        k.frame = 0;
     if (!v3_is_finite(k.weight))
         return 1;
     /* Clamp parameters into their domains as Cycles' setup functions do. */
     k.alpha = k.alpha > 0.0f ? fminf(k.alpha, 1.0f) : 0.0f;
+    k.alpha_y = closure_may_be_anisotropic(&k) && k.alpha_y > 0.0f ? fminf(k.alpha_y, 1.0f) : k.alpha;
+    /* Cycles reads the albedo tables of an anisotropic lobe (Multiscatter
+     * GGX, layering) at the roughness (αx αy)^¼ (bsdf_microfacet.h). */
+    if (k.alpha_y != k.alpha)
+        k.roughness = sqrtf(sqrtf(k.alpha * k.alpha_y));
     k.alpha_t = k.alpha_t > 0.0f ? fminf(k.alpha_t, 1.0f) : 0.0f;
     k.transmission_tint = v3_max(k.transmission_tint, v3s(0.0f));
     k.roughness = k.roughness > 0.0f ? fminf(k.roughness, 1.0f) : 0.0f;
@@ -819,10 +980,8 @@ vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
 {
     float p = 0.0f;
     vec3 value = v3s(0.0f);
-    if (b->count > 0) {
-        query q = make_query(b, wo, wi);
-        value = eval_mixture(b, &q, &p);
-    }
+    if (b->count > 0)
+        value = eval_mixture(b, wo, wi, &p);
     if (pdf)
         *pdf = p;
     return value;
@@ -841,7 +1000,7 @@ vec3 bsdf_photon_weight(const bsdf *b, vec3 w_from, const bsdf_sample *bs, float
         *eta_scale = 1.0f / (bs->eta * bs->eta);
         return v3_scale(w, bs->eta * bs->eta);
     }
-    vec3 ns = b->shading.n;
+    vec3 ns = bs->ns;
     float ng_from = fabsf(v3_dot(b->ng, w_from)), ns_to = fabsf(v3_dot(ns, bs->wi));
     if (!(ng_from > 0.0f) || !(ns_to > 0.0f))
         return v3s(0.0f);
@@ -861,7 +1020,8 @@ void bsdf_set_adjoint(bsdf *b)
 static void bsdf_other_side(const bsdf *b, bsdf *out)
 {
     *out = *b;
-    out->shading = frame_from_normal(v3_neg(b->shading.n));
+    for (uint32_t f = 0; f < b->frame_count; f++) /* (t, −b, −n): still right-handed */
+        out->frames[f] = (frame){b->frames[f].t, v3_neg(b->frames[f].b), v3_neg(b->frames[f].n)};
     out->ng = v3_neg(b->ng);
     for (uint32_t i = 0; i < out->count; i++) /* a coating's IOR is seen from outside only */
         if (out->closures[i].type == PHOS_CLOSURE_GLASS || out->closures[i].type == PHOS_CLOSURE_REFRACTION)
@@ -919,10 +1079,11 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
     lobe_sample s;
     s.value = v3s(0.0f);
     s.prob = 0.0f;
-    vec3 wo_local = frame_to_local(&b->shading, wo);
+    const frame *fr = &b->frames[c->frame];
+    vec3 wo_local = frame_to_local(fr, wo);
     if (!closure_sample(c, wo_local, u_lobe, u, &s))
         return 0;
-    vec3 wi = v3_normalize(frame_to_world(&b->shading, s.wi));
+    vec3 wi = v3_normalize(frame_to_world(fr, s.wi));
     if (!v3_is_finite(wi) || v3_length2(wi) == 0.0f)
         return 0;
 
@@ -942,6 +1103,7 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
         out->pdf = p;
         out->flags = s.flags;
         out->eta = (s.flags & BSDF_TRANSMISSION) && !(s.flags & BSDF_TRANSPARENT) ? c->eta : 1.0f;
+        out->ns = fr->n;
         return 1;
     }
 
@@ -949,14 +1111,14 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
      * has density — on that lobe's side of both normals (a reflection that
      * dips below the horizon is lost, not mistaken for a transmission) and
      * where its closure's eval is nonzero — then the mixture weights it. */
-    query q = make_query(b, wo, wi);
+    query q = make_query(b, c->frame, wo, wi);
     if (!((s.flags & BSDF_TRANSMISSION) ? transmission_side(&q) : reflection_side(&q)))
         return 0;
     float pdf_own, pdf;
     closure_eval(c, &q, &pdf_own);
     if (!(pdf_own > 0.0f))
         return 0;
-    vec3 value = eval_mixture(b, &q, &pdf);
+    vec3 value = eval_mixture(b, wo, wi, &pdf);
     if (!(pdf > 0.0f))
         return 0;
     vec3 weight = v3_scale(value, 1.0f / pdf);
@@ -968,6 +1130,7 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
     out->flags = s.flags;
     /* Diffuse transmission does not refract: no η (no η² for photons). */
     out->eta = (s.flags & BSDF_TRANSMISSION) && !(s.flags & BSDF_DIFFUSE) ? c->eta : 1.0f;
+    out->ns = fr->n;
     return 1;
 }
 

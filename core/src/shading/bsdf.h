@@ -28,7 +28,8 @@ enum bsdf_flags {
     BSDF_GLOSSY = 1 << 4
 };
 
-/* Below this GGX alpha a microfacet lobe is treated as perfectly sharp. */
+/* Below this GGX alpha (anisotropic: √(αx αy), as Cycles compares αx αy)
+ * a microfacet lobe is treated as perfectly sharp. */
 #define BSDF_SHARP_ALPHA 1e-4f
 /* |η − 1| below this: the interface does not bend light, refraction is a
  * straight pass-through whatever the roughness (as Cycles 3.4). */
@@ -37,8 +38,10 @@ enum bsdf_flags {
 typedef struct closure {
     uint32_t type;          /* enum phos_closure_type */
     vec3 weight;            /* linear RGB, textures already applied */
-    float roughness;        /* Blender roughness in [0,1] */
-    float alpha;            /* GGX alpha = roughness² */
+    float roughness;        /* Blender roughness in [0,1]; anisotropic: (αx αy)^¼, set by bsdf_add_closure */
+    float alpha;            /* GGX alpha = roughness²; anisotropic: αx, along the frame's tangent */
+    float alpha_y;          /* REFLECTION, REFLECTION_FRESNEL, METAL: αy, across the tangent
+                               (anisotropic GGX); 0 or other types: alpha */
     float alpha_t;          /* GLASS (MACRO): GGX alpha of the refraction lobe */
     vec3 transmission_tint; /* GLASS: colour applied to refracted light only */
     float eta;              /* relative IOR across the surface as seen from wo's side */
@@ -53,6 +56,7 @@ typedef struct closure {
     uint32_t under_layers;  /* bit j: lies under the bsdf's layers[j] */
     float sample_weight;    /* probability mass for picking this closure when sampling */
     uint32_t adjoint;       /* 1: sampled for photons (bsdf_set_adjoint); set by bsdf_add_closure to 0 */
+    uint32_t frame;         /* its shading frame: the bsdf's frames[frame] (0: the surface's) */
 } closure;
 
 /* A layer over other closures of the BSDF (Cycles 4's Principled BSDF):
@@ -69,11 +73,18 @@ typedef struct bsdf_layer {
     vec3 weight;            /* the layer's weight relative to those under it */
     vec3 tint;              /* a coat's colour at normal incidence; white: none */
     float tint_weight;
+    uint32_t frame;         /* the layer closure's shading frame (bsdf frames[frame]) */
 } bsdf_layer;
 #define BSDF_MAX_LAYERS 6
 
+/* Each closure has its own shading frame, as each Cycles closure has its
+ * own N (and T when anisotropic): the surface's, and one per distinct
+ * Normal (Bump, Normal Map, Coat Normal) or Tangent bound to a closure. */
+#define BSDF_MAX_FRAMES (PHOS_MAX_CLOSURES + 1)
+
 typedef struct bsdf {
-    frame shading;          /* shading normal frame, normal on the side of wo */
+    frame frames[BSDF_MAX_FRAMES]; /* shading frames, normals on the side of wo; 0: the surface's */
+    uint32_t frame_count;
     vec3 ng;                /* geometric normal, on the side of wo */
     uint32_t count;
     closure closures[PHOS_MAX_CLOSURES];
@@ -89,10 +100,24 @@ typedef struct bsdf_sample {
                                probability of having picked it */
     uint32_t flags;         /* enum bsdf_flags of the sampled lobe */
     float eta;              /* a refraction: the sampled closure's relative IOR (from wo's side); else 1 */
+    vec3 ns;                /* the sampled closure's shading normal */
 } bsdf_sample;
 
-/* n_shading and n_geometric must be unit length and already face wo. */
+/* n_shading and n_geometric must be unit length and already face wo;
+ * n_shading is frame 0, the one of closures that have none of their own. */
 void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric);
+
+/* The index of the shading frame with unit normal n (facing wo) and, for
+ * anisotropic closures, its x axis along the tangent t projected onto the
+ * plane ⊥ n (Cycles' make_orthonormals_tangent); t = 0: any x axis. An
+ * identical frame already present is shared; 0 (the surface's) when full.
+ * A t parallel to n counts as none. */
+uint32_t bsdf_add_frame(bsdf *b, vec3 n, vec3 t);
+
+/* The normal a denoiser is given, as Cycles' denoising features: the
+ * closures' shading normals weighted by their sampling weights (frame 0's
+ * when there is no closure). */
+vec3 bsdf_normal(const bsdf *b);
 
 /* Adds a closure (weight and parameters set; sample_weight is computed
  * here). Closures with zero weight are dropped; returns 0 when full. */

@@ -70,7 +70,7 @@ void surface_from_hit(const scene *s, uint32_t instance_id, uint32_t prim, float
 }
 
 /* A layer closure's parameters as bsdf.c's layering reads them. */
-static bsdf_layer layer_of(const phos_closure_desc *d, float eta)
+static bsdf_layer layer_of(const phos_closure_desc *d, float eta, uint32_t frame)
 {
     bsdf_layer l;
     l.type = d->type;
@@ -84,6 +84,7 @@ static bsdf_layer layer_of(const phos_closure_desc *d, float eta)
     l.weight = v3_load(d->layer_weight);
     l.tint = v3_load(d->layer_tint);
     l.tint_weight = d->layer_tint_weight;
+    l.frame = frame;
     return l;
 }
 
@@ -145,7 +146,13 @@ static void closure_set_field(phos_closure_desc *c, uint32_t field, const float 
     case PHOS_FIELD_LAYER_TINT_WEIGHT:
         c->layer_tint_weight = fmaxf(x, 0.0f);
         break;
-    default: /* PHOS_FIELD_NORMAL is the BSDF's, not a closure's (material_eval) */
+    case PHOS_FIELD_ROUGHNESS_Y:
+        c->roughness_y = clampf(x, 0.0f, 1.0f);
+        break;
+    case PHOS_FIELD_TANGENT_ROTATION:
+        c->tangent_rotation = x;
+        break;
+    default: /* PHOS_FIELD_NORMAL and _TANGENT set the closure's shading frame (material_eval) */
         break;
     }
 }
@@ -301,13 +308,28 @@ void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, 
     g->transparent_depth = sf->transparent_depth;
 }
 
+/* A closure's bound Normal as its shading normal: kept when finite and on
+ * the viewer's side of the geometric surface, else the surface's. */
+static vec3 bound_normal(const surface *sf, const float *r)
+{
+    vec3 n = v3_load(r);
+    if (v3_is_finite(n) && v3_length2(n) > 0.5f && v3_dot(n, sf->ng) > 0.0f)
+        return v3_normalize(n);
+    return sf->ns;
+}
+
 /* The material's closures at the surface: its own when constant, else a
- * copy with the program's values written in (and the shading normal the
- * program sets, if it sets one). */
+ * copy with the program's values written in, and each closure's shading
+ * normal and tangent (ns and ts, when given: the surface's normal and no
+ * tangent unless the program binds them). */
 static const phos_closure_desc *material_eval(const scene *s, const surface *sf, phos_closure_desc *local,
-                                              vec3 *ns)
+                                              vec3 *ns, vec3 *ts)
 {
     const material *m = sf->mat;
+    for (uint32_t i = 0; ns && i < m->closure_count; i++) {
+        ns[i] = sf->ns;
+        ts[i] = v3s(0.0f);
+    }
     if (!m->has_program)
         return m->closures;
     shader_globals g;
@@ -315,29 +337,78 @@ static const phos_closure_desc *material_eval(const scene *s, const surface *sf,
     float r[PHOS_SHADER_MAX_REGISTERS];
     shader_program_eval(&m->program, s, &g, r);
     memcpy(local, m->closures, sizeof(phos_closure_desc) * m->closure_count);
-    int normal_set = 0;
     for (uint32_t b = 0; b < m->program.binding_count; b++) {
         const phos_shader_binding *bd = &m->program.bindings[b];
-        if (bd->field != PHOS_FIELD_NORMAL) {
+        if (bd->field == PHOS_FIELD_NORMAL) {
+            if (ns)
+                ns[bd->closure] = bound_normal(sf, r + bd->reg);
+        } else if (bd->field == PHOS_FIELD_TANGENT) {
+            vec3 t = v3_load(r + bd->reg);
+            if (ts && v3_is_finite(t))
+                ts[bd->closure] = t;
+        } else {
             closure_set_field(&local[bd->closure], bd->field, r + bd->reg);
-        } else if (!normal_set && ns) {
-            /* One shading frame per BSDF: the first closure's normal sets it,
-             * kept on the viewer's side of the geometric surface. */
-            vec3 n = v3_load(r + bd->reg);
-            if (v3_is_finite(n) && v3_length2(n) > 0.5f && v3_dot(n, sf->ng) > 0.0f)
-                *ns = v3_normalize(n);
-            normal_set = 1;
         }
     }
     return local;
 }
 
+/* Cycles' default tangent (Geometry's Tangent, primitive_tangent): about
+ * the object's Z axis through the centre of its texture space,
+ * (−(g.y − ½), g.x − ½, 0) in generated coordinates g, to world space as
+ * a normal is, then made perpendicular to the surface's normal. */
+static vec3 default_tangent(const scene *s, const surface *sf)
+{
+    shader_globals g;
+    material_shader_globals(s, sf, 0, &g);
+    vec3 t = normal_to_world(&s->instances[sf->instance], v3(-(g.generated.y - 0.5f), g.generated.x - 0.5f, 0.0f));
+    vec3 across = v3_cross(t, sf->ns);
+    if (!(v3_length2(across) > 0.0f))
+        return v3s(0.0f); /* on the axis: no direction, the frame takes any */
+    return v3_cross(sf->ns, v3_normalize(across));
+}
+
+/* p turned by angle (radians) about the unit axis k, right-handed
+ * (Rodrigues): p cos + (k × p) sin + k (k·p)(1 − cos). */
+static vec3 rotate_about(vec3 p, vec3 k, float angle)
+{
+    float c = cosf(angle), sn = sinf(angle);
+    return v3_add(v3_add(v3_scale(p, c), v3_scale(v3_cross(k, p), sn)), v3_scale(k, v3_dot(k, p) * (1.0f - c)));
+}
+
+/* Whether a closure is anisotropic GGX (bsdf.h: the reflection closures). */
+static int desc_anisotropic(const phos_closure_desc *d)
+{
+    int reflection = d->type == PHOS_CLOSURE_REFLECTION || d->type == PHOS_CLOSURE_REFLECTION_FRESNEL ||
+                     d->type == PHOS_CLOSURE_METAL;
+    return reflection && d->roughness_y >= 0.0f && d->roughness_y != clampf(d->roughness, 0.0f, 1.0f);
+}
+
+/* The tangent of an anisotropic closure about its normal n: the bound one
+ * (t) or Cycles' default, turned by its rotation (turns). */
+static vec3 closure_tangent(const scene *s, const surface *sf, const phos_closure_desc *d, vec3 n, vec3 t,
+                            vec3 *fallback, int *have_fallback)
+{
+    if (!(v3_length2(t) > 0.0f)) {
+        if (!*have_fallback) {
+            *fallback = default_tangent(s, sf);
+            *have_fallback = 1;
+        }
+        t = *fallback;
+    }
+    if (d->tangent_rotation != 0.0f)
+        t = rotate_about(t, n, d->tangent_rotation * 2.0f * PHOS_PI);
+    return t;
+}
+
 void material_bsdf(const scene *s, const surface *sf, bsdf *out)
 {
     phos_closure_desc local[PHOS_MAX_CLOSURES];
-    vec3 ns = sf->ns;
-    const phos_closure_desc *closures = material_eval(s, sf, local, &ns);
-    bsdf_init(out, ns, sf->ng);
+    vec3 ns[PHOS_MAX_CLOSURES], ts[PHOS_MAX_CLOSURES];
+    const phos_closure_desc *closures = material_eval(s, sf, local, ns, ts);
+    vec3 fallback_tangent = v3s(0.0f);
+    int have_fallback = 0;
+    bsdf_init(out, sf->ns, sf->ng);
     const material *m = sf->mat;
     /* under[i]: the layers over closure i (bit j: the bsdf's layers[j]). */
     uint32_t under[PHOS_MAX_CLOSURES] = {0};
@@ -347,8 +418,14 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
          * only; dielectric interfaces invert it when hit from inside. */
         int interface = d->type == PHOS_CLOSURE_GLASS || d->type == PHOS_CLOSURE_REFRACTION;
         float eta = (sf->backfacing && interface) ? 1.0f / d->ior : d->ior;
+        /* Each closure in its own frame (bsdf.h): shared when normals agree;
+         * an anisotropic one's x axis along its tangent. */
+        int anisotropic = desc_anisotropic(d);
+        vec3 t = anisotropic ? closure_tangent(s, sf, d, ns[i], ts[i], &fallback_tangent, &have_fallback)
+                             : v3s(0.0f);
+        uint32_t frame = bsdf_add_frame(out, ns[i], t);
         if (d->layer_span) {
-            bsdf_layer layer = layer_of(d, eta);
+            bsdf_layer layer = layer_of(d, eta, frame);
             int j = bsdf_add_layer(out, &layer);
             for (uint32_t k = i + 1; j >= 0 && k <= i + d->layer_span && k < m->closure_count; k++)
                 under[k] |= 1u << j;
@@ -360,6 +437,7 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
         c.weight = v3_load(d->weight);
         c.roughness = clampf(d->roughness, 0.0f, 1.0f);
         c.alpha = c.roughness * c.roughness;
+        c.alpha_y = anisotropic ? d->roughness_y * d->roughness_y : c.alpha;
         float rt = d->transmission_roughness < 0.0f ? c.roughness : d->transmission_roughness;
         c.alpha_t = rt * rt;
         c.transmission_tint = v3_load(d->transmission_tint);
@@ -376,6 +454,7 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
         c.under_layers = under[i];
         c.sample_weight = 0.0f;
         c.adjoint = 0;
+        c.frame = frame;
         bsdf_add_closure(out, &c);
     }
 }
@@ -383,7 +462,7 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
 static vec3 emission_of(const scene *s, const surface *sf)
 {
     phos_closure_desc local[PHOS_MAX_CLOSURES];
-    const phos_closure_desc *closures = material_eval(s, sf, local, NULL);
+    const phos_closure_desc *closures = material_eval(s, sf, local, NULL, NULL);
     vec3 sum = v3s(0.0f);
     for (uint32_t i = 0; i < sf->mat->closure_count; i++)
         if (closures[i].type == PHOS_CLOSURE_EMISSION)
@@ -446,7 +525,7 @@ vec3 material_transparency(const scene *s, const surface *sf)
     if (!m->transparent)
         return sum;
     phos_closure_desc local[PHOS_MAX_CLOSURES];
-    const phos_closure_desc *closures = material_eval(s, sf, local, NULL);
+    const phos_closure_desc *closures = material_eval(s, sf, local, NULL, NULL);
     for (uint32_t i = 0; i < m->closure_count; i++)
         if (closures[i].type == PHOS_CLOSURE_TRANSPARENT)
             sum = v3_add(sum, v3_load(closures[i].weight));
@@ -460,7 +539,7 @@ vec3 material_holdout(const scene *s, const surface *sf)
     if (!m->holdout)
         return sum;
     phos_closure_desc local[PHOS_MAX_CLOSURES];
-    const phos_closure_desc *closures = material_eval(s, sf, local, NULL);
+    const phos_closure_desc *closures = material_eval(s, sf, local, NULL, NULL);
     for (uint32_t i = 0; i < m->closure_count; i++)
         if (closures[i].type == PHOS_CLOSURE_HOLDOUT)
             sum = v3_add(sum, v3_load(closures[i].weight));
@@ -473,7 +552,9 @@ int material_can_scatter_delta(const material *m)
         const phos_closure_desc *d = &m->closures[i];
         float r = clampf(d->roughness, 0.0f, 1.0f);
         float rt = d->transmission_roughness < 0.0f ? r : d->transmission_roughness;
-        int sharp = r * r < BSDF_SHARP_ALPHA, sharp_refraction = rt * rt < BSDF_SHARP_ALPHA;
+        /* Anisotropic: sharp when √(αx αy) is (bsdf.c). */
+        float ry = desc_anisotropic(d) ? d->roughness_y : r;
+        int sharp = r * ry < BSDF_SHARP_ALPHA, sharp_refraction = rt * rt < BSDF_SHARP_ALPHA;
         int index_matched = fabsf(d->ior - 1.0f) < BSDF_INDEX_MATCHED;
         switch (d->type) {
         case PHOS_CLOSURE_REFLECTION:

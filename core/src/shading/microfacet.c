@@ -1,33 +1,48 @@
 /*
- * microfacet.c — isotropic GGX: D, Smith Λ/G1/G, visible-normal sampling
- * and the half-vector Jacobians. See microfacet.h for the references.
+ * microfacet.c — GGX, isotropic and anisotropic, and Beckmann: D, Smith Λ/G1/G,
+ * visible-normal sampling and the half-vector Jacobians. See microfacet.h
+ * for the references. The anisotropic forms (roughness αx along the
+ * frame's x axis, αy along y) reduce to the isotropic ones at αx = αy; the
+ * isotropic functions call them so.
  *
  * All directions are unit vectors in the local shading frame (z = normal).
  * Angles never appear explicitly: tan²θ = (x² + y²) / z² on unit vectors.
  */
 #include "shading/microfacet.h"
 
-/* D(h) = α² / (π (α² cos²θh + sin²θh)²) — Walter 2007 eq. 33 rewritten
- * without tan so that it stays finite at θh = 0 for tiny α. Units 1/sr. */
-float ggx_D(vec3 h, float alpha)
+/* D(h) = 1 / (π αx αy (hx²/αx² + hy²/αy² + hz²)²) (Heitz 2014 eq. 85 on
+ * unit vectors), written as αx³αy³ / (π (αy² hx² + αx² hy² + αx²αy² hz²)²)
+ * so that it stays finite for tiny α; at αx = αy = α it is Walter 2007
+ * eq. 33, α² / (π (sin²θh + α² cos²θh)²). Units 1/sr. */
+float ggx_D_aniso(vec3 h, float ax, float ay)
 {
     if (h.z <= 0.0f)
         return 0.0f;
-    float a2 = alpha * alpha;
-    float sin2 = h.x * h.x + h.y * h.y;
-    float denom = sin2 + a2 * h.z * h.z;
+    float axy = ax * ay;
+    float denom = ay * ay * h.x * h.x + ax * ax * h.y * h.y + axy * axy * h.z * h.z;
     if (denom <= 0.0f)
         return 0.0f;
-    return a2 / (PHOS_PI * denom * denom);
+    return axy * axy * axy / (PHOS_PI * denom * denom);
 }
 
-/* Λ(w) = (√(1 + α² tan²θ) − 1) / 2 (Heitz 2014 eq. 72), written as
- * α²tan²θ / (2 (√(1 + α² tan²θ) + 1)) to avoid cancellation near θ = 0. */
-float ggx_lambda(vec3 w, float alpha)
+float ggx_D(vec3 h, float alpha)
+{
+    return ggx_D_aniso(h, alpha, alpha);
+}
+
+/* Λ(w) = (√(1 + a²) − 1) / 2 with a² = (αx² wx² + αy² wy²) / wz², the
+ * roughness projected on w's azimuth times tan²θ (Heitz 2014 eq. 72, 86),
+ * written as a² / (2 (√(1 + a²) + 1)) to avoid cancellation near θ = 0. */
+float ggx_lambda_aniso(vec3 w, float ax, float ay)
 {
     float z2 = fmaxf(w.z * w.z, 1e-20f);
-    float a2_tan2 = alpha * alpha * (w.x * w.x + w.y * w.y) / z2;
+    float a2_tan2 = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / z2;
     return 0.5f * a2_tan2 / (sqrtf(1.0f + a2_tan2) + 1.0f);
+}
+
+float ggx_lambda(vec3 w, float alpha)
+{
+    return ggx_lambda_aniso(w, alpha, alpha);
 }
 
 /* G1 = 1 / (1 + Λ) = 2 / (1 + √(1 + α² tan²θ)) (Walter 2007 eq. 34). */
@@ -38,25 +53,36 @@ float ggx_G1(vec3 w, float alpha)
 
 /* G = G1(wo) G1(wi), masking and shadowing treated as uncorrelated
  * (Heitz 2014 eq. 98; Walter 2007 eq. 23). */
+float ggx_G_separable_aniso(vec3 wo, vec3 wi, float ax, float ay)
+{
+    return 1.0f / ((1.0f + ggx_lambda_aniso(wo, ax, ay)) * (1.0f + ggx_lambda_aniso(wi, ax, ay)));
+}
+
 float ggx_G_separable(vec3 wo, vec3 wi, float alpha)
 {
-    return ggx_G1(wo, alpha) * ggx_G1(wi, alpha);
+    return ggx_G_separable_aniso(wo, wi, alpha, alpha);
 }
 
 /* G = 1 / (1 + Λ(wo) + Λ(wi)), height-correlated (Heitz 2014 eq. 99). */
+float ggx_G_correlated_aniso(vec3 wo, vec3 wi, float ax, float ay)
+{
+    return 1.0f / (1.0f + ggx_lambda_aniso(wo, ax, ay) + ggx_lambda_aniso(wi, ax, ay));
+}
+
 float ggx_G_correlated(vec3 wo, vec3 wi, float alpha)
 {
-    return 1.0f / (1.0f + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
+    return ggx_G_correlated_aniso(wo, wi, alpha, alpha);
 }
 
 /* Heitz 2018, listing 1: stretch the view to the α = 1 configuration,
  * sample the projected area of the visible hemisphere (a disk whose lower
  * half is squashed by (1 + cosθ)/2), lift onto the hemisphere and unstretch
- * the resulting normal. Exact for GGX with the Smith G1 above. */
-vec3 ggx_sample_visible_normal(vec3 wo, float alpha, float2 u)
+ * the resulting normal. Exact for GGX with the Smith G1 above; the
+ * stretch by (αx, αy) makes it exact for anisotropic GGX too. */
+vec3 ggx_sample_visible_normal_aniso(vec3 wo, float ax, float ay, float2 u)
 {
     /* Section 3.2: the view in the hemisphere configuration. */
-    vec3 vh = v3_normalize(v3(alpha * wo.x, alpha * wo.y, wo.z));
+    vec3 vh = v3_normalize(v3(ax * wo.x, ay * wo.y, wo.z));
 
     /* Section 4.1: orthonormal basis around vh (any basis at normal incidence). */
     float len2 = vh.x * vh.x + vh.y * vh.y;
@@ -77,16 +103,26 @@ vec3 ggx_sample_visible_normal(vec3 wo, float alpha, float2 u)
     vec3 nh = v3_add(v3_add(v3_scale(t1, p1), v3_scale(t2, p2)), v3_scale(vh, pz));
 
     /* Section 3.4: back to the ellipsoid configuration. */
-    return v3_normalize(v3(alpha * nh.x, alpha * nh.y, fmaxf(0.0f, nh.z)));
+    return v3_normalize(v3(ax * nh.x, ay * nh.y, fmaxf(0.0f, nh.z)));
+}
+
+vec3 ggx_sample_visible_normal(vec3 wo, float alpha, float2 u)
+{
+    return ggx_sample_visible_normal_aniso(wo, alpha, alpha, u);
 }
 
 /* D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θo (Heitz 2014 eq. 16). */
-float ggx_visible_normal_pdf(vec3 wo, vec3 h, float alpha)
+float ggx_visible_normal_pdf_aniso(vec3 wo, vec3 h, float ax, float ay)
 {
     float cos_oh = v3_dot(wo, h);
     if (wo.z <= 0.0f || cos_oh <= 0.0f)
         return 0.0f;
-    return ggx_G1(wo, alpha) * cos_oh * ggx_D(h, alpha) / wo.z;
+    return cos_oh * ggx_D_aniso(h, ax, ay) / ((1.0f + ggx_lambda_aniso(wo, ax, ay)) * wo.z);
+}
+
+float ggx_visible_normal_pdf(vec3 wo, vec3 h, float alpha)
+{
+    return ggx_visible_normal_pdf_aniso(wo, h, alpha, alpha);
 }
 
 int microfacet_reflect_half_vector(vec3 wo, vec3 wi, vec3 *h)
@@ -134,4 +170,84 @@ float microfacet_refract_jacobian(vec3 wo, vec3 wi, vec3 h, float eta)
     if (!(denom > 0.0f))
         return 0.0f;
     return eta * eta * fabsf(cos_ih) / denom;
+}
+
+/* ------------------------------------------------------------ Beckmann */
+
+/* D(h) = exp(−(hx²/αx² + hy²/αy²)/hz²) / (π αx αy hz⁴) (Walter 2007 eq. 25,
+ * anisotropic as Heitz 2014 eq. 85). Units 1/sr. */
+float beckmann_D_aniso(vec3 h, float ax, float ay)
+{
+    if (h.z <= 0.0f)
+        return 0.0f;
+    float z2 = h.z * h.z;
+    float e = (h.x * h.x / (ax * ax) + h.y * h.y / (ay * ay)) / z2;
+    if (!(e < 80.0f)) /* exp(−80) is below any float that matters */
+        return 0.0f;
+    return expf(-e) / (PHOS_PI * ax * ay * z2 * z2);
+}
+
+/* Λ(w) by Walter 2007's rational approximation (eq. 27, as Cycles 3.x and
+ * 4.x use it): with a = 1/(α tanθ), α projected on w's azimuth,
+ * Λ = (1 − 1.259a + 0.396a²)/(3.535a + 2.181a²) for a < 1.6, else 0. */
+float beckmann_lambda_aniso(vec3 w, float ax, float ay)
+{
+    float z2 = fmaxf(w.z * w.z, 1e-20f);
+    float a2_tan2 = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / z2;
+    if (a2_tan2 < 0.39f) /* a ≥ 1.6 */
+        return 0.0f;
+    float a = 1.0f / sqrtf(a2_tan2);
+    return (1.0f - 1.259f * a + 0.396f * a * a) / (3.535f * a + 2.181f * a * a);
+}
+
+/* The slopes (−hx/hz, −hy/hz) of Beckmann microfacets are Gaussian with
+ * variances αx²/2, αy²/2 (Walter 2007 §5.2, eq. 28): a slope of radius
+ * √(−ln(1 − u1)) in the stretched space, azimuth 2π u2. */
+vec3 beckmann_sample_normal_aniso(float ax, float ay, float2 u)
+{
+    float r = sqrtf(-logf(fmaxf(1.0f - u.x, 1e-30f)));
+    float phi = 2.0f * PHOS_PI * u.y;
+    return v3_normalize(v3(-ax * r * cosf(phi), -ay * r * sinf(phi), 1.0f));
+}
+
+/* The density of beckmann_sample_normal_aniso: D(h)·cos θh (1/sr of h). */
+float beckmann_normal_pdf_aniso(vec3 h, float ax, float ay)
+{
+    return beckmann_D_aniso(h, ax, ay) * fmaxf(h.z, 0.0f);
+}
+
+/* ------------------------------------------------- Ashikhmin-Shirley */
+
+float ashikhmin_shirley_exponent(float alpha)
+{
+    float a = clampf(alpha, 1e-4f, 1.0f); /* Cycles' range for this closure */
+    return 2.0f / (a * a) - 2.0f;
+}
+
+/* p(h) = √((nx + 1)(ny + 1)) / (2π) · cos θh^((nx hx² + ny hy²)/(hx² + hy²))
+ * (Ashikhmin & Shirley 2000 eq. 6, 2): a normalised density of h. */
+float ashikhmin_shirley_h_pdf(vec3 h, float nx, float ny)
+{
+    if (h.z <= 0.0f)
+        return 0.0f;
+    float s2 = h.x * h.x + h.y * h.y;
+    float lobe = s2 > 0.0f ? powf(fminf(h.z, 1.0f), (nx * h.x * h.x + ny * h.y * h.y) / s2) : 1.0f;
+    return sqrtf((nx + 1.0f) * (ny + 1.0f)) * lobe / (2.0f * PHOS_PI);
+}
+
+/* Ashikhmin & Shirley 2000 eq. 9: in the first quadrant
+ * φ = atan(√((nx + 1)/(ny + 1)) tan(π u/2)), cos θ = v^(1/(nx cos²φ + ny sin²φ + 1));
+ * u chooses the quadrant, which mirrors φ. */
+vec3 ashikhmin_shirley_sample_h(float nx, float ny, float2 u)
+{
+    float scaled = 4.0f * u.x;
+    int quadrant = (int)fminf(scaled, 3.0f);
+    float uq = scaled - (float)quadrant;
+    float phi = atanf(sqrtf((nx + 1.0f) / (ny + 1.0f)) * tanf(0.5f * PHOS_PI * fminf(uq, 0.99999994f)));
+    float c = cosf(phi), sn = sinf(phi);
+    float cos_t = powf(u.y, 1.0f / (nx * c * c + ny * sn * sn + 1.0f));
+    float sin_t = safe_sqrtf(1.0f - cos_t * cos_t);
+    float sx = quadrant == 1 || quadrant == 2 ? -c : c;
+    float sy = quadrant >= 2 ? -sn : sn;
+    return v3(sin_t * sx, sin_t * sy, cos_t);
 }

@@ -1,7 +1,8 @@
 /*
- * microfacet.h — the isotropic GGX (Trowbridge-Reitz) microfacet model:
- * normal distribution, Smith masking, visible-normal sampling and the
- * change of variables from half vectors to scattered directions.
+ * microfacet.h — the GGX (Trowbridge-Reitz) microfacet model, isotropic
+ * (α) and anisotropic (αx along the local x axis, the closure's tangent;
+ * αy along y): normal distribution, Smith masking, visible-normal sampling
+ * and the change of variables from half vectors to scattered directions.
  *
  * Everything here works in the local shading frame (z = macro normal) on
  * unit vectors; the caller (bsdf.c) decides which lobes exist and applies
@@ -13,7 +14,8 @@
  *     the Jacobians (eq. 14, 16, 17, 33, 34).
  *   Heitz 2014, "Understanding the Masking-Shadowing Function in
  *     Microfacet-Based BRDFs" (JCGT 3(2)): Λ (eq. 72), separable and
- *     height-correlated G (eq. 98, 99), visible normals D_wo (eq. 16).
+ *     height-correlated G (eq. 98, 99), visible normals D_wo (eq. 16),
+ *     anisotropic D and Λ (eq. 85, 86).
  *   Heitz 2018, "Sampling the GGX Distribution of Visible Normals"
  *     (JCGT 7(4)): the exact sampler of D_wo.
  */
@@ -46,6 +48,32 @@ vec3 ggx_sample_visible_normal(vec3 wo, float alpha, float2 u);
 
 /* The density D_wo(h) of ggx_sample_visible_normal (1/sr of h). */
 float ggx_visible_normal_pdf(vec3 wo, vec3 h, float alpha);
+
+/* The anisotropic forms of the above: D, Λ, G and the visible normals
+ * with roughness ax along x and ay along y; equal to them at ax = ay. */
+float ggx_D_aniso(vec3 h, float ax, float ay);
+float ggx_lambda_aniso(vec3 w, float ax, float ay);
+float ggx_G_separable_aniso(vec3 wo, vec3 wi, float ax, float ay);
+float ggx_G_correlated_aniso(vec3 wo, vec3 wi, float ax, float ay);
+vec3 ggx_sample_visible_normal_aniso(vec3 wo, float ax, float ay, float2 u);
+float ggx_visible_normal_pdf_aniso(vec3 wo, vec3 h, float ax, float ay);
+
+/* Beckmann (Walter 2007 eq. 25, 27, 28), anisotropic as GGX above: D; Λ
+ * by Walter's rational approximation (as Cycles); a sampler of D(h)·cos θh
+ * through Gaussian slopes, and its density (1/sr of h). Smith G from Λ as
+ * for GGX: 1/((1 + Λo)(1 + Λi)) or 1/(1 + Λo + Λi). */
+float beckmann_D_aniso(vec3 h, float ax, float ay);
+float beckmann_lambda_aniso(vec3 w, float ax, float ay);
+vec3 beckmann_sample_normal_aniso(float ax, float ay, float2 u);
+float beckmann_normal_pdf_aniso(vec3 h, float ax, float ay);
+
+/* Ashikhmin-Shirley (2000), Cycles' ASHIKHMIN_SHIRLEY: the Phong exponent
+ * n = 2/α² − 2 of α (clamped to [1e-4, 1] as Cycles); the density p(h)
+ * of half vectors (eq. 2, 6) and its sampler (eq. 9), exponents nx along
+ * x and ny along y. */
+float ashikhmin_shirley_exponent(float alpha);
+float ashikhmin_shirley_h_pdf(vec3 h, float nx, float ny);
+vec3 ashikhmin_shirley_sample_h(float nx, float ny, float2 u);
 
 /* Half vector of a reflection pair, normalize(wo + wi); 0 if degenerate. */
 int microfacet_reflect_half_vector(vec3 wo, vec3 wi, vec3 *h);

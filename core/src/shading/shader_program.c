@@ -77,6 +77,7 @@ const shader_op_info shader_ops[PHOS_OP_COUNT] = {
                                   PHOS_VECTOR_TRANSFORM_COUNT},
     [PHOS_OP_NORMAL] = {"Normal", shader_op_normal, {W3}, {W3, W1}, 0, 0},
     [PHOS_OP_ATTRIBUTE] = {"Attribute", shader_op_attribute, {0}, {W3, W3, W1, W1}, 1, 3},
+    [PHOS_OP_TANGENT] = {"Tangent", shader_op_tangent, {0}, {W3}, 1, PHOS_TANGENT_COUNT},
 };
 
 /* Width of each closure field (phos.h, enum phos_closure_field). */
@@ -85,7 +86,8 @@ static const uint8_t field_width[PHOS_FIELD_COUNT] = {
     [PHOS_FIELD_TRANSMISSION_TINT] = 3, [PHOS_FIELD_TRANSMISSION_ROUGHNESS] = 1,
     [PHOS_FIELD_MULTISCATTER_FRESNEL] = 3, [PHOS_FIELD_SPECULAR_TINT] = 3, [PHOS_FIELD_THIN_FILM_THICKNESS] = 1,
     [PHOS_FIELD_THIN_FILM_IOR] = 1, [PHOS_FIELD_LAYER_WEIGHT] = 3, [PHOS_FIELD_LAYER_TINT] = 3,
-    [PHOS_FIELD_LAYER_TINT_WEIGHT] = 1, [PHOS_FIELD_NORMAL] = 3,
+    [PHOS_FIELD_LAYER_TINT_WEIGHT] = 1, [PHOS_FIELD_NORMAL] = 3, [PHOS_FIELD_ROUGHNESS_Y] = 1,
+    [PHOS_FIELD_TANGENT_ROTATION] = 1, [PHOS_FIELD_TANGENT] = 3,
 };
 
 uint32_t shader_field_width(uint32_t field) { return field < PHOS_FIELD_COUNT ? field_width[field] : 0; }
@@ -247,10 +249,12 @@ static void fold(shader_program *p, const struct phos_scene *s, float *r, uint8_
 }
 
 /* A binding whose value is known can be written into its closure once;
- * a normal is the BSDF's, not a closure field, and stays a binding. */
+ * a normal or tangent sets the closure's frame, not a field, and stays a
+ * binding. */
 static int bakeable(const phos_shader_binding *bd, const uint8_t *known)
 {
-    return bd->field != PHOS_FIELD_NORMAL && all_set(known, bd->reg, field_width[bd->field]);
+    return bd->field != PHOS_FIELD_NORMAL && bd->field != PHOS_FIELD_TANGENT &&
+           all_set(known, bd->reg, field_width[bd->field]);
 }
 
 /* Bindings whose registers are all known: their values, for the caller to
@@ -280,6 +284,8 @@ static void shader_program_needs(shader_program *p)
             p->needs |= SHADER_NEEDS_UV_TANGENTS;
         else if (ins->op == PHOS_OP_NORMAL_MAP)
             p->needs |= (ins->flags & 2) ? SHADER_NEEDS_ATTRIBUTES : SHADER_NEEDS_TANGENT;
+        else if (ins->op == PHOS_OP_TANGENT && ins->mode == PHOS_TANGENT_UV_MAP)
+            p->needs |= SHADER_NEEDS_TANGENT;
         else if (ins->op == PHOS_OP_TEXTURE_COORDINATE && ins->mode == 1)
             p->needs |= SHADER_NEEDS_WINDOW;
         else if (ins->op == PHOS_OP_ATTRIBUTE)

@@ -207,6 +207,7 @@ void shader_op_tex_gradient(const phos_shader_instruction *ins, shader_context *
 void shader_op_texture_coordinate(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_geometry(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_object_info(const phos_shader_instruction *ins, shader_context *ctx);
+void shader_op_tangent(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_fresnel(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_layer_weight(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_light_path(const phos_shader_instruction *ins, shader_context *ctx);

@@ -1,6 +1,6 @@
 /*
  * input.c — the nodes that read the shading point: Texture Coordinate,
- * Geometry, Object Info, Fresnel, Layer Weight and Light Path, with
+ * Geometry, Object Info, Tangent, Fresnel, Layer Weight and Light Path, with
  * Cycles' definitions (Blender manual, "Input" nodes).
  */
 #include "shading/fresnel.h"
@@ -50,6 +50,32 @@ void shader_op_object_info(const phos_shader_instruction *ins, shader_context *c
     SHADER_OUT3(0, ctx->g->object_location);
     SHADER_OUT(1, ctx->g->object_random);
     SHADER_OUT(2, ctx->g->object_index);
+}
+
+/* The Tangent node (and Geometry's Tangent, radial about Z), as Cycles
+ * defines it: radial about an object axis through the centre of the
+ * texture space, c = generated − ½ turned a quarter about the axis (about
+ * Z: (−c.y, c.x, 0)), to world space as a normal is; or the UV map's
+ * MikkTSpace tangent (0 without one); then made perpendicular to the
+ * shading normal, N × normalize(T × N). */
+void shader_op_tangent(const phos_shader_instruction *ins, shader_context *ctx)
+{
+    const shader_globals *g = ctx->g;
+    vec3 t;
+    if (ins->mode == PHOS_TANGENT_UV_MAP) {
+        t = g->tangent;
+    } else {
+        vec3 c = v3_sub(g->generated, v3s(0.5f));
+        t = ins->mode == PHOS_TANGENT_RADIAL_X ? v3(0.0f, -c.z, c.y)
+            : ins->mode == PHOS_TANGENT_RADIAL_Y ? v3(-c.z, 0.0f, c.x)
+                                                 : v3(-c.y, c.x, 0.0f);
+        const float *m = g->normal_to_world;
+        if (m)
+            t = v3(m[0] * t.x + m[1] * t.y + m[2] * t.z, m[3] * t.x + m[4] * t.y + m[5] * t.z,
+                   m[6] * t.x + m[7] * t.y + m[8] * t.z);
+    }
+    vec3 across = v3_cross(t, g->N);
+    SHADER_OUT3(0, v3_length2(across) > 0.0f ? v3_cross(g->N, v3_normalize(across)) : v3s(0.0f));
 }
 
 /* The dielectric Fresnel reflectance of IOR η for the view direction about
