@@ -1312,6 +1312,46 @@ static void test_chi2_law(void)
     CHECK_REL(chi2_survival(2.0, 2), exp(-1.0), 1e-9); /* dof 2: e^(−x/2) */
 }
 
+/* A diffuse closure on a normal bent away from the surface's (a Bump) is
+ * darkened toward the terminator by the bump shadowing term (Chiang et
+ * al. 2019, as Cycles): with n0 the surface's normal, n the closure's and
+ * g = (n0·wi) / ((n·wi)(n0·n)), the value is Lambert's times 1 for g ≥ 1,
+ * 0 for g < 0, and −g³ + g² + g between; the pdf is the lobe's own. A
+ * closure on the surface's normal, or a glossy one, is not darkened. */
+static void test_bump_shadowing(void)
+{
+    const vec3 n0 = v3(0.0f, 0.0f, 1.0f), n = v3_normalize(v3(0.6f, 0.0f, 1.0f));
+    closure diffuse = weighted(make_closure(PHOS_CLOSURE_DIFFUSE, 0.0f, 1.0f), 1.0f);
+    vec3 cn[1] = {n};
+    bsdf bent, plain;
+    make_bsdf_framed(&bent, &diffuse, cn, 1, n0, n0);
+    make_bsdf(&plain, &diffuse, 1, n, n0); /* the same lobe with n as the surface's own normal */
+    const vec3 wo = v3(0.0f, 0.0f, 1.0f);
+    const float angles[] = {-80.0f, -60.0f, -20.0f, 10.0f, 40.0f, 75.0f, 85.0f};
+    int shadowed = 0;
+    for (size_t i = 0; i < sizeof(angles) / sizeof(angles[0]); i++) {
+        float a = angles[i] * (float)(M_PI / 180.0);
+        vec3 wi = v3(sinf(a), 0.0f, cosf(a));
+        float p_bent, p_plain;
+        vec3 f_bent = bsdf_eval(&bent, wo, wi, &p_bent), f_plain = bsdf_eval(&plain, wo, wi, &p_plain);
+        float g = v3_dot(n0, wi) / (v3_dot(n, wi) * v3_dot(n0, n));
+        float term = g >= 1.0f ? 1.0f : g < 0.0f ? 0.0f : -g * g * g + g * g + g;
+        CHECK_MSG(fabsf(f_bent.x - term * f_plain.x) <= 1e-6f + 1e-5f * f_plain.x,
+                  "wi at %g°: %g, expected %g × %g", (double)angles[i], (double)f_bent.x, (double)term,
+                  (double)f_plain.x);
+        CHECK_MSG(fabsf(p_bent - p_plain) <= 1e-6f + 1e-5f * p_plain, "pdf at %g°", (double)angles[i]);
+        shadowed += term < 1.0f && f_plain.x > 0.0f;
+    }
+    CHECK_MSG(shadowed >= 2, "only %d directions test the masking", shadowed);
+    /* A glossy closure on the bent normal keeps its value. */
+    closure glossy = weighted(make_closure(PHOS_CLOSURE_REFLECTION, 0.5f, 1.0f), 1.0f);
+    make_bsdf_framed(&bent, &glossy, cn, 1, n0, n0);
+    make_bsdf(&plain, &glossy, 1, n, n0);
+    vec3 wi = v3_normalize(v3(-0.9f, 0.0f, 0.3f));
+    vec3 wo2 = v3_normalize(v3(0.2f, 0.0f, 1.0f));
+    CHECK(fabsf(bsdf_eval(&bent, wo2, wi, NULL).x - bsdf_eval(&plain, wo2, wi, NULL).x) <= 1e-6f);
+}
+
 int main(void)
 {
     test_chi2_law();
@@ -1323,6 +1363,7 @@ int main(void)
     test_adjoint_albedo();
     test_light_leaks();
     test_closure_frames();
+    test_bump_shadowing();
     test_chi2_all();
     return test_summary("test_bsdf");
 }

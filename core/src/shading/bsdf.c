@@ -788,8 +788,36 @@ static query make_query(const bsdf *b, uint32_t f, vec3 wo, vec3 wi)
     return q;
 }
 
+/* Whether a closure is one of those a bumped normal darkens toward the
+ * terminator: the diffuse-like ones (Cycles' CLOSURE_IS_BSDF_DIFFUSE,
+ * which includes translucency). */
+static int closure_bump_shadowed(const closure *c)
+{
+    return closure_is_diffuse(c) || c->type == PHOS_CLOSURE_TRANSLUCENT;
+}
+
+/* The bump shadowing term of a diffuse closure whose normal n was bent
+ * away from the surface's smooth normal n0 (Chiang, Li & Burley 2019,
+ * "Taming the Shadow Terminator", as Cycles applies it): with
+ * g = (n0·wi) / ((n·wi)(n0·n)), light with g ≥ 1 is unshadowed, g < 0 is
+ * black, and between the masking −g³ + g² + g rounds off the terminator
+ * the bent normal would otherwise push past the geometry. The sign of g
+ * does not depend on which side wi is (a translucent closure's). */
+static float bump_shadowing(vec3 n0, vec3 n, vec3 wi)
+{
+    float denom = v3_dot(n, wi) * v3_dot(n0, n);
+    float g = denom != 0.0f ? v3_dot(n0, wi) / denom : 0.0f;
+    if (g >= 1.0f)
+        return 1.0f;
+    if (!(g >= 0.0f))
+        return 0.0f;
+    float g2 = g * g;
+    return -g2 * g + g2 + g;
+}
+
 /* Σ f·|cos θi| over the closures, each in its own frame and scaled by the
- * layers over it, and Σ (sample_weight_k / sum) pdf_k. */
+ * layers over it (and, bumped diffuse ones, by their bump shadowing), and
+ * Σ (sample_weight_k / sum) pdf_k: the densities are the lobes' own. */
 static vec3 eval_mixture(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
 {
     vec3 value = v3s(0.0f);
@@ -805,7 +833,10 @@ static vec3 eval_mixture(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
         layer_scales(b, mu, scales);
     for (uint32_t k = 0; k < b->count; k++) {
         float pk;
-        vec3 v = closure_eval(&b->closures[k], &q[b->closures[k].frame], &pk);
+        const closure *c = &b->closures[k];
+        vec3 v = closure_eval(c, &q[c->frame], &pk);
+        if (c->frame != 0 && closure_bump_shadowed(c))
+            v = v3_scale(v, bump_shadowing(b->frames[0].n, b->frames[c->frame].n, wi));
         if (b->closures[k].under_layers)
             v = v3_mul(v, scale_under(scales, b->closures[k].under_layers));
         value = v3_add(value, v);
