@@ -278,7 +278,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
             emission_only = 1;
 
         if (p.depth >= CAMERA_PATH_ROULETTE_START_DEPTH) {
-            float q = fminf(v3_max_component(p.beta), 1.0f);
+            float q = minf(v3_max_component(p.beta), 1.0f);
             if (sampler_1d(smp, dim_bounce(v_index, DIM_ROULETTE)) >= q)
                 break;
             p.beta = v3_scale(p.beta, 1.0f / q);

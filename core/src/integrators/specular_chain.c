@@ -55,7 +55,7 @@ static int stops_here(const specular_chain *c, specular_chain_end *end, float *u
     if (!(p_delta > 0.0f))
         return 1;
     if (*u_pick < p_delta) {
-        *u_pick = fminf(*u_pick / p_delta, 0x1.fffffep-1f);
+        *u_pick = minf(*u_pick / p_delta, 0x1.fffffep-1f);
         *weight = v3s(1.0f / p_delta);
         return 0;
     }

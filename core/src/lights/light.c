@@ -51,7 +51,7 @@ static float spot_solid_angle(const light *l)
 
 float light_power(const light *l, float scene_radius)
 {
-    float c = fmaxf(v3_average(l->color), 0.0f);
+    float c = maxf(v3_average(l->color), 0.0f);
     float disk = PHOS_PI * scene_radius * scene_radius; /* m², cross-section of the scene */
     switch (l->kind) {
     case LIGHT_POINT:
@@ -62,7 +62,7 @@ float light_power(const light *l, float scene_radius)
         return PHOS_PI * l->area * c;                    /* Φ = πAL, one-sided */
     case LIGHT_SUN: /* Φ = E·πR², or L·Ω·πR² with an angle (light_sample_emission) */
         return l->sun_cos_half < 1.0f
-                   ? disk * fmaxf(v3_average(l->sun_radiance), 0.0f) * 2.0f * PHOS_PI * (1.0f - l->sun_cos_half)
+                   ? disk * maxf(v3_average(l->sun_radiance), 0.0f) * 2.0f * PHOS_PI * (1.0f - l->sun_cos_half)
                    : disk * c;
     case LIGHT_TRIANGLE:
         return 2.0f * PHOS_PI * l->area * c;             /* both faces emit */
@@ -179,7 +179,7 @@ phos_status light_table_build(scene *s)
     memset(t, 0, sizeof(*t));
     t->world = -1;
     t->center = v3_scale(v3_add(s->bounds_min, s->bounds_max), 0.5f);
-    t->radius = fmaxf(0.5f * v3_length(v3_sub(s->bounds_max, s->bounds_min)), 1e-3f);
+    t->radius = maxf(0.5f * v3_length(v3_sub(s->bounds_max, s->bounds_min)), 1e-3f);
 
     for (uint32_t i = 0; i < s->light_desc_count; i++) {
         light l;
@@ -261,7 +261,7 @@ static int sample_point(const light *l, vec3 p, float2 u, light_sample *out)
         float disc = b * b - (d2 - r * r);
         float t = b - safe_sqrtf(disc);
         out->wi = wi;
-        out->distance = fmaxf(t, 0.0f);
+        out->distance = maxf(t, 0.0f);
         out->pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - cos_max));
         out->delta = 0;
         /* A sphere spot (Cycles 4) shapes its beam by the direction of each
@@ -397,7 +397,7 @@ float light_world_pdf(const light_context *c, vec3 wi)
 {
     if (!c || !world_samples_hemisphere(c))
         return PHOS_INV_4PI;
-    return fmaxf(v3_dot(wi, c->ns), 0.0f) * PHOS_INV_PI;
+    return maxf(v3_dot(wi, c->ns), 0.0f) * PHOS_INV_PI;
 }
 
 int light_sample_pick(const scene *s, const light_context *c, float u_pick, float2 u, light_sample *out)
@@ -486,7 +486,7 @@ int light_emit_toward(const scene *s, uint32_t index, vec3 d, float2 u, vec3 *or
     case LIGHT_AREA: {
         float c = v3_dot(d, l->direction);
         *origin = area_point(l, u);
-        *intensity = v3_scale(l->color, l->area * fmaxf(c, 0.0f)); /* L·A·cos, one-sided */
+        *intensity = v3_scale(l->color, l->area * maxf(c, 0.0f)); /* L·A·cos, one-sided */
         return c > 0.0f;
     }
     case LIGHT_TRIANGLE: {
@@ -515,7 +515,7 @@ static vec3 emission_direction(const light *l, float2 u, float *pdf)
         return warp_cone(l->direction, l->spot_cos_half, u);
     case LIGHT_AREA: {
         vec3 d = sample_cosine_about(l->direction, u);
-        *pdf = fmaxf(v3_dot(d, l->direction), 0.0f) * PHOS_INV_PI;
+        *pdf = maxf(v3_dot(d, l->direction), 0.0f) * PHOS_INV_PI;
         return d;
     }
     case LIGHT_TRIANGLE: {
@@ -527,7 +527,7 @@ static vec3 emission_direction(const light *l, float2 u, float *pdf)
             u.x = 2.0f * u.x - 1.0f;
         }
         vec3 d = sample_cosine_about(ng, u);
-        *pdf = 0.5f * fmaxf(v3_dot(d, ng), 0.0f) * PHOS_INV_PI;
+        *pdf = 0.5f * maxf(v3_dot(d, ng), 0.0f) * PHOS_INV_PI;
         return d;
     }
     default:

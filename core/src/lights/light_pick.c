@@ -46,11 +46,11 @@ static float receiver_bound(const light_context *c, vec3 w, float sin_beta, floa
     if (c->no_normal)
         return 1.0f;
     float a = v3_dot(c->ng, w), b = v3_dot(c->ns, w);
-    float cos_theta = c->two_sided ? fmaxf(fabsf(a), fabsf(b)) : fmaxf(a, b);
+    float cos_theta = c->two_sided ? maxf(fabsf(a), fabsf(b)) : maxf(a, b);
     float bound = cone_cos_bound(clampf(cos_theta, -1.0f, 1.0f), sin_beta, cos_beta);
     if (bound <= -1e-3f)
         return 0.0f;
-    return fmaxf(bound, 1e-3f);
+    return maxf(bound, 1e-3f);
 }
 
 /* Spot attenuation toward p, or an upper bound of it for a spot with a
@@ -72,10 +72,10 @@ static float group_importance(const light_table *t, const light_group *g, const 
 {
     const light *l = &t->lights[g->first];
     if (l->kind == LIGHT_WORLD)
-        return PHOS_PI * fmaxf(v3_average(l->color), 0.0f); /* E = πL from a whole hemisphere */
+        return PHOS_PI * maxf(v3_average(l->color), 0.0f); /* E = πL from a whole hemisphere */
     if (l->kind == LIGHT_SUN) {
         float cos_a = l->sun_cos_half, sin_a = safe_sqrtf(1.0f - cos_a * cos_a);
-        return fmaxf(v3_average(l->color), 0.0f) * receiver_bound(c, v3_neg(l->direction), sin_a, cos_a);
+        return maxf(v3_average(l->color), 0.0f) * receiver_bound(c, v3_neg(l->direction), sin_a, cos_a);
     }
     vec3 v = v3_sub(g->center, c->p);
     float d2 = v3_length2(v), r2 = g->radius * g->radius;
@@ -86,19 +86,19 @@ static float group_importance(const light_table *t, const light_group *g, const 
     float receiver = inside ? 1.0f : receiver_bound(c, w, sin_b, cos_b);
     if (!(receiver > 0.0f))
         return 0.0f;
-    float inv_d2 = 1.0f / fmaxf(d2, fmaxf(r2, FLT_MIN));
+    float inv_d2 = 1.0f / maxf(d2, maxf(r2, FLT_MIN));
     switch (l->kind) {
     case LIGHT_POINT:
     case LIGHT_SPOT: { /* E = I·a/d² */
         float a = l->kind == LIGHT_SPOT ? spot_bound(l, v3_neg(w), sin_b, cos_b, inside) : 1.0f;
-        return fmaxf(v3_average(l->color), 0.0f) * a * receiver * inv_d2;
+        return maxf(v3_average(l->color), 0.0f) * a * receiver * inv_d2;
     }
     case LIGHT_AREA: { /* E = L·A·cos θ_l·cos θ/d², one-sided */
         float h = v3_dot(v3_sub(c->p, l->position), l->direction);
         if (!(h > 0.0f))
             return 0.0f; /* behind the emitting face */
         float emitter = inside ? 1.0f : cone_cos_bound(h / d, sin_b, cos_b);
-        return fmaxf(v3_average(l->color), 0.0f) * l->area * fmaxf(emitter, 1e-3f) * receiver * inv_d2;
+        return maxf(v3_average(l->color), 0.0f) * l->area * maxf(emitter, 1e-3f) * receiver * inv_d2;
     }
     default: /* emissive triangles, both faces: L·A = Φ/(2π) */
         return g->power * (0.5f * PHOS_INV_PI) * receiver * inv_d2;
@@ -168,7 +168,7 @@ uint32_t light_pick(const light_table *t, const light_context *c, float u, float
         }
         while (!(w[g] > 0.0f)) /* u rounded past the last nonzero group */
             g--;
-        u = fminf(fmaxf((float)((x - below) / w[g]), 0.0f), 0x1.fffffep-1f);
+        u = minf(maxf((float)((x - below) / w[g]), 0.0f), 0x1.fffffep-1f);
         p_group = (float)(w[g] / total);
     }
     const light_group *grp = &t->groups[g];

@@ -206,11 +206,11 @@ static float microfacet_reflection(const query *q, const mf_lobe *m, vec3 *h, fl
     if (m->ashikhmin) {
         /* Ashikhmin & Shirley 2000 eq. 4 without Fresnel (Cycles' Glossy):
          * f·cos θi = cos θi · p(h) / (4 (h·wo) max(cos θo, cos θi)). */
-        float ph = ashikhmin_shirley_h_pdf(*h, m->nx, m->ny), cos_oh = fmaxf(v3_dot(q->wo, *h), 1e-6f);
+        float ph = ashikhmin_shirley_h_pdf(*h, m->nx, m->ny), cos_oh = maxf(v3_dot(q->wo, *h), 1e-6f);
         if (!(ph > 0.0f))
             return 0.0f;
         *pdf = ph * microfacet_reflect_jacobian(q->wo, *h);
-        return q->wi.z * ph / (4.0f * cos_oh * fmaxf(fmaxf(q->wo.z, q->wi.z), 1e-6f));
+        return q->wi.z * ph / (4.0f * cos_oh * maxf(maxf(q->wo.z, q->wi.z), 1e-6f));
     }
     float D = lobe_D(m, *h);
     if (!(D > 0.0f))
@@ -319,7 +319,7 @@ static vec3 layer_scale(const bsdf_layer *l, float mu)
     vec3 scale = v3s(clampf(1.0f - over, 0.0f, 1.0f));
     if (l->type != PHOS_CLOSURE_SHEEN && !(l->tint.x == 1.0f && l->tint.y == 1.0f && l->tint.z == 1.0f)) {
         float cos_t = safe_sqrtf(1.0f - (1.0f - mu * mu) / (l->eta * l->eta));
-        float depth = 1.0f / fmaxf(cos_t, 1e-4f);
+        float depth = 1.0f / maxf(cos_t, 1e-4f);
         vec3 absorbed = v3(powf(l->tint.x, depth), powf(l->tint.y, depth), powf(l->tint.z, depth));
         scale = v3_mul(scale, v3_add(v3s(1.0f - l->tint_weight), v3_scale(absorbed, l->tint_weight)));
     }
@@ -505,8 +505,8 @@ static vec3 eval_oren_nayar(const closure *c, const query *q, float *pdf)
     float mo = q->wo.z, mi = q->wi.z;
     float t = v3_dot(q->wo, q->wi) - mo * mi;
     if (t > 0.0f)
-        t /= fmaxf(mo, mi);
-    float E_o = A * PHOS_PI + B * oren_nayar_G(fmaxf(mo, 0.0f)), E_i = A * PHOS_PI + B * oren_nayar_G(mi);
+        t /= maxf(mo, mi);
+    float E_o = A * PHOS_PI + B * oren_nayar_G(maxf(mo, 0.0f)), E_i = A * PHOS_PI + B * oren_nayar_G(mi);
     vec3 f = v3s(A + B * t);
     if (sigma > 0.0f) { /* roughness 0 is Lambert: nothing is missing */
         float E_avg = A * PHOS_PI + B * (2.0f * PHOS_PI - 5.6f) / 3.0f;
@@ -559,7 +559,7 @@ static vec3 eval_refraction(const closure *c, const query *q, float *pdf)
 static float macro_reflect_pick(const closure *c, float F)
 {
     if (c->adjoint && !closure_is_sharp(c) && !refraction_is_sharp(c) && !closure_index_matched(c))
-        return fminf(F, BSDF_ADJOINT_MAX_REFLECT);
+        return minf(F, BSDF_ADJOINT_MAX_REFLECT);
     return F;
 }
 
@@ -583,7 +583,7 @@ static vec3 eval_glass(const closure *c, const query *q, float *pdf)
         float cos_oh = v3_dot(q->wo, h);
         vec3 R = glass_reflectance(c, cos_oh);
         vec3 T = glass_transmittance(c, cos_oh, R);
-        float pick_r = v3_average(R) / fmaxf(v3_average(R) + v3_average(T), 1e-12f);
+        float pick_r = v3_average(R) / maxf(v3_average(R) + v3_average(T), 1e-12f);
         *pdf *= reflect ? pick_r : 1.0f - pick_r;
         vec3 colour = reflect ? v3_mul(c->weight, R) : v3_mul(v3_mul(c->weight, c->transmission_tint), T);
         return v3_scale(v3_mul(colour, multiscatter_scale(c, q->wo.z)), v);
@@ -688,7 +688,7 @@ static int sample_glass(const closure *c, vec3 wo, float u_lobe, float2 u, lobe_
         if (cos_oh <= 0.0f)
             return 0;
         vec3 R = glass_reflectance(c, cos_oh), T = glass_transmittance(c, cos_oh, R);
-        float pick_r = v3_average(R) / fmaxf(v3_average(R) + v3_average(T), 1e-12f);
+        float pick_r = v3_average(R) / maxf(v3_average(R) + v3_average(T), 1e-12f);
         if (closure_is_sharp(c)) {
             if (u_lobe < pick_r)
                 return sample_delta(s, v3(-wo.x, -wo.y, wo.z), 0, v3_mul(c->weight, R), pick_r);
@@ -983,16 +983,16 @@ int bsdf_add_closure(bsdf *b, const closure *c)
     if (!v3_is_finite(k.weight))
         return 1;
     /* Clamp parameters into their domains as Cycles' setup functions do. */
-    k.alpha = k.alpha > 0.0f ? fminf(k.alpha, 1.0f) : 0.0f;
-    k.alpha_y = closure_may_be_anisotropic(&k) && k.alpha_y > 0.0f ? fminf(k.alpha_y, 1.0f) : k.alpha;
+    k.alpha = k.alpha > 0.0f ? minf(k.alpha, 1.0f) : 0.0f;
+    k.alpha_y = closure_may_be_anisotropic(&k) && k.alpha_y > 0.0f ? minf(k.alpha_y, 1.0f) : k.alpha;
     /* Cycles reads the albedo tables of an anisotropic lobe (Multiscatter
      * GGX, layering) at the roughness (αx αy)^¼ (bsdf_microfacet.h). */
     if (k.alpha_y != k.alpha)
         k.roughness = sqrtf(sqrtf(k.alpha * k.alpha_y));
-    k.alpha_t = k.alpha_t > 0.0f ? fminf(k.alpha_t, 1.0f) : 0.0f;
+    k.alpha_t = k.alpha_t > 0.0f ? minf(k.alpha_t, 1.0f) : 0.0f;
     k.transmission_tint = v3_max(k.transmission_tint, v3s(0.0f));
-    k.roughness = k.roughness > 0.0f ? fminf(k.roughness, 1.0f) : 0.0f;
-    k.eta = (k.eta > 0.0f && isfinite(k.eta)) ? fmaxf(k.eta, 1e-5f) : 1.0f;
+    k.roughness = k.roughness > 0.0f ? minf(k.roughness, 1.0f) : 0.0f;
+    k.eta = (k.eta > 0.0f && isfinite(k.eta)) ? maxf(k.eta, 1e-5f) : 1.0f;
     k.f0 = v3_min(v3_max(k.f0, v3s(0.0f)), v3s(1.0f));
     k.specular_tint = v3_min(v3_max(k.specular_tint, v3s(0.0f)), v3s(1.0f));
     k.fss = v3_min(v3_max(k.fss, v3s(0.0f)), v3s(1.0f));

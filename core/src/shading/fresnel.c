@@ -130,7 +130,7 @@ vec3 fresnel_thin_film(float cos_theta, float film_ior, float substrate_eta, flo
     for (int p = 0; p < 2; p++) {
         float R12 = top.R[p], R23 = bottom.R[p];
         float T121 = 1.0f - R12, R123 = R12 * R23, r123 = sqrtf(R123);
-        float Rs = T121 * T121 * R23 / fmaxf(1.0f - R123, 1e-7f);
+        float Rs = T121 * T121 * R23 / maxf(1.0f - R123, 1e-7f);
         float phi = PHOS_PI + top.phase[p] + bottom.phase[p];
         vec3 sum = v3s(R12 + Rs);
         float Cm = Rs - T121;

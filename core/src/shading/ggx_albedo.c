@@ -75,7 +75,7 @@ float ggx_glass_albedo_average(float roughness, float eta)
 
 float ggx_fresnel_blend_average(float mu, float roughness, float eta)
 {
-    return lerp3(ggx_albedo_data.blend, mu, roughness, z_of_eta(fmaxf(eta, 1.0f)));
+    return lerp3(ggx_albedo_data.blend, mu, roughness, z_of_eta(maxf(eta, 1.0f)));
 }
 
 vec3 ggx_multiscatter_scale(float E, float E_avg, vec3 F_ss)

@@ -102,21 +102,21 @@ static void closure_set_field(phos_closure_desc *c, uint32_t field, const float 
     switch (field) {
     case PHOS_FIELD_WEIGHT:
         for (int k = 0; k < 3; k++)
-            c->weight[k] = fmaxf(rgb[k], 0.0f);
+            c->weight[k] = maxf(rgb[k], 0.0f);
         break;
     case PHOS_FIELD_ROUGHNESS:
         c->roughness = clampf(x, 0.0f, 1.0f);
         break;
     case PHOS_FIELD_IOR:
-        c->ior = fmaxf(x, 1e-5f);
+        c->ior = maxf(x, 1e-5f);
         break;
     case PHOS_FIELD_SPECULAR_COLOR:
         for (int k = 0; k < 3; k++)
-            c->specular_color[k] = fmaxf(rgb[k], 0.0f);
+            c->specular_color[k] = maxf(rgb[k], 0.0f);
         break;
     case PHOS_FIELD_TRANSMISSION_TINT:
         for (int k = 0; k < 3; k++)
-            c->transmission_tint[k] = fmaxf(rgb[k], 0.0f);
+            c->transmission_tint[k] = maxf(rgb[k], 0.0f);
         break;
     case PHOS_FIELD_TRANSMISSION_ROUGHNESS:
         c->transmission_roughness = clampf(x, 0.0f, 1.0f);
@@ -133,18 +133,18 @@ static void closure_set_field(phos_closure_desc *c, uint32_t field, const float 
         c->thin_film_thickness = clampf(x, 0.0f, 1e6f);
         break;
     case PHOS_FIELD_THIN_FILM_IOR:
-        c->thin_film_ior = fmaxf(x, 1e-5f);
+        c->thin_film_ior = maxf(x, 1e-5f);
         break;
     case PHOS_FIELD_LAYER_WEIGHT:
         for (int k = 0; k < 3; k++)
-            c->layer_weight[k] = fmaxf(rgb[k], 0.0f);
+            c->layer_weight[k] = maxf(rgb[k], 0.0f);
         break;
     case PHOS_FIELD_LAYER_TINT:
         for (int k = 0; k < 3; k++)
-            c->layer_tint[k] = fmaxf(rgb[k], 0.0f);
+            c->layer_tint[k] = maxf(rgb[k], 0.0f);
         break;
     case PHOS_FIELD_LAYER_TINT_WEIGHT:
-        c->layer_tint_weight = fmaxf(x, 0.0f);
+        c->layer_tint_weight = maxf(x, 0.0f);
         break;
     case PHOS_FIELD_ROUGHNESS_Y:
         c->roughness_y = clampf(x, 0.0f, 1.0f);

@@ -35,7 +35,7 @@ float ggx_D(vec3 h, float alpha)
  * written as a² / (2 (√(1 + a²) + 1)) to avoid cancellation near θ = 0. */
 float ggx_lambda_aniso(vec3 w, float ax, float ay)
 {
-    float z2 = fmaxf(w.z * w.z, 1e-20f);
+    float z2 = maxf(w.z * w.z, 1e-20f);
     float a2_tan2 = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / z2;
     return 0.5f * a2_tan2 / (sqrtf(1.0f + a2_tan2) + 1.0f);
 }
@@ -103,7 +103,7 @@ vec3 ggx_sample_visible_normal_aniso(vec3 wo, float ax, float ay, float2 u)
     vec3 nh = v3_add(v3_add(v3_scale(t1, p1), v3_scale(t2, p2)), v3_scale(vh, pz));
 
     /* Section 3.4: back to the ellipsoid configuration. */
-    return v3_normalize(v3(ax * nh.x, ay * nh.y, fmaxf(0.0f, nh.z)));
+    return v3_normalize(v3(ax * nh.x, ay * nh.y, maxf(0.0f, nh.z)));
 }
 
 vec3 ggx_sample_visible_normal(vec3 wo, float alpha, float2 u)
@@ -192,7 +192,7 @@ float beckmann_D_aniso(vec3 h, float ax, float ay)
  * Λ = (1 − 1.259a + 0.396a²)/(3.535a + 2.181a²) for a < 1.6, else 0. */
 float beckmann_lambda_aniso(vec3 w, float ax, float ay)
 {
-    float z2 = fmaxf(w.z * w.z, 1e-20f);
+    float z2 = maxf(w.z * w.z, 1e-20f);
     float a2_tan2 = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / z2;
     if (a2_tan2 < 0.39f) /* a ≥ 1.6 */
         return 0.0f;
@@ -205,7 +205,7 @@ float beckmann_lambda_aniso(vec3 w, float ax, float ay)
  * √(−ln(1 − u1)) in the stretched space, azimuth 2π u2. */
 vec3 beckmann_sample_normal_aniso(float ax, float ay, float2 u)
 {
-    float r = sqrtf(-logf(fmaxf(1.0f - u.x, 1e-30f)));
+    float r = sqrtf(-logf(maxf(1.0f - u.x, 1e-30f)));
     float phi = 2.0f * PHOS_PI * u.y;
     return v3_normalize(v3(-ax * r * cosf(phi), -ay * r * sinf(phi), 1.0f));
 }
@@ -213,7 +213,7 @@ vec3 beckmann_sample_normal_aniso(float ax, float ay, float2 u)
 /* The density of beckmann_sample_normal_aniso: D(h)·cos θh (1/sr of h). */
 float beckmann_normal_pdf_aniso(vec3 h, float ax, float ay)
 {
-    return beckmann_D_aniso(h, ax, ay) * fmaxf(h.z, 0.0f);
+    return beckmann_D_aniso(h, ax, ay) * maxf(h.z, 0.0f);
 }
 
 /* ------------------------------------------------- Ashikhmin-Shirley */
@@ -231,7 +231,7 @@ float ashikhmin_shirley_h_pdf(vec3 h, float nx, float ny)
     if (h.z <= 0.0f)
         return 0.0f;
     float s2 = h.x * h.x + h.y * h.y;
-    float lobe = s2 > 0.0f ? powf(fminf(h.z, 1.0f), (nx * h.x * h.x + ny * h.y * h.y) / s2) : 1.0f;
+    float lobe = s2 > 0.0f ? powf(minf(h.z, 1.0f), (nx * h.x * h.x + ny * h.y * h.y) / s2) : 1.0f;
     return sqrtf((nx + 1.0f) * (ny + 1.0f)) * lobe / (2.0f * PHOS_PI);
 }
 
@@ -241,9 +241,9 @@ float ashikhmin_shirley_h_pdf(vec3 h, float nx, float ny)
 vec3 ashikhmin_shirley_sample_h(float nx, float ny, float2 u)
 {
     float scaled = 4.0f * u.x;
-    int quadrant = (int)fminf(scaled, 3.0f);
+    int quadrant = (int)minf(scaled, 3.0f);
     float uq = scaled - (float)quadrant;
-    float phi = atanf(sqrtf((nx + 1.0f) / (ny + 1.0f)) * tanf(0.5f * PHOS_PI * fminf(uq, 0.99999994f)));
+    float phi = atanf(sqrtf((nx + 1.0f) / (ny + 1.0f)) * tanf(0.5f * PHOS_PI * minf(uq, 0.99999994f)));
     float c = cosf(phi), sn = sinf(phi);
     float cos_t = powf(u.y, 1.0f / (nx * c * c + ny * sn * sn + 1.0f));
     float sin_t = safe_sqrtf(1.0f - cos_t * cos_t);

@@ -23,7 +23,7 @@ typedef struct ltc {
 static ltc sheen_ltc(float mu, float roughness)
 {
     float x = clampf(mu, 0.0f, 1.0f) * (SHEEN_TABLE_SIZE - 1);
-    float y = clampf(fmaxf(roughness, SHEEN_MIN_ROUGHNESS), 0.0f, 1.0f) * (SHEEN_TABLE_SIZE - 1);
+    float y = clampf(maxf(roughness, SHEEN_MIN_ROUGHNESS), 0.0f, 1.0f) * (SHEEN_TABLE_SIZE - 1);
     int i = (int)x, j = (int)y;
     if (i > SHEEN_TABLE_SIZE - 2)
         i = SHEEN_TABLE_SIZE - 2;

@@ -39,20 +39,25 @@ static inline vec3 v3_normalize(vec3 a)
     float l = v3_length(a);
     return l > 0.0f ? v3_scale(a, 1.0f / l) : a;
 }
-static inline float v3_max_component(vec3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }
+/* fmaxf and fminf as comparisons the compiler keeps inline (one instruction
+ * and a NaN test instead of a library call): a NaN operand is ignored, as
+ * C99 F.9.9.2 defines them; only the sign of a zero result may differ. */
+static inline float maxf(float a, float b) { return (a > b || b != b) ? a : b; }
+static inline float minf(float a, float b) { return (a < b || b != b) ? a : b; }
+static inline float v3_max_component(vec3 a) { return maxf(a.x, maxf(a.y, a.z)); }
 static inline float v3_average(vec3 a) { return (a.x + a.y + a.z) * (1.0f / 3.0f); }
 static inline int v3_is_zero(vec3 a) { return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f; }
 static inline int v3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 static inline vec3 v3_div(vec3 a, vec3 b) { return v3(a.x / b.x, a.y / b.y, a.z / b.z); }
-static inline vec3 v3_min(vec3 a, vec3 b) { return v3(fminf(a.x, b.x), fminf(a.y, b.y), fminf(a.z, b.z)); }
-static inline vec3 v3_max(vec3 a, vec3 b) { return v3(fmaxf(a.x, b.x), fmaxf(a.y, b.y), fmaxf(a.z, b.z)); }
+static inline vec3 v3_min(vec3 a, vec3 b) { return v3(minf(a.x, b.x), minf(a.y, b.y), minf(a.z, b.z)); }
+static inline vec3 v3_max(vec3 a, vec3 b) { return v3(maxf(a.x, b.x), maxf(a.y, b.y), maxf(a.z, b.z)); }
 static inline float v3_component(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
 /* Rec. 709 luminance of linear RGB. */
 static inline float rgb_luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 static inline float clampf(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
 static inline float sqr(float x) { return x * x; }
-static inline float safe_sqrtf(float x) { return sqrtf(fmaxf(x, 0.0f)); }
+static inline float safe_sqrtf(float x) { return sqrtf(maxf(x, 0.0f)); }
 
 /* Orthonormal frame around n (Duff et al. 2017, "Building an Orthonormal
  * Basis, Revisited", JCGT 6(1)): branchless and continuous except at one
