@@ -22,7 +22,9 @@
  * the eight corners of a noise cell in one vector, and for the baseline;
  * the loader picks one by the CPU (GCC's function multi-versioning, an
  * ifunc). Not under the sanitizers, whose run-time starts after ifuncs
- * resolve, nor with other compilers. */
+ * resolve, nor with other compilers. GCC 14 gives an ifunc and its
+ * resolver default visibility whatever -fvisibility says: the library's
+ * version script (core/phos.map) keeps them unexported. */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__) && \
     !defined(__SANITIZE_THREAD__)
 #define NODE_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))

@@ -513,7 +513,7 @@ NODE_INLINE void cell_jitter(const voronoi_params *v, const voronoi_cell *c, con
             pcg4(k, h);
         return;
     }
-    float k[4];
+    float k[4] = {0.0f, 0.0f, 0.0f, 0.0f}; /* dims of them read; all set for the compiler's flow check */
     for (int i = 0; i < v->dims; i++)
         k[i] = c->cell[i] + (float)off[i];
     if (v->dims == 1) {
