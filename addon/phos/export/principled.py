@@ -90,16 +90,19 @@ def principled_v2(walker, node):
     if prog.may_exceed(w.value(node, ('Transmission Dispersion Scale',), 0.0, consumed), WEIGHT_CUTOFF):
         ignored.append("Transmission Dispersion")
     consumed |= {s.identifier for s in node.inputs if s.name.startswith(("Subsurface", "Transmission Dispersion"))}
-    # The coat's shading normal: Coat Normal when linked; unlinked, Cycles 4.x
-    # takes the surface's own normal, not the Normal input (svm closure.h of
-    # 4.0-4.5: sd->N); Phos keeps the Normal input from 5.0, as before.
-    if coat_normal is None and ctx.at_least(5, 0):
-        coat_normal = normal
-    # From 4.2 Cycles tilts the sheen's normal toward the coat's by the Coat
-    # Weight; Phos keeps the Normal input for the sheen.
+    # The coat's shading normal: Coat Normal when linked; unlinked, Cycles
+    # takes the surface's own normal, not the Normal input (sd->N), in every
+    # version from 4.0 (the principled_coat_over_bump parity scene: D/V 3.1
+    # on 5.3 with the Normal input, 1.06 with the surface's).
+    # From 4.2 Cycles lays the sheen over the coat: its normal is
+    # normalize(mix(Normal, coat normal, clamp(Coat Weight, 0, 1))).
+    sheen_normal = normal
     if (ctx.at_least(4, 2) and coat_normal is not normal and prog.may_exceed(sheen, WEIGHT_CUTOFF)
             and prog.may_exceed(coat, WEIGHT_CUTOFF)):
-        ignored.append("the Sheen's normal tilted toward the Coat Normal")
+        surface = w.nodes.normal()
+        below = surface if normal is None else normal
+        above = surface if coat_normal is None else coat_normal
+        sheen_normal = w.nodes.vector_math('NORMALIZE', below + (above - below) * _clamp01(coat))
     if prog.may_exceed(subsurface, WEIGHT_CUTOFF):
         w.note(node, "Subsurface scattering is not supported; its share is rendered as a diffuse "
                      "of the Base Color (as Cycles does for tiny radii)")
@@ -123,7 +126,7 @@ def principled_v2(walker, node):
     if prog.may_exceed(sheen, WEIGHT_CUTOFF):
         sheen_tint, _, _ = w.color(node, ('Sheen Tint',), consumed)
         sheen_rel = sheen * prog.maximum(sheen_tint, 0.0)
-        add_layer(Closure(core.PHOS_CLOSURE_SHEEN, sheen_rel * weight, normal,
+        add_layer(Closure(core.PHOS_CLOSURE_SHEEN, sheen_rel * weight, sheen_normal,
                           roughness=_clamp01(w.value(node, ('Sheen Roughness',), 0.5, consumed)),
                           layer_weight=sheen_rel))
 
