@@ -147,6 +147,17 @@ enum phos_microfacet {
     PHOS_MICROFACET_ASHIKHMIN_SHIRLEY = 5, /* Ashikhmin & Shirley 2000, REFLECTION only (Glossy) */
 };
 
+/* How a closure's bent normal is kept from reflecting the viewer into the
+ * surface (docs/algorithms.md §8.1): the add-on chooses as the running
+ * Blender's Cycles does. */
+enum phos_normal_correction {
+    PHOS_NORMAL_CORRECTION_NONE = 0,       /* the normal as given (Cycles 4.0+: diffuse, sheen) */
+    PHOS_NORMAL_CORRECTION_BOTH_ROOTS = 1, /* Cycles 2.81-3.6, every closure: of the two tilts that put the
+                                              reflection at the threshold, the shallower one above it */
+    PHOS_NORMAL_CORRECTION_ONE_ROOT = 2    /* Cycles 4.0+, glossy, glass, refraction, translucent, coat:
+                                              the tilt the viewer's side selects; a flat face's untouched */
+};
+
 typedef struct phos_closure_desc {
     uint32_t type;             /* enum phos_closure_type */
     float weight[3];           /* linear RGB weight (colour × mix factors); radiance for EMISSION */
@@ -187,6 +198,11 @@ typedef struct phos_closure_desc {
      * the closure's normal by tangent_rotation turns (×2π radians). */
     float roughness_y;
     float tangent_rotation;
+    /* enum phos_normal_correction: whether the closure's normal is tilted
+     * back toward the geometric normal until the viewer's mirror
+     * reflection leaves the surface, and by which of Cycles' rules
+     * (docs/algorithms.md §8.1). */
+    uint32_t normal_correction;
 } phos_closure_desc;
 PHOS_API void phos_closure_desc_init(phos_closure_desc *desc);
 

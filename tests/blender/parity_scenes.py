@@ -302,9 +302,8 @@ def _white_noise_cells():
 def _mix_two_bumps(scene):
     """Mix Shaders of two Diffuses, each under its own Bump (a coarse noise,
     wave ridges), and an unbumped Glossy: each closure shades about its own
-    normal, as Cycles' closures carry their own N. (A bumped Glossy is left
-    out: Cycles bends a microfacet closure's normal so that its mirror
-    direction stays above the surface, which Phos does not do yet.)"""
+    normal, as Cycles' closures carry their own N (a bumped Glossy:
+    bumped_specular)."""
     mat = bpy.data.materials.new("Test Mix Two Bumps")
     pt.use_nodes(mat)
     nt = mat.node_tree
@@ -330,11 +329,41 @@ def _mix_two_bumps(scene):
     return mat
 
 
+def _bumped_specular(scene):
+    """A strong noise bump under both halves of a Mix Shader: a sharp-ish
+    Glossy and a Principled BSDF with a clearcoat and sheen. Toward the
+    silhouette many bent normals would mirror the viewer into the sphere;
+    Cycles tilts them back (every closure's before 4.0, the specular
+    closures' after), and from 4.2 lays the sheen's normal between the
+    bumped one and the coat's (the surface's own here)."""
+    mat = bpy.data.materials.new("Test Bumped Specular")
+    pt.use_nodes(mat)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.5
+    glossy = pt.setup_node(nt.nodes.new("ShaderNodeBsdfGlossy"), {"Color": (0.9, 0.9, 0.9), "Roughness": 0.1},
+                           {"distribution": "GGX"})
+    principled = pt.setup_node(nt.nodes.new("ShaderNodeBsdfPrincipled"),
+                               {"Base Color": (0.6, 0.1, 0.1), "Roughness": 0.4, "Clearcoat": 1.0,
+                                "Clearcoat Roughness": 0.05, "Sheen": 1.0})
+    noise = pt.setup_node(nt.nodes.new("ShaderNodeTexNoise"), {"Scale": 6.0})
+    bump = pt.setup_node(nt.nodes.new("ShaderNodeBump"), {"Strength": 1.0, "Distance": 0.6})
+    nt.links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    for bsdf in (glossy, principled):
+        nt.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    nt.links.new(glossy.outputs[0], mix.inputs[1])
+    nt.links.new(principled.outputs[0], mix.inputs[2])
+    nt.links.new(mix.outputs[0], out.inputs["Surface"])
+    return mat
+
+
 def _principled_coat_over_bump(scene):
     """A Principled BSDF (4.x) whose Normal is bumped by a noise and whose
     coat has no Coat Normal: Cycles 4.x lays the coat along the surface's own
     normal, so the bumped diffuse shows through a smooth coat. No specular
-    (IOR Level 0), whose bumped normal Cycles would bend (see _mix_two_bumps)."""
+    (IOR Level 0): bumped_specular has the specular over a bump."""
     mat = pt.node_material("Test Principled Coat Over Bump", "ShaderNodeBsdfPrincipled",
                            {"Base Color": (0.7, 0.25, 0.1), "Roughness": 0.5, "Specular IOR Level": 0.0,
                             "Coat Weight": 1.0, "Coat Roughness": 0.1, "Coat IOR": 1.5})
@@ -492,6 +521,7 @@ MATERIAL_SCENES = {
     "textured_mix": _material_scene(_mixed_by_texture),
     "texture_families": _texture_families,
     "mix_two_bumps": _material_scene(_mix_two_bumps),
+    "bumped_specular": _material_scene(_bumped_specular),
     "anisotropic_metal": _material_scene(_anisotropic_metal),
     "glossy_beckmann": _material_scene(_one("ShaderNodeBsdfGlossy", {"Color": (0.9, 0.8, 0.6), "Roughness": 0.35},
                                             {"distribution": "BECKMANN"})),

@@ -17,13 +17,17 @@
  *  5. flags 2 (Blender before 4.0) tilts a normal whose mirror reflection
  *     of the viewer would go below the surface back until it leaves at
  *     the threshold 0.01, and leaves other normals alone;
- *  6. a negative filter width is refused when the program is created.
+ *  6. a negative filter width is refused when the program is created;
+ *  7. both of Cycles' rules for keeping a closure's normal from reflecting
+ *     the viewer into the surface (shading/valid_reflection.c) put the
+ *     reflection at its threshold, in the plane of Ng and N.
  */
 #include <math.h>
 #include <string.h>
 
 #include "scene/camera.h"
 #include "shading/shader_program.h"
+#include "shading/valid_reflection.h"
 #include "test_util.h"
 
 /* ------------------------------------------------------------- footprint */
@@ -166,6 +170,63 @@ static void test_valid_reflection(void)
     CHECK(near3(bump(&g, 1.0f, 2, 0.0f, 0.005f, 0.0f, 1.0f), mild, 0.0f));
 }
 
+/* Both rules over random bent normals and views (valid_reflection.h): a
+ * normal whose reflection of the viewer is already t = min(0.9 Ng·I, 0.01)
+ * above the surface is kept bit for bit; any other comes back unit, in
+ * the plane of Ng and N on N's side, with its reflection exactly at t for
+ * ONE_ROOT, and above the surface (or Ng itself) for BOTH_ROOTS, which
+ * takes the lower of two roots that both reflect above it: near Ix = 0,
+ * where the true and the spurious root nearly meet, that is the spurious
+ * one, as in Cycles 3.x. The two rules solve the same quadratic, so where
+ * BOTH_ROOTS lands on t the normals agree. */
+static void test_valid_reflection_rules(void)
+{
+    vec3 ng = v3(0.0f, 0.0f, 1.0f);
+    uint32_t state = 12345u;
+    int fixed = 0, agree = 0, both_at_t = 0;
+    for (int k = 0; k < 20000; k++) {
+        float u[5];
+        for (int j = 0; j < 5; j++) {
+            state = state * 1664525u + 1013904223u;
+            u[j] = (float)(state >> 8) * (1.0f / 16777216.0f);
+        }
+        /* A view anywhere above the surface, down to 0.5° from grazing,
+         * and a normal up to 89° from Ng. */
+        float ci = 0.01f + 0.99f * u[0], si = sqrtf(1.0f - ci * ci), pi_ = 6.2831853f * u[1];
+        vec3 i = v3(si * cosf(pi_), si * sinf(pi_), ci);
+        float cn = 0.02f + 0.98f * u[2], sn = sqrtf(1.0f - cn * cn), pn = 6.2831853f * u[3];
+        vec3 n = v3(sn * cosf(pn), sn * sinf(pn), cn);
+        float t = fminf(0.9f * ci, 0.01f);
+        vec3 r = v3_sub(v3_scale(n, 2.0f * v3_dot(n, i)), i);
+        int valid = v3_dot(r, ng) >= t;
+        vec3 a = valid_reflection_normal(ng, i, n, PHOS_NORMAL_CORRECTION_ONE_ROOT);
+        vec3 b = valid_reflection_normal(ng, i, n, PHOS_NORMAL_CORRECTION_BOTH_ROOTS);
+        vec3 none = valid_reflection_normal(ng, i, n, PHOS_NORMAL_CORRECTION_NONE);
+        CHECK(memcmp(&none, &n, sizeof n) == 0);
+        if (valid) {
+            CHECK(memcmp(&a, &n, sizeof n) == 0 && memcmp(&b, &n, sizeof n) == 0);
+            continue;
+        }
+        fixed++;
+        vec3 ra = v3_sub(v3_scale(a, 2.0f * v3_dot(a, i)), i);
+        CHECK_MSG(fabsf(v3_dot(ra, ng) - t) < 2e-4f, "ONE_ROOT reflection height %g, t %g",
+                  (double)v3_dot(ra, ng), (double)t);
+        CHECK(fabsf(v3_length(a) - 1.0f) < 1e-4f);
+        CHECK(fabsf(v3_dot(v3_cross(ng, n), a)) < 1e-4f); /* in the plane of Ng and N */
+        CHECK(a.x * n.x + a.y * n.y >= 0.0f);              /* on N's side of Ng */
+        vec3 rb = v3_sub(v3_scale(b, 2.0f * v3_dot(b, i)), i);
+        int b_is_ng = near3(b, ng, 0.0f);
+        CHECK(b_is_ng || v3_dot(rb, ng) >= 1e-5f - 2e-4f);
+        if (!b_is_ng && fabsf(v3_dot(rb, ng) - t) < 2e-4f) {
+            both_at_t++;
+            agree += near3(a, b, 1e-3f);
+        }
+    }
+    CHECK_MSG(fixed > 1000, "only %d of the normals needed tilting", fixed);
+    CHECK_MSG(agree == both_at_t, "the rules disagree on %d of %d normals both put at t", both_at_t - agree,
+              both_at_t);
+}
+
 /* --------------------------------------------------------------- program */
 
 static void test_negative_width_refused(void)
@@ -204,6 +265,7 @@ int main(void)
     test_bending_height();
     test_offsets();
     test_valid_reflection();
+    test_valid_reflection_rules();
     test_negative_width_refused();
     return test_summary("test_bump");
 }

@@ -225,6 +225,7 @@ static void fuzz_materials(reader *r, phos_scene *s)
                 c[k].roughness_y = take_float(r);
                 c[k].tangent_rotation = take_float(r);
             }
+            c[k].normal_correction = take_u8(r) % 4; /* 3 is refused */
         }
         phos_material_desc m;
         phos_material_desc_init(&m);

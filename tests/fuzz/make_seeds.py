@@ -75,7 +75,7 @@ class Stream:
 
 
 def closure(s, kind=0, weight=(0.75, 0.75, 0.75), roughness=0.5, ior=1.5, microfacet=0, film=0.0,
-            layer_span=0):
+            layer_span=0, normal_correction=0):
     s.u8(kind)
     s.fs(weight)
     s.f(roughness)
@@ -93,6 +93,8 @@ def closure(s, kind=0, weight=(0.75, 0.75, 0.75), roughness=0.5, ior=1.5, microf
     s.u8(0)                    # layer weight 1
     s.u8(0)                    # no layer tint
     s.f(0.0)                   # layer tint weight
+    s.u8(0)                    # isotropic
+    s.u8(normal_correction)    # enum phos_normal_correction
 
 
 def materials(s, mats, programs=None):
@@ -284,17 +286,18 @@ SEEDS = {
     "valid_photon_cache_always": scene(renders=[({"irradiance_cache": 2, "ic_rays": 16}, 0)]),
     "world_light_photon": scene(world=(0.2, 0.2, 0.2), renders=[(PHOTON, 0)]),
     "valid_two_renders": scene(renders=[(PHOTON, 0), ({"photon_view": 2, **PHOTON}, 0)]),
-    "glass_and_mirror": scene(mats=[[(0, (0.75, 0.75, 0.75))], [(5, (1, 1, 1), 0.0, 1.5)],
-                                    [(2, (1, 1, 1), 0.0, 1.5)]],
+    "glass_and_mirror": scene(mats=[[(0, (0.75, 0.75, 0.75), 0.5, 1.5, 0, 0.0, 0, 1)], [(5, (1, 1, 1), 0.0, 1.5)],
+                                    [(2, (1, 1, 1), 0.0, 1.5, 0, 0.0, 0, 1)]],
                               instances=[(0, [0, 1, 2])],
                               meshes=[(BOX, BOX_TRIS, [0, 0, 1, 1, 2, 2, 0, 0, 0, 0, 0, 0])],
                               renders=[(PHOTON, 0)]),
     # Cycles 4's closures: a coat layered over an F82 metal and Oren-Nayar,
     # sheen, a Multiscatter glass with a thin film; every pass, the
     # denoising ones included.
-    "cycles4_closures": scene(mats=[[(3, (1, 1, 1), 0.1, 1.5, 2, 0.0, 2), (8, (0.5, 0.5, 0.5), 0.3, 1.5, 2),
+    "cycles4_closures": scene(mats=[[(3, (1, 1, 1), 0.1, 1.5, 2, 0.0, 2, 2),
+                                     (8, (0.5, 0.5, 0.5), 0.3, 1.5, 2, 0.0, 0, 2),
                                      (9, (0.5, 0.4, 0.3), 0.5, 1.5)],
-                                    [(10, (1, 1, 1), 0.5, 1.5), (5, (1, 1, 1), 0.3, 1.5, 2, 400.0)]],
+                                    [(10, (1, 1, 1), 0.5, 1.5), (5, (1, 1, 1), 0.3, 1.5, 2, 400.0, 0, 2)]],
                               instances=[(0, [0, 1])],
                               meshes=[(BOX, BOX_TRIS, [0] * 6 + [1] * 6)],
                               renders=[({"pass_mask": (1 << 10) | (1 << 11), **PHOTON}, 0), ({"pass_mask": 4095}, 0)]),

@@ -129,7 +129,7 @@ class Closure:
             if prog.varies(value):
                 program.bind(index, getattr(core, field), value, width)
 
-    def to_desc(self, layer_span=0):
+    def to_desc(self, layer_span=0, normal_correction=core.PHOS_NORMAL_CORRECTION_NONE):
         c = {name: (_placeholder(name) if prog.varies(getattr(self, name)) else getattr(self, name))
              for name in ("weight",) + tuple(self._FIELDS)}
         d = core.new_closure()
@@ -153,6 +153,7 @@ class Closure:
         d.layer_tint_weight = max(float(c["layer_tint_weight"]), 0.0)
         d.roughness_y = min(float(c["roughness_y"]), 1.0)
         d.tangent_rotation = float(c["tangent_rotation"])
+        d.normal_correction = normal_correction
         return d
 
 
@@ -179,18 +180,46 @@ def _placeholder(name):
             "roughness_y": 0.5}.get(name, 0.0)
 
 
-def closure_descs(closures, program=None):
+# Closures whose normal Cycles 4.0+ keeps from reflecting the viewer into
+# the surface (the glossy, glass and translucent ones; the Principled BSDF's
+# specular, metal, glass and coat layers), and those that have no normal.
+_SPECULAR_CLOSURES = frozenset((core.PHOS_CLOSURE_REFLECTION, core.PHOS_CLOSURE_REFLECTION_FRESNEL,
+                                core.PHOS_CLOSURE_METAL, core.PHOS_CLOSURE_GLASS, core.PHOS_CLOSURE_REFRACTION,
+                                core.PHOS_CLOSURE_TRANSLUCENT))
+_NORMAL_FREE_CLOSURES = frozenset((core.PHOS_CLOSURE_EMISSION, core.PHOS_CLOSURE_TRANSPARENT,
+                                   core.PHOS_CLOSURE_HOLDOUT))
+
+
+def normal_correction(closure_type, ctx, mat=None):
+    """How the running Blender's Cycles keeps a closure's normal from
+    reflecting the viewer into the surface (phos.h, docs/algorithms.md
+    §8.1): before 4.0 every closure's, by the two-root rule; from 4.0 the
+    specular closures' only, by the one-root rule, unless the material's
+    Bump Map Correction (Settings, Cycles' default on) is off."""
+    if closure_type in _NORMAL_FREE_CLOSURES:
+        return core.PHOS_NORMAL_CORRECTION_NONE
+    if not ctx.at_least(4, 0):
+        return core.PHOS_NORMAL_CORRECTION_BOTH_ROOTS
+    settings = getattr(mat, "cycles", None) if mat is not None else None
+    if not getattr(settings, "use_bump_map_correction", True) or closure_type not in _SPECULAR_CLOSURES:
+        return core.PHOS_NORMAL_CORRECTION_NONE
+    return core.PHOS_NORMAL_CORRECTION_ONE_ROOT
+
+
+def closure_descs(closures, program=None, correction=None):
     """core descs of a material's final closure list, with each layer's span
     counted among the closures that remain (filtering only removes, so a
-    layer's surviving children still follow it), and the program's
-    bindings of their varying fields."""
+    layer's surviving children still follow it), the program's bindings of
+    their varying fields, and each one's normal correction (a function of
+    the closure type; none when not given)."""
     descs = []
     for i, c in enumerate(closures):
         span = 0
         if c.layer_children:
             children = {id(k) for k in c.layer_children}
             span = sum(1 for k in closures[i + 1:] if id(k) in children)
-        descs.append(c.to_desc(span))
+        rule = correction(c.type) if correction else core.PHOS_NORMAL_CORRECTION_NONE
+        descs.append(c.to_desc(span, rule))
         if program is not None:
             c.bind(program, i)
     return descs
@@ -855,7 +884,7 @@ def add_material(mat, ctx):
         ctx.warn("Phos: material '%s' has %d closures; only the first %d are rendered"
                  % (mat.name, len(closures), core.PHOS_MAX_CLOSURES))
         closures = closures[:core.PHOS_MAX_CLOSURES]
-    descs = closure_descs(closures, program)
+    descs = closure_descs(closures, program, lambda kind: normal_correction(kind, ctx, mat))
     if program.too_large():
         ctx.warn("Phos: material '%s': its shader program exceeds the core's limits (%d registers, %d "
                  "instructions); it renders without them: white colours, roughness 0.5"
@@ -877,5 +906,6 @@ def default_material(ctx):
     """The grey diffuse (0.8) of objects and slots without a material."""
     if ctx.default_material is None:
         grey = Closure(core.PHOS_CLOSURE_DIFFUSE, (0.8, 0.8, 0.8))
-        ctx.default_material = ctx.core.add_material([grey.to_desc()])
+        ctx.default_material = ctx.core.add_material(
+            [grey.to_desc(normal_correction=normal_correction(grey.type, ctx))])
     return ctx.default_material

@@ -301,6 +301,9 @@ static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32
              (double)c->roughness_y);
     if (!isfinite(c->tangent_rotation))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u tangent rotation must be finite", i);
+    if (c->normal_correction > PHOS_NORMAL_CORRECTION_ONE_ROOT)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: closure %u has unknown normal correction %u", i,
+             c->normal_correction);
     return PHOS_OK;
 }
 

@@ -31,6 +31,7 @@ static const layout_field fields[] = {
     FIELD(phos_closure_desc, layer_span) FIELD(phos_closure_desc, layer_weight)
     FIELD(phos_closure_desc, layer_tint) FIELD(phos_closure_desc, layer_tint_weight)
     FIELD(phos_closure_desc, roughness_y) FIELD(phos_closure_desc, tangent_rotation)
+    FIELD(phos_closure_desc, normal_correction)
 
     FIELD(phos_material_desc, closure_count) FIELD(phos_material_desc, closures) FIELD(phos_material_desc, program)
 

@@ -7,6 +7,7 @@
 
 #include "scene/camera.h"
 #include "shading/texture.h"
+#include "shading/valid_reflection.h"
 
 #include <string.h>
 
@@ -419,11 +420,14 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
         int interface = d->type == PHOS_CLOSURE_GLASS || d->type == PHOS_CLOSURE_REFRACTION;
         float eta = (sf->backfacing && interface) ? 1.0f / d->ior : d->ior;
         /* Each closure in its own frame (bsdf.h): shared when normals agree;
-         * an anisotropic one's x axis along its tangent. */
+         * an anisotropic one's x axis along its tangent, turned about the
+         * normal before the normal is kept from reflecting the viewer into
+         * the surface (as Cycles orders them). */
         int anisotropic = desc_anisotropic(d);
         vec3 t = anisotropic ? closure_tangent(s, sf, d, ns[i], ts[i], &fallback_tangent, &have_fallback)
                              : v3s(0.0f);
-        uint32_t frame = bsdf_add_frame(out, ns[i], t);
+        vec3 n = valid_reflection_normal(sf->ng, sf->wo, ns[i], d->normal_correction);
+        uint32_t frame = bsdf_add_frame(out, n, t);
         if (d->layer_span) {
             bsdf_layer layer = layer_of(d, eta, frame);
             int j = bsdf_add_layer(out, &layer);

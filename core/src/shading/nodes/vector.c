@@ -4,6 +4,7 @@
  * "Vector" nodes).
  */
 #include "shading/shader_program.h"
+#include "shading/valid_reflection.h"
 
 static vec3 safe_divide3(vec3 a, vec3 b)
 {
@@ -245,51 +246,13 @@ void shader_op_bump_offset(const phos_shader_instruction *ins, shader_context *c
     SHADER_OUT3(4, v3_add(g->P, d));
 }
 
-/* Cycles before 4.0 tilts a bumped normal back toward Ng until the mirror
- * reflection of the viewer leaves the surface at least as steeply as
- * min(0.9 Ng·I, 0.01) (its ensure_valid_reflection): in the plane of Ng
- * and N, the N' = x X + z Ng, x² + z² = 1, whose reflection
- * 2(N'·I)N' − I meets Ng·R = t, a quadratic in z². Of the roots in
- * (0, 1] it keeps the one whose reflection is above the surface, the
- * shallower if both are; with none, Ng. */
-static vec3 valid_reflection_normal(vec3 ng, vec3 i, vec3 n)
-{
-    vec3 r = v3_sub(v3_scale(n, 2.0f * v3_dot(n, i)), i);
-    float t = fminf(0.9f * v3_dot(ng, i), 0.01f);
-    if (v3_dot(ng, r) >= t)
-        return n;
-    vec3 x = v3_normalize(v3_sub(n, v3_scale(ng, v3_dot(n, ng))));
-    float ix = v3_dot(i, x), iz = v3_dot(i, ng);
-    float a = ix * ix + iz * iz;
-    float b = sqrtf(fmaxf(ix * ix * (a - t * t), 0.0f));
-    float c = iz * t + a;
-    float z2[2] = {0.5f / a * (b + c), 0.5f / a * (c - b)};
-    int ok[2];
-    float refl[2];
-    for (int k = 0; k < 2; k++) {
-        ok[k] = z2[k] > 1e-5f && z2[k] <= 1.0f + 1e-5f;
-        float nx = sqrtf(fmaxf(1.0f - z2[k], 0.0f)), nz = sqrtf(fmaxf(z2[k], 0.0f));
-        refl[k] = 2.0f * (nx * ix + nz * iz) * nz - iz;
-    }
-    int pick;
-    if (ok[0] && ok[1]) {
-        int up0 = refl[0] >= 1e-5f, up1 = refl[1] >= 1e-5f;
-        pick = (up0 && up1) ? (refl[0] < refl[1] ? 0 : 1) : (refl[0] > refl[1] ? 0 : 1);
-    } else if (ok[0] || ok[1]) {
-        pick = ok[0] ? 0 : 1;
-    } else {
-        return ng;
-    }
-    float nx = sqrtf(fmaxf(1.0f - z2[pick], 0.0f)), nz = sqrtf(fmaxf(z2[pick], 0.0f));
-    return v3_add(v3_scale(x, nx), v3_scale(ng, nz));
-}
-
 /* The surface gradient of the height h from its values at the point and
  * at the two steps (Mikkelsen 2010, "Bump Mapping Unparametrized
  * Surfaces on the GPU"): with R1 = dy × N, R2 = N × dx and det = dx·R1,
  * N' = normalize(|det| N − distance · sign(det) · ((h_x − h)R1 + (h_y − h)R2)),
  * blended toward N by 1 − strength. flags 1 inverts; flags 2 keeps the
- * viewer's reflection above the surface as Cycles before 4.0 does. */
+ * viewer's reflection above the surface as Cycles before 4.0 does
+ * (valid_reflection.h). */
 void shader_op_bump(const phos_shader_instruction *ins, shader_context *ctx)
 {
     const shader_globals *g = ctx->g;
@@ -310,6 +273,6 @@ void shader_op_bump(const phos_shader_instruction *ins, shader_context *ctx)
     else
         out = v3_normalize(v3_add(v3_scale(out, strength), v3_scale(n, 1.0f - strength)));
     if (ins->flags & 2)
-        out = valid_reflection_normal(g->Ng, g->I, out);
+        out = valid_reflection_normal(g->Ng, g->I, out, PHOS_NORMAL_CORRECTION_BOTH_ROOTS);
     SHADER_OUT3(0, out);
 }
