@@ -864,3 +864,32 @@ def test_shared_mesh_with_object_materials_reading_other_attributes(scene, monke
     ids = ctx.attribute_ids
     assert ctx.stats["instances"] == 3
     assert sorted(exported) == sorted([[ids[("name", "A")]], [ids[("name", "B")]]]), exported
+
+
+def test_normal_correction_per_version(scene):
+    """Each closure's normal correction is the running Blender's (phos.h,
+    docs/algorithms.md §8.1): before 4.0 every closure with a normal, by the
+    two-root rule; from 4.0 the specular ones only, by the one-root rule,
+    and none when the material's Bump Map Correction is off."""
+    from phos import core
+    from phos.export import material as mexp
+    from phos.export.context import ExportContext
+    mat = bpy.data.materials.new("Correction")
+    with core.Scene() as core_scene:
+        ctx = ExportContext(scene, core_scene)
+        rule = {kind: mexp.normal_correction(kind, ctx, mat)
+                for kind in (core.PHOS_CLOSURE_DIFFUSE, core.PHOS_CLOSURE_SHEEN, core.PHOS_CLOSURE_REFLECTION,
+                             core.PHOS_CLOSURE_GLASS, core.PHOS_CLOSURE_TRANSLUCENT, core.PHOS_CLOSURE_EMISSION,
+                             core.PHOS_CLOSURE_TRANSPARENT)}
+        free = {core.PHOS_CLOSURE_EMISSION: 0, core.PHOS_CLOSURE_TRANSPARENT: 0}
+        if not BLENDER_4:
+            both = core.PHOS_NORMAL_CORRECTION_BOTH_ROOTS
+            assert rule == {core.PHOS_CLOSURE_DIFFUSE: both, core.PHOS_CLOSURE_SHEEN: both,
+                            core.PHOS_CLOSURE_REFLECTION: both, core.PHOS_CLOSURE_GLASS: both,
+                            core.PHOS_CLOSURE_TRANSLUCENT: both, **free}
+            return
+        one = core.PHOS_NORMAL_CORRECTION_ONE_ROOT
+        assert rule == {core.PHOS_CLOSURE_DIFFUSE: 0, core.PHOS_CLOSURE_SHEEN: 0, core.PHOS_CLOSURE_REFLECTION: one,
+                        core.PHOS_CLOSURE_GLASS: one, core.PHOS_CLOSURE_TRANSLUCENT: one, **free}
+        mat.cycles.use_bump_map_correction = False
+        assert mexp.normal_correction(core.PHOS_CLOSURE_REFLECTION, ctx, mat) == 0
