@@ -372,7 +372,8 @@ void shader_program_free(shader_program *p)
 
 void shader_program_eval(const shader_program *p, const struct phos_scene *s, const shader_globals *g, float *r)
 {
-    memcpy(r, p->constants, sizeof(float) * p->constant_count);
+    if (p->constant_count) /* a program without constants may have no array (memcpy's NULL is undefined) */
+        memcpy(r, p->constants, sizeof(float) * p->constant_count);
     shader_context ctx = {r, g, p, s};
     for (uint32_t i = 0; i < p->instruction_count; i++) {
         const phos_shader_instruction *ins = &p->instructions[i];
