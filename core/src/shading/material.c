@@ -463,15 +463,22 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
     }
 }
 
-static vec3 emission_of(const scene *s, const surface *sf)
+/* The summed weights of the material's closures of one type at the
+ * surface (emission, transparency, holdout), textures applied. */
+static vec3 weight_of_type(const scene *s, const surface *sf, uint32_t type)
 {
     phos_closure_desc local[PHOS_MAX_CLOSURES];
     const phos_closure_desc *closures = material_eval(s, sf, local, NULL, NULL);
     vec3 sum = v3s(0.0f);
     for (uint32_t i = 0; i < sf->mat->closure_count; i++)
-        if (closures[i].type == PHOS_CLOSURE_EMISSION)
+        if (closures[i].type == type)
             sum = v3_add(sum, v3_load(closures[i].weight));
     return sum;
+}
+
+static vec3 emission_of(const scene *s, const surface *sf)
+{
+    return weight_of_type(s, sf, PHOS_CLOSURE_EMISSION);
 }
 
 vec3 material_emission(const scene *s, const surface *sf)
@@ -524,30 +531,12 @@ vec3 material_emission_estimate(const scene *s, const material *m)
 
 vec3 material_transparency(const scene *s, const surface *sf)
 {
-    vec3 sum = v3s(0.0f);
-    const material *m = sf->mat;
-    if (!m->transparent)
-        return sum;
-    phos_closure_desc local[PHOS_MAX_CLOSURES];
-    const phos_closure_desc *closures = material_eval(s, sf, local, NULL, NULL);
-    for (uint32_t i = 0; i < m->closure_count; i++)
-        if (closures[i].type == PHOS_CLOSURE_TRANSPARENT)
-            sum = v3_add(sum, v3_load(closures[i].weight));
-    return sum;
+    return sf->mat->transparent ? weight_of_type(s, sf, PHOS_CLOSURE_TRANSPARENT) : v3s(0.0f);
 }
 
 vec3 material_holdout(const scene *s, const surface *sf)
 {
-    vec3 sum = v3s(0.0f);
-    const material *m = sf->mat;
-    if (!m->holdout)
-        return sum;
-    phos_closure_desc local[PHOS_MAX_CLOSURES];
-    const phos_closure_desc *closures = material_eval(s, sf, local, NULL, NULL);
-    for (uint32_t i = 0; i < m->closure_count; i++)
-        if (closures[i].type == PHOS_CLOSURE_HOLDOUT)
-            sum = v3_add(sum, v3_load(closures[i].weight));
-    return sum;
+    return sf->mat->holdout ? weight_of_type(s, sf, PHOS_CLOSURE_HOLDOUT) : v3s(0.0f);
 }
 
 int material_can_scatter_delta(const material *m)
