@@ -151,13 +151,20 @@ static double rel_diff(double a, double b)
 typedef struct integrand {
     const bsdf *b;
     vec3 wo;
+    int pole; /* 0: the variable is cos θ; ∓1: s = √(1 ± cos θ), about cos θ = ∓1 */
 } integrand;
 
-static double pdf_at(const integrand *g, double z, double phi)
+/* The pdf times the Jacobian of the variable: dω = dz dφ, or about a
+ * pole, z = ∓(1 − s²), dω = 2s ds dφ. In z the pdf of a lobe that covers
+ * a pole varies as a function of √(1 ± z), which Simpson's rule and its
+ * error estimate do not resolve (a Beckmann refraction lobe near the south
+ * pole came out 10⁻⁴ short); in s it is smooth. */
+static double pdf_at(const integrand *g, double v, double phi)
 {
+    double z = g->pole == 0 ? v : g->pole * (1.0 - v * v), jacobian = g->pole == 0 ? 1.0 : 2.0 * v;
     float pdf;
     bsdf_eval(g->b, g->wo, dir_in_frame(&g->b->frames[0], z, phi), &pdf);
-    return pdf;
+    return pdf * jacobian;
 }
 
 /* Tensor-product Simpson rule on a 3×3 grid over a cell of the given area. */
@@ -285,14 +292,16 @@ static double chi2_fit(const bsdf *b, vec3 wo, double delta_mass, uint32_t seed,
     st->weight_sigma = sqrt(fmax(sum_w2 / SAMPLES_PER_TEST - st->mean_weight * st->mean_weight, 0.0) /
                             SAMPLES_PER_TEST);
 
-    /* Expected counts: N ∫_bin pdf dω. */
-    integrand g = {b, wo};
+    /* Expected counts: N ∫_bin pdf dω; the bins at the poles in s. */
     double mass = 0.0;
     for (int iz = 0; iz < COS_BINS; iz++)
         for (int ip = 0; ip < PHI_BINS; ip++) {
             double z0 = -1.0 + 2.0 * iz / COS_BINS, z1 = -1.0 + 2.0 * (iz + 1) / COS_BINS;
             double p0 = 2.0 * PHOS_PI * ip / PHI_BINS, p1 = 2.0 * PHOS_PI * (ip + 1) / PHI_BINS;
-            double p = integrate_bin(&g, z0, z1, p0, p1);
+            integrand g = {b, wo, iz == 0 ? -1 : iz == COS_BINS - 1 ? 1 : 0};
+            double v0 = g.pole ? 0.0 : z0;
+            double v1 = g.pole < 0 ? sqrt(1.0 + z1) : g.pole > 0 ? sqrt(1.0 - z0) : z1;
+            double p = integrate_bin(&g, v0, v1, p0, p1);
             expected[iz * PHI_BINS + ip] = p * SAMPLES_PER_TEST;
             mass += p;
         }
@@ -349,6 +358,7 @@ typedef struct scenario {
     int n;
     vec3 ns, ng;
     int albedo_bounded; /* Burley diffuse is not energy conserving */
+    double albedo_slack; /* how far above 1 its albedo may truly be */
 } scenario;
 
 static int build_scenarios(scenario *sc)
@@ -473,8 +483,14 @@ static int build_scenarios(scenario *sc)
         weighted(make_aniso(PHOS_CLOSURE_REFLECTION, 0.1f, 0.5f, PHOS_MICROFACET_GGX), 0.5f));
     sc[n - 1].cn[1] = v3_normalize(v3(0.2f, -0.3f, 1.0f));
     sc[n - 1].ct[1] = v3(0.0f, 1.0f, 0.3f);
-    /* Beckmann (Cycles 3.x: separable G, 4.x: correlated), sampled by
-     * D·cos θh: reflection, anisotropic, refraction and both glasses. */
+    /* Beckmann (Cycles 3.x: separable G, 4.x: correlated), sampled by its
+     * visible normals: reflection, anisotropic, refraction and both glasses.
+     * The value's G1(wo) by Walter's approximation of Λ exceeds the exact
+     * one by up to 0.31 % (at a = 1.34), so the albedo may exceed 1 by that
+     * much (1.0018 for the refraction at r = 0.6, cos θo = 0.5, by
+     * quadrature); the visible-normal samples, whose weight varies little,
+     * resolve it. */
+    const int first_beckmann = n;
     for (int r = 0; r < 2; r++) {
         float rough = r ? 0.6f : 0.25f;
         snprintf(name, sizeof name, "beckmann reflection r=%.2f separable", rough);
@@ -493,6 +509,8 @@ static int build_scenarios(scenario *sc)
     ADD("beckmann anisotropic ax=0.4 ay=0.05", make_aniso(PHOS_CLOSURE_REFLECTION, 0.4f, 0.05f,
                                                           PHOS_MICROFACET_BECKMANN));
     sc[n - 1].ct[0] = tangent;
+    for (int k = first_beckmann; k < n; k++)
+        sc[k].albedo_slack = 0.0032;
     /* Ashikhmin-Shirley (Cycles' Glossy): isotropic, anisotropic, rough. */
     ADD("ashikhmin-shirley r=0.3", make_cycles4(PHOS_CLOSURE_REFLECTION, 0.3f, 1.0f, PHOS_MICROFACET_ASHIKHMIN_SHIRLEY));
     ADD("ashikhmin-shirley r=0.9", make_cycles4(PHOS_CLOSURE_REFLECTION, 0.9f, 1.0f, PHOS_MICROFACET_ASHIKHMIN_SHIRLEY));
@@ -538,7 +556,7 @@ static void test_chi2_all(void)
             CHECK_MSG(st.nonfinite == 0, "%s: %d non-finite samples", sc[s].name, st.nonfinite);
             /* Test 3: white albedo ≤ 1 up to Monte Carlo noise. */
             if (sc[s].albedo_bounded)
-                CHECK_MSG(st.mean_weight <= 1.0 + 4.0 * st.weight_sigma + 1e-4,
+                CHECK_MSG(st.mean_weight <= 1.0 + sc[s].albedo_slack + 4.0 * st.weight_sigma + 1e-4,
                           "%s cos(wo)=%.2f: albedo %.4f > 1", sc[s].name, COS_VIEW[a], st.mean_weight);
         }
     }
@@ -1178,12 +1196,19 @@ static void test_microfacet(void)
         CHECK(mx2 > 20.0 * my2);
     }
 
-    /* Beckmann: ∫ D(h) cos θh dω = 1 (Walter 2007 eq. 25), which is also
-     * the total of the normal sampler's density; Λ is 0 where a ≥ 1.6 and
-     * G1 = 1/(1 + Λ) is Walter's eq. 27 below it. */
+    /* Beckmann: ∫ D(h) cos θh dω = 1 (Walter 2007 eq. 25), and the visible
+     * normals' density integrates to 1 for every view, ∫ D_wo(h) dω = 1:
+     * the microfacets seen from wo project onto the same area as the
+     * macro surface (Heitz 2014 eq. 16), with the exact Λ — from the
+     * normal to a grazing view, along either axis of an anisotropic α. */
+    static const float beckmann_views[4][3] = {
+        {0.0f, 0.0f, 1.0f}, {0.6f, 0.2f, 0.4f}, {-0.3f, 0.9f, 0.15f}, {0.99f, -0.1f, 0.03f}};
     for (int k = 0; k < 3; k++) {
         float ax = axy[k][0], ay = axy[k][1], alpha = fminf(ax, ay);
-        double proj = 0.0, sampled = 0.0;
+        double proj = 0.0, visible[4] = {0.0, 0.0, 0.0, 0.0};
+        vec3 views[4];
+        for (int v = 0; v < 4; v++)
+            views[v] = v3_normalize(v3(beckmann_views[v][0], beckmann_views[v][1], beckmann_views[v][2]));
         const int nt = 2000, np = 1024;
         for (int i = 0; i < nt; i++) {
             double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
@@ -1195,11 +1220,105 @@ static void test_microfacet(void)
                 vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
                 double dw = s * dtheta * 2.0 * PHOS_PI / np;
                 proj += beckmann_D_aniso(h, ax, ay) * c * dw;
-                sampled += beckmann_normal_pdf_aniso(h, ax, ay) * dw;
+                for (int v = 0; v < 4; v++)
+                    visible[v] += beckmann_visible_normal_pdf_aniso(views[v], h, ax, ay) * dw;
             }
         }
         CHECK_REL(proj, 1.0, 3e-3);
-        CHECK_REL(sampled, 1.0, 3e-3);
+        for (int v = 0; v < 4; v++)
+            CHECK_MSG(fabs(visible[v] - 1.0) < 3e-3, "Beckmann D_wo, α = (%g, %g), view %d: ∫ = %.5f",
+                      (double)ax, (double)ay, v, visible[v]);
+    }
+    /* The exact Λ: its closed form against a quadrature of Heitz 2014's
+     * integral Λ(μ) = ∫ (x tanθ − 1) P2(x) dx over x > cotθ, P2 the unit
+     * Gaussian of slopes with variance ½ (α = 1, so a = cotθ); and the
+     * approximation the BSDF's value uses stays within 0.4 % of its G1. */
+    for (int k = 0; k < 4; k++) {
+        static const double cot_t[4] = {0.05, 0.4, 1.0, 2.5};
+        double a = cot_t[k], integral = 0.0;
+        const int n = 200000;
+        for (int i = 0; i < n; i++) {
+            double x = a + 8.0 * (i + 0.5) / n;
+            integral += (x / a - 1.0) * exp(-x * x) / sqrt(PHOS_PI) * 8.0 / n;
+        }
+        vec3 w = v3_normalize(v3(1.0f, 0.0f, (float)a));
+        CHECK_REL(beckmann_lambda_exact_aniso(w, 1.0f, 1.0f), integral, 2e-4);
+        CHECK_REL(1.0 / (1.0 + beckmann_lambda_aniso(w, 1.0f, 1.0f)),
+                  1.0 / (1.0 + beckmann_lambda_exact_aniso(w, 1.0f, 1.0f)), 4e-3);
+    }
+    /* The sampler draws from D_wo: for views from the normal to 88°,
+     * isotropic and anisotropic, every sample faces wo, and the sample
+     * means of h and of h.z² match the moments of the density by the
+     * quadrature above, within 5 standard errors. */
+    {
+        static const float cases[5][5] = {
+            {0.0f, 0.0f, 1.0f, 0.3f, 0.3f},    /* normal incidence */
+            {0.01f, 0.0f, 1.0f, 0.9f, 0.9f},   /* near it: the Gaussian start, corrected */
+            {0.7f, 0.2f, 0.5f, 0.5f, 0.5f},    /* 45° or so */
+            {0.99f, 0.0f, 0.035f, 0.2f, 0.2f}, /* 88° */
+            {0.3f, 0.8f, 0.2f, 0.6f, 0.08f}};  /* anisotropic, oblique */
+        for (int k = 0; k < 5; k++) {
+            vec3 wo = v3_normalize(v3(cases[k][0], cases[k][1], cases[k][2]));
+            float ax = cases[k][3], ay = cases[k][4], alpha = fminf(ax, ay);
+            const int n = 200000;
+            double m[4] = {0, 0, 0, 0}, m2[4] = {0, 0, 0, 0};
+            int behind = 0;
+            for (int i = 0; i < n; i++) {
+                sampler sm = sampler_independent(97 + (uint32_t)k, 0, (uint64_t)i);
+                vec3 h = beckmann_sample_visible_normal_aniso(wo, ax, ay, sampler_2d(&sm, 0));
+                behind += !(v3_dot(wo, h) > 0.0f) || !(h.z > 0.0f);
+                double f[4] = {h.x, h.y, h.z, h.z * h.z};
+                for (int q = 0; q < 4; q++) {
+                    m[q] += f[q];
+                    m2[q] += f[q] * f[q];
+                }
+            }
+            double e[4] = {0, 0, 0, 0};
+            const int nt = 2000, np = 1024;
+            for (int i = 0; i < nt; i++) {
+                double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
+                double theta = atan(alpha * tan(u));
+                double dtheta =
+                    alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
+                double s = sin(theta), c = cos(theta);
+                for (int j = 0; j < np; j++) {
+                    double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
+                    vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
+                    double dw = s * dtheta * 2.0 * PHOS_PI / np;
+                    double p = beckmann_visible_normal_pdf_aniso(wo, h, ax, ay) * dw;
+                    e[0] += h.x * p;
+                    e[1] += h.y * p;
+                    e[2] += h.z * p;
+                    e[3] += h.z * h.z * p;
+                }
+            }
+            CHECK_MSG(behind == 0, "Beckmann sampler, case %d: %d normals facing away", k, behind);
+            for (int q = 0; q < 4; q++) {
+                double mean = m[q] / n, sigma = sqrt(fmax(m2[q] / n - mean * mean, 0.0) / n);
+                CHECK_MSG(fabs(mean - e[q]) <= 5.0 * sigma + 1e-4,
+                          "Beckmann sampler, case %d, moment %d: %.5f, density %.5f (σ %.1e)", k, q, mean,
+                          e[q], sigma);
+            }
+        }
+    }
+    /* erf⁻¹ (Giles 2010) against C99's erff: erff(erf⁻¹(y)) = y over
+     * (−1, 1) to a few float roundings, and erf⁻¹(erff(x)) = x where that
+     * is well conditioned, |x| ≤ 2 (beyond, erff's last bit moves x more). */
+    {
+        double worst_y = 0.0, worst_x = 0.0;
+        for (int i = 1; i < 400000; i++) {
+            float y = -1.0f + 2.0f * (float)i / 400000.0f;
+            worst_y = fmax(worst_y, fabs((double)erff(erfinvf_approx(y)) - y));
+        }
+        for (int i = -2000; i <= 2000; i++) {
+            float x = (float)i / 1000.0f;
+            worst_x = fmax(worst_x, fabs(erfinvf_approx(erff(x)) - x) / fmax(fabs(x), 1e-3));
+        }
+        CHECK_MSG(worst_y < 3e-7, "erff(erf⁻¹(y)) − y up to %.3g", worst_y);
+        CHECK_MSG(worst_x < 2e-6, "erf⁻¹(erff(x)) − x up to %.3g |x|", worst_x);
+        CHECK(erfinvf_approx(0.0f) == 0.0f);
+        CHECK(isfinite(erfinvf_approx(1.0f)) && erfinvf_approx(1.0f) > 3.8f);
+        CHECK(erfinvf_approx(-1.0f) == -erfinvf_approx(1.0f));
     }
     /* Ashikhmin-Shirley: p(h) is a density of h (eq. 6), isotropic or not. */
     static const float ns[3][2] = {{10.0f, 10.0f}, {200.0f, 5.0f}, {0.0f, 0.0f}};

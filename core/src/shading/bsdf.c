@@ -29,9 +29,10 @@
  * its Multiscatter GGX scales a lobe by 1 + F_ms (1 − E(μo))/E(μo)
  * (ggx_albedo.h). Microfacet lobes sample the visible normals (Heitz 2018),
  * see microfacet.c. The microfacet closures may instead be Beckmann
- * (Walter 2007; sampled by D·cos θh) and the reflection ones anisotropic
- * (αx along the closure frame's tangent, αy across) or, for Cycles'
- * Glossy, Ashikhmin-Shirley (2000): enum phos_microfacet, mf_lobe below.
+ * (Walter 2007; its visible normals sampled as Heitz & d'Eon 2014) and
+ * the reflection ones anisotropic (αx along the closure frame's tangent,
+ * αy across) or, for Cycles' Glossy, Ashikhmin-Shirley (2000): enum
+ * phos_microfacet, mf_lobe below.
  *
  * Mixture: a closure is picked with probability sample_weight / sum; a
  * non-delta pick is weighted by the whole non-delta mixture (one-sample
@@ -175,28 +176,31 @@ static float lobe_G(const mf_lobe *m, vec3 wo, vec3 wi)
     return m->correlated ? 1.0f / (1.0f + lo + li) : 1.0f / ((1.0f + lo) * (1.0f + li));
 }
 
-/* A half vector for wo: GGX's visible normals (Heitz 2018); Beckmann's
- * normals by D·cos θh (Walter 2007 eq. 28). */
+/* A half vector for wo from the normals visible from it: GGX's by Heitz
+ * 2018, Beckmann's by Heitz & d'Eon 2014 (slopes as Jakob 2014). */
 static vec3 lobe_sample_h(const mf_lobe *m, vec3 wo, float2 u)
 {
     if (m->ashikhmin)
         return ashikhmin_shirley_sample_h(m->nx, m->ny, u);
-    return m->beckmann ? beckmann_sample_normal_aniso(m->ax, m->ay, u)
+    return m->beckmann ? beckmann_sample_visible_normal_aniso(wo, m->ax, m->ay, u)
                        : ggx_sample_visible_normal_aniso(wo, m->ax, m->ay, u);
 }
 
-/* The density of lobe_sample_h (1/sr of h). */
+/* The density of lobe_sample_h (1/sr of h): D_wo(h), for Beckmann with
+ * the exact Λ that its sampler follows rather than the approximation
+ * lobe_G uses, so that the pdf is the sampler's own; a sample's weight
+ * f·cos/pdf is then G(approximate Λ) / G1(wo, exact Λ). */
 static float lobe_h_pdf(const mf_lobe *m, vec3 wo, vec3 h)
 {
     if (m->ashikhmin)
         return ashikhmin_shirley_h_pdf(h, m->nx, m->ny);
-    return m->beckmann ? beckmann_normal_pdf_aniso(h, m->ax, m->ay)
+    return m->beckmann ? beckmann_visible_normal_pdf_aniso(wo, h, m->ax, m->ay)
                        : ggx_visible_normal_pdf_aniso(wo, h, m->ax, m->ay);
 }
 
 /* Microfacet reflection without Fresnel: returns f·cos θi = D G / (4 cos θo)
  * (Walter 2007 eq. 20 times cos θi) and the solid-angle pdf of sampling wi
- * through lobe_sample_h, p(h) / (4 wo·h) (Walter 2007 eq. 14; for GGX's
+ * through lobe_sample_h, p(h) / (4 wo·h) (Walter 2007 eq. 14; for
  * visible normals Heitz 2018 eq. 17). */
 static float microfacet_reflection(const query *q, const mf_lobe *m, vec3 *h, float *pdf)
 {

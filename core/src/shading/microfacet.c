@@ -174,6 +174,8 @@ float microfacet_refract_jacobian(vec3 wo, vec3 wi, vec3 h, float eta)
 
 /* ------------------------------------------------------------ Beckmann */
 
+#define INV_SQRT_PI 0.56418958354775628695f /* 1/√π */
+
 /* D(h) = exp(−(hx²/αx² + hy²/αy²)/hz²) / (π αx αy hz⁴) (Walter 2007 eq. 25,
  * anisotropic as Heitz 2014 eq. 85). Units 1/sr. */
 float beckmann_D_aniso(vec3 h, float ax, float ay)
@@ -200,20 +202,147 @@ float beckmann_lambda_aniso(vec3 w, float ax, float ay)
     return (1.0f - 1.259f * a + 0.396f * a * a) / (3.535f * a + 2.181f * a * a);
 }
 
-/* The slopes (−hx/hz, −hy/hz) of Beckmann microfacets are Gaussian with
- * variances αx²/2, αy²/2 (Walter 2007 §5.2, eq. 28): a slope of radius
- * √(−ln(1 − u1)) in the stretched space, azimuth 2π u2. */
-vec3 beckmann_sample_normal_aniso(float ax, float ay, float2 u)
+/* Λ(w) exact for Beckmann (Heitz 2014; anisotropic as GGX's): with
+ * a = 1/(α tanθ), α projected on w's azimuth,
+ * Λ = (erf(a) − 1)/2 + exp(−a²)/(2a√π). It is what the visible-normal
+ * sampler below draws from; the BSDF's value keeps Walter's approximation
+ * above, as Cycles. Below 10⁻¹⁵ from a = 6 on, where it is taken as 0. */
+float beckmann_lambda_exact_aniso(vec3 w, float ax, float ay)
 {
-    float r = sqrtf(-logf(maxf(1.0f - u.x, 1e-30f)));
-    float phi = 2.0f * PHOS_PI * u.y;
-    return v3_normalize(v3(-ax * r * cosf(phi), -ay * r * sinf(phi), 1.0f));
+    float z2 = maxf(w.z * w.z, 1e-20f);
+    float a2_tan2 = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / z2;
+    if (!(a2_tan2 > 1.0f / 36.0f)) /* a > 6 */
+        return 0.0f;
+    float a = 1.0f / sqrtf(a2_tan2);
+    return 0.5f * (INV_SQRT_PI * expf(-a * a) / a - erfcf(a));
 }
 
-/* The density of beckmann_sample_normal_aniso: D(h)·cos θh (1/sr of h). */
-float beckmann_normal_pdf_aniso(vec3 h, float ax, float ay)
+/* erf⁻¹ in single precision: Giles 2010, "Approximating the erfinv
+ * function" (GPU Computing Gems, Jade Edition), his single-precision
+ * polynomials in w = −ln(1 − x²), central (w < 5) and tail. Relative
+ * error below 10⁻⁶ (erff(erf⁻¹(y)) within 1.2·10⁻⁷ of y); x is clamped to
+ * ±(1 − 2⁻²⁴), where the result is ±3.83. */
+float erfinvf_approx(float x)
 {
-    return beckmann_D_aniso(h, ax, ay) * maxf(h.z, 0.0f);
+    x = clampf(x, -0.99999994f, 0.99999994f);
+    float w = -logf((1.0f - x) * (1.0f + x)), p;
+    if (w < 5.0f) {
+        w -= 2.5f;
+        p = 2.81022636e-08f;
+        p = 3.43273939e-07f + p * w;
+        p = -3.5233877e-06f + p * w;
+        p = -4.39150654e-06f + p * w;
+        p = 0.00021858087f + p * w;
+        p = -0.00125372503f + p * w;
+        p = -0.00417768164f + p * w;
+        p = 0.246640727f + p * w;
+        p = 1.50140941f + p * w;
+    } else {
+        w = sqrtf(w) - 3.0f;
+        p = -0.000200214257f;
+        p = 0.000100950558f + p * w;
+        p = 0.00134934322f + p * w;
+        p = -0.00367342844f + p * w;
+        p = 0.00573950773f + p * w;
+        p = -0.0076224613f + p * w;
+        p = 0.00943887047f + p * w;
+        p = 1.00167406f + p * w;
+        p = 2.83297682f + p * w;
+    }
+    return p * x;
+}
+
+/* The slope x along the view's azimuth of a visible microfacet of an
+ * α = 1 Beckmann surface seen at θ (cos_t > 0, sin_t ≥ 0), from u in
+ * [0, 1). The visible slopes have the density
+ * G1 (1 − x tanθ) exp(−x² − y²)/π for x < a = cotθ (D_wo in slope space,
+ * Heitz & d'Eon 2014), so x has the cumulative distribution
+ * C(x) = G1 [erfc(−x)/2 + tanθ exp(−x²)/(2√π)], with C(a) = G1 (1 + Λ) = 1:
+ * a Gaussian part of mass erfc(−a)/2 and a tilt part of mass
+ * tanθ exp(−a²)/(2√π).
+ * C(x) = u is solved by Newton steps kept inside a shrinking bracket
+ * (bisection when a step leaves it), as Jakob 2014 does, until a step is
+ * below 10⁻⁴ or C is met to float's rounding: |C(x) − u| < 6·10⁻⁷, 2
+ * evaluations of C on average. The start blends the two parts' own
+ * quantiles by their masses — the Gaussian's below a, erf⁻¹(u erfc(−a) − 1),
+ * and the tilt's at a → 0, −√(−ln u) — shifted so that its mean is the
+ * distribution's, E[x] = −tanθ erfc(−a) / (4 (1 + Λ)) (for small θ the
+ * tilt 1 − x tanθ ≈ exp(−x tanθ) moves the Gaussian by −tanθ/2). Near
+ * normal incidence (cos θ > 0.9999) the tilt's mass is 0 in float and the
+ * start is the Gaussian slope, erf⁻¹(2u − 1) − tanθ/2; the steps still
+ * correct it, so that the density is D_wo's at every θ. Slopes below −6
+ * (u within 10⁻¹⁵ of 0) are clamped. */
+static float beckmann_visible_slope_x(float cos_t, float sin_t, float u)
+{
+    float tan_t = sin_t / cos_t, lo = -6.0f, hi = 6.0f, total = 1.0f, x;
+    if (cos_t > 0.9999f) {
+        x = erfinvf_approx(2.0f * u - 1.0f) - 0.5f * tan_t;
+    } else {
+        float a = cos_t / sin_t;
+        float gauss = 0.5f * erfcf(-a), tilt = 0.5f * INV_SQRT_PI * tan_t * expf(-a * a);
+        float x_gauss = erfinvf_approx(2.0f * u * gauss - 1.0f); /* mean −tilt a/gauss */
+        float x_tilt = -sqrtf(-logf(maxf(u, 1e-30f)));            /* mean −√π/2 */
+        total = gauss + tilt;                                      /* 1 + Λ */
+        hi = minf(a, hi);
+        float shift = tilt * (a + 0.5f / INV_SQRT_PI) - 0.5f * tan_t * gauss; /* to E[x] */
+        x = (gauss * x_gauss + tilt * x_tilt + shift) / total;
+    }
+    float target = u * total;
+    x = clampf(x, lo, hi);
+    for (int i = 0; i < 16; i++) {
+        float e = INV_SQRT_PI * expf(-x * x);
+        float f = 0.5f * erfcf(-x) + 0.5f * tan_t * e - target; /* C(x)/G1 − u/G1 */
+        if (fabsf(f) <= 4e-7f * target) /* float's rounding of C */
+            break;
+        if (f > 0.0f)
+            hi = x;
+        else
+            lo = x;
+        float step = f / ((1.0f - x * tan_t) * e); /* C'(x)/G1 = (1 − x tanθ) e^(−x²)/√π */
+        float next = x - step;
+        if (!(next >= lo && next <= hi)) {
+            next = 0.5f * (lo + hi);
+        } else if (fabsf(step) <= 1e-4f) {
+            return next; /* converging quadratically: off by ~1e-8 |C''/C'| */
+        }
+        if (next == x)
+            break;
+        x = next;
+    }
+    return x;
+}
+
+/* Heitz & d'Eon 2014, with Jakob 2014's inversion for Beckmann:
+ * stretch wo by (αx, αy) to the α = 1 configuration, sample a slope of the
+ * microfacets visible from it — x along its azimuth by inverting the
+ * cumulative distribution above, y across it Gaussian, erf⁻¹(2u − 1), as
+ * masking does not depend on it — turn the slope to wo's azimuth, scale it
+ * by (αx, αy) and return the normal (−x, −y, 1) normalised. The result is
+ * distributed as D_wo(h) with the exact Λ. */
+vec3 beckmann_sample_visible_normal_aniso(vec3 wo, float ax, float ay, float2 u)
+{
+    vec3 v = v3_normalize(v3(ax * wo.x, ay * wo.y, maxf(wo.z, 1e-7f)));
+    float sin_t = sqrtf(v.x * v.x + v.y * v.y);
+    float sx = beckmann_visible_slope_x(v.z, sin_t, u.x);
+    float sy = erfinvf_approx(2.0f * u.y - 1.0f);
+    float c = 1.0f, s = 0.0f; /* the azimuth of v; any at normal incidence */
+    if (sin_t > 1e-7f) {
+        c = v.x / sin_t;
+        s = v.y / sin_t;
+    }
+    float mx = ax * (c * sx - s * sy), my = ay * (s * sx + c * sy);
+    return v3_normalize(v3(-mx, -my, 1.0f));
+}
+
+/* D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θo (Heitz 2014 eq. 16;
+ * Heitz & d'Eon 2014) with the exact G1 = 1/(1 + Λ): the density of
+ * beckmann_sample_visible_normal_aniso (1/sr of h). */
+float beckmann_visible_normal_pdf_aniso(vec3 wo, vec3 h, float ax, float ay)
+{
+    float cos_oh = v3_dot(wo, h);
+    if (wo.z <= 0.0f || cos_oh <= 0.0f)
+        return 0.0f;
+    return cos_oh * beckmann_D_aniso(h, ax, ay) / ((1.0f + beckmann_lambda_exact_aniso(wo, ax, ay)) * wo.z);
 }
 
 /* ------------------------------------------------- Ashikhmin-Shirley */

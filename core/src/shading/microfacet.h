@@ -18,6 +18,14 @@
  *     anisotropic D and Λ (eq. 85, 86).
  *   Heitz 2018, "Sampling the GGX Distribution of Visible Normals"
  *     (JCGT 7(4)): the exact sampler of D_wo.
+ *   Heitz, d'Eon 2014, "Importance Sampling Microfacet-Based BSDFs using
+ *     the Distribution of Visible Normals" (EGSR): D_wo sampled through
+ *     the slopes of the stretched α = 1 surface.
+ *   Jakob 2014, "An Improved Visible Normal Sampling Routine for the
+ *     Beckmann Distribution" (technical note): the slope CDF inverted by
+ *     safeguarded Newton steps.
+ *   Giles 2010, "Approximating the erfinv function" (GPU Computing Gems,
+ *     Jade Edition): erf⁻¹ in single precision.
  */
 #ifndef PHOS_MICROFACET_H
 #define PHOS_MICROFACET_H
@@ -58,14 +66,21 @@ float ggx_G_correlated_aniso(vec3 wo, vec3 wi, float ax, float ay);
 vec3 ggx_sample_visible_normal_aniso(vec3 wo, float ax, float ay, float2 u);
 float ggx_visible_normal_pdf_aniso(vec3 wo, vec3 h, float ax, float ay);
 
-/* Beckmann (Walter 2007 eq. 25, 27, 28), anisotropic as GGX above: D; Λ
- * by Walter's rational approximation (as Cycles); a sampler of D(h)·cos θh
- * through Gaussian slopes, and its density (1/sr of h). Smith G from Λ as
- * for GGX: 1/((1 + Λo)(1 + Λi)) or 1/(1 + Λo + Λi). */
+/* Beckmann (Walter 2007 eq. 25, 27), anisotropic as GGX above: D; Λ by
+ * Walter's rational approximation (as Cycles), for the BSDF's value; the
+ * exact Λ (erf form), for the sampler's density; a sampler of the visible
+ * normals D_wo(h) = G1(wo)·max(0, wo·h)·D(h) / wo.z (Heitz & d'Eon 2014,
+ * Jakob 2014) and its density (1/sr of h), with the exact G1. Smith G
+ * from Λ as for GGX: 1/((1 + Λo)(1 + Λi)) or 1/(1 + Λo + Λi). */
 float beckmann_D_aniso(vec3 h, float ax, float ay);
 float beckmann_lambda_aniso(vec3 w, float ax, float ay);
-vec3 beckmann_sample_normal_aniso(float ax, float ay, float2 u);
-float beckmann_normal_pdf_aniso(vec3 h, float ax, float ay);
+float beckmann_lambda_exact_aniso(vec3 w, float ax, float ay);
+vec3 beckmann_sample_visible_normal_aniso(vec3 wo, float ax, float ay, float2 u);
+float beckmann_visible_normal_pdf_aniso(vec3 wo, vec3 h, float ax, float ay);
+
+/* erf⁻¹(x) for x in (−1, 1), single precision (Giles 2010); x is clamped
+ * to ±(1 − 2⁻²⁴). */
+float erfinvf_approx(float x);
 
 /* Ashikhmin-Shirley (2000), Cycles' ASHIKHMIN_SHIRLEY: the Phong exponent
  * n = 2/α² − 2 of α (clamped to [1e-4, 1] as Cycles); the density p(h)
