@@ -850,7 +850,7 @@ RENDER_SETTINGS = (
         name='tile_size', ctype='uint32_t', default=64, min=8, max=8192,
         user=True, prop='tile_size', kind='PIXELS', enum=None, soft_max=1024,
         label='Tile Size',
-        description='Edge of the square tiles the image is rendered and delivered in'),
+        description='Edge of the square tiles the image is rendered and delivered in (halved, down to 8, until each thread has 16 tiles to choose from)'),
     RenderSetting(
         name='filter_width', ctype='float', default=1.5, min=0.0, max=10.0,
         user=True, prop='filter_width', kind='PIXELS', enum=None, soft_max=0.0,

@@ -740,7 +740,8 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
          "Scattering events a path may have after the camera ray")                                \
     HOST(uint32_t, threads, 0, 0, 1024, "Render threads, 0: one per core")                        \
     USER(uint32_t, tile_size, 64, 8, 8192, tile_size, PIXELS, 1024, "Tile Size",                  \
-         "Edge of the square tiles the image is rendered and delivered in")                       \
+         "Edge of the square tiles the image is rendered and delivered in (halved, down to 8, "    \
+         "until each thread has 16 tiles to choose from)")                                         \
     /* Blackman-Harris, as Cycles' default filter (width 1.5). */                                 \
     USER(float, filter_width, 1.5f, 0.0f, 10.0f, filter_width, PIXELS, 0, "Filter Width",         \
          "Width of the Blackman-Harris pixel filter (0 is a box of one pixel)")                   \
