@@ -491,6 +491,26 @@ def _samples_for(scene, module, args, ref, integrator, settings, budget):
 
 
 
+def _path_speed_row(scene, module, args, ref, engine, samples):
+    """One PATH measurement of an engine at S + 1 samples, its time per
+    sample the difference to a 1-sample render, divided by S."""
+    if engine == "PHOS":
+        one = phos_measurement(scene, module, args, ref, {"samples": 1}, "PATH")["seconds"]
+        row = phos_measurement(scene, module, args, ref, {"samples": samples + 1}, "PATH")
+    else:
+        configure(scene, module, "CYCLES", args.resolution, 1, args.seed)
+        _, one = render(scene)
+        configure(scene, module, "CYCLES", args.resolution, samples + 1, args.seed)
+        image, seconds = render(scene)
+        rel, own = ref.relative_mse(image)
+        row = {"scene": args.scene, "engine": "CYCLES", "integrator": "PATH", "samples": samples + 1,
+               "seconds": seconds, "fixed_seconds": one, "relative_mse": rel, "reference_share": own,
+               "mean_ratio": float(image.mean() / ref.mean.mean())}
+    row.update(seconds_per_sample=(row["seconds"] - one) / samples,
+               variance_per_sample=row["relative_mse"] * int(row["samples"]))
+    return row
+
+
 def command_bench(args):
     ref = load_reference(args)
     scene, module = build_scene(args.scene)
@@ -526,25 +546,20 @@ def command_bench(args):
             add(phos_measurement(scene, module, args, ref, settings, integrator), "budget", budget)
         add(cycles_measurement(scene, module, args, ref, budget), "budget", budget)
 
-    # The path tracers at equal samples: time and variance per sample.
+    # The path tracers at equal samples: time and variance per sample, both
+    # measured the same way, as the difference between a render of S + 1
+    # samples and one of 1 (whatever each engine spends before and after its
+    # samples cancels), the engines alternating --path-reps times; the row
+    # of each engine is its median repetition (a shared machine's load
+    # moves single runs by 20 % and more).
     samples = args.path_samples
-    for engine in ("PHOS", "CYCLES") if "path" in args.parts else ():
-        if engine == "PHOS":
-            row = phos_measurement(scene, module, args, ref, {"samples": samples}, "PATH")
-            per_sample = (row["seconds"] - row["fixed_seconds"]) / samples
-        else:
-            configure(scene, module, "CYCLES", args.resolution, 1, args.seed)
-            _, one = render(scene)
-            configure(scene, module, "CYCLES", args.resolution, samples + 1, args.seed)
-            image, seconds = render(scene)
-            rel, own = ref.relative_mse(image)
-            per_sample = (seconds - one) / samples
-            row = {"scene": args.scene, "engine": "CYCLES", "integrator": "PATH", "samples": samples + 1,
-                   "seconds": seconds, "fixed_seconds": one, "relative_mse": rel, "reference_share": own,
-                   "mean_ratio": float(image.mean() / ref.mean.mean())}
-        row.update(seconds_per_sample=per_sample,
-                   variance_per_sample=row["relative_mse"] * int(row["samples"]))
-        add(row, "path_speed")
+    runs = {"PHOS": [], "CYCLES": []}
+    for _ in range(args.path_reps if "path" in args.parts else 0):
+        for engine in runs:
+            runs[engine].append(_path_speed_row(scene, module, args, ref, engine, samples))
+    for engine, rows in runs.items():
+        if rows:
+            add(sorted(rows, key=lambda r: r["seconds_per_sample"])[len(rows) // 2], "path_speed")
     # Cycles as artists run it (the official builds), and Phos through the
     # same denoiser, all at the time Phos PHOTON takes at its defaults, or
     # at the settings --grid gives (the first value of each).
@@ -565,6 +580,8 @@ def main():
     p.add_argument("command", choices=("reference", "sweep", "equal-time", "bench"))
     p.add_argument("--budgets", type=float, nargs="+", default=[4.0, 16.0, 64.0])
     p.add_argument("--path-samples", type=int, default=64)
+    p.add_argument("--path-reps", type=int, default=5,
+                   help="alternating repetitions of the PATH time per sample; the median is kept")
     p.add_argument("--parts", nargs="+", default=["equal", "budgets", "path"],
                    choices=("equal", "budgets", "path", "official"),
                    help="bench: which measurements to make (official: Cycles with path guiding and "
