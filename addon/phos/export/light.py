@@ -30,6 +30,7 @@ world-space area of an area light; π sin²(α/2) for a sun of angle α).
 """
 
 import math
+import warnings
 
 import numpy as np
 
@@ -135,7 +136,12 @@ def _neutral_node_tree(light):
     """No node tree, or the one Blender 5.3 gives every new light: a white
     Emission of strength 1 into the Light Output, which changes nothing."""
     tree = getattr(light, "node_tree", None)
-    if tree is None or not getattr(light, "use_nodes", False):
+    with warnings.catch_warnings():
+        # 5.x deprecates Light.use_nodes (its tree is then always used): read
+        # it while it exists, without the warning in the user's console.
+        warnings.simplefilter("ignore", DeprecationWarning)
+        use_nodes = getattr(light, "use_nodes", True)
+    if tree is None or not use_nodes:
         return True
     outputs = [n for n in tree.nodes if n.bl_idname == 'ShaderNodeOutputLight' and n.is_active_output]
     if not outputs or not outputs[0].inputs['Surface'].is_linked:
