@@ -359,6 +359,24 @@ def _bumped_specular(scene):
     return mat
 
 
+def _sheen_under_coat(scene):
+    """A Principled BSDF (4.2+) that is mostly sheen under a coat, its
+    Normal bumped hard by a noise, no Coat Normal: Cycles lays the sheen
+    along normalize(mix(Normal, the surface's normal, Coat Weight)), here
+    the smooth normal, so the bumps show in the coat only."""
+    mat = pt.node_material("Test Sheen Under Coat", "ShaderNodeBsdfPrincipled",
+                           {"Base Color": (0.02, 0.02, 0.02), "Specular IOR Level": 0.0, "Sheen Weight": 1.0,
+                            "Sheen Roughness": 0.3, "Sheen Tint": (1.0, 0.9, 0.8), "Coat Weight": 1.0,
+                            "Coat Roughness": 0.5})
+    nt = mat.node_tree
+    bsdf = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
+    noise = pt.setup_node(nt.nodes.new("ShaderNodeTexNoise"), {"Scale": 6.0})
+    bump = pt.setup_node(nt.nodes.new("ShaderNodeBump"), {"Strength": 1.0, "Distance": 0.6})
+    nt.links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    nt.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    return mat
+
+
 def _principled_coat_over_bump(scene):
     """A Principled BSDF (4.x) whose Normal is bumped by a noise and whose
     coat has no Coat Normal: Cycles 4.x lays the coat along the surface's own
@@ -554,6 +572,7 @@ MATERIAL_SCENES.update({
         {"Base Color": (0.8, 0.1, 0.1), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Roughness": 0.1,
          "Coat IOR": 1.6, "Coat Tint": (0.6, 0.8, 1.0)})),
     "principled_coat_over_bump": _material_scene(_principled_coat_over_bump),
+    "sheen_under_coat": _material_scene(_sheen_under_coat),
     "principled_sheen": _material_scene(_principled(
         {"Base Color": (0.05, 0.1, 0.4), "Roughness": 0.7, "Sheen Weight": 1.0, "Sheen Roughness": 0.4,
          "Sheen Tint": (1.0, 0.9, 0.8)})),
@@ -593,6 +612,7 @@ MIN_VERSION = {
     "spot_sphere": (4, 1, 0),
     "principled_coat": (4, 0, 0),
     "principled_coat_over_bump": (4, 0, 0),
+    "sheen_under_coat": (4, 2, 0),
     "principled_sheen": (4, 0, 0),
     "sheen_bsdf": (4, 0, 0),
     "principled_specular_tint": (4, 0, 0),
