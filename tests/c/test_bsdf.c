@@ -1126,56 +1126,93 @@ static void test_fresnel(void)
 
 /* ------------------------- GGX normalisation and closed-form values */
 
+/* A quadrature over the hemisphere of microfacet normals, dense where a
+ * lobe of roughness alpha is: θ = atan(α tan(π/2 · t)) at nt midpoints of
+ * t, φ at np; f(h, dω, ctx) is called for every cell, dω its solid angle. */
+typedef void (*normal_cell_fn)(vec3 h, double dw, void *ctx);
+
+static void integrate_normals(float alpha, int nt, int np, normal_cell_fn f, void *ctx)
+{
+    for (int i = 0; i < nt; i++) {
+        double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
+        double theta = atan(alpha * tan(u));
+        double dtheta = alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
+        double s = sin(theta), c = cos(theta);
+        for (int j = 0; j < np; j++) {
+            double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
+            f(v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c), s * dtheta * 2.0 * PHOS_PI / np, ctx);
+        }
+    }
+}
+
+/* ∫ D(h) cos θh dω and ∫ D_wo(h) dω of a lobe, through the functions
+ * of its model. */
+enum { SUM_GGX, SUM_GGX_ANISO, SUM_BECKMANN };
+typedef struct {
+    float ax, ay;
+    int model;
+    vec3 wo[4];
+    int views;
+    double proj, visible[4];
+} normal_sums;
+
+static void sum_normals(vec3 h, double dw, void *ctx)
+{
+    normal_sums *n = ctx;
+    switch (n->model) {
+    case SUM_GGX:
+        n->proj += ggx_D(h, n->ax) * h.z * dw;
+        for (int v = 0; v < n->views; v++)
+            n->visible[v] += ggx_visible_normal_pdf(n->wo[v], h, n->ax) * dw;
+        break;
+    case SUM_GGX_ANISO:
+        n->proj += ggx_D_aniso(h, n->ax, n->ay) * h.z * dw;
+        for (int v = 0; v < n->views; v++)
+            n->visible[v] += ggx_visible_normal_pdf_aniso(n->wo[v], h, n->ax, n->ay) * dw;
+        break;
+    default:
+        n->proj += beckmann_D_aniso(h, n->ax, n->ay) * h.z * dw;
+        for (int v = 0; v < n->views; v++)
+            n->visible[v] += beckmann_visible_normal_pdf_aniso(n->wo[v], h, n->ax, n->ay) * dw;
+    }
+}
+
+/* Moments E[hx], E[hy], E[hz], E[hz²] of the Beckmann visible normals. */
+typedef struct {
+    vec3 wo;
+    float ax, ay;
+    double e[4];
+} visible_moments;
+
+static void sum_moments(vec3 h, double dw, void *ctx)
+{
+    visible_moments *m = ctx;
+    double p = beckmann_visible_normal_pdf_aniso(m->wo, h, m->ax, m->ay) * dw;
+    m->e[0] += h.x * p;
+    m->e[1] += h.y * p;
+    m->e[2] += h.z * p;
+    m->e[3] += h.z * h.z * p;
+}
+
 static void test_microfacet(void)
 {
     /* ∫ D(h) cos θh dω = 1 and ∫ D_wo(h) dω = 1 (Heitz 2014 eq. 4 and 16),
      * by quadrature in θ with a substitution that resolves the peak. */
     static const float alphas[4] = {0.01f, 0.09f, 0.49f, 1.0f};
     for (int k = 0; k < 4; k++) {
-        float alpha = alphas[k];
-        vec3 wo = v3_normalize(v3(0.6f, 0.2f, 0.4f));
-        double proj = 0.0, visible = 0.0;
-        const int nt = 4000, np = 256;
-        for (int i = 0; i < nt; i++) {
-            /* θ = atan(α tan(π/2 · t)): dense where D is. */
-            double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
-            double theta = atan(alpha * tan(u));
-            double dtheta = alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
-            double s = sin(theta), c = cos(theta);
-            for (int j = 0; j < np; j++) {
-                double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
-                vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
-                double dw = s * dtheta * 2.0 * PHOS_PI / np;
-                proj += ggx_D(h, alpha) * c * dw;
-                visible += ggx_visible_normal_pdf(wo, h, alpha) * dw;
-            }
-        }
-        CHECK_REL(proj, 1.0, 2e-3);
-        CHECK_REL(visible, 1.0, 2e-3);
+        normal_sums n = {alphas[k], alphas[k], SUM_GGX, {v3_normalize(v3(0.6f, 0.2f, 0.4f))}, 1, 0.0, {0.0}};
+        integrate_normals(alphas[k], 4000, 256, sum_normals, &n);
+        CHECK_REL(n.proj, 1.0, 2e-3);
+        CHECK_REL(n.visible[0], 1.0, 2e-3);
     }
     /* Anisotropic GGX: the same normalisations (Heitz 2014 eq. 4, 16, 85),
      * the θ substitution at the smaller α, the azimuth finely. */
     static const float axy[3][2] = {{0.05f, 0.4f}, {0.6f, 0.15f}, {0.3f, 0.3f}};
     for (int k = 0; k < 3; k++) {
-        float ax = axy[k][0], ay = axy[k][1], alpha = fminf(ax, ay);
-        vec3 wo = v3_normalize(v3(0.6f, 0.2f, 0.4f));
-        double proj = 0.0, visible = 0.0;
-        const int nt = 2000, np = 1024;
-        for (int i = 0; i < nt; i++) {
-            double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
-            double theta = atan(alpha * tan(u));
-            double dtheta = alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
-            double s = sin(theta), c = cos(theta);
-            for (int j = 0; j < np; j++) {
-                double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
-                vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
-                double dw = s * dtheta * 2.0 * PHOS_PI / np;
-                proj += ggx_D_aniso(h, ax, ay) * c * dw;
-                visible += ggx_visible_normal_pdf_aniso(wo, h, ax, ay) * dw;
-            }
-        }
-        CHECK_REL(proj, 1.0, 3e-3);
-        CHECK_REL(visible, 1.0, 3e-3);
+        normal_sums n = {axy[k][0], axy[k][1], SUM_GGX_ANISO, {v3_normalize(v3(0.6f, 0.2f, 0.4f))}, 1, 0.0, {0.0}};
+        integrate_normals(fminf(axy[k][0], axy[k][1]), 2000, 1024, sum_normals, &n);
+        CHECK_REL(n.proj, 1.0, 3e-3);
+        CHECK_REL(n.visible[0], 1.0, 3e-3);
     }
     {
         /* At αx = αy the isotropic forms; along x, Λ sees αx only. */
@@ -1204,30 +1241,14 @@ static void test_microfacet(void)
     static const float beckmann_views[4][3] = {
         {0.0f, 0.0f, 1.0f}, {0.6f, 0.2f, 0.4f}, {-0.3f, 0.9f, 0.15f}, {0.99f, -0.1f, 0.03f}};
     for (int k = 0; k < 3; k++) {
-        float ax = axy[k][0], ay = axy[k][1], alpha = fminf(ax, ay);
-        double proj = 0.0, visible[4] = {0.0, 0.0, 0.0, 0.0};
-        vec3 views[4];
+        normal_sums n = {axy[k][0], axy[k][1], SUM_BECKMANN, {{0}}, 4, 0.0, {0.0}};
         for (int v = 0; v < 4; v++)
-            views[v] = v3_normalize(v3(beckmann_views[v][0], beckmann_views[v][1], beckmann_views[v][2]));
-        const int nt = 2000, np = 1024;
-        for (int i = 0; i < nt; i++) {
-            double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
-            double theta = atan(alpha * tan(u));
-            double dtheta = alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
-            double s = sin(theta), c = cos(theta);
-            for (int j = 0; j < np; j++) {
-                double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
-                vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
-                double dw = s * dtheta * 2.0 * PHOS_PI / np;
-                proj += beckmann_D_aniso(h, ax, ay) * c * dw;
-                for (int v = 0; v < 4; v++)
-                    visible[v] += beckmann_visible_normal_pdf_aniso(views[v], h, ax, ay) * dw;
-            }
-        }
-        CHECK_REL(proj, 1.0, 3e-3);
+            n.wo[v] = v3_normalize(v3(beckmann_views[v][0], beckmann_views[v][1], beckmann_views[v][2]));
+        integrate_normals(fminf(n.ax, n.ay), 2000, 1024, sum_normals, &n);
+        CHECK_REL(n.proj, 1.0, 3e-3);
         for (int v = 0; v < 4; v++)
-            CHECK_MSG(fabs(visible[v] - 1.0) < 3e-3, "Beckmann D_wo, α = (%g, %g), view %d: ∫ = %.5f",
-                      (double)ax, (double)ay, v, visible[v]);
+            CHECK_MSG(fabs(n.visible[v] - 1.0) < 3e-3, "Beckmann D_wo, α = (%g, %g), view %d: ∫ = %.5f",
+                      (double)n.ax, (double)n.ay, v, n.visible[v]);
     }
     /* The exact Λ: its closed form against a quadrature of Heitz 2014's
      * integral Λ(μ) = ∫ (x tanθ − 1) P2(x) dx over x > cotθ, P2 the unit
@@ -1273,25 +1294,9 @@ static void test_microfacet(void)
                     m2[q] += f[q] * f[q];
                 }
             }
-            double e[4] = {0, 0, 0, 0};
-            const int nt = 2000, np = 1024;
-            for (int i = 0; i < nt; i++) {
-                double t = (i + 0.5) / nt, u = 0.5 * PHOS_PI * t;
-                double theta = atan(alpha * tan(u));
-                double dtheta =
-                    alpha / (cos(u) * cos(u) * (1.0 + sqr(alpha * (float)tan(u)))) * 0.5 * PHOS_PI / nt;
-                double s = sin(theta), c = cos(theta);
-                for (int j = 0; j < np; j++) {
-                    double phi = 2.0 * PHOS_PI * (j + 0.5) / np;
-                    vec3 h = v3((float)(s * cos(phi)), (float)(s * sin(phi)), (float)c);
-                    double dw = s * dtheta * 2.0 * PHOS_PI / np;
-                    double p = beckmann_visible_normal_pdf_aniso(wo, h, ax, ay) * dw;
-                    e[0] += h.x * p;
-                    e[1] += h.y * p;
-                    e[2] += h.z * p;
-                    e[3] += h.z * h.z * p;
-                }
-            }
+            visible_moments dm = {wo, ax, ay, {0.0, 0.0, 0.0, 0.0}};
+            integrate_normals(alpha, 2000, 1024, sum_moments, &dm);
+            const double *e = dm.e;
             CHECK_MSG(behind == 0, "Beckmann sampler, case %d: %d normals facing away", k, behind);
             for (int q = 0; q < 4; q++) {
                 double mean = m[q] / n, sigma = sqrt(fmax(m2[q] / n - mean * mean, 0.0) / n);
