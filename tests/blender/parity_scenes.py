@@ -157,11 +157,7 @@ def _one(node_type, inputs=None, props=None):
 def _two(shader_node, a, b, fac=None):
     """Mix/Add shader of two single-node shaders a, b = (type, inputs, props)."""
     def make(scene):
-        mat = bpy.data.materials.new("Test " + shader_node)
-        pt.use_nodes(mat)
-        nt = mat.node_tree
-        nt.nodes.clear()
-        out = nt.nodes.new("ShaderNodeOutputMaterial")
+        mat, nt, out = pt.empty_material("Test " + shader_node)
         mix = nt.nodes.new(shader_node)
         shaders = []
         for node_type, inputs, props in (a, b):
@@ -182,11 +178,7 @@ def _image_texture(scene):
     import os
     # Blender's session temp dir, removed when Blender exits.
     img = pt.checker_image(os.path.join(bpy.app.tempdir, "phos_checker.png"), size=16, squares=4)
-    mat = bpy.data.materials.new("Test Image Texture")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material("Test Image Texture")
     bsdf = nt.nodes.new("ShaderNodeBsdfDiffuse")
     tex = nt.nodes.new("ShaderNodeTexImage")
     tex.image = img
@@ -304,11 +296,7 @@ def _mix_two_bumps(scene):
     wave ridges), and an unbumped Glossy: each closure shades about its own
     normal, as Cycles' closures carry their own N (a bumped Glossy:
     bumped_specular)."""
-    mat = bpy.data.materials.new("Test Mix Two Bumps")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material("Test Mix Two Bumps")
     outer, inner = nt.nodes.new("ShaderNodeMixShader"), nt.nodes.new("ShaderNodeMixShader")
     outer.inputs["Fac"].default_value = inner.inputs["Fac"].default_value = 0.5
     orange = pt.setup_node(nt.nodes.new("ShaderNodeBsdfDiffuse"), {"Color": (0.8, 0.4, 0.2)})
@@ -336,11 +324,7 @@ def _bumped_specular(scene):
     Cycles tilts them back (every closure's before 4.0, the specular
     closures' after), and from 4.2 lays the sheen's normal between the
     bumped one and the coat's (the surface's own here)."""
-    mat = bpy.data.materials.new("Test Bumped Specular")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material("Test Bumped Specular")
     mix = nt.nodes.new("ShaderNodeMixShader")
     mix.inputs["Fac"].default_value = 0.5
     glossy = pt.setup_node(nt.nodes.new("ShaderNodeBsdfGlossy"), {"Color": (0.9, 0.9, 0.9), "Roughness": 0.1},
@@ -419,11 +403,7 @@ def _translucent_leaf(scene):
     through from the lamp's side; the floor behind it is lit through it."""
     pt.add_camera(scene, location=(0.0, -4.2, 1.6), target=(0.0, 0.0, 0.8), lens=50.0)
     pt.add_plane(scene, "Floor", size=8.0, material=pt.diffuse("Floor", (0.8, 0.8, 0.8)))
-    mat = bpy.data.materials.new("Leaf")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material("Leaf")
     mix = nt.nodes.new("ShaderNodeMixShader")
     mix.inputs["Fac"].default_value = 0.6
     diffuse = pt.setup_node(nt.nodes.new("ShaderNodeBsdfDiffuse"), {"Color": (0.3, 0.6, 0.1)})
@@ -444,11 +424,7 @@ def _depth_coloured(scene):
     that is half diffuse, half rough glossy: the floor's reflections of the
     sphere (diffuse or glossy depth 1) see it darker in that channel than
     the camera does (depth 0)."""
-    mat = bpy.data.materials.new("Depths")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material("Depths")
     lp = nt.nodes.new("ShaderNodeLightPath")
     combine = nt.nodes.new("ShaderNodeCombineRGB" if bpy.app.version < (3, 3, 0) else "ShaderNodeCombineColor")
     for k, output in enumerate(("Diffuse Depth", "Glossy Depth", "Transmission Depth")):

@@ -249,13 +249,19 @@ def setup_node(node, inputs=None, props=None):
     return node
 
 
-def node_material(name, node_type, inputs=None, props=None):
-    """A material whose surface is one shader node (type name, input values, properties)."""
+def empty_material(name):
+    """A new material with nodes and nothing but a Material Output:
+    (material, its node tree, the output node)."""
     mat = bpy.data.materials.new(name)
     use_nodes(mat)
     nt = mat.node_tree
     nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    return mat, nt, nt.nodes.new("ShaderNodeOutputMaterial")
+
+
+def node_material(name, node_type, inputs=None, props=None):
+    """A material whose surface is one shader node (type name, input values, properties)."""
+    mat, nt, out = empty_material(name)
     node = setup_node(nt.nodes.new(node_type), inputs, props)
     nt.links.new(node.outputs[0], out.inputs["Surface"])
     return mat

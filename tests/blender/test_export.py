@@ -579,11 +579,7 @@ def test_mesh_without_uv_map_samples_texture_at_origin(scene, tmp_path):
     pt.set_world(scene, (0, 0, 0))
     img = pt.checker_image(os.path.join(str(tmp_path), "chk.png"), size=16, squares=4,
                            colors=((1.0, 0.0, 0.0), (0.0, 0.0, 1.0)))
-    mat = bpy.data.materials.new("Tex Emission")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material("Tex Emission")
     em = nt.nodes.new("ShaderNodeEmission")
     tex = nt.nodes.new("ShaderNodeTexImage")
     tex.image = img
@@ -680,11 +676,7 @@ def test_translucent_and_holdout_closures(scene):
     """Translucent BSDF → TRANSLUCENT of its colour; a Holdout mixed in →
     HOLDOUT of the mix weight; neither warns."""
     from phos import core as C
-    mat = bpy.data.materials.new("Leaf")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material("Leaf")
     mix = nt.nodes.new("ShaderNodeMixShader")
     mix.inputs[0].default_value = 0.3
     hold = nt.nodes.new("ShaderNodeHoldout")
@@ -705,11 +697,7 @@ def test_translucent_and_holdout_closures(scene):
 def _chain_material(name, length, textured=True):
     """Diffuse whose colour is a chain of `length` Math nodes, fed by a
     texture coordinate (varying) or by a constant (folds away)."""
-    mat = bpy.data.materials.new(name)
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material(name)
     bsdf = nt.nodes.new("ShaderNodeBsdfDiffuse")
     nt.links.new(bsdf.outputs[0], out.inputs["Surface"])
     value = nt.nodes.new("ShaderNodeValue")
@@ -772,11 +760,7 @@ def test_one_program_per_material(scene, tmp_path):
 
 
 def _attribute_material(name, attribute):
-    mat = bpy.data.materials.new(name)
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material(name)
     emission = nt.nodes.new("ShaderNodeEmission")
     nt.links.new(emission.outputs[0], out.inputs["Surface"])
     if attribute is not None:

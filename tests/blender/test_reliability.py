@@ -283,11 +283,7 @@ def test_shader_cycle_is_cut(scene, monkeypatch):
     skips; should such a link ever count as valid (a tree not yet
     revalidated), the walk still ends, with a warning naming the material."""
     from phos.export import material
-    mat = bpy.data.materials.new("Ouroboros")
-    pt.use_nodes(mat)
-    nt = mat.node_tree
-    nt.nodes.clear()
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    mat, nt, out = pt.empty_material("Ouroboros")
     m1, m2 = nt.nodes.new("ShaderNodeMixShader"), nt.nodes.new("ShaderNodeMixShader")
     diffuse = nt.nodes.new("ShaderNodeBsdfDiffuse")
     nt.links.new(m1.outputs[0], out.inputs["Surface"])
