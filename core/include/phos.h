@@ -371,8 +371,10 @@ enum phos_map_range {
 enum phos_clamp { PHOS_CLAMP_MINMAX = 0, PHOS_CLAMP_RANGE = 1, PHOS_CLAMP_COUNT = 2 };
 enum phos_color_model { PHOS_COLOR_MODEL_RGB = 0, PHOS_COLOR_MODEL_HSV = 1, PHOS_COLOR_MODEL_HSL = 2,
                         PHOS_COLOR_MODEL_COUNT = 3 };
+/* EQUIRECTANGULAR and MIRROR_BALL are the Environment Texture's: the vector is a direction. */
 enum phos_image_projection { PHOS_PROJECTION_FLAT = 0, PHOS_PROJECTION_BOX = 1, PHOS_PROJECTION_SPHERE = 2,
-                             PHOS_PROJECTION_TUBE = 3, PHOS_PROJECTION_COUNT = 4 };
+                             PHOS_PROJECTION_TUBE = 3, PHOS_PROJECTION_EQUIRECTANGULAR = 4,
+                             PHOS_PROJECTION_MIRROR_BALL = 5, PHOS_PROJECTION_COUNT = 6 };
 /* TEX_IMAGE flags: interpolation in bits 0-1, extension in bits 2-3, and whether the colour is
  * multiplied by alpha (Cycles' alpha handling of straight-alpha images used unassociated). */
 enum phos_image_flags {
@@ -572,8 +574,15 @@ PHOS_API void phos_light_desc_init(phos_light_desc *desc);
 PHOS_API phos_status phos_scene_add_light(phos_scene *scene, const phos_light_desc *desc,
                                           uint32_t *out_light_id);
 
+/* The world: a constant background radiance, or a material whose EMISSION
+ * closures, with its shader program run for each direction, give the
+ * radiance arriving from that direction (an environment map, a sky; the
+ * program sees the direction as P and Generated, −direction as N and I, as
+ * Cycles' background shader does). */
+#define PHOS_WORLD_NO_MATERIAL 0xFFFFFFFFu
 typedef struct phos_world_desc {
-    float color[3];            /* background radiance W/(m²·sr) (colour × strength) */
+    float color[3];            /* background radiance W/(m²·sr) (colour × strength), without a material */
+    uint32_t material;         /* a material id, or PHOS_WORLD_NO_MATERIAL for `color` */
 } phos_world_desc;
 PHOS_API void phos_world_desc_init(phos_world_desc *desc);
 PHOS_API phos_status phos_scene_set_world(phos_scene *scene, const phos_world_desc *desc);

@@ -273,6 +273,54 @@ static phos_scene *test_cornell_box(int spheres)
 }
 
 /* Renders synchronously; returns a malloc'd RGBA image or NULL. */
+/* A world lit by an image of w × h linear RGBA pixels (rows bottom-up),
+ * through an Environment Texture of the given projection (enum
+ * phos_image_projection) fed by Texture Coordinate's Generated: the
+ * world's program, as the add-on writes it for an HDR. */
+static void test_set_environment(phos_scene *s, const float *pixels, uint32_t w, uint32_t h, uint32_t projection,
+                                 uint32_t interpolation)
+{
+    phos_image_desc im;
+    phos_image_desc_init(&im);
+    im.width = w, im.height = h, im.pixels = pixels;
+    uint32_t image = 0;
+    phos_scene_add_image(s, &im, &image);
+    phos_shader_instruction ins[2];
+    memset(ins, 0, sizeof(ins));
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < PHOS_SHADER_MAX_OUTPUTS; k++)
+            ins[i].outputs[k] = PHOS_SHADER_NO_REGISTER;
+    ins[0].op = PHOS_OP_TEXTURE_COORDINATE;
+    ins[0].outputs[0] = 0;                  /* Generated: the direction, registers 0-2 */
+    ins[1].op = PHOS_OP_TEX_IMAGE;
+    ins[1].mode = projection;
+    ins[1].flags = interpolation;
+    ins[1].table = image;
+    ins[1].inputs[0] = 0;
+    ins[1].outputs[0] = 3;                  /* Color, registers 3-5 */
+    phos_shader_binding bind = {0, PHOS_FIELD_WEIGHT, 3};
+    phos_shader_program_desc p;
+    memset(&p, 0, sizeof(p));
+    p.register_count = 7;
+    p.instructions = ins;
+    p.instruction_count = 2;
+    p.bindings = &bind;
+    p.binding_count = 1;
+    phos_closure_desc c;
+    phos_closure_desc_init(&c);
+    c.type = PHOS_CLOSURE_EMISSION;
+    c.weight[0] = c.weight[1] = c.weight[2] = 1.0f;
+    phos_material_desc m;
+    phos_material_desc_init(&m);
+    m.closure_count = 1;
+    m.closures = &c;
+    m.program = &p;
+    phos_world_desc wd;
+    phos_world_desc_init(&wd);
+    phos_scene_add_material(s, &m, &wd.material);
+    phos_scene_set_world(s, &wd);
+}
+
 static float *test_render(phos_scene *s, const phos_render_settings *rs)
 {
     phos_render *r = NULL;

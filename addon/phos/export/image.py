@@ -76,6 +76,13 @@ def _read_pixels(image, ctx, owner):
             ctx.warn("Phos: %s: image '%s' uses colour space '%s', which Phos reads as linear"
                      % (owner, image.name, space))
     # Float buffers are converted to scene-linear by Blender on load.
+    bad = ~np.isfinite(rgba)
+    if bad.any():
+        # A damaged HDR (or one written by a buggy tool) can hold NaN or
+        # infinite values, which the core refuses: they count as black.
+        ctx.warn("Phos: %s: image '%s' has %d pixels that are NaN or infinite; they render black"
+                 % (owner, image.name, int(np.count_nonzero(bad.any(axis=1)))))
+        rgba[bad] = 0.0
     return rgba.reshape(-1), width, height
 
 

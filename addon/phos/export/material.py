@@ -333,8 +333,9 @@ class NodeTreeWalker:
     """Turns the shader feeding one socket into a list of Closures.
 
     `owner` names the material or world in warnings ("material 'Floor'").
-    With `world=True` a Background node becomes an EMISSION closure (the
-    world exporter sums them); BSDFs are meaningless there.
+    With `world=True` a Background node becomes an EMISSION closure whose
+    weight the program may vary with direction (world.py); BSDFs are
+    meaningless there.
     """
 
     def __init__(self, ctx, owner, world=False):
@@ -379,13 +380,7 @@ class NodeTreeWalker:
             return None
         if consumed is not None:
             consumed.add(socket.identifier)
-        value = self.nodes.socket(socket, width, self.stack)
-        if self.world and prog.varies(value):
-            # The core's world is one colour (the next issue brings world programs).
-            self.note(node, "a texture on '%s' of the world is not supported; using the socket's default"
-                      % socket.name)
-            return prog.constant(_socket_color(socket) if width == 3 else _socket_float(socket, 0.0))
-        return value
+        return self.nodes.socket(socket, width, self.stack)
 
     def value(self, node, names, default=0.0, consumed=None):
         """A float input: a float when constant, else the program's Value."""
@@ -667,7 +662,7 @@ class NodeTreeWalker:
             self.unsupported(node, "it renders black")
             return []
         consumed = set()
-        rgb, _, _ = self.color(node, 'Color', consumed, allow_image=False)
+        rgb, _, _ = self.color(node, 'Color', consumed)
         strength = self.value(node, 'Strength', 1.0, consumed)
         self.check_unused_links(node, consumed)
         return [Closure(core.PHOS_CLOSURE_EMISSION, rgb * strength)]

@@ -453,6 +453,25 @@ def _tex_image(nc, node, stack):
     return {"Color": color, "Alpha": alpha}
 
 
+def _tex_environment(nc, node, stack):
+    """The Environment Texture: the image looked up by a direction, its
+    Vector unlinked the shading point's position (Cycles' LINK_POSITION),
+    which for the world is the ray's direction."""
+    from . import image as image_export
+    image_id = image_export.add_image(node, nc.ctx, nc.walker.owner)
+    if image_id is None:
+        return {}
+    vec = _texture_vector(nc, node, stack, lambda: nc.coordinates()[1])
+    interp = {'Closest': core.PHOS_IMAGE_CLOSEST, 'Cubic': core.PHOS_IMAGE_CUBIC,
+              'Smart': core.PHOS_IMAGE_CUBIC}.get(node.interpolation, core.PHOS_IMAGE_LINEAR)
+    flags = interp | core.PHOS_IMAGE_REPEAT
+    if node.image.colorspace_settings.is_data:
+        flags |= core.PHOS_IMAGE_UNASSOCIATE
+    mode = nc.mode(node, "PHOS_PROJECTION_", node.projection)
+    color, alpha = nc.p.emit(core.PHOS_OP_TEX_IMAGE, [vec], [3, 1], mode=mode, flags=flags, table=image_id)
+    return {"Color": color, "Alpha": alpha}
+
+
 def _tex_noise(nc, node, stack):
     vec = _texture_vector(nc, node, stack, nc.generated)
     names = ("W", "Scale", "Detail", "Roughness", "Lacunarity", "Offset", "Gain", "Distortion")
@@ -801,6 +820,7 @@ _HANDLERS = {
     'ShaderNodeSeparateHSV': _separate_hsv,
     'ShaderNodeCombineHSV': _combine_hsv,
     'ShaderNodeTexImage': _tex_image,
+    'ShaderNodeTexEnvironment': _tex_environment,
     'ShaderNodeTexNoise': _tex_noise,
     'ShaderNodeTexMusgrave': _tex_musgrave,
     'ShaderNodeTexWhiteNoise': _tex_white_noise,

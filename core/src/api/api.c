@@ -169,8 +169,10 @@ void phos_light_desc_init(phos_light_desc *d)
 
 void phos_world_desc_init(phos_world_desc *d)
 {
-    if (d)
-        memset(d, 0, sizeof(*d));
+    if (!d)
+        return;
+    memset(d, 0, sizeof(*d));
+    d->material = PHOS_WORLD_NO_MATERIAL;
 }
 
 void phos_camera_desc_init(phos_camera_desc *d)
@@ -208,6 +210,7 @@ phos_scene *phos_scene_create(void)
     atomic_init(&s->refcount, 1);
     atomic_init(&s->cancel, 0);
     s->lights.world = -1;
+    phos_world_desc_init(&s->world);
     s->camera.type = PHOS_CAMERA_PERSPECTIVE;
     phos_camera_desc_init(&s->camera);
     return s;
@@ -545,6 +548,9 @@ phos_status phos_scene_set_world(phos_scene *s, const phos_world_desc *d)
     CHECK_EDITABLE(s, "phos_scene_set_world", d);
     if (!all_finite_nonnegative(d->color, 3))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "world: colour must be finite and >= 0");
+    if (d->material != PHOS_WORLD_NO_MATERIAL && d->material >= s->material_count)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "world: material %u does not exist (%u materials added)", d->material,
+             s->material_count);
     s->world = *d;
     return PHOS_OK;
 }

@@ -488,6 +488,49 @@ vec3 material_emission(const scene *s, const surface *sf)
     return emission_of(s, sf);
 }
 
+/* Cycles' background shader (shader_setup_from_background): the point is
+ * the ray's direction, the normal and the incoming vector its opposite,
+ * no object; Generated and Object read the direction too. */
+static void background_globals(const scene *s, vec3 d, uint32_t ray_flags, shader_globals *g)
+{
+    memset(g, 0, sizeof(*g));
+    g->P = d;
+    g->N = g->Ng = g->I = v3_neg(d);
+    g->generated = d;
+    g->object_P = d;
+    g->background = 1;
+    g->camera_to_world = s->camera.transform;
+    g->world_to_camera = s->world_to_camera;
+    g->ray_flags = ray_flags;
+}
+
+vec3 material_background(const scene *s, const material *m, vec3 d, uint32_t ray_flags)
+{
+    vec3 sum = v3s(0.0f);
+    if (!m->has_program) {
+        for (uint32_t i = 0; i < m->closure_count; i++)
+            if (m->closures[i].type == PHOS_CLOSURE_EMISSION)
+                sum = v3_add(sum, v3_load(m->closures[i].weight));
+        return sum;
+    }
+    shader_globals g;
+    background_globals(s, d, ray_flags, &g);
+    float r[PHOS_SHADER_MAX_REGISTERS];
+    shader_program_eval(&m->program, s, &g, r);
+    phos_closure_desc local[PHOS_MAX_CLOSURES];
+    memcpy(local, m->closures, sizeof(phos_closure_desc) * m->closure_count);
+    for (uint32_t b = 0; b < m->program.binding_count; b++) {
+        const phos_shader_binding *bd = &m->program.bindings[b];
+        if (bd->field != PHOS_FIELD_NORMAL && bd->field != PHOS_FIELD_TANGENT)
+            closure_set_field(&local[bd->closure], bd->field, r + bd->reg);
+    }
+    for (uint32_t i = 0; i < m->closure_count; i++)
+        if (local[i].type == PHOS_CLOSURE_EMISSION)
+            sum = v3_add(sum, v3_load(local[i].weight));
+    /* A program can make NaN or infinity (a division by zero): no light. */
+    return v3_is_finite(sum) ? v3_max(sum, v3s(0.0f)) : v3s(0.0f);
+}
+
 vec3 material_emission_at(const scene *s, uint32_t instance_id, uint32_t prim, float b1, float b2)
 {
     /* A light sample sees the emitter's front: the direction into the

@@ -48,6 +48,12 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out);
 vec3 material_emission(const scene *s, const surface *sf);
 vec3 material_emission_at(const scene *s, uint32_t instance, uint32_t prim, float b1, float b2);
 
+/* The radiance W/(m²·sr) a world material sends back along a ray of unit
+ * direction d that left the scene (its EMISSION closures, the program run
+ * as Cycles runs a background shader), for a ray of kind ray_flags (enum
+ * shader_ray_flags: the Light Path node). Never negative or NaN. */
+vec3 material_background(const scene *s, const material *m, vec3 d, uint32_t ray_flags);
+
 /* Mean emitted radiance of a material, for light power estimates. */
 vec3 material_emission_estimate(const scene *s, const material *m);
 /* The same for one triangle of an instance, where a program may vary it. */

@@ -42,6 +42,7 @@ typedef struct shader_globals {
     float object_random;     /* Object Info's Random, in [0,1) */
     float object_index;      /* Object Info's Object Index (pass index) */
     int backfacing;
+    int background;          /* the world's shader: P is a direction, not a point */
     uint32_t ray_flags;      /* enum shader_ray_flags of the ray that found the point */
     float ray_length;        /* scene units */
     uint32_t ray_depth, transparent_depth;

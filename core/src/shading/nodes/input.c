@@ -6,12 +6,13 @@
 #include "shading/fresnel.h"
 #include "shading/shader_program.h"
 
-/* Cycles' camera space looks down +z; Blender's camera down −z. */
+/* Cycles' camera space looks down +z; Blender's camera down −z. The
+ * background's P is a direction, seen from the camera's position. */
 static vec3 camera_space_point(const shader_globals *g, vec3 p)
 {
     if (!g->world_to_camera)
         return p;
-    vec3 c = xform_point(g->world_to_camera, p);
+    vec3 c = g->background ? xform_vector(g->world_to_camera, p) : xform_point(g->world_to_camera, p);
     return v3(c.x, c.y, -c.z);
 }
 

@@ -1,7 +1,8 @@
 /*
  * texture_image.c — the Image Texture node: flat, box, sphere and tube
- * projections of an image (Blender manual, "Image Texture Node"), with
- * Cycles' conventions for each.
+ * projections of an image (Blender manual, "Image Texture Node"), and the
+ * Environment Texture's equirectangular and mirror-ball projections of a
+ * direction, with Cycles' conventions for each.
  */
 #include "scene/scene.h"
 #include "shading/shader_program.h"
@@ -47,6 +48,35 @@ static void map_to_tube(vec3 p, float *u, float *v)
         *u = (1.0f - atan2f(p.x / len, p.y / len) * PHOS_INV_PI) * 0.5f;
         *v = (p.z + 1.0f) * 0.5f;
     }
+}
+
+/* Equirectangular: longitude u = ½ − atan2(y, x)/(2π), so +x is the
+ * image's centre column and u grows toward −y (clockwise seen from +z);
+ * latitude v = ½ + atan2(z, √(x² + y²))/π, the top row straight up. */
+static void map_to_equirectangular(vec3 d, float *u, float *v)
+{
+    *u = 0.5f - atan2f(d.y, d.x) * (0.5f * PHOS_INV_PI);
+    *v = 0.5f + atan2f(d.z, sqrtf(d.x * d.x + d.y * d.y)) * PHOS_INV_PI;
+}
+
+static vec3 unit_or_zero(vec3 d)
+{
+    float l = v3_length(d);
+    return l > 0.0f ? v3_scale(d, 1.0f / l) : d;
+}
+
+/* Mirror ball: the image of a mirrored sphere photographed from −y with
+ * an orthographic lens. A direction d is reflected toward the camera by
+ * the sphere's normal along d − (0, 1, 0), normalised; that normal's x and
+ * z are the image's coordinates in [−1, 1]. */
+static void map_to_mirror_ball(vec3 d, float *u, float *v)
+{
+    d.y -= 1.0f;
+    float div = 2.0f * safe_sqrtf(-0.5f * d.y);
+    if (div > 0.0f)
+        d = v3_scale(d, 1.0f / div);
+    *u = 0.5f * (d.x + 1.0f);
+    *v = 0.5f * (d.z + 1.0f);
 }
 
 /* Box: three planar projections along the object-space axes, blended by
@@ -120,6 +150,14 @@ void shader_op_tex_image(const phos_shader_instruction *ins, shader_context *ctx
         break;
     case PHOS_PROJECTION_TUBE:
         map_to_tube(remap_square(co), &u, &v);
+        lookup(ctx, ins, u, v, rgba);
+        break;
+    case PHOS_PROJECTION_EQUIRECTANGULAR:
+        map_to_equirectangular(co, &u, &v);
+        lookup(ctx, ins, u, v, rgba);
+        break;
+    case PHOS_PROJECTION_MIRROR_BALL:
+        map_to_mirror_ball(unit_or_zero(co), &u, &v);
         lookup(ctx, ins, u, v, rgba);
         break;
     default:

@@ -1,0 +1,292 @@
+/*
+ * test_environment.c — a world lit by an image (lights/environment.h).
+ *
+ *  - Direction conventions: the equirectangular and mirror-ball lookups
+ *    give the pixel Cycles' formulas name for a direction.
+ *  - Sampling: directions drawn from the distribution follow the density
+ *    environment_pdf reports (chi-square over the sphere), the density
+ *    integrates to 1, draws within a bin stay in it, and the power held by
+ *    the bins is the radiance's integral.
+ *  - Renders: a diffuse plane under a sky whose radiance changes by row,
+ *    one row 200 times brighter than the rest, reflects ρE/π with E the
+ *    closed-form irradiance Σ L_row · π (z₁² − z₀²) over the rows above it
+ *    (both integrators); a white furnace under an image of ones.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "chi2.h"
+#include "lights/environment.h"
+#include "sampling/sampler.h"
+#include "scene/scene.h"
+#include "shading/material.h"
+#include "test_scenes.h"
+#include "test_util.h"
+
+/* A small deterministic generator for the sampling tests (xorshift64*). */
+static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
+static float rnd(void)
+{
+    rng_state ^= rng_state >> 12;
+    rng_state ^= rng_state << 25;
+    rng_state ^= rng_state >> 27;
+    return (float)((rng_state * 0x2545F4914F6CDD1Dull) >> 40) * 0x1p-24f;
+}
+
+static const material *world_material(const phos_scene *s) { return &s->materials[s->world.material]; }
+
+/* ------------------------------------------------------------ conventions */
+
+static void test_directions(void)
+{
+    /* 4 × 2 pixels, each its own colour: red = column, green = row. */
+    float px[4 * 2 * 4];
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 4; x++) {
+            float *p = px + 4 * (y * 4 + x);
+            p[0] = (float)x, p[1] = (float)y, p[2] = 1.0f, p[3] = 1.0f;
+        }
+    phos_scene *s = phos_scene_create();
+    test_set_environment(s, px, 4, 2, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_CLOSEST);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    /* u = ½ − atan2(y, x)/2π, v = ½ + atan2(z, √(x²+y²))/π:
+     * (1, −1, √2) is u = 0.625 (column 2), v = 0.75 (row 1, the upper);
+     * (−1, 1, −√2) is u = 0.125 (column 0), v = 0.25 (row 0). */
+    struct { vec3 d; float column, row; } cases[] = {
+        {{1.0f, -1.0f, 1.41421356f}, 2, 1}, {{-1.0f, 1.0f, -1.41421356f}, 0, 0},
+        {{0.1f, 1.0f, 0.1f}, 1, 1},    /* about +y: u ≈ 0.266 */
+        {{-0.1f, -1.0f, -0.1f}, 3, 0}, /* about −y: u ≈ 0.766 */
+    };
+    for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
+        vec3 L = material_background(s, world_material(s), v3_normalize(cases[k].d), 0);
+        CHECK_MSG(L.x == cases[k].column && L.y == cases[k].row, "equirectangular case %zu: (%g, %g) not (%g, %g)",
+                  k, L.x, L.y, cases[k].column, cases[k].row);
+    }
+    phos_scene_destroy(s);
+
+    /* Mirror ball on a 4 × 4 image: d − (0,1,0) normalised gives the
+     * sphere's normal; its x and z, in [−1, 1], address the image. Seen
+     * from −y the ball shows the direction back toward the camera at its
+     * centre; about +x (normal near (½√2, −½√2, 0)) at u ≈ ½ + ¼√2 ≈ 0.85. */
+    float ball[4 * 4 * 4];
+    for (int y = 0; y < 4; y++)
+        for (int x = 0; x < 4; x++) {
+            float *p = ball + 4 * (y * 4 + x);
+            p[0] = (float)x, p[1] = (float)y, p[2] = 1.0f, p[3] = 1.0f;
+        }
+    s = phos_scene_create();
+    test_set_environment(s, ball, 4, 4, PHOS_PROJECTION_MIRROR_BALL, PHOS_IMAGE_CLOSEST);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    vec3 L = material_background(s, world_material(s), v3_normalize(v3(1.0f, 0.0f, 0.2f)), 0);
+    CHECK_MSG(L.x == 3.0f && L.y == 2.0f, "mirror ball about +x: (%g, %g) not (3, 2)", L.x, L.y);
+    L = material_background(s, world_material(s), v3_normalize(v3(0.2f, 0.0f, 1.0f)), 0); /* u ≈ 0.57, v ≈ 0.85 */
+    CHECK_MSG(L.x == 2.0f && L.y == 3.0f, "mirror ball about +z: (%g, %g) not (2, 3)", L.x, L.y);
+    phos_scene_destroy(s);
+}
+
+/* ------------------------------------------------------------- sampling */
+
+/* A 64 × 32 sky: a gradient, and a 3 × 2 pixel "sun" of radiance 500. */
+static float *sun_sky(void)
+{
+    float *px = malloc(sizeof(float) * 64 * 32 * 4);
+    for (int y = 0; y < 32; y++)
+        for (int x = 0; x < 64; x++) {
+            float *p = px + 4 * (y * 64 + x);
+            float g = 0.05f + 0.5f * (float)y / 31.0f;
+            int sun = x >= 40 && x < 43 && y >= 24 && y < 26;
+            p[0] = sun ? 500.0f : g, p[1] = sun ? 480.0f : g * 1.1f, p[2] = sun ? 450.0f : g * 1.4f, p[3] = 1.0f;
+        }
+    return px;
+}
+
+#define GRID_Z 16
+#define GRID_PHI 32
+#define DRAWS 400000
+
+static int grid_bin(vec3 d)
+{
+    float phi = atan2f(d.y, d.x);
+    if (phi < 0.0f)
+        phi += 2.0f * PHOS_PI;
+    int iz = (int)(0.5f * (1.0f - d.z) * GRID_Z), ip = (int)(phi / (2.0f * PHOS_PI) * GRID_PHI);
+    iz = iz < 0 ? 0 : iz >= GRID_Z ? GRID_Z - 1 : iz;
+    ip = ip < 0 ? 0 : ip >= GRID_PHI ? GRID_PHI - 1 : ip;
+    return iz * GRID_PHI + ip;
+}
+
+static void test_sampling(void)
+{
+    float *px = sun_sky();
+    phos_scene *s = phos_scene_create();
+    test_set_environment(s, px, 64, 32, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    environment e;
+    int zero = 0;
+    CHECK(environment_build(&e, s, world_material(s), 2, &zero) == PHOS_OK && !zero);
+    CHECK(e.rows % GRID_Z == 0 && e.columns % GRID_PHI == 0);
+
+    /* Expected counts: the density is constant over each cell, and the
+     * grid's bins are unions of cells. */
+    static double expected[GRID_Z * GRID_PHI], observed[GRID_Z * GRID_PHI];
+    double cell_omega = 4.0 * PHOS_PI / ((double)e.rows * e.columns), total = 0.0;
+    for (uint32_t r = 0; r < e.rows; r++)
+        for (uint32_t c = 0; c < e.columns; c++) {
+            float2 u = {((float)r + 0.5f) / (float)e.rows, ((float)c + 0.5f) / (float)e.columns};
+            vec3 d = warp_uniform_sphere(u);
+            double p = environment_pdf(&e, d) * cell_omega;
+            expected[grid_bin(d)] += p * DRAWS;
+            total += p;
+        }
+    CHECK_MSG(fabs(total - 1.0) < 1e-4, "the density integrates to %g, not 1", total);
+    int mismatched = 0;
+    for (int i = 0; i < DRAWS; i++) {
+        float2 u = {rnd(), rnd()};
+        float pdf;
+        vec3 d = environment_sample(&e, u, &pdf);
+        observed[grid_bin(d)] += 1.0;
+        float look = environment_pdf(&e, d);
+        mismatched += fabsf(pdf - look) > 1e-3f * look;
+    }
+    int dof;
+    double p = chi2_test(observed, expected, GRID_Z * GRID_PHI, &dof);
+    CHECK_MSG(p > 1e-3, "chi-square p = %g (dof %d): the draws do not follow environment_pdf", p, dof);
+    CHECK_MSG(mismatched < DRAWS / 1000, "%d draws report a density unlike environment_pdf's", mismatched);
+
+    /* The sun: 6 of 2048 pixels, but most of the power, so most draws. */
+    double sun_draws = 0.0;
+    for (int i = 0; i < 1000; i++) {
+        float2 u = {rnd(), rnd()};
+        float pdf;
+        vec3 d = environment_sample(&e, u, &pdf);
+        sun_draws += v3_average(material_background(s, world_material(s), d, 0)) > 100.0f;
+    }
+    CHECK_MSG(sun_draws > 500, "only %g of 1000 draws find the sun", sun_draws);
+
+    /* Within a bin: every draw stays in it, with the bin's conditional density. */
+    uint32_t bins[] = {0, 9, 27, 63};
+    for (size_t k = 0; k < sizeof(bins) / sizeof(bins[0]); k++) {
+        int outside = 0, wrong = 0;
+        float share = 0.0f;
+        for (int i = 0; i < 2000; i++) {
+            float2 u = {rnd(), rnd()};
+            float pdf;
+            vec3 d = environment_sample_in_bin(&e, bins[k], u, &pdf);
+            outside += environment_bin_of(d) != bins[k];
+            share = environment_pdf(&e, d) / pdf; /* the bin's probability, the same for every draw */
+            float again = environment_pdf(&e, d) / share;
+            wrong += fabsf(again - pdf) > 1e-3f * pdf;
+        }
+        CHECK_MSG(outside == 0, "bin %u: %d of 2000 draws outside it", bins[k], outside);
+        CHECK_MSG(wrong == 0, "bin %u: %d draws with an inconsistent density", bins[k], wrong);
+        (void)share;
+    }
+
+    /* The bins' integrals add up to ∫ mean(L) dω, here summed over the image's
+     * pixels (each of solid angle Δφ·(sin of its latitudes' difference)). */
+    double direct = 0.0;
+    for (int y = 0; y < 32; y++) {
+        double band = 2.0 * PHOS_PI / 64.0 * (sin(PHOS_PI * ((y + 1) / 32.0 - 0.5)) - sin(PHOS_PI * (y / 32.0 - 0.5)));
+        for (int x = 0; x < 64; x++) {
+            const float *q = px + 4 * (y * 64 + x);
+            direct += band * (q[0] + q[1] + q[2]) / 3.0;
+        }
+    }
+    double bins_sum = 0.0;
+    for (int b = 0; b < ENVIRONMENT_BINS * ENVIRONMENT_BINS; b++)
+        bins_sum += e.bin_integral[b];
+    CHECK_MSG(fabs(bins_sum - direct) < 0.05 * direct, "bins hold %g W/m², the image %g", bins_sum, direct);
+    CHECK_MSG(fabs(e.integral - bins_sum) < 1e-3 * bins_sum, "integral %g, bins %g", e.integral, bins_sum);
+    environment_free(&e);
+    phos_scene_destroy(s);
+    free(px);
+}
+
+/* --------------------------------------------------------------- renders */
+
+/* Rows of an 8 × 16 sky by latitude: 0.3 + 0.1·row above the horizon, one
+ * row (the 13th of 16, latitude 56°–67.5°) at 60, none below. */
+static float sky_row(int y) { return y < 8 ? 0.0f : y == 12 ? 60.0f : 0.3f + 0.1f * (float)y; }
+
+static void test_plane_under_sky(uint32_t integrator, const char *name)
+{
+    float px[8 * 16 * 4];
+    double E = 0.0;
+    for (int y = 0; y < 16; y++) {
+        for (int x = 0; x < 8; x++) {
+            float *p = px + 4 * (y * 8 + x);
+            p[0] = p[1] = p[2] = sky_row(y);
+            p[3] = 1.0f;
+        }
+        /* Row y spans latitudes π(y/16 − ½) .. π((y+1)/16 − ½); above the
+         * horizon ∫ cos θ dω over it is π (z₁² − z₀²), z the sine of latitude. */
+        double z0 = sin(PHOS_PI * (y / 16.0 - 0.5)), z1 = sin(PHOS_PI * ((y + 1) / 16.0 - 0.5));
+        if (y >= 8)
+            E += sky_row(y) * PHOS_PI * (z1 * z1 - z0 * z0);
+    }
+    phos_scene *s = phos_scene_create();
+    uint32_t plane = test_add_quad_mesh(s, 50.0f); /* facing +z, at z = 0 */
+    uint32_t mat = test_add_diffuse(s, 0.5f, 0.5f, 0.5f);
+    test_add_instance(s, plane, mat, 0, 0, 0);
+    test_set_environment(s, px, 8, 16, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_CLOSEST);
+    test_set_camera(s, 0.0f, 0.0f, 2.0f, 0.2f); /* looks straight down (−z) */
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 16;
+    rs.samples = 64;
+    rs.integrator = integrator;
+    float *img = test_render(s, &rs);
+    CHECK(img != NULL);
+    if (img) {
+        double mean, se;
+        test_image_stats(img, 16 * 16, 0, &mean, &se);
+        double want = 0.5 * E / PHOS_PI;
+        CHECK_MSG(fabs(mean - want) < 4.0 * se + 2e-3 * want, "%s: plane under the sky %g, closed form %g (se %g)",
+                  name, mean, want, se);
+        if (getenv("PHOS_TEST_VERBOSE"))
+            printf("%s: %g vs %g, se %g (%.2f %%)\n", name, mean, want, se, 100.0 * se / want);
+        free(img);
+    }
+    phos_scene_destroy(s);
+}
+
+static void test_furnace(uint32_t integrator, const char *name)
+{
+    float ones[16 * 8 * 4];
+    for (int i = 0; i < 16 * 8 * 4; i++)
+        ones[i] = 1.0f;
+    phos_scene *s = phos_scene_create();
+    uint32_t mesh = test_add_sphere_mesh(s, 1.0f, 96, 48, 0);
+    test_add_instance(s, mesh, test_add_diffuse(s, 0.8f, 0.8f, 0.8f), 0, 0, 0);
+    test_set_environment(s, ones, 16, 8, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+    test_set_camera(s, 0, 0, 4, 0.05f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    CHECK(s->materials[s->world.material].has_program); /* the map path, not the constant world */
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 16;
+    rs.samples = 64;
+    rs.max_bounces = 16;
+    rs.integrator = integrator;
+    float *img = test_render(s, &rs);
+    CHECK(img != NULL);
+    if (img) {
+        double mean, se;
+        test_image_stats(img, 16 * 16, 0, &mean, &se);
+        CHECK_MSG(fabs(mean - 0.8) < 4.0 * se + 4e-3, "%s: white furnace %g, not 0.8 (se %g)", name, mean, se);
+        free(img);
+    }
+    phos_scene_destroy(s);
+}
+
+int main(void)
+{
+    test_directions();
+    test_sampling();
+    test_plane_under_sky(PHOS_INTEGRATOR_PATH, "PATH");
+    test_plane_under_sky(PHOS_INTEGRATOR_PHOTON, "PHOTON");
+    test_furnace(PHOS_INTEGRATOR_PATH, "PATH");
+    test_furnace(PHOS_INTEGRATOR_PHOTON, "PHOTON");
+    return test_summary("test_environment");
+}
