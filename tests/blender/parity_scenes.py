@@ -60,6 +60,19 @@ def _world(scene):
     pt.set_world(scene, (0.6, 0.7, 0.9), strength=1.0)
 
 
+def _hdr_world(name, rotation_z=0.0, projection='EQUIRECTANGULAR', camera_color=None):
+    """The stage under one of Blender's studio HDRs, turned about Z by a
+    Mapping node, the sphere a glossy-coated Principled (issue 22: an
+    HDR-lit diffuse and glossy scene; importance sampling and MIS)."""
+    def build(scene):
+        sphere = pt.node_material("Sphere", "ShaderNodeBsdfPrincipled",
+                                  {"Base Color": (0.8, 0.55, 0.3, 1.0), "Roughness": 0.25})
+        _stage(scene, sphere)
+        pt.set_world_hdr(scene, name, strength=1.0, rotation_z=rotation_z, projection=projection,
+                         camera_color=camera_color)
+    return build
+
+
 def _default_cube(scene):
     """Blender's start-up scene: a 2 m cube, a 1000 W point lamp and the grey
     world (0.05), seen from a side the lamp does not reach, so that side is
@@ -124,6 +137,9 @@ LIGHT_SCENES = {
                                 angle=math.radians(15.0)),
     "emissive_mesh": _emissive_mesh,
     "world": _world,
+    "hdr_forest": _hdr_world("forest", rotation_z=math.radians(60.0)),
+    "hdr_sunset_mirror_ball": _hdr_world("sunset", projection='MIRROR_BALL'),
+    "hdr_city_camera_sees_grey": _hdr_world("city", rotation_z=math.radians(-120.0), camera_color=(0.2, 0.2, 0.2)),
     "default_cube": _default_cube,
     "mixed": _mixed_lights,
     "area_exposure_temperature": _light_settings(

@@ -201,6 +201,51 @@ def set_world(scene, color=(0.0, 0.0, 0.0), strength=1.0):
     return world
 
 
+def studio_hdr(name):
+    """Path of one of the HDR environments Blender ships with its data files
+    (studiolights/world/NAME.exr): real captured light every machine with
+    Blender has, so tests need no download."""
+    import os
+    path = os.path.join(bpy.utils.system_resource('DATAFILES', path="studiolights/world"), name + ".exr")
+    if not os.path.exists(path):
+        raise FileNotFoundError("Blender's data files have no studio light %r (%s)" % (name, path))
+    return path
+
+
+def set_world_hdr(scene, name="forest", strength=1.0, rotation_z=0.0, projection='EQUIRECTANGULAR',
+                  camera_color=None):
+    """A world lit by a studio HDR through Texture Coordinate (Generated) →
+    Mapping (rotated about Z by rotation_z radians) → Environment Texture →
+    Background. camera_color: the camera sees this colour instead, through a
+    Mix Shader by Light Path's Is Camera Ray."""
+    world = bpy.data.worlds.new("World")
+    use_nodes(world)
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    bg = nodes["Background"]
+    bg.inputs["Strength"].default_value = strength
+    env = nodes.new("ShaderNodeTexEnvironment")
+    env.image = bpy.data.images.load(studio_hdr(name), check_existing=True)
+    env.projection = projection
+    coords = nodes.new("ShaderNodeTexCoord")
+    mapping = nodes.new("ShaderNodeMapping")
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, rotation_z)
+    links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
+    links.new(mapping.outputs["Vector"], env.inputs["Vector"])
+    links.new(env.outputs["Color"], bg.inputs["Color"])
+    if camera_color is not None:
+        out = nodes["World Output"]
+        seen = nodes.new("ShaderNodeBackground")
+        seen.inputs["Color"].default_value = (*camera_color, 1.0)
+        mix = nodes.new("ShaderNodeMixShader")
+        path = nodes.new("ShaderNodeLightPath")
+        links.new(path.outputs["Is Camera Ray"], mix.inputs["Fac"])
+        links.new(bg.outputs["Background"], mix.inputs[1])
+        links.new(seen.outputs["Background"], mix.inputs[2])
+        links.new(mix.outputs["Shader"], out.inputs["Surface"])
+    scene.world = world
+    return world
+
+
 BLENDER_4 = bpy.app.version >= (4, 0, 0)
 
 # Principled BSDF inputs named as in Blender 3.x → their 4.0+ names (Principled

@@ -17,7 +17,7 @@
 
 #include "chi2.h"
 #include "lights/environment.h"
-#include "sampling/sampler.h"
+#include "sampling/warp.h"
 #include "scene/scene.h"
 #include "shading/material.h"
 #include "test_scenes.h"

@@ -9,7 +9,7 @@ Cycles. When nothing in it varies with direction the core gets one colour,
 which it samples cosine-weighted at no cost per ray; otherwise the closures
 and their program go to the core as a material, which evaluates them as
 Cycles evaluates a background shader (the point is the ray's direction) and
-builds an importance-sampling map from them (docs/algorithms.md §9).
+builds an importance-sampling map from them (docs/algorithms.md §11).
 Environment Texture, Mapping, Texture Coordinate and Light Path's Is
 Camera Ray work there as in Cycles. Without nodes the world's colour is
 used; without a world the background is black.

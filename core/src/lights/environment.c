@@ -18,7 +18,7 @@
 /* A cell darker than this share of the mean keeps this much probability:
  * every direction that sends light can still be drawn, so photons, which
  * leave only by the distribution, stay unbiased where a cell's four
- * points missed a small bright feature (docs/algorithms.md §9). */
+ * points missed a small bright feature (docs/algorithms.md §11). */
 #define FLOOR_SHARE 1e-3f
 
 static uint32_t round_up_bins(uint32_t n) { return (n + ENVIRONMENT_BINS - 1) / ENVIRONMENT_BINS * ENVIRONMENT_BINS; }

@@ -3,7 +3,7 @@
  * environment map, a sky, any world node tree): its radiance, and a
  * piecewise-constant distribution over directions to sample it by.
  *
- * Sampling (docs/algorithms.md §9): the sphere is cut into cells of equal
+ * Sampling (docs/algorithms.md §11): the sphere is cut into cells of equal
  * solid angle, rows of equal height in z = cos θ by columns of equal width
  * in φ (Archimedes' hat-box theorem: a band of height Δz has area 2πΔz), so
  * a cell's probability is its luminance over the total and the density in
