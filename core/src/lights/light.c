@@ -61,6 +61,8 @@ float light_power(const light *l, float scene_radius)
     case LIGHT_AREA:
         return PHOS_PI * l->area * c;                    /* Φ = πAL, one-sided */
     case LIGHT_SUN: /* Φ = E·πR², or L·Ω·πR² with an angle (light_sample_emission) */
+        /* Ω written out: disk·L·cone_solid_angle() would round differently
+         * and move the photons' pick probabilities by an ulp. */
         return l->sun_cos_half < 1.0f
                    ? disk * maxf(v3_average(l->sun_radiance), 0.0f) * 2.0f * PHOS_PI * (1.0f - l->sun_cos_half)
                    : disk * c;
@@ -262,7 +264,7 @@ static int sample_point(const light *l, vec3 p, float2 u, light_sample *out)
         float t = b - safe_sqrtf(disc);
         out->wi = wi;
         out->distance = maxf(t, 0.0f);
-        out->pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - cos_max));
+        out->pdf = 1.0f / cone_solid_angle(cos_max);
         out->delta = 0;
         /* A sphere spot (Cycles 4) shapes its beam by the direction of each
          * ray leaving it, not by where p lies from its centre. */
@@ -338,7 +340,7 @@ static int sample_sun(const light *l, float2 u, light_sample *out)
     }
     out->wi = warp_cone(to_sun, l->sun_cos_half, u);
     out->radiance = l->sun_radiance;
-    out->pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - l->sun_cos_half));
+    out->pdf = 1.0f / cone_solid_angle(l->sun_cos_half);
     out->delta = 0;
     return 1;
 }
@@ -511,7 +513,7 @@ static vec3 emission_direction(const light *l, float2 u, float *pdf)
 {
     switch (l->kind) {
     case LIGHT_SPOT:
-        *pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - l->spot_cos_half));
+        *pdf = 1.0f / cone_solid_angle(l->spot_cos_half);
         return warp_cone(l->direction, l->spot_cos_half, u);
     case LIGHT_AREA: {
         vec3 d = sample_cosine_about(l->direction, u);
@@ -550,7 +552,7 @@ int light_emit(const scene *s, uint32_t index, const float u[4], vec3 *origin, v
          * solid angle), not E·πR²: E = ∫ L cos θ dω = L·π sin²α is less
          * than L·Ω by (1 + cos α)/2 (α the half angle). */
         *flux = l->sun_cos_half < 1.0f
-                    ? v3_scale(l->sun_radiance, 2.0f * PHOS_PI * (1.0f - l->sun_cos_half) * area)
+                    ? v3_scale(l->sun_radiance, cone_solid_angle(l->sun_cos_half) * area)
                     : v3_scale(l->color, area); /* E · πR² */
         return 1;
     }
@@ -609,7 +611,7 @@ static int intersect_point(const light *l, vec3 o, vec3 d, float tmax, light_hit
             return 0;
         t = b - sqrtf(disc);
         float cos_max = safe_sqrtf(1.0f - r * r / dist2);
-        pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - cos_max));
+        pdf = 1.0f / cone_solid_angle(cos_max);
         dir_from_light = v3_neg(d); /* as sample_point: the ray's own direction */
     } else {
         /* Disk through the centre, facing the ray origin. */
@@ -701,7 +703,7 @@ vec3 lights_escape(const scene *s, const light_context *from, vec3 d, float bsdf
             if (-v3_dot(d, l->direction) < l->sun_cos_half)
                 continue;
             L = l->sun_radiance;
-            pdf = 1.0f / (2.0f * PHOS_PI * (1.0f - l->sun_cos_half));
+            pdf = 1.0f / cone_solid_angle(l->sun_cos_half);
         } else {
             continue;
         }

@@ -46,8 +46,15 @@ static inline vec3 warp_uniform_sphere(float2 u)
     return v3(r * cosf(phi), r * sinf(phi), z);
 }
 
+/* Solid angle (sr) of the cone of directions within acos(cos_half) of an
+ * axis: 2π (1 − cos_half). */
+static inline float cone_solid_angle(float cos_half)
+{
+    return 2.0f * PHOS_PI * (1.0f - cos_half);
+}
+
 /* Uniform in the cone of directions within acos(cos_max) of the unit axis;
- * pdf 1 / (2π (1 − cos_max)). */
+ * pdf 1 / cone_solid_angle(cos_max). */
 static inline vec3 warp_cone(vec3 axis, float cos_max, float2 u)
 {
     float cos_t = 1.0f - u.x * (1.0f - cos_max);
