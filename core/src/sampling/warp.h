@@ -37,6 +37,14 @@ static inline vec3 warp_cosine_hemisphere(float2 u)
     return v3(d.x, d.y, safe_sqrtf(1.0f - d.x * d.x - d.y * d.y));
 }
 
+/* Cosine-weighted hemisphere about the unit normal n (Malley's method);
+ * pdf max(cos θ, 0) / π about n. */
+static inline vec3 warp_cosine_about(vec3 n, float2 u)
+{
+    frame f = frame_from_normal(n);
+    return frame_to_world(&f, warp_cosine_hemisphere(u));
+}
+
 /* Uniform over the unit sphere; pdf 1/(4π). */
 static inline vec3 warp_uniform_sphere(float2 u)
 {
