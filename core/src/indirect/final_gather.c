@@ -4,12 +4,12 @@
  * photons (Christensen 1999), or the global map's estimate read at the
  * surface itself (the fast estimate).
  */
-#include "integrators/direct_light.h"
 #include "indirect/hemisphere.h"
 #include "indirect/indirect_diffuse.h"
-#include "integrators/specular_chain.h"
 #include "photons/radiance_estimate.h"
 #include "scene/ray.h"
+#include "transport/direct_light.h"
+#include "transport/specular_chain.h"
 
 #define GATHER_SPECULAR_BOUNCES 4   /* specular surfaces a gather ray passes before it reads a map */
 /* A gather ray that lands nearer than GATHER_NEAR_RADII estimate radii

@@ -27,9 +27,9 @@
 #include <stdlib.h>
 
 #include "indirect/irradiance_record.h"
-#include "integrators/specular_chain.h"
 #include "scene/camera.h"
 #include "scene/embree.h"
+#include "transport/specular_chain.h"
 #include "util/parallel.h"
 
 #define FILL_CHAIN_STEPS 16        /* specular surfaces a candidate's ray passes */

@@ -15,11 +15,11 @@
  * The caustic map is read only on camera paths, since the global map (and
  * so every gather) already holds caustic photons (docs/algorithms.md §5).
  */
-#include "integrators/camera_path.h"
-#include "integrators/direct_light.h"
 #include "indirect/hemisphere.h"
 #include "indirect/indirect_diffuse.h"
+#include "integrators/camera_path.h"
 #include "photons/radiance_estimate.h"
+#include "transport/direct_light.h"
 
 const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bsdf *rest)
 {

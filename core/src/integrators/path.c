@@ -12,7 +12,7 @@
  * Ward's method (Ward et al. 1988; diffuse_split.c).
  */
 #include "integrators/camera_path.h"
-#include "integrators/direct_light.h"
+#include "transport/direct_light.h"
 
 const bsdf *path_vertex_policy(camera_path *p, const path_vertex *v, bsdf *storage)
 {

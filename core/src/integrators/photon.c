@@ -6,8 +6,8 @@
  * estimates.
  */
 #include "integrators/camera_path.h"
-#include "integrators/specular_chain.h"
 #include "photons/radiance_estimate.h"
+#include "transport/specular_chain.h"
 
 #define DEBUG_CHAIN_STEPS 16   /* surfaces the debug passes follow from the camera */
 

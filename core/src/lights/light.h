@@ -2,7 +2,9 @@
  * light.h — every emitter of the scene in one table: lamps (point, spot,
  * area, sun), emissive triangles and the world background. Next-event
  * estimation picks among them by what each can give the shading point
- * (light_pick.c); photons leave them in proportion to their power.
+ * (light_pick.c); photons leave them in proportion to their power. Each
+ * kind is implemented in its own file behind light_kind.h; these functions
+ * dispatch to it (light.c).
  *
  * Radiometric conventions: a sample carries the radiance arriving at the
  * shading point along −wi (W/(m²·sr)) and the solid-angle pdf of having

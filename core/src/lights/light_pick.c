@@ -107,7 +107,7 @@ static float group_importance(const light_table *t, const light_group *g, const 
 
 /* The groups' importances at c into w; returns their sum.
  *
- * A light sample of a uniform world is a cosine sample (light.c). Where
+ * A light sample of a uniform world is a cosine sample (world.c). Where
  * the BSDF's own rays count the world (rays_find_world), they sample it as
  * well or better, and picking it would only add pick variance to the other
  * lights: measured against Cycles' pixel variance (tests/blender/
@@ -234,8 +234,8 @@ static void group_bounds(const light_table *t, light_group *g)
     }
 }
 
-/* Emissive triangles are appended instance by instance (light.c), so an
- * instance's triangles are consecutive. */
+/* Emissive triangles are appended instance by instance (mesh_emitter.c),
+ * so an instance's triangles are consecutive. */
 static int starts_group(const light_table *t, uint32_t i)
 {
     const light *l = &t->lights[i];

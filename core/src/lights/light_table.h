@@ -18,7 +18,8 @@ enum light_kind {
     LIGHT_AREA,
     LIGHT_SUN,
     LIGHT_TRIANGLE,
-    LIGHT_WORLD
+    LIGHT_WORLD,
+    LIGHT_KIND_COUNT            /* each kind's operations: light_kinds[] (light_kind.h) */
 };
 
 typedef struct light {

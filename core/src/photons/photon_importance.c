@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "integrators/specular_chain.h"
+#include "sampling/warp.h"
 #include "scene/camera.h"
 #include "scene/embree.h"
 #include "scene/ray.h"
-#include "sampling/warp.h"
+#include "transport/specular_chain.h"
 
 #define GRID 64            /* voxels per axis */
 #define PILOT 64           /* camera rays per image axis */

@@ -110,7 +110,7 @@ static float cone_share(const light *l, vec3 axis, float omega)
     if (l->kind == LIGHT_SPOT) {
         if (angle_between(axis, l->direction) > acosf(l->spot_cos_half) + asinf(fminf(1.0f, safe_sqrtf(omega / PHOS_PI))))
             return 0.0f;
-        spread = 2.0f * PHOS_PI * (1.0f - l->spot_cos_half);
+        spread = cone_solid_angle(l->spot_cos_half);
     } else if (l->kind == LIGHT_AREA) {
         spread = 2.0f * PHOS_PI;
     }
@@ -179,7 +179,7 @@ static distant_plane plane_of(const light_table *t, const light *l, uint32_t bin
         p.tan_a = l->sun_cos_half < 1.0f ? safe_sqrtf(1.0f - l->sun_cos_half * l->sun_cos_half) / l->sun_cos_half
                                          : 0.0f;
         p.grid = PLANE_CELLS;
-        p.omega = l->sun_cos_half < 1.0f ? 2.0f * PHOS_PI * (1.0f - l->sun_cos_half) : 0.0f;
+        p.omega = l->sun_cos_half < 1.0f ? cone_solid_angle(l->sun_cos_half) : 0.0f;
     }
     p.f = frame_from_normal(axis);
     p.half = t->radius * safe_sqrtf(1.0f + p.tan_a * p.tan_a) * (1.0f + MARGIN);
@@ -313,7 +313,7 @@ static float mark_cones(projection_map *pm, uint32_t *capacity, const light_tabl
         projection_cone c;
         c.axis = v3_scale(v, 1.0f / d);
         c.cos_max = safe_sqrtf(1.0f - sin_b * sin_b);
-        c.omega = 2.0f * PHOS_PI * (1.0f - c.cos_max);
+        c.omega = cone_solid_angle(c.cos_max);
         if (!(c.omega > 0.0f))
             continue;
         total_omega += c.omega;

@@ -37,6 +37,14 @@ static inline vec3 warp_cosine_hemisphere(float2 u)
     return v3(d.x, d.y, safe_sqrtf(1.0f - d.x * d.x - d.y * d.y));
 }
 
+/* Cosine-weighted hemisphere about the unit normal n (Malley's method);
+ * pdf max(cos θ, 0) / π about n. */
+static inline vec3 warp_cosine_about(vec3 n, float2 u)
+{
+    frame f = frame_from_normal(n);
+    return frame_to_world(&f, warp_cosine_hemisphere(u));
+}
+
 /* Uniform over the unit sphere; pdf 1/(4π). */
 static inline vec3 warp_uniform_sphere(float2 u)
 {
@@ -46,8 +54,15 @@ static inline vec3 warp_uniform_sphere(float2 u)
     return v3(r * cosf(phi), r * sinf(phi), z);
 }
 
+/* Solid angle (sr) of the cone of directions within acos(cos_half) of an
+ * axis: 2π (1 − cos_half). */
+static inline float cone_solid_angle(float cos_half)
+{
+    return 2.0f * PHOS_PI * (1.0f - cos_half);
+}
+
 /* Uniform in the cone of directions within acos(cos_max) of the unit axis;
- * pdf 1 / (2π (1 − cos_max)). */
+ * pdf 1 / cone_solid_angle(cos_max). */
 static inline vec3 warp_cone(vec3 axis, float cos_max, float2 u)
 {
     float cos_t = 1.0f - u.x * (1.0f - cos_max);

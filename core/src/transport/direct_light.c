@@ -1,7 +1,7 @@
 /*
  * direct_light.c — next-event estimation and shadow rays (direct_light.h).
  */
-#include "integrators/direct_light.h"
+#include "transport/direct_light.h"
 
 #include "lights/light.h"
 #include "scene/embree.h"

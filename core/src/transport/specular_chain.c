@@ -2,7 +2,7 @@
  * specular_chain.c — following specular and transparent surfaces
  * (specular_chain.h).
  */
-#include "integrators/specular_chain.h"
+#include "transport/specular_chain.h"
 
 #include "lights/light.h"
 #include "scene/embree.h"

@@ -2,7 +2,9 @@
  * specular_chain.h — following a ray through specular (delta) and
  * transparent surfaces to the first surface that a photon-map estimate can
  * be read at: what a final-gather ray does where it lands (Jensen 2001,
- * §9.3.2), and what the photon debug passes do from the camera.
+ * §9.3.2), and what the photon debug passes and the photon-importance
+ * pilot do from the camera. In transport/, below photons/, the integrators
+ * and the indirect-diffuse providers that call it (docs/architecture.md).
  */
 #ifndef PHOS_SPECULAR_CHAIN_H
 #define PHOS_SPECULAR_CHAIN_H

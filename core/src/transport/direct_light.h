@@ -1,7 +1,9 @@
 /*
  * direct_light.h — next-event estimation: light reaching a surface point
  * straight from an emitter, with a shadow ray, MIS-weighted against BSDF
- * sampling by the power heuristic (Veach 1997, ch. 9).
+ * sampling by the power heuristic (Veach 1997, ch. 9). In transport/,
+ * below the integrators and the indirect-diffuse providers that call it
+ * (docs/architecture.md).
  */
 #ifndef PHOS_DIRECT_LIGHT_H
 #define PHOS_DIRECT_LIGHT_H
