@@ -13,6 +13,7 @@
 
 #include "chi2.h"
 #include "scene/embree.h"
+#include "lights/environment.h"
 #include "lights/light.h"
 #include "scene/scene.h"
 #include "test_scenes.h"
@@ -57,6 +58,8 @@ static double pdf_toward(const light_query *q, vec3 w)
         double pick = light_pick_pdf(&s->lights, &q->c, i);
         if (l->kind == LIGHT_WORLD)
             pdf += pick * light_world_pdf(&q->c, w);
+        else if (l->kind == LIGHT_ENVIRONMENT)
+            pdf += pick * environment_pdf(s->lights.env, w);
         else if (l->kind == LIGHT_SUN && l->sun_cos_half < 1.0f && -v3_dot(w, l->direction) >= l->sun_cos_half)
             pdf += pick / (2.0 * M_PI * (1.0 - l->sun_cos_half));
     }
@@ -210,6 +213,23 @@ static phos_scene *mixed_lights_scene(void)
     return s;
 }
 
+/* The same lights under a sky that varies with direction (a 32 × 16 map,
+ * brighter toward the zenith and toward +x), sampled from its map: unlike
+ * a uniform world it keeps its share where the BSDF's rays count it. */
+static phos_scene *mixed_lights_under_sky(void)
+{
+    static float px[32 * 16 * 4];
+    for (int y = 0; y < 16; y++)
+        for (int x = 0; x < 32; x++) {
+            float *q = px + 4 * (y * 32 + x);
+            float g = 0.05f + 0.4f * (float)y / 15.0f + 0.3f * (float)(x > 12 && x < 20);
+            q[0] = g, q[1] = g * 0.9f, q[2] = g * 1.2f, q[3] = 1.0f;
+        }
+    phos_scene *s = mixed_lights_scene();
+    test_set_environment(s, px, 32, 16, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+    return s;
+}
+
 static void check_lights_picked_for_a_surface(void)
 {
     vec3 p = v3(0.3f, -0.2f, 0.0f), up = v3(0.0f, 0.0f, 1.0f);
@@ -249,6 +269,15 @@ static void check_lights_picked_for_a_surface(void)
     }
     CHECK_MSG(fabs(sum_floor - 1.0) < 1e-5 && fabs(sum_tilted - 1.0) < 1e-5, "pick probabilities sum to %g and %g",
               sum_floor, sum_tilted);
+    phos_scene_destroy(s);
+
+    check_receiver("mixed lights under a sky, on a floor", mixed_lights_under_sky(), sampled_floor, up, -1.0, 1);
+    check_receiver("mixed lights under a sky, on glass", mixed_lights_under_sky(), glass, up, -1.0, 1);
+    s = mixed_lights_under_sky();
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    world = s->lights.count - 1;
+    CHECK_MSG(s->lights.lights[world].kind == LIGHT_ENVIRONMENT && light_pick_pdf(&s->lights, &sampled_floor, world) > 0.0f,
+              "a world that varies is light-sampled even where the BSDF's rays count it");
     phos_scene_destroy(s);
 }
 

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lights/light_kind.h"
 #include "sampling/warp.h"
 #include "shading/material.h"
 #include "shading/shader_program.h"
@@ -260,6 +261,8 @@ vec3 environment_sample_in_bin(const environment *e, uint32_t bin, float2 u, flo
 
 float environment_pdf(const environment *e, vec3 d)
 {
+    if (!e->cells)
+        return 0.0f;
     float2 u = square_of_direction(d);
     uint32_t row = (uint32_t)(u.x * (float)e->rows), column = (uint32_t)(u.y * (float)e->columns);
     row = row < e->rows ? row : e->rows - 1;
@@ -267,3 +270,100 @@ float environment_pdf(const environment *e, vec3 d)
     cell_index c = index_of_cell(e, row, column);
     return cell_density(e, distribution_pdf(&e->bins, c.bin) * distribution_pdf(&e->cells[c.bin], c.local));
 }
+
+/* ------------------------------------------------------- the light kind */
+
+void environment_destroy(environment *e)
+{
+    if (!e)
+        return;
+    environment_free(e);
+    free(e);
+}
+
+phos_status light_environment_add(const scene *s, light_table *t, uint32_t *capacity, const material *world)
+{
+    environment *e = calloc(1, sizeof(environment));
+    if (!e)
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    int zero = 0;
+    phos_status st = environment_build(e, s, world, 0, &zero);
+    if (st != PHOS_OK) {
+        environment_destroy(e);
+        return st;
+    }
+    /* A world that sends no light is still seen by camera rays (Light
+     * Path's Is Camera Ray can show a background that lights nothing):
+     * it stays in the table with no power, and is never picked. */
+    t->env = e;
+    light l;
+    memset(&l, 0, sizeof(l));
+    l.kind = LIGHT_ENVIRONMENT;
+    l.color = v3s((float)(e->integral * PHOS_INV_4PI)); /* the mean radiance */
+    t->world = (int32_t)t->count;
+    return light_table_append(t, capacity, &l) ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
+}
+
+static const environment *env_of(const scene *s) { return s->lights.env; }
+
+/* ∫ L dω · πR²: each direction's radiance through the disk facing it. */
+static float environment_power(const light *l, float scene_radius)
+{
+    return 4.0f * PHOS_PI * light_mean_color(l) * distant_disk_area(scene_radius);
+}
+
+static int environment_hittable(const light *l) { return (void)l, 1; }
+
+static int environment_light_sample(const scene *s, const light *l, const light_context *c, float2 u,
+                                    light_sample *out)
+{
+    (void)l, (void)c;
+    const environment *e = env_of(s);
+    if (!e->cells)
+        return 0;
+    out->wi = environment_sample(e, u, &out->pdf);
+    out->distance = INFINITY;
+    out->radiance = environment_radiance(s, e, out->wi, 0);
+    out->delta = 0;
+    return out->pdf > 0.0f && !v3_is_zero(out->radiance);
+}
+
+/* Camera rays see the background as Light Path's Is Camera Ray says;
+ * every other ray, and the light samples and photons, as a non-camera
+ * ray: so the light sample and the rays it is weighted against agree. */
+static int environment_escape(const scene *s, const light *l, const light_context *from, vec3 d, int camera_ray,
+                              vec3 *radiance, float *pdf)
+{
+    (void)l;
+    const environment *e = env_of(s);
+    *radiance = environment_radiance(s, e, d, camera_ray ? SHADER_RAY_CAMERA : 0);
+    *pdf = from ? environment_pdf(e, d) : 0.0f;
+    return 1;
+}
+
+/* A photon from a direction drawn from the map, starting on the disk that
+ * faces it: Φ = L(ω)·πR² / p(ω). */
+static int environment_emit(const scene *s, const light *l, float2 u_origin, float2 u_direction, vec3 *origin,
+                            vec3 *direction, vec3 *flux)
+{
+    (void)l;
+    const environment *e = env_of(s);
+    if (!e->cells)
+        return 0;
+    float pdf;
+    vec3 from = environment_sample(e, u_direction, &pdf);
+    *direction = v3_neg(from);
+    float area = distant_origin(&s->lights, *direction, u_origin, origin);
+    *flux = v3_scale(environment_radiance(s, e, from, 0), area / pdf);
+    return pdf > 0.0f;
+}
+
+const light_kind_ops light_environment_ops = {
+    .name = "environment",
+    .desc_type = -1,
+    .power = environment_power,
+    .hittable = environment_hittable,
+    .sample = environment_light_sample,
+    .escape = environment_escape,
+    .emit = environment_emit,
+};

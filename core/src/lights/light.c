@@ -22,6 +22,7 @@
 const light_kind_ops *const light_kinds[LIGHT_KIND_COUNT] = {
     [LIGHT_POINT] = &light_point_ops, [LIGHT_SPOT] = &light_spot_ops,     [LIGHT_AREA] = &light_area_ops,
     [LIGHT_SUN] = &light_sun_ops,     [LIGHT_TRIANGLE] = &light_mesh_ops, [LIGHT_WORLD] = &light_world_ops,
+    [LIGHT_ENVIRONMENT] = &light_environment_ops,
 };
 
 float light_power(const light *l, float scene_radius) { return light_ops(l)->power(l, scene_radius); }
@@ -165,7 +166,7 @@ int light_emit(const scene *s, uint32_t index, const float u[4], vec3 *origin, v
     const light_kind_ops *ops = light_ops(l);
     float2 ua = {u[0], u[1]}, ub = {u[2], u[3]};
     if (ops->emit)
-        return ops->emit(t, l, ua, ub, origin, direction, flux);
+        return ops->emit(s, l, ua, ub, origin, direction, flux);
     /* A local light: a direction by its density, then the origin and the
      * intensity along it. */
     float pdf;
@@ -226,7 +227,7 @@ vec3 lights_escape(const scene *s, const light_context *from, vec3 d, float bsdf
         const light_kind_ops *ops = light_ops(l);
         vec3 L;
         float pdf;
-        if (!ops->escape || !ops->escape(l, from, d, camera_ray, &L, &pdf))
+        if (!ops->escape || !ops->escape(s, l, from, d, camera_ray, &L, &pdf))
             continue;
         float w = bsdf_delta || !from ? 1.0f : mis_power_heuristic(bsdf_pdf, pdf * light_pick_pdf(tab, from, i));
         sum = v3_madd(sum, L, w);

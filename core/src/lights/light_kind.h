@@ -44,8 +44,8 @@ typedef struct light_kind_ops {
      * direction d finds, and the pdf of sample() at `from` producing d
      * (from may be NULL). Returns 0 if the ray misses it or, for camera
      * rays, it is hidden from the camera. NULL for local lights. */
-    int (*escape)(const light *l, const light_context *from, vec3 d, int camera_ray, vec3 *radiance,
-                  float *pdf);
+    int (*escape)(const scene *s, const light *l, const light_context *from, vec3 d, int camera_ray,
+                  vec3 *radiance, float *pdf);
 
     /* Local lights' photons: a direction of emission with its density
      * (sr⁻¹), and for a direction d an origin on the light and the
@@ -57,12 +57,12 @@ typedef struct light_kind_ops {
     /* Distant lights' photons: origin, direction and flux (W), as
      * light_emit. NULL for local lights, which light_emit builds from
      * emission_direction and emit_toward. */
-    int (*emit)(const light_table *t, const light *l, float2 u_origin, float2 u_direction, vec3 *origin,
+    int (*emit)(const scene *s, const light *l, float2 u_origin, float2 u_direction, vec3 *origin,
                 vec3 *direction, vec3 *flux);
 } light_kind_ops;
 
 extern const light_kind_ops light_point_ops, light_spot_ops, light_area_ops, light_sun_ops, light_mesh_ops,
-    light_world_ops;
+    light_world_ops, light_environment_ops;
 
 /* Indexed by enum light_kind (light.c). */
 extern const light_kind_ops *const light_kinds[LIGHT_KIND_COUNT];
@@ -92,10 +92,12 @@ int light_table_append(light_table *t, uint32_t *capacity, const light *l);
 
 /* Table builders of the kinds not described by phos_light_desc: every
  * emissive triangle of the visible instances, consecutive per instance
- * (mesh_emitter.c), and the world light if the world is not black
- * (world.c). */
+ * (mesh_emitter.c), and the world light if the world is not black: a
+ * uniform world (world.c) or one that varies with direction
+ * (environment.c). */
 phos_status light_mesh_emitters_add(scene *s, light_table *t, uint32_t *capacity);
 phos_status light_world_add(const scene *s, light_table *t, uint32_t *capacity);
+phos_status light_environment_add(const scene *s, light_table *t, uint32_t *capacity, const material *world);
 
 /* Distant lights (sun, world) emit photons from the disk of the scene's
  * bounding sphere (radius R, light_table.center and .radius) that faces

@@ -71,7 +71,7 @@ static float spot_bound(const light *l, vec3 from_light, float sin_beta, float c
 static float group_importance(const light_table *t, const light_group *g, const light_context *c)
 {
     const light *l = &t->lights[g->first];
-    if (l->kind == LIGHT_WORLD)
+    if (light_is_world(l)) /* an environment's l->color is its mean radiance */
         return PHOS_PI * maxf(v3_average(l->color), 0.0f); /* E = πL from a whole hemisphere */
     if (l->kind == LIGHT_SUN) {
         float cos_a = l->sun_cos_half, sin_a = safe_sqrtf(1.0f - cos_a * cos_a);

@@ -18,7 +18,8 @@ enum light_kind {
     LIGHT_AREA,
     LIGHT_SUN,
     LIGHT_TRIANGLE,
-    LIGHT_WORLD,
+    LIGHT_WORLD,                /* uniform: one radiance from every direction */
+    LIGHT_ENVIRONMENT,          /* the world varying with direction (lights/environment.h) */
     LIGHT_KIND_COUNT            /* each kind's operations: light_kinds[] (light_kind.h) */
 };
 
@@ -61,15 +62,27 @@ typedef struct light_table {
                                    with more than LIGHT_PICK_MAX_GROUPS groups */
     light_group *groups;
     uint32_t group_count;
-    int32_t world;              /* index of the world light, −1 if black */
+    int32_t world;              /* index of the world light (uniform or environment), −1 if black */
+    struct environment *env;    /* the world's sampling map when it varies with direction, else NULL */
     uint32_t *shapes;           /* indices of lights a ray can hit: lamps with area, suns with an angle, world */
     uint32_t shape_count;
     vec3 center;                /* bounding sphere of the scene, for distant lights */
     float radius;
 } light_table;
 
+/* Whether l is the world, uniform or not: the distant light from every
+ * direction. */
+static inline int light_is_world(const light *l) { return l->kind == LIGHT_WORLD || l->kind == LIGHT_ENVIRONMENT; }
+
+/* Suns and the world: lights at infinity, whose photons start on a plane
+ * or disk across the scene. */
+static inline int light_is_distant(const light *l) { return l->kind == LIGHT_SUN || light_is_world(l); }
+
+void environment_destroy(struct environment *e); /* lights/environment.c */
+
 static inline void light_table_free(light_table *t)
 {
+    environment_destroy(t->env);
     free(t->lights);
     free(t->shapes);
     distribution_free(&t->pick);

@@ -56,7 +56,8 @@ static int sun_sample(const scene *s, const light *l, const light_context *c, fl
 }
 
 /* Rays find only a sun with an angle, within its cone. */
-static int sun_escape(const light *l, const light_context *from, vec3 d, int camera_ray, vec3 *radiance, float *pdf)
+static int sun_escape(const scene *s, const light *l, const light_context *from, vec3 d, int camera_ray, vec3 *radiance,
+                      float *pdf)
 {
     if ((camera_ray && !l->camera_visible) || !has_angle(l))
         return 0;
@@ -70,11 +71,11 @@ static int sun_escape(const light *l, const light_context *from, vec3 d, int cam
 /* A photon per direction of the cone carries L·Ω·πR² (Ω the cone's solid
  * angle), not E·πR²: E = ∫ L cos θ dω = L·π sin²α is less than L·Ω by
  * (1 + cos α)/2 (α the half angle). */
-static int sun_emit(const light_table *t, const light *l, float2 u_origin, float2 u_direction, vec3 *origin,
+static int sun_emit(const scene *s, const light *l, float2 u_origin, float2 u_direction, vec3 *origin,
                     vec3 *direction, vec3 *flux)
 {
     vec3 d = has_angle(l) ? warp_cone(l->direction, l->sun_cos_half, u_direction) : l->direction;
-    float area = distant_origin(t, d, u_origin, origin);
+    float area = distant_origin(&s->lights, d, u_origin, origin);
     *direction = d;
     *flux = has_angle(l) ? v3_scale(l->sun_radiance, cone_solid_angle(l->sun_cos_half) * area)
                          : v3_scale(l->color, area); /* E · πR² */

@@ -1,6 +1,7 @@
 /*
  * world.c — the uniform world: radiance L (W/(m²·sr)) arriving from every
- * direction, found by every ray that escapes the scene.
+ * direction, found by every ray that escapes the scene. A world whose
+ * radiance varies with direction is environment.c's.
  *
  * Its light sample is cosine-weighted about the shading normal (Malley's
  * method, pdf cos θ/π) where only light from above the surface can be
@@ -18,10 +19,17 @@
 #include <string.h>
 
 #include "sampling/warp.h"
+#include "shading/material.h"
 
 phos_status light_world_add(const scene *s, light_table *t, uint32_t *capacity)
 {
     vec3 world = v3_load(s->world.color);
+    if (s->world.material != PHOS_WORLD_NO_MATERIAL) {
+        const material *m = &s->materials[s->world.material];
+        if (m->has_program)
+            return light_environment_add(s, t, capacity, m);
+        world = material_background(s, m, v3(0.0f, 0.0f, 1.0f), 0); /* folded: the same every way */
+    }
     if (v3_is_zero(world))
         return PHOS_OK;
     light l;
@@ -62,19 +70,19 @@ static int world_sample(const scene *s, const light *l, const light_context *c, 
 }
 
 /* Every escaping ray finds the world, camera rays included. */
-static int world_escape(const light *l, const light_context *from, vec3 d, int camera_ray, vec3 *radiance,
-                        float *pdf)
+static int world_escape(const scene *s, const light *l, const light_context *from, vec3 d, int camera_ray,
+                        vec3 *radiance, float *pdf)
 {
     *radiance = l->color;
     *pdf = light_world_pdf(from, d);
     return 1;
 }
 
-static int world_emit(const light_table *t, const light *l, float2 u_origin, float2 u_direction, vec3 *origin,
+static int world_emit(const scene *s, const light *l, float2 u_origin, float2 u_direction, vec3 *origin,
                       vec3 *direction, vec3 *flux)
 {
     vec3 d = v3_neg(warp_uniform_sphere(u_direction)); /* away from where the light comes from */
-    float area = distant_origin(t, d, u_origin, origin);
+    float area = distant_origin(&s->lights, d, u_origin, origin);
     *direction = d;
     *flux = v3_scale(l->color, area / PHOS_INV_4PI); /* L · πR² / p_ω */
     return 1;

@@ -488,7 +488,7 @@ static phos_status aim_global(const scene *s, const photon_trace_settings *ps, p
     *aimed = 0;
     int has_distant = 0;
     for (uint32_t i = 0; i < s->lights.count; i++)
-        has_distant |= s->lights.lights[i].kind == LIGHT_SUN || s->lights.lights[i].kind == LIGHT_WORLD;
+        has_distant |= light_is_distant(&s->lights.lights[i]);
     if (!has_distant || !s->has_camera)
         return PHOS_OK;
     photon_importance imp;
@@ -505,7 +505,7 @@ static phos_status aim_global(const scene *s, const photon_trace_settings *ps, p
     phos_status st = weights && cell_group && cell_pilots ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
     if (st == PHOS_OK) {
         for (uint32_t g = 0; g < aim->group_count; g++) {
-            int world = s->lights.lights[s->lights.groups[g].first].kind == LIGHT_WORLD;
+            int world = light_is_world(&s->lights.lights[s->lights.groups[g].first]);
             cell_pilots[g] = world ? WORLD_PILOT_PHOTONS : PILOT_PHOTONS;
             for (uint32_t k = 0; aim->groups[g].distant && k < aim->groups[g].count; k++)
                 cell_group[aim->groups[g].first + k] = g;

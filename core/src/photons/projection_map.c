@@ -22,12 +22,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lights/environment.h"
 #include "lights/light.h"
 #include "sampling/warp.h"
 #include "shading/material.h"
 
 #define PLANE_CELLS 64       /* per side of a sun's plane */
-#define WORLD_BINS 8         /* per side of the world's grid of directions: 64 bins of π/16 sr */
+#define WORLD_BINS ENVIRONMENT_BINS /* per side of the world's grid of directions: 64 bins of π/16 sr */
 #define WORLD_PLANE_CELLS 32 /* per side of the plane of each of the world's bins */
 #define MAX_CONES 64        /* per light; more instances share one sphere */
 #define MARGIN 1e-3f        /* rad or m: rounding never unmarks a cell that can see a target */
@@ -159,7 +160,7 @@ static distant_plane plane_of(const light_table *t, const light *l, uint32_t bin
 {
     distant_plane p;
     vec3 axis;
-    if (l->kind == LIGHT_WORLD) {
+    if (light_is_world(l)) {
         float2 c = {0.5f, 0.5f};
         axis = world_bin_direction(bin, c);
         /* The angle from the centre is largest at a corner of the bin: along
@@ -188,12 +189,12 @@ static distant_plane plane_of(const light_table *t, const light *l, uint32_t bin
     return p;
 }
 
-static uint32_t distant_bins(const light *l) { return l->kind == LIGHT_WORLD ? WORLD_BINS * WORLD_BINS : 1u; }
+static uint32_t distant_bins(const light *l) { return light_is_world(l) ? WORLD_BINS * WORLD_BINS : 1u; }
 
 /* Cells in each of the light's planes. */
 static uint32_t cell_grid_size(const light *l)
 {
-    return l->kind == LIGHT_WORLD ? WORLD_PLANE_CELLS * WORLD_PLANE_CELLS : PLANE_CELLS * PLANE_CELLS;
+    return light_is_world(l) ? WORLD_PLANE_CELLS * WORLD_PLANE_CELLS : PLANE_CELLS * PLANE_CELLS;
 }
 
 /* m²: the area of one of the plane's cells. */
@@ -221,9 +222,12 @@ static int plane_cell_marked(const light_table *tab, const distant_plane *p, con
 }
 
 /* W/m² a cell's photons carry per unit of its area: the sun's irradiance
- * across its axis, or the world's radiance times a bin's solid angle. */
-static float distant_flux_density(const light *l, const distant_plane *p)
+ * across its axis, or the world's radiance integrated over the bin's
+ * directions (a uniform world's radiance times the bin's solid angle). */
+static float distant_flux_density(const light_table *tab, const light *l, const distant_plane *p, uint32_t bin)
 {
+    if (l->kind == LIGHT_ENVIRONMENT)
+        return tab->env->bin_integral[bin];
     float c = fmaxf(v3_average(l->color), 0.0f);
     return l->kind == LIGHT_WORLD ? c * p->omega : c;
 }
@@ -287,7 +291,7 @@ static float mark_distant(projection_map *pm, uint32_t *capacity, const light_ta
         for (uint32_t cell = 0; cell < cells; cell++)
             if (plane_cell_marked(tab, &p, t, nt, cell) && !(*ok = append_cell(pm, capacity, bin * cells + cell)))
                 return 0.0f;
-        power += distant_flux_density(l, &p) * plane_cell_area(&p) *
+        power += distant_flux_density(tab, l, &p, bin) * plane_cell_area(&p) *
                  (float)(pm->groups[pm->group_count].count - before); /* E·A_marked */
     }
     return power;
@@ -346,7 +350,7 @@ static float mark_group(projection_map *pm, uint32_t *cells_capacity, uint32_t *
     pg->count = 0;
     pg->first = 0;
     /* Each kind of group keeps its own list, in group order. */
-    int distant = l->kind == LIGHT_SUN || l->kind == LIGHT_WORLD;
+    int distant = light_is_distant(l);
     for (const projection_group *q = prev; q; q = q > pm->groups ? q - 1 : NULL)
         if (!q->all && (int)q->distant == distant) {
             pg->first = q->first + q->count;
@@ -407,7 +411,7 @@ static float distant_weight(const light_table *tab, const projection_map *pm, ui
         if (pm->cells[pg->first + k] / cell_grid_size(l) != bin) {
             bin = pm->cells[pg->first + k] / cell_grid_size(l);
             distant_plane p = plane_of(tab, l, bin);
-            per_weight = distant_flux_density(l, &p) * plane_cell_area(&p);
+            per_weight = distant_flux_density(tab, l, &p, bin) * plane_cell_area(&p);
         }
         double cum = pm->cell_cum[pg->first + k];
         sum += (cum - below) * per_weight;
@@ -450,7 +454,7 @@ int projection_map_build_distant(projection_map *pm, const scene *s)
         const light *l = &tab->lights[tab->groups[g].first];
         projection_group *pg = &pm->groups[g];
         pg->first = first;
-        if (l->kind != LIGHT_SUN && l->kind != LIGHT_WORLD) {
+        if (!light_is_distant(l)) {
             pg->all = 1;
         } else {
             pg->distant = 1;
@@ -484,7 +488,7 @@ int projection_map_set_weights(projection_map *pm, const scene *s, const float *
         if (pg->all || !pg->distant)
             continue;
         const light *l = &s->lights.lights[s->lights.groups[g].first];
-        int side = (int)(l->kind == LIGHT_WORLD ? WORLD_PLANE_CELLS : PLANE_CELLS);
+        int side = (int)(light_is_world(l) ? WORLD_PLANE_CELLS : PLANE_CELLS);
         memset(grid, 0, sizeof(float) * most);
         for (uint32_t k = 0; k < pg->count; k++)
             grid[pm->cells[pg->first + k]] = weights[pg->first + k];
@@ -530,19 +534,28 @@ static uint32_t pick_cell(const projection_map *pm, const projection_group *g, f
 }
 
 /* Origin in cell `cell` of the light's planes and direction, from u and
- * ud; returns the cell's plane. */
+ * ud; returns the cell's plane, and in *solid_angle the reciprocal of the
+ * direction's density among the plane's directions (sr: the plane's Ω
+ * where they are uniform; 0 for a delta sun). An environment draws its
+ * direction from its map within the plane's bin (environment.h). */
 static distant_plane distant_cell_ray(const light_table *tab, const light *l, uint32_t cell, float2 u, float2 ud,
-                                      vec3 *origin, vec3 *direction)
+                                      vec3 *origin, vec3 *direction, float *solid_angle)
 {
     uint32_t cells = cell_grid_size(l), bin = cell / cells, local = cell % cells;
     distant_plane p = plane_of(tab, l, bin);
     float side = 2.0f * p.half / (float)p.grid;
     float px = ((float)(local % p.grid) + u.x) * side, py = ((float)(local / p.grid) + u.y) * side;
     vec3 crossing = v3_add(p.corner, v3_add(v3_scale(p.f.t, px), v3_scale(p.f.b, py)));
-    if (l->kind == LIGHT_WORLD)
+    *solid_angle = p.omega;
+    if (l->kind == LIGHT_ENVIRONMENT) {
+        float pdf;
+        *direction = v3_neg(environment_sample_in_bin(tab->env, bin, ud, &pdf));
+        *solid_angle = pdf > 0.0f ? 1.0f / pdf : 0.0f;
+    } else if (l->kind == LIGHT_WORLD) {
         *direction = world_bin_direction(bin, ud);
-    else
+    } else {
         *direction = l->sun_cos_half < 1.0f ? warp_cone(l->direction, l->sun_cos_half, ud) : l->direction;
+    }
     *origin = v3_madd(crossing, *direction, -p.back);
     return p;
 }
@@ -551,7 +564,8 @@ void projection_map_cell_ray(const scene *s, const projection_map *pm, uint32_t 
                              vec3 *origin, vec3 *direction)
 {
     const light *l = &s->lights.lights[s->lights.groups[g].first];
-    distant_cell_ray(&s->lights, l, pm->cells[pm->groups[g].first + k], u, ud, origin, direction);
+    float solid_angle;
+    distant_cell_ray(&s->lights, l, pm->cells[pm->groups[g].first + k], u, ud, origin, direction, &solid_angle);
 }
 
 int projection_map_emit(const scene *s, const projection_map *pm, const float u[5], vec3 *origin, vec3 *direction,
@@ -579,14 +593,17 @@ int projection_map_emit(const scene *s, const projection_map *pm, const float u[
         float share;
         float2 uc = {u[1], u[2]}, ud = {u[3], u[4]};
         uint32_t cell = pick_cell(pm, pg, &uc.x, &share);
-        distant_plane p = distant_cell_ray(tab, l, cell, uc, ud, origin, direction);
+        float solid_angle;
+        distant_plane p = distant_cell_ray(tab, l, cell, uc, ud, origin, direction, &solid_angle);
         float area = plane_cell_area(&p) / share; /* 1/p_A: the cell's area over its probability */
         if (p.omega > 0.0f) {
             /* Through a plane across the axis, radiance L from direction d
-             * brings L·cos θ per unit area and solid angle; d is uniform
-             * over the plane's Ω. */
-            vec3 L = l->kind == LIGHT_WORLD ? l->color : l->sun_radiance;
-            flux = v3_scale(L, v3_dot(*direction, p.f.n) * p.omega * area);
+             * brings L·cos θ per unit area and solid angle; d has density
+             * 1/solid_angle among the plane's directions. */
+            vec3 L = l->kind == LIGHT_ENVIRONMENT ? environment_radiance(s, tab->env, v3_neg(*direction), 0)
+                     : l->kind == LIGHT_WORLD     ? l->color
+                                                  : l->sun_radiance;
+            flux = v3_scale(L, v3_dot(*direction, p.f.n) * solid_angle * area);
         } else {
             flux = v3_scale(l->color, area); /* E / p_A */
         }
