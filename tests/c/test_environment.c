@@ -104,12 +104,13 @@ static float *sun_sky(void)
 #define GRID_PHI 32
 #define DRAWS 400000
 
+/* Bins of θ (from +z) and φ, unions of the map's cells. */
 static int grid_bin(vec3 d)
 {
     float phi = atan2f(d.y, d.x);
     if (phi < 0.0f)
         phi += 2.0f * PHOS_PI;
-    int iz = (int)(0.5f * (1.0f - d.z) * GRID_Z), ip = (int)(phi / (2.0f * PHOS_PI) * GRID_PHI);
+    int iz = (int)(acosf(fminf(fmaxf(d.z, -1.0f), 1.0f)) / PHOS_PI * GRID_Z), ip = (int)(phi / (2.0f * PHOS_PI) * GRID_PHI);
     iz = iz < 0 ? 0 : iz >= GRID_Z ? GRID_Z - 1 : iz;
     ip = ip < 0 ? 0 : ip >= GRID_PHI ? GRID_PHI - 1 : ip;
     return iz * GRID_PHI + ip;
@@ -126,15 +127,16 @@ static void test_sampling(void)
     CHECK(environment_build(&e, s, world_material(s), 2, &zero) == PHOS_OK && !zero);
     CHECK(e.rows % GRID_Z == 0 && e.columns % GRID_PHI == 0);
 
-    /* Expected counts: the density is constant over each cell, and the
-     * grid's bins are unions of cells. */
+    /* Expected counts: within a cell the density times sin θ is constant,
+     * so its integral over the cell is that at the centre times Δθ Δφ;
+     * the grid's bins are unions of cells. */
     static double expected[GRID_Z * GRID_PHI], observed[GRID_Z * GRID_PHI];
-    double cell_omega = 4.0 * PHOS_PI / ((double)e.rows * e.columns), total = 0.0;
+    double extent = 2.0 * PHOS_PI * PHOS_PI / ((double)e.rows * e.columns), total = 0.0;
     for (uint32_t r = 0; r < e.rows; r++)
         for (uint32_t c = 0; c < e.columns; c++) {
-            float2 u = {((float)r + 0.5f) / (float)e.rows, ((float)c + 0.5f) / (float)e.columns};
-            vec3 d = warp_uniform_sphere(u);
-            double p = environment_pdf(&e, d) * cell_omega;
+            double theta = PHOS_PI * (r + 0.5) / e.rows, phi = 2.0 * PHOS_PI * (c + 0.5) / e.columns;
+            vec3 d = v3((float)(sin(theta) * cos(phi)), (float)(sin(theta) * sin(phi)), (float)cos(theta));
+            double p = environment_pdf(&e, d) * sin(theta) * extent;
             expected[grid_bin(d)] += p * DRAWS;
             total += p;
         }

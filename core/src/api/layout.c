@@ -62,6 +62,7 @@ static const layout_field fields[] = {
     FIELD(phos_light_desc, sun_angle) FIELD(phos_light_desc, camera_visible)
 
     FIELD(phos_world_desc, color)
+    FIELD(phos_world_desc, material)
 
     FIELD(phos_camera_desc, type) FIELD(phos_camera_desc, transform) FIELD(phos_camera_desc, frame_min)
     FIELD(phos_camera_desc, frame_max) FIELD(phos_camera_desc, aperture_radius)

@@ -143,8 +143,16 @@ static float2 world_bin_u(uint32_t bin, float2 ud)
     return u;
 }
 
-/* Direction of travel of a world photon from bin `bin` (ud: where in it). */
-static vec3 world_bin_direction(uint32_t bin, float2 ud) { return v3_neg(warp_uniform_sphere(world_bin_u(bin, ud))); }
+/* Direction of travel of a world photon from bin `bin` (ud: where in it):
+ * a uniform world's bins are rectangles of warp_uniform_sphere's square,
+ * of equal solid angle; an environment's are those of its latitude-
+ * longitude grid (environment.h). */
+static vec3 world_bin_direction(const light *l, uint32_t bin, float2 ud)
+{
+    if (l->kind == LIGHT_ENVIRONMENT)
+        return v3_neg(environment_bin_direction(bin, ud));
+    return v3_neg(warp_uniform_sphere(world_bin_u(bin, ud)));
+}
 
 /* The plane of a sun (bin 0) or of the world's bin `bin`: perpendicular
  * to its axis through the scene's centre, a square of half side R / cos a
@@ -162,19 +170,20 @@ static distant_plane plane_of(const light_table *t, const light *l, uint32_t bin
     vec3 axis;
     if (light_is_world(l)) {
         float2 c = {0.5f, 0.5f};
-        axis = world_bin_direction(bin, c);
+        axis = world_bin_direction(l, bin, c);
         /* The angle from the centre is largest at a corner of the bin: along
          * an edge of constant z it grows with the azimuth difference, and
          * along a meridian arc shorter than π it has no interior maximum. */
         float cos_min = 1.0f;
         for (int k = 0; k < 4; k++) {
             float2 corner = {(float)(k & 1), (float)(k >> 1)};
-            cos_min = fminf(cos_min, v3_dot(axis, world_bin_direction(bin, corner)));
+            cos_min = fminf(cos_min, v3_dot(axis, world_bin_direction(l, bin, corner)));
         }
         cos_min = clampf(cos_min - MARGIN, 0.1f, 1.0f);
         p.tan_a = safe_sqrtf(1.0f - cos_min * cos_min) / cos_min;
         p.grid = WORLD_PLANE_CELLS;
-        p.omega = 4.0f * PHOS_PI / (WORLD_BINS * WORLD_BINS);
+        p.omega = l->kind == LIGHT_ENVIRONMENT ? environment_bin_solid_angle(bin)
+                                               : 4.0f * PHOS_PI / (WORLD_BINS * WORLD_BINS);
     } else {
         axis = l->direction;
         p.tan_a = l->sun_cos_half < 1.0f ? safe_sqrtf(1.0f - l->sun_cos_half * l->sun_cos_half) / l->sun_cos_half
@@ -552,7 +561,7 @@ static distant_plane distant_cell_ray(const light_table *tab, const light *l, ui
         *direction = v3_neg(environment_sample_in_bin(tab->env, bin, ud, &pdf));
         *solid_angle = pdf > 0.0f ? 1.0f / pdf : 0.0f;
     } else if (l->kind == LIGHT_WORLD) {
-        *direction = world_bin_direction(bin, ud);
+        *direction = world_bin_direction(l, bin, ud);
     } else {
         *direction = l->sun_cos_half < 1.0f ? warp_cone(l->direction, l->sun_cos_half, ud) : l->direction;
     }
