@@ -186,6 +186,26 @@ pt.add_sphere(sc, "Ghost Sphere", location=(0, 0, 0.5), material=mat)
         "a missing image should be a warning naming it:\n" + out[-3000:])
 
 
+def test_missing_environment_image_warns_and_renders_the_colour(tmp_path):
+    """An HDR world whose file is gone: one warning naming the image, and
+    the world lights the scene with its Background colour, as an unlinked
+    Environment Texture would."""
+    code = r'''
+img = bpy.data.images.new("Lost HDR", 8, 4, float_buffer=True)
+img.source = "FILE"
+img.filepath = "/nonexistent/lost.exr"
+world = pt.set_world(sc, (0.3, 0.3, 0.3))
+env = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
+env.image = img
+world.node_tree.links.new(env.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
+'''
+    rc, out, image = build_and_render(tmp_path, code)
+    assert_no_crash(rc, out)
+    assert_rendered(rc, out, image)
+    ours = [w for w in warning_lines(out) if "Lost HDR" in w]
+    assert len(ours) == 1, "one warning naming the missing HDR:\n" + out[-3000:]
+
+
 NON_FINITE_VERTEX = r'''
 import numpy as np
 ob = pt.add_cube(sc, "Broken Cube", location=(0, 0, 0.5))

@@ -573,6 +573,54 @@ def test_world_background(use_nodes, scene, tmp_path):
     assert np.allclose(p, expected, atol=1e-5), "Phos %s, expected %s" % (p[0, 0], expected)
 
 
+@pytest.mark.parametrize("projection", ["EQUIRECTANGULAR", "MIRROR_BALL"])
+def test_environment_texture_background(projection, scene, tmp_path):
+    """The camera sees an HDR world as Cycles shows it, pixel by pixel: the
+    image's direction convention, a Mapping rotation about Z and X, both
+    projections (one of Blender's studio HDRs; no bounces)."""
+    pt.add_camera(scene, location=(0, 0, 0), target=(1.0, -0.4, 0.3), lens=20.0)
+    world = pt.set_world_hdr(scene, "forest", strength=1.5, rotation_z=math.radians(37.0), projection=projection)
+    mapping = [n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeMapping"][0]
+    mapping.inputs["Rotation"].default_value[0] = math.radians(10.0)
+    pt.configure_output(scene, 48, 32)
+    p, c = [], []
+    for seed in (1, 2):
+        pt.configure_phos(scene, 64, max_bounces=0, seed=seed)
+        pt.configure_cycles(scene, 64, max_bounces=0, seed=seed)
+        p.append(pt.render_array(scene, tmp_path, "PHOS", name="p%d" % seed)[..., :3])
+        c.append(pt.render_array(scene, tmp_path, "CYCLES", name="c%d" % seed)[..., :3])
+    # Against the pixels' own anti-aliasing noise: Cycles against itself.
+    between = np.mean([np.abs(p[k] - c[k]).mean() for k in (0, 1)])
+    noise = np.abs(c[0] - c[1]).mean()
+    assert between < 1.5 * noise + 0.002 * c[0].mean(), (
+        "Phos differs from Cycles by %.2g per pixel on the %s background, Cycles from itself by %.2g"
+        % (between, projection, noise))
+
+
+def test_non_finite_hdr_pixels_count_as_black(scene):
+    """NaN and infinite pixels of an HDR are black, with one warning that
+    counts them, and the core accepts the world."""
+    from phos import core
+    from phos.export import world as wexp
+    from phos.export.context import ExportContext
+    img = bpy.data.images.new("Broken HDR", 16, 8, float_buffer=True)
+    px = np.full((8, 16, 4), 0.5, np.float32)
+    px[2, 3, :3] = np.nan
+    px[5, 9, 0] = np.inf
+    px[6, 1, 1] = -np.inf
+    img.pixels.foreach_set(px.ravel())
+    world = pt.set_world(scene, (0.0, 0.0, 0.0))
+    env = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
+    env.image = img
+    world.node_tree.links.new(env.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
+    with core.Scene() as core_scene:
+        ctx = ExportContext(scene, core_scene)
+        wexp.export_world(ctx)
+        assert ctx.world_emits
+    ours = [w for w in ctx.warnings if "NaN or infinite" in w]
+    assert len(ours) == 1 and "3 pixels" in ours[0], ctx.warnings
+
+
 def test_mesh_without_uv_map_samples_texture_at_origin(scene, tmp_path):
     """Cycles reads UV (0, 0) on a mesh without a UV map: the texture's corner colour."""
     pt.add_camera(scene, location=(0, -4, 0), target=(0, 0, 0))

@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cache/fingerprint.h"
 #include "chi2.h"
 #include "lights/environment.h"
 #include "sampling/warp.h"
@@ -282,8 +283,55 @@ static void test_furnace(uint32_t integrator, const char *name)
     phos_scene_destroy(s);
 }
 
+/* A 16K map is sampled on a bounded grid (the memory its distribution
+ * takes is environment_bytes of it), a small one at a quarter pixel per
+ * cell, a world without an image on the default grid. */
+static void test_resolution_bounds(void)
+{
+    phos_scene *s = phos_scene_create();
+    float px[4] = {1, 1, 1, 1};
+    test_set_environment(s, px, 1, 1, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+    material *m = &s->materials[s->world.material];
+    image *img = &s->images[0];
+    struct { uint32_t w, h, rows, columns; } cases[] = {
+        {16384, 8192, ENVIRONMENT_MAX_ROWS, ENVIRONMENT_MAX_COLUMNS}, {1024, 512, 1024, 2048},
+        {100, 50, 104, 200}, {1, 1, 64, 128}};
+    for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
+        img->width = cases[k].w, img->height = cases[k].h; /* only the size is read */
+        uint32_t rows, columns, points;
+        environment_resolution(s, m, &rows, &columns, &points);
+        CHECK_MSG(rows == cases[k].rows && columns == cases[k].columns, "%ux%u map: %ux%u cells, not %ux%u",
+                  cases[k].w, cases[k].h, columns, rows, cases[k].columns, cases[k].rows);
+    }
+    size_t most = environment_bytes(ENVIRONMENT_MAX_ROWS, ENVIRONMENT_MAX_COLUMNS);
+    CHECK_MSG(most < (64u << 20), "the largest map's distribution takes %zu bytes", most);
+    img->width = img->height = 1;
+    phos_scene_destroy(s);
+}
+
+/* Cache files are keyed by the scene's fingerprint: one pixel of the
+ * environment changed must change it, not only the image's name or size. */
+static void test_fingerprint_reads_pixels(void)
+{
+    float px[8 * 4 * 4];
+    for (int i = 0; i < 8 * 4 * 4; i++)
+        px[i] = 0.5f;
+    scene_fingerprint f[2];
+    for (int k = 0; k < 2; k++) {
+        phos_scene *s = phos_scene_create();
+        px[4 * 13 + 1] = k ? 0.75f : 0.5f;
+        test_set_environment(s, px, 8, 4, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+        f[k] = scene_fingerprint_of(s);
+        phos_scene_destroy(s);
+    }
+    CHECK_MSG(f[0].materials != f[1].materials || f[0].lights != f[1].lights,
+              "one pixel of the environment changed, the fingerprint did not");
+}
+
 int main(void)
 {
+    test_fingerprint_reads_pixels();
+    test_resolution_bounds();
     test_directions();
     test_sampling();
     test_plane_under_sky(PHOS_INTEGRATOR_PATH, "PATH");

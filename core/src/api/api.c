@@ -10,6 +10,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "lights/environment.h"
 #include "lights/light.h"
 #include "scene/embree.h"
 #include "render/film.h"
@@ -581,6 +582,23 @@ phos_status phos_scene_set_camera(phos_scene *s, const phos_camera_desc *d)
     return PHOS_OK;
 }
 
+/* A world that varies with direction gets a sampling map at commit
+ * (lights/environment.h), of bounded size whatever its image's: refused,
+ * as a render is (render/memory.h), when even that cannot fit. */
+static phos_status check_environment_memory(phos_scene *s)
+{
+    if (s->world.material == PHOS_WORLD_NO_MATERIAL || !s->materials[s->world.material].has_program)
+        return PHOS_OK;
+    uint32_t rows, columns, points;
+    environment_resolution(s, &s->materials[s->world.material], &rows, &columns, &points);
+    uint64_t need = environment_bytes(rows, columns), available = memory_available();
+    if (need > available)
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY,
+             "commit: the world's sampling map needs %.1f MiB but %.1f MiB is available", (double)need / 1048576.0,
+             (double)available / 1048576.0);
+    return PHOS_OK;
+}
+
 phos_status phos_scene_commit(phos_scene *s)
 {
     if (!s)
@@ -590,11 +608,16 @@ phos_status phos_scene_commit(phos_scene *s)
         FAIL(s, PHOS_ERROR_INVALID_STATE, "commit: the scene is already committed");
     /* Scene data first, then what is derived from it: the BVH, the light table. */
     scene_prepare(s);
-    phos_status st = embree_bvh_build(s->meshes, s->mesh_count, s->instances, s->instance_count, &s->cancel,
+    phos_status st = check_environment_memory(s);
+    if (st != PHOS_OK)
+        return st;
+    st = embree_bvh_build(s->meshes, s->mesh_count, s->instances, s->instance_count, &s->cancel,
                                       &s->bvh, s->error, sizeof(s->error));
     if (st == PHOS_OK) {
         st = light_table_build(s);
-        if (st != PHOS_OK)
+        if (st == PHOS_ERROR_CANCELLED)
+            scene_set_error(s, "commit: cancelled");
+        else if (st != PHOS_OK)
             scene_set_error(s, "out of memory while building the light table");
     } else if (st == PHOS_ERROR_CANCELLED) {
         scene_set_error(s, "commit: cancelled");
