@@ -676,6 +676,7 @@ class phos_render_settings(ctypes.Structure):
         ("pass_mask", ctypes.c_uint32),
         ("global_photons", ctypes.c_uint32),
         ("caustic_photons", ctypes.c_uint32),
+        ("caustic_roughness", ctypes.c_float),
         ("global_estimate_photons", ctypes.c_uint32),
         ("caustic_estimate_photons", ctypes.c_uint32),
         ("max_radius", ctypes.c_float),
@@ -880,6 +881,11 @@ RENDER_SETTINGS = (
         user=True, prop='caustic_photons', kind='NUMBER', enum=None, soft_max=10000000,
         label='Caustic Photons',
         description='Photons stored in the caustic photon map (light focused by mirrors and glass)'),
+    RenderSetting(
+        name='caustic_roughness', ctype='float', default=0.3, min=0.0, max=1.0,
+        user=True, prop='caustic_roughness', kind='FACTOR', enum=None, soft_max=0.0,
+        label='Caustic Roughness',
+        description='Glossy reflection and refraction smoother than this focus light into caustics like mirrors and glass (photons pass them); rougher ones are lit by the caustic map like diffuse surfaces (0: only sharp mirrors and glass make caustics)'),
     RenderSetting(
         name='global_estimate_photons', ctype='uint32_t', default=50, min=1, max=10000,
         user=True, prop='global_estimate_photons', kind='NUMBER', enum=None, soft_max=1000,

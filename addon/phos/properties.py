@@ -77,6 +77,7 @@ _KIND_OPTIONS = {
     "NUMBER": {},
     "PIXELS": {"subtype": 'PIXEL'},
     "LENGTH": {"subtype": 'DISTANCE', "unit": 'LENGTH'},
+    "FACTOR": {"subtype": 'FACTOR'},
 }
 
 

@@ -82,6 +82,7 @@ class PHOS_RENDER_PT_photon_mapping(PhosButtonsPanel, bpy.types.Panel):
         col.prop(phos, "global_estimate_photons", text="Estimate Global")
         col.prop(phos, "caustic_estimate_photons", text="Caustic")
         layout.prop(phos, "max_radius")
+        layout.prop(phos, "caustic_roughness")
         layout.prop(phos, "photon_view")
         sub = layout.column()
         sub.active = phos.photon_view in {'FINAL_GATHER', 'PATH_TRACED'}

@@ -766,6 +766,14 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
     USER(uint32_t, caustic_photons, 800000, 0, 1u << 28, caustic_photons, NUMBER, 10000000,        \
          "Caustic Photons",                                                                       \
          "Photons stored in the caustic photon map (light focused by mirrors and glass)")         \
+    /* 0.3: the rough metal and glass artists use for jewellery and                           \
+     * bottles still focus light into a caustic, which path tracing from a                    \
+     * diffuse floor finds only by chance (docs/algorithms.md §12). */                        \
+    USER(float, caustic_roughness, 0.3f, 0.0f, 1.0f, caustic_roughness, FACTOR, 0,               \
+         "Caustic Roughness",                                                                     \
+         "Glossy reflection and refraction smoother than this focus light into caustics "         \
+         "like mirrors and glass (photons pass them); rougher ones are lit by the caustic map "   \
+         "like diffuse surfaces (0: only sharp mirrors and glass make caustics)")                 \
     USER(uint32_t, global_estimate_photons, 50, 1, 10000, global_estimate_photons, NUMBER, 1000,  \
          "Global Estimate", "Nearest photons used in a radiance estimate of the global map")      \
     USER(uint32_t, caustic_estimate_photons, 80, 1, 10000, caustic_estimate_photons, NUMBER,      \

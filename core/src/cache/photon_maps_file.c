@@ -13,7 +13,7 @@
 #include "cache/file_io.h"
 
 #define PM_FILE_MAGIC "PHOSPMF\n"
-#define PM_FILE_VERSION 1u
+#define PM_FILE_VERSION 2u /* 2: caustic_roughness */
 #define WHAT "photon map"
 #define SITE_WORDS 9u   /* a radiance photon's site: position, normal, reflectance */
 
@@ -21,7 +21,7 @@
  * at one view are an unbiased map for any other, if a less dense one). */
 #define MAP_SETTINGS(U, F)                                                                        \
     U(global_photons) U(caustic_photons) U(max_emitted_lo) U(max_emitted_hi) U(max_bounces) U(seed) \
-    U(radiance_k) F(max_radius)
+    U(radiance_k) F(max_radius) F(caustic_roughness)
 #define COUNT_SETTING(name) +1
 #define MAP_SETTING_COUNT (0 MAP_SETTINGS(COUNT_SETTING, COUNT_SETTING))
 
@@ -30,7 +30,7 @@ static void settings_words(const photon_trace_settings *ps, uint32_t *w)
     uint32_t max_emitted_lo = (uint32_t)ps->max_emitted, max_emitted_hi = (uint32_t)(ps->max_emitted >> 32);
     uint32_t global_photons = ps->global_photons, caustic_photons = ps->caustic_photons;
     uint32_t max_bounces = ps->max_bounces, seed = ps->seed, radiance_k = ps->radiance_k;
-    float max_radius = ps->max_radius;
+    float max_radius = ps->max_radius, caustic_roughness = ps->caustic_roughness;
     uint32_t n = 0;
 #define SETTING_U(name) w[n++] = name;
 #define SETTING_F(name) w[n++] = file_float_bits(name);
@@ -41,7 +41,7 @@ static void settings_words(const photon_trace_settings *ps, uint32_t *w)
 
 static const char *const setting_names[MAP_SETTING_COUNT] = {
     "global_photons", "caustic_photons", "max_photons_emitted_millions", "max_photons_emitted_millions",
-    "max_bounces", "seed", "global_estimate_photons", "max_radius"};
+    "max_bounces", "seed", "global_estimate_photons", "max_radius", "caustic_roughness"};
 
 /* A photon as 5 words: position (3 floats), RGBE power (4 bytes, in
  * order), direction bytes and flags (theta | phi << 8 | flags << 16). */

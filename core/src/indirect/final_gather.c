@@ -89,8 +89,8 @@ static gather_estimate gather_ray(const indirect_query *q, vec3 o, vec3 d, const
         sampler smp = step ? sampler_split(&ray_smp, step) : ray_smp;
         /* Only the first segment counts emitters; later ones would find
          * what the light sample at the previous hit already counted. */
-        specular_chain c = {STOP_AT_NON_DELTA, GATHER_SPECULAR_BOUNCES + 1, 0, &smp, GATHER_DIM_CHAIN,
-                            step ? 0.0f : ray_pdf, q->light};
+        specular_chain c = {STOP_AT_NON_CAUSTIC, GATHER_SPECULAR_BOUNCES + 1, 0, &smp, GATHER_DIM_CHAIN,
+                            step ? 0.0f : ray_pdf, q->light, is->caustic_roughness};
         specular_chain_end end;
         int hit = specular_chain_follow(q->s, &c, o, d, 0.0f, INFINITY, &end);
         if (step == 0) {

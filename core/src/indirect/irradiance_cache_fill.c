@@ -106,7 +106,7 @@ static int candidate_point(const fill_job *job, uint32_t x, uint32_t y, specular
     float2 lens = {0.5f, 0.5f}; /* the lens centre */
     camera_ray ray = camera_generate_ray(&job->s->camera, ((float)x + u.x) / (float)fs->width,
                                          ((float)y + u.y) / (float)fs->height, lens);
-    specular_chain chain = {STOP_AT_DIFFUSE, FILL_CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL};
+    specular_chain chain = {STOP_AT_DIFFUSE, FILL_CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL, 0.0f};
     if (!specular_chain_follow(job->s, &chain, ray.o, ray.d, ray.tmin, ray.tmax, end))
         return 0;
     bsdf rest;

@@ -56,6 +56,11 @@ typedef struct integrator_settings {
      * emitters through specular surfaces only (PATH with the irradiance
      * cache): the gathers' rays count it, apart (indirect_diffuse.h). */
     int gathers_find_caustics;
+    /* Glossy closures smoother than this carry caustics (bsdf.h): camera
+     * and gather rays follow them as mirrors, and photons pass them; those
+     * at least this rough receive the caustic map's estimate at camera
+     * vertices (diffuse_split.c). 0 under PATH: only deltas. */
+    float caustic_roughness;
     /* 1: camera paths also record the denoising features (a Denoising pass is on). */
     int denoising_features;
     const phos_camera_desc *camera; /* for the features' camera-space normal */

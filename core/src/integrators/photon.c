@@ -24,7 +24,7 @@ void photon_debug_estimates(const scene *s, const integrator_settings *is, camer
         return;
     /* Through specular and glossy surfaces, always along the lobe and
      * direction at u = 0.5, to the first diffuse surface. */
-    specular_chain c = {STOP_AT_DIFFUSE, DEBUG_CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL};
+    specular_chain c = {STOP_AT_DIFFUSE, DEBUG_CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL, 0.0f};
     specular_chain_end end;
     if (!specular_chain_follow(s, &c, ray.o, ray.d, ray.tmin, ray.tmax, &end))
         return;

@@ -109,7 +109,7 @@ int photon_importance_build(photon_importance *imp, const scene *s)
     imp->bits = calloc(((size_t)GRID * GRID * GRID * 6u + 7u) / 8u, 1);
     if (!imp->bits)
         return 0;
-    specular_chain c = {STOP_AT_DIFFUSE, CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL};
+    specular_chain c = {STOP_AT_DIFFUSE, CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL, 0.0f};
     for (int j = 0; j < PILOT; j++)
         for (int i = 0; i < PILOT; i++) {
             float2 lens = {0.5f, 0.5f};

@@ -109,7 +109,8 @@ static void trace_from(const scene *s, const photon_trace_settings *ps, uint32_t
                        vec3 power, uint64_t path, batch *out)
 {
     const sampler smp = *sp;
-    int specular_only = 1;   /* every scattering so far was a delta lobe */
+    const float r = ps->caustic_roughness;
+    int specular_only = 1;   /* every scattering so far was by a closure that carries caustics */
     uint32_t depth = 0;      /* scattering events so far */
     float tmin = 0.0f;
     for (uint32_t step = 0; step < 4 * (ps->max_bounces + 16); step++) {
@@ -123,18 +124,19 @@ static void trace_from(const scene *s, const photon_trace_settings *ps, uint32_t
         if (b.count == 0)
             return; /* absorbed (black, or an emitter only) */
         bsdf_set_adjoint(&b);
-        if (bsdf_has_non_delta(&b)) {
+        if (bsdf_has_non_caustic(&b, r)) {
             int caustic = specular_only && depth > 0;
             if (map != MAP_CAUSTIC || caustic) {
                 traced_photon tp = {sf.p, power, d, sf.ns, diffuse_albedo(&b), path,
                                     (uint16_t)((depth == 0 ? PHOTON_DIRECT : 0) | (caustic ? PHOTON_CAUSTIC : 0))};
                 batch_push(out, &tp);
             }
-            /* A caustic path ends at its first non-delta surface, unless that
-             * surface also has delta closures (a mirror mixed with a diffuse
-             * coat): the photon may leave by one of them and stay caustic. */
-            bsdf delta, rest;
-            if (map == MAP_CAUSTIC && !(bsdf_split_delta(&b, &delta, &rest) > 0.0f))
+            /* A caustic path ends at the first surface that stores photons,
+             * unless that surface also has closures that carry caustics (a
+             * mirror mixed with a diffuse coat): the photon may leave by one
+             * of them and stay caustic. */
+            bsdf carry, rest;
+            if (map == MAP_CAUSTIC && !(bsdf_split_caustic(&b, r, &carry, &rest) > 0.0f))
                 return;
         }
         if (depth >= ps->max_bounces)
@@ -153,13 +155,14 @@ static void trace_from(const scene *s, const photon_trace_settings *ps, uint32_t
         power = v3_scale(scattered, eta_scale / p);
         if (!v3_is_finite(power))
             return;
-        if (map == MAP_CAUSTIC && !(bs.flags & (BSDF_DELTA | BSDF_TRANSPARENT)))
-            return; /* left by a non-delta lobe: no longer a caustic path */
+        int carries = (bs.flags & BSDF_TRANSPARENT) || closure_scatters_caustic(&b.closures[bs.closure], r);
+        if (map == MAP_CAUSTIC && !carries)
+            return; /* left by a closure that stores photons: no longer a caustic path */
         if (bs.flags & BSDF_TRANSPARENT) {
             tmin = t_after(h.t); /* straight on along the same ray */
             continue;
         }
-        specular_only &= (bs.flags & BSDF_DELTA) != 0;
+        specular_only &= carries;
         o = ray_leave_surface(sf.p, sf.ng, bs.wi);
         d = bs.wi;
         tmin = 0.0f;
@@ -536,7 +539,7 @@ static phos_status aim_global(const scene *s, const photon_trace_settings *ps, p
 static phos_status trace_caustic_map(const scene *s, const photon_trace_settings *ps, photon_maps *out,
                                      const batch *global, atomic_int *cancel, photon_trace_progress *progress)
 {
-    if (ps->caustic_photons == 0 || !scene_can_scatter_delta(s))
+    if (ps->caustic_photons == 0 || !scene_can_scatter_caustic(s, ps->caustic_roughness))
         return PHOS_OK;
     uint32_t reused = count_caustic(global);
     uint32_t target = reused < ps->caustic_photons ? ps->caustic_photons - reused : 0;
@@ -545,7 +548,7 @@ static phos_status trace_caustic_map(const scene *s, const photon_trace_settings
     batch own;
     memset(&own, 0, sizeof(own));
     projection_map aim;
-    if (target && !projection_map_build(&aim, s))
+    if (target && !projection_map_build(&aim, s, ps->caustic_roughness))
         return PHOS_ERROR_OUT_OF_MEMORY;
     phos_status st = trace_map(s, ps, MAP_CAUSTIC, target ? &aim : NULL, target, &own, &out->caustic_emitted, cancel,
                                progress, out->global.count + reused);

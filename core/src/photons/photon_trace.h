@@ -38,6 +38,8 @@ typedef struct photon_trace_settings {
     uint32_t threads;
     uint32_t radiance_k;       /* photons in the estimate behind each radiance photon */
     float max_radius;          /* search radius cap, scene units */
+    float caustic_roughness;   /* glossy closures smoother than this carry caustic paths and store no
+                                  photons (bsdf.h, closure_scatters_caustic) */
 } photon_trace_settings;
 
 typedef struct photon_trace_progress {

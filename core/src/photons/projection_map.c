@@ -40,12 +40,12 @@ typedef struct sphere {
 
 /* ------------------------------------------------------------- targets */
 
-static int instance_scatters_delta(const scene *s, const instance *inst)
+static int instance_scatters_caustic(const scene *s, const instance *inst, float max_roughness)
 {
     if (inst->material_count == 0)
-        return material_can_scatter_delta(&scene_default_material);
+        return material_can_scatter_caustic(&scene_default_material, max_roughness);
     for (uint32_t k = 0; k < inst->material_count; k++)
-        if (material_can_scatter_delta(scene_instance_material(s, inst, k)))
+        if (material_can_scatter_caustic(scene_instance_material(s, inst, k), max_roughness))
             return 1;
     return 0;
 }
@@ -66,12 +66,12 @@ static sphere instance_sphere(const scene *s, const instance *inst)
 /* The bounding spheres of the instances that can scatter delta; one
  * sphere around all of them past MAX_CONES (each photon tests every cone
  * for its density). Returns the count (−1: out of memory). */
-static int collect_targets(const scene *s, sphere **out)
+static int collect_targets(const scene *s, float max_roughness, sphere **out)
 {
     uint32_t n = 0;
     for (uint32_t i = 0; i < s->instance_count; i++)
         n += s->meshes[s->instances[i].mesh_id].triangle_count > 0 && !s->instances[i].hidden &&
-             instance_scatters_delta(s, &s->instances[i]);
+             instance_scatters_caustic(s, &s->instances[i], max_roughness);
     *out = NULL;
     if (n == 0)
         return 0;
@@ -81,7 +81,8 @@ static int collect_targets(const scene *s, sphere **out)
     uint32_t k = 0;
     for (uint32_t i = 0; i < s->instance_count; i++) {
         const instance *inst = &s->instances[i];
-        if (s->meshes[inst->mesh_id].triangle_count > 0 && !inst->hidden && instance_scatters_delta(s, inst))
+        if (s->meshes[inst->mesh_id].triangle_count > 0 && !inst->hidden &&
+            instance_scatters_caustic(s, inst, max_roughness))
             t[k++] = instance_sphere(s, inst);
     }
     if (n > MAX_CONES) {
@@ -371,14 +372,14 @@ static float mark_group(projection_map *pm, uint32_t *cells_capacity, uint32_t *
     return mark_cones(pm, cones_capacity, tab, g, t, nt, ok);
 }
 
-int projection_map_build(projection_map *pm, const scene *s)
+int projection_map_build(projection_map *pm, const scene *s, float max_roughness)
 {
     memset(pm, 0, sizeof(*pm));
     const light_table *tab = &s->lights;
     if (tab->group_count == 0)
         return 1;
     sphere *t;
-    int nt = collect_targets(s, &t);
+    int nt = collect_targets(s, max_roughness, &t);
     if (nt < 0)
         return 0;
     pm->groups = calloc(tab->group_count, sizeof(projection_group));

@@ -53,10 +53,11 @@ typedef struct projection_map {
 } projection_map;
 
 /* Marks the cells of every light group against the bounding spheres of
- * the instances with delta-scattering materials. Returns 0 when memory is
+ * the instances whose materials carry caustics (delta scattering, or glossy
+ * below max_roughness: material_can_scatter_caustic). Returns 0 when memory is
  * exhausted; a scene without such instances gets an empty map (every
  * group `all`). */
-int projection_map_build(projection_map *pm, const scene *s);
+int projection_map_build(projection_map *pm, const scene *s, float max_roughness);
 void projection_map_free(projection_map *pm);
 
 /* For the global map: every distant light's cells over the scene's

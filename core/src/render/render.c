@@ -448,6 +448,7 @@ int render_prepare(render *r)
     is->indirect = r->use_cache ? &indirect_irradiance_cache : (photon ? is->cache_inner : NULL);
     is->cache = NULL;
     is->gathers_find_caustics = !photon;
+    is->caustic_roughness = photon ? rs->caustic_roughness : 0.0f;
     is->denoising_features = (rs->pass_mask & ((1u << PHOS_PASS_DENOISING_ALBEDO) |
                                                (1u << PHOS_PASS_DENOISING_NORMAL))) != 0;
     is->camera = &r->scene->camera;
@@ -474,6 +475,7 @@ int render_prepare(render *r)
     ps->threads = r->threads;
     ps->radiance_k = rs->global_estimate_photons;
     ps->max_radius = radius;
+    ps->caustic_roughness = rs->caustic_roughness;
     r->scratch = calloc(r->threads, sizeof(integrator_scratch));
     if (!r->scratch)
         return 0;

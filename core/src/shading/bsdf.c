@@ -896,7 +896,9 @@ vec3 bsdf_normal(const bsdf *b)
 }
 
 /* Splits b's closures into those `in_first` accepts and the others. */
-static void split_closures(const bsdf *b, int (*in_first)(const closure *), bsdf *first, bsdf *second)
+/* Closures for which in_first(c, threshold) holds go to `first`. */
+static void split_closures(const bsdf *b, int (*in_first)(const closure *, float), float threshold, bsdf *first,
+                          bsdf *second)
 {
     first->frame_count = second->frame_count = b->frame_count;
     for (uint32_t f = 0; f < b->frame_count; f++)
@@ -909,7 +911,7 @@ static void split_closures(const bsdf *b, int (*in_first)(const closure *), bsdf
         first->layers[j] = second->layers[j] = b->layers[j];
     for (uint32_t i = 0; i < b->count; i++) {
         const closure *c = &b->closures[i];
-        bsdf *dst = in_first(c) ? first : second;
+        bsdf *dst = in_first(c, threshold) ? first : second;
         dst->closures[dst->count++] = *c;
         dst->sample_weight_sum += c->sample_weight;
     }
@@ -921,9 +923,11 @@ int closure_is_diffuse(const closure *c)
            c->type == PHOS_CLOSURE_OREN_NAYAR || c->type == PHOS_CLOSURE_SHEEN;
 }
 
+static int closure_is_diffuse_at(const closure *c, float unused) { return (void)unused, closure_is_diffuse(c); }
+
 void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other)
 {
-    split_closures(b, closure_is_diffuse, diffuse, other);
+    split_closures(b, closure_is_diffuse_at, 0.0f, diffuse, other);
 }
 
 /* Whether closure c has a lobe that is not a Dirac delta (transparent
@@ -968,11 +972,52 @@ int bsdf_transmits(const bsdf *b)
 }
 
 static int closure_is_delta(const closure *c) { return !closure_has_non_delta(c); }
+static int closure_is_delta_at(const closure *c, float unused) { return (void)unused, closure_is_delta(c); }
 
 float bsdf_split_delta(const bsdf *b, bsdf *delta, bsdf *rest)
 {
-    split_closures(b, closure_is_delta, delta, rest);
+    split_closures(b, closure_is_delta_at, 0.0f, delta, rest);
     return b->sample_weight_sum > 0.0f ? delta->sample_weight_sum / b->sample_weight_sum : 0.0f;
+}
+
+/* The microfacet closures' roughest lobe (Blender roughness, √α): a
+ * glass's refraction lobe may be rougher than its reflection. */
+static float closure_roughest(const closure *c)
+{
+    float a = fmaxf(c->alpha, c->alpha_y);
+    if (c->type == PHOS_CLOSURE_GLASS && !glass_per_microfacet(c))
+        a = fmaxf(a, c->alpha_t);
+    return sqrtf(a);
+}
+
+int closure_scatters_caustic(const closure *c, float max_roughness)
+{
+    if (closure_is_delta(c))
+        return 1;
+    switch (c->type) {
+    case PHOS_CLOSURE_REFLECTION:
+    case PHOS_CLOSURE_REFLECTION_FRESNEL:
+    case PHOS_CLOSURE_METAL:
+    case PHOS_CLOSURE_GLASS:
+    case PHOS_CLOSURE_REFRACTION:
+        return closure_roughest(c) < max_roughness;
+    default:
+        return 0;
+    }
+}
+
+float bsdf_split_caustic(const bsdf *b, float max_roughness, bsdf *caustic, bsdf *rest)
+{
+    split_closures(b, closure_scatters_caustic, max_roughness, caustic, rest);
+    return b->sample_weight_sum > 0.0f ? caustic->sample_weight_sum / b->sample_weight_sum : 0.0f;
+}
+
+int bsdf_has_non_caustic(const bsdf *b, float max_roughness)
+{
+    for (uint32_t i = 0; i < b->count; i++)
+        if (!closure_scatters_caustic(&b->closures[i], max_roughness))
+            return 1;
+    return 0;
 }
 
 int bsdf_add_closure(bsdf *b, const closure *c)
@@ -1139,6 +1184,7 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
         out->flags = s.flags;
         out->eta = (s.flags & BSDF_TRANSMISSION) && !(s.flags & BSDF_TRANSPARENT) ? c->eta : 1.0f;
         out->ns = fr->n;
+        out->closure = (uint32_t)k;
         return 1;
     }
 
@@ -1166,6 +1212,7 @@ int bsdf_sample_direction(const bsdf *b, vec3 wo, float u_pick, float2 u, bsdf_s
     /* Diffuse transmission does not refract: no η (no η² for photons). */
     out->eta = (s.flags & BSDF_TRANSMISSION) && !(s.flags & BSDF_DIFFUSE) ? c->eta : 1.0f;
     out->ns = fr->n;
+    out->closure = (uint32_t)k;
     return 1;
 }
 

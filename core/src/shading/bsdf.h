@@ -101,6 +101,7 @@ typedef struct bsdf_sample {
     uint32_t flags;         /* enum bsdf_flags of the sampled lobe */
     float eta;              /* a refraction: the sampled closure's relative IOR (from wo's side); else 1 */
     vec3 ns;                /* the sampled closure's shading normal */
+    uint32_t closure;       /* index of the sampled closure in the bsdf */
 } bsdf_sample;
 
 /* n_shading and n_geometric must be unit length and already face wo;
@@ -216,6 +217,16 @@ float bsdf_split_delta(const bsdf *b, bsdf *delta, bsdf *rest);
 /* Whether some closure refracts or transmits diffusely (REFRACTION, GLASS,
  * TRANSLUCENT): light can reach wo from the far side of the surface. */
 int bsdf_transmits(const bsdf *b);
+
+/* Glossy caustics (docs/algorithms.md §12): a closure scatters like a
+ * specular surface on a caustic path (L S+ D) when it is a delta, or a
+ * microfacet reflection or refraction whose roughest lobe has Blender
+ * roughness below max_roughness. Photons pass such closures without being
+ * stored, and the camera and gather rays follow them as they follow
+ * mirrors; at max_roughness 0 only deltas do, as before. */
+int closure_scatters_caustic(const closure *c, float max_roughness);
+float bsdf_split_caustic(const bsdf *b, float max_roughness, bsdf *caustic, bsdf *rest);
+int bsdf_has_non_caustic(const bsdf *b, float max_roughness);
 int closure_transmits(const closure *c);
 
 /* Sum of transparent closure weights: how much light passes straight

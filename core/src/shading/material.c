@@ -582,7 +582,7 @@ vec3 material_holdout(const scene *s, const surface *sf)
     return sf->mat->holdout ? weight_of_type(s, sf, PHOS_CLOSURE_HOLDOUT) : v3s(0.0f);
 }
 
-int material_can_scatter_delta(const material *m)
+int material_can_scatter_caustic(const material *m, float max_roughness)
 {
     for (uint32_t i = 0; i < m->closure_count; i++) {
         const phos_closure_desc *d = &m->closures[i];
@@ -590,7 +590,9 @@ int material_can_scatter_delta(const material *m)
         float rt = d->transmission_roughness < 0.0f ? r : d->transmission_roughness;
         /* Anisotropic: sharp when √(αx αy) is (bsdf.c). */
         float ry = desc_anisotropic(d) ? d->roughness_y : r;
-        int sharp = r * ry < BSDF_SHARP_ALPHA, sharp_refraction = rt * rt < BSDF_SHARP_ALPHA;
+        /* Smoother than max_roughness: glossy, but carrying caustics (bsdf.h). */
+        int smooth = fmaxf(r, fmaxf(ry, d->type == PHOS_CLOSURE_GLASS ? rt : 0.0f)) < max_roughness;
+        int sharp = r * ry < BSDF_SHARP_ALPHA || smooth, sharp_refraction = rt * rt < BSDF_SHARP_ALPHA;
         int index_matched = fabsf(d->ior - 1.0f) < BSDF_INDEX_MATCHED;
         switch (d->type) {
         case PHOS_CLOSURE_REFLECTION:
@@ -614,12 +616,12 @@ int material_can_scatter_delta(const material *m)
     return 0;
 }
 
-int scene_can_scatter_delta(const scene *s)
+int scene_can_scatter_caustic(const scene *s, float max_roughness)
 {
-    if (material_can_scatter_delta(&scene_default_material))
+    if (material_can_scatter_caustic(&scene_default_material, max_roughness))
         return 1;
     for (uint32_t i = 0; i < s->material_count; i++)
-        if (material_can_scatter_delta(&s->materials[i]))
+        if (material_can_scatter_caustic(&s->materials[i], max_roughness))
             return 1;
     return 0;
 }

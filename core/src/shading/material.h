@@ -64,13 +64,14 @@ vec3 material_emission_estimate_triangle(const scene *s, uint32_t instance, uint
 void material_shader_globals(const scene *s, const surface *sf, uint32_t needs, shader_globals *g);
 
 /* Whether some closure of the material can scatter into a delta lobe
- * (sharp mirror or glass, index-matched refraction): only such a surface
- * can start a caustic path (L S+ D). Transparent pass-through is not a
- * scattering event and does not count. */
-int material_can_scatter_delta(const material *m);
+ * (sharp mirror or glass, index-matched refraction), or glossily with a
+ * roughness below max_roughness (bsdf.h, closure_scatters_caustic): only
+ * such a surface can start a caustic path (L S+ D). Transparent
+ * pass-through is not a scattering event and does not count. */
+int material_can_scatter_caustic(const material *m, float max_roughness);
 
 /* Whether any material of the scene can (the caustic map can fill). */
-int scene_can_scatter_delta(const scene *s);
+int scene_can_scatter_caustic(const scene *s, float max_roughness);
 
 /* How much light passes straight through (transparent closures). */
 vec3 material_transparency(const scene *s, const surface *sf);

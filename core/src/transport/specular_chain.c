@@ -33,10 +33,10 @@ static vec3 first_segment_emission(const scene *s, const specular_chain *c, vec3
 
 /* Whether the chain stops at b; if not, *next is the part it goes on
  * through and *weight the factor of that choice. u_pick (in [0, 1)) is the
- * step's lobe choice: where b mixes delta and non-delta closures
- * (STOP_AT_NON_DELTA), u_pick < P_delta goes on through the delta ones,
- * rescaled to pick among them, else the chain stops with weight
- * 1/(1 − P_delta) (end->read: the non-delta closures). */
+ * step's lobe choice: where b mixes closures that carry caustics with
+ * others (STOP_AT_NON_CAUSTIC), u_pick < P_carry goes on through the
+ * former, rescaled to pick among them, else the chain stops with weight
+ * 1/(1 − P_carry) (end->read: the others). */
 static int stops_here(const specular_chain *c, specular_chain_end *end, float *u_pick, bsdf *next, vec3 *weight)
 {
     const bsdf *b = &end->b;
@@ -47,19 +47,19 @@ static int stops_here(const specular_chain *c, specular_chain_end *end, float *u
         end->read = *b;
         return diffuse.count > 0;
     }
-    if (!bsdf_has_non_delta(b)) {
+    if (!bsdf_has_non_caustic(b, c->caustic_roughness)) {
         *next = *b;
         return 0;
     }
-    float p_delta = bsdf_split_delta(b, next, &end->read);
-    if (!(p_delta > 0.0f))
+    float p_carry = bsdf_split_caustic(b, c->caustic_roughness, next, &end->read);
+    if (!(p_carry > 0.0f))
         return 1;
-    if (*u_pick < p_delta) {
-        *u_pick = minf(*u_pick / p_delta, 0x1.fffffep-1f);
-        *weight = v3s(1.0f / p_delta);
+    if (*u_pick < p_carry) {
+        *u_pick = minf(*u_pick / p_carry, 0x1.fffffep-1f);
+        *weight = v3s(1.0f / p_carry);
         return 0;
     }
-    *weight = v3s(1.0f / (1.0f - p_delta));
+    *weight = v3s(1.0f / (1.0f - p_carry));
     return 1;
 }
 

@@ -1,6 +1,7 @@
 /*
  * specular_chain.h — following a ray through specular (delta) and
- * transparent surfaces to the first surface that a photon-map estimate can
+ * transparent surfaces, and glossy ones that carry caustics (bsdf.h),
+ * to the first surface that a photon-map estimate can
  * be read at: what a final-gather ray does where it lands (Jensen 2001,
  * §9.3.2), and what the photon debug passes and the photon-importance
  * pilot do from the camera. In transport/, below photons/, the integrators
@@ -14,9 +15,11 @@
 #include "shading/material.h"
 
 enum specular_chain_stop {
-    STOP_AT_NON_DELTA = 0, /* the first surface with a non-delta lobe (gather rays); where it
-                              also has delta closures, the ray goes on through them with their
-                              share of the sampling weight, and stops with the rest */
+    STOP_AT_NON_CAUSTIC = 0, /* the first surface with a closure that does not carry caustics
+                              (gather rays): a non-delta one, or a glossy one at least
+                              caustic_roughness rough (bsdf.h); where it also has closures that
+                              carry caustics, the ray goes on through them with their share of
+                              the sampling weight, and stops with the rest */
     STOP_AT_DIFFUSE = 1    /* the first surface with a diffuse closure; glossy lobes are followed too */
 };
 
@@ -31,14 +34,15 @@ typedef struct specular_chain {
                               lights, emissive surfaces), MIS-weighted as a sample of this pdf
                               against a light sample at the ray's origin; 0: none */
     const light_context *origin; /* first_pdf > 0: the receiver the ray leaves (light.h) */
+    float caustic_roughness; /* STOP_AT_NON_CAUSTIC: glossy closures smoother than this are followed */
 } specular_chain;
 
 typedef struct specular_chain_end {
     surface sf;
     bsdf b;                /* the whole BSDF there */
-    bsdf read;             /* the part to estimate there: STOP_AT_NON_DELTA, its non-delta closures
-                              (the delta ones were followed or not, by chance: beta holds the
-                              weight of the choice); STOP_AT_DIFFUSE, the whole BSDF */
+    bsdf read;             /* the part to estimate there: STOP_AT_NON_CAUSTIC, its closures that
+                              do not carry caustics (the others were followed or not, by chance:
+                              beta holds the weight of the choice); STOP_AT_DIFFUSE, the whole BSDF */
     vec3 beta;             /* throughput of the surfaces passed */
     vec3 wo;               /* toward the previous surface */
     vec3 emission;         /* first_pdf > 0: the first segment's emitters, weighted (set also
