@@ -6,6 +6,9 @@ course's scenes are described (a Lambertian floor, a glass sphere, a mirror
 ring), so Phos and Cycles render exactly the same BSDF.
 """
 
+import math
+import os
+
 import bmesh
 import bpy
 
@@ -100,5 +103,55 @@ def world(scene, color=(0.0, 0.0, 0.0), strength=1.0, name="World"):
     bg = w.node_tree.nodes.get("Background")
     bg.inputs["Color"].default_value = (*color, 1.0)
     bg.inputs["Strength"].default_value = strength
+    scene.world = w
+    return w
+
+
+def glossy(name, color=(1.0, 1.0, 1.0), roughness=0.2):
+    """Rough metal (Glossy BSDF, GGX) of that colour and Blender roughness."""
+    mat, bsdf = _single_node_material(name, "ShaderNodeBsdfGlossy")
+    bsdf.distribution = "GGX"
+    bsdf.inputs["Color"].default_value = (*color, 1.0)
+    bsdf.inputs["Roughness"].default_value = roughness
+    mat.diffuse_color = (*color, 1.0)
+    return mat
+
+
+def polished(name, color=(0.8, 0.8, 0.8), roughness=0.2):
+    """A varnished surface: the Principled BSDF (dielectric, specular 0.5)
+    over a diffuse base of that colour, at that roughness."""
+    mat, bsdf = _single_node_material(name, "ShaderNodeBsdfPrincipled")
+    bsdf.inputs["Base Color"].default_value = (*color, 1.0)
+    bsdf.inputs["Roughness"].default_value = roughness
+    mat.diffuse_color = (*color, 1.0)
+    return mat
+
+
+def studio_hdr_path(name):
+    """One of the HDR environments Blender ships with its data files
+    (studiolights/world/NAME.exr): real captured light on every machine
+    with Blender, so the scenes need no download."""
+    path = os.path.join(bpy.utils.system_resource('DATAFILES', path="studiolights/world"), name + ".exr")
+    if not os.path.exists(path):
+        raise FileNotFoundError("Blender's data files have no studio light %r (%s)" % (name, path))
+    return path
+
+
+def hdr_world(scene, name, strength=1.0, rotation_z_deg=0.0):
+    """A world lit by a studio HDR: Texture Coordinate → Mapping (turned
+    about Z) → Environment Texture → Background."""
+    w = bpy.data.worlds.new("World " + name)
+    _common.use_nodes(w)
+    nodes, links = w.node_tree.nodes, w.node_tree.links
+    bg = nodes["Background"]
+    bg.inputs["Strength"].default_value = strength
+    env = nodes.new("ShaderNodeTexEnvironment")
+    env.image = bpy.data.images.load(studio_hdr_path(name), check_existing=True)
+    coords = nodes.new("ShaderNodeTexCoord")
+    mapping = nodes.new("ShaderNodeMapping")
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(rotation_z_deg))
+    links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
+    links.new(mapping.outputs["Vector"], env.inputs["Vector"])
+    links.new(env.outputs["Color"], bg.inputs["Color"])
     scene.world = w
     return w
