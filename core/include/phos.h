@@ -545,7 +545,9 @@ enum phos_light_type {
     PHOS_LIGHT_POINT = 0, /* a sphere of `radius` (0: a point) */
     PHOS_LIGHT_SPOT = 1,  /* a point light restricted to a cone */
     PHOS_LIGHT_AREA = 2,  /* a one-sided rectangle or ellipse */
-    PHOS_LIGHT_SUN = 3    /* a distant light subtending `angle` */
+    PHOS_LIGHT_SUN = 3,   /* a distant light subtending `angle` */
+    PHOS_LIGHT_PORTAL = 4 /* no light of its own: an opening (shaped as AREA, `direction` pointing into
+                             the scene) through which the world's light samples are drawn (Cycles' portals) */
 };
 enum phos_area_shape { PHOS_AREA_RECTANGLE = 0, PHOS_AREA_ELLIPSE = 1 };
 /* How a point or spot light of nonzero radius looks from a shading point. */

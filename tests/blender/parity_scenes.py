@@ -73,6 +73,42 @@ def _hdr_world(name, rotation_z=0.0, projection='EQUIRECTANGULAR', camera_color=
     return build
 
 
+def _portal_interior(scene):
+    """A closed 4 × 4 × 2.5 m room lit only through a window (1.6 × 1 m in
+    the back wall) by a studio HDR, a portal filling the window and facing
+    in (issue 22: a portal-lit interior). A diffuse sphere on the floor."""
+    import bmesh
+    bm = bmesh.new()
+    quads = [
+        [(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)],                      # floor
+        [(-2, -2, 2.5), (-2, 2, 2.5), (2, 2, 2.5), (2, -2, 2.5)],              # ceiling
+        [(-2, -2, 0), (-2, 2, 0), (-2, 2, 2.5), (-2, -2, 2.5)],                # left
+        [(2, -2, 0), (2, -2, 2.5), (2, 2, 2.5), (2, 2, 0)],                    # right
+        [(-2, -2, 0), (-2, -2, 2.5), (2, -2, 2.5), (2, -2, 0)],                # front (behind the camera)
+        [(-2, 2, 0), (-0.8, 2, 0), (-0.8, 2, 2.5), (-2, 2, 2.5)],              # back wall around the window
+        [(0.8, 2, 0), (2, 2, 0), (2, 2, 2.5), (0.8, 2, 2.5)],
+        [(-0.8, 2, 0), (0.8, 2, 0), (0.8, 2, 1.0), (-0.8, 2, 1.0)],
+        [(-0.8, 2, 2.0), (0.8, 2, 2.0), (0.8, 2, 2.5), (-0.8, 2, 2.5)],
+    ]
+    for q in quads:
+        bm.faces.new([bm.verts.new(v) for v in q])
+    room = bpy.data.objects.new("Room", pt.mesh_from_bmesh("Room", bm))
+    room.data.materials.append(pt.diffuse("Walls", (0.7, 0.7, 0.7)))
+    pt.link(scene, room)
+    pt.add_sphere(scene, "Sphere", radius=0.4, location=(0.3, 0.6, 0.4),
+                  material=pt.diffuse("Sphere", (0.8, 0.55, 0.3)), segments=48, rings=24)
+    pt.add_camera(scene, location=(-1.2, -1.7, 1.4), target=(0.3, 0.8, 0.5), lens=24.0)
+    pt.set_world_hdr(scene, "courtyard", strength=1.0)
+    portal = bpy.data.lights.new("Window", 'AREA')
+    portal.shape = 'RECTANGLE'
+    portal.size, portal.size_y = 1.6, 1.0
+    portal.cycles.is_portal = True
+    ob = bpy.data.objects.new("Window", portal)
+    ob.location = (0.0, 2.0, 1.5)
+    ob.rotation_euler = (math.radians(-90.0), 0.0, 0.0)  # its −Z (the lamp's direction) points into the room: −y
+    pt.link(scene, ob)
+
+
 def _default_cube(scene):
     """Blender's start-up scene: a 2 m cube, a 1000 W point lamp and the grey
     world (0.05), seen from a side the lamp does not reach, so that side is
@@ -139,6 +175,7 @@ LIGHT_SCENES = {
     "world": _world,
     "hdr_forest": _hdr_world("forest", rotation_z=math.radians(60.0)),
     "hdr_sunset_mirror_ball": _hdr_world("sunset", projection='MIRROR_BALL'),
+    "portal_interior": _portal_interior,
     "hdr_city_camera_sees_grey": _hdr_world("city", rotation_z=math.radians(-120.0), camera_color=(0.2, 0.2, 0.2)),
     "default_cube": _default_cube,
     "mixed": _mixed_lights,

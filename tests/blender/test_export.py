@@ -597,6 +597,29 @@ def test_environment_texture_background(projection, scene, tmp_path):
         % (between, projection, noise))
 
 
+def test_portal_exports_its_opening_facing_in(scene):
+    """An area light marked as a portal is a PORTAL of the lamp's shape,
+    facing where the lamp points (into the room), and no light."""
+    import parity_scenes
+    from phos import core
+    from phos.export import light as lexp
+    from phos.export.context import ExportContext
+    parity_scenes.LIGHT_SCENES["portal_interior"](scene)
+    bpy.context.view_layer.update()
+    ob = bpy.data.objects["Window"]
+    with core.Scene() as core_scene:
+        ctx = ExportContext(scene, core_scene)
+        added = []
+        real = ctx.core.add_light
+        ctx.core.add_light = lambda desc: added.append(desc) or real(desc)
+        lexp.add_light(ob, ob.matrix_world, ctx)
+    assert len(added) == 1 and added[0].type == core.PHOS_LIGHT_PORTAL
+    d = added[0]
+    assert tuple(d.direction) == pytest.approx((0.0, -1.0, 0.0), abs=1e-6)
+    assert np.linalg.norm(d.axis_u) == pytest.approx(1.6) and np.linalg.norm(d.axis_v) == pytest.approx(1.0)
+    assert ctx.stats["portals"] == 1 and ctx.stats["lights"] == 0
+
+
 def test_non_finite_hdr_pixels_count_as_black(scene):
     """NaN and infinite pixels of an HDR are black, with one warning that
     counts them, and the core accepts the world."""

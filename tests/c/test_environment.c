@@ -328,8 +328,96 @@ static void test_fingerprint_reads_pixels(void)
               "one pixel of the environment changed, the fingerprint did not");
 }
 
+/* A closed room (2 m cube) lit only through a skylight (0.6 m square in
+ * the ceiling) by a world: with a portal over the skylight the floor's
+ * light samples go through the opening, so PATH's image is the same (its
+ * mean within the noise) and its pixel variance far lower. Under both a
+ * uniform world and an HDR-like sky with a bright patch. */
+static phos_scene *skylit_room(int portal, int sky)
+{
+    static const float room[][4][3] = {
+        {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}},        /* floor */
+        {{-1, -1, 0}, {-1, 1, 0}, {-1, 1, 2}, {-1, -1, 2}},      /* walls */
+        {{1, -1, 0}, {1, -1, 2}, {1, 1, 2}, {1, 1, 0}},
+        {{-1, -1, 0}, {-1, -1, 2}, {1, -1, 2}, {1, -1, 0}},
+        {{-1, 1, 0}, {1, 1, 0}, {1, 1, 2}, {-1, 1, 2}},
+        {{-1, -1, 2}, {-1, 1, 2}, {-0.3f, 1, 2}, {-0.3f, -1, 2}}, /* the ceiling around the skylight */
+        {{0.3f, -1, 2}, {0.3f, 1, 2}, {1, 1, 2}, {1, -1, 2}},
+        {{-0.3f, -1, 2}, {-0.3f, -0.3f, 2}, {0.3f, -0.3f, 2}, {0.3f, -1, 2}},
+        {{-0.3f, 0.3f, 2}, {-0.3f, 1, 2}, {0.3f, 1, 2}, {0.3f, 0.3f, 2}},
+    };
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quads(s, room, 9), test_add_diffuse(s, 0.6f, 0.6f, 0.6f), 0, 0, 0);
+    if (portal) {
+        phos_light_desc l;
+        phos_light_desc_init(&l);
+        l.type = PHOS_LIGHT_PORTAL;
+        l.position[2] = 2.0f;
+        l.direction[2] = -1.0f;
+        l.axis_u[0] = 0.6f, l.axis_v[1] = 0.6f;
+        CHECK(phos_scene_add_light(s, &l, NULL) == PHOS_OK);
+    }
+    if (sky) {
+        static float px[32 * 16 * 4];
+        for (int y = 0; y < 16; y++)
+            for (int x = 0; x < 32; x++) {
+                float *q = px + 4 * (y * 32 + x);
+                q[0] = q[1] = q[2] = y >= 13 && x >= 14 && x < 18 ? 40.0f : 0.5f;
+                q[3] = 1.0f;
+            }
+        test_set_environment(s, px, 32, 16, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+    } else {
+        phos_world_desc w;
+        phos_world_desc_init(&w);
+        w.color[0] = w.color[1] = w.color[2] = 1.0f;
+        phos_scene_set_world(s, &w);
+    }
+    test_set_camera(s, 0.0f, 0.0f, 1.9f, 0.9f); /* looks down at the floor */
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    return s;
+}
+
+static void test_portal_interior(int sky)
+{
+    double mean[2], var[2], se[2];
+    for (int portal = 0; portal < 2; portal++) {
+        phos_scene *s = skylit_room(portal, sky);
+        phos_render_settings rs;
+        phos_render_settings_init(&rs);
+        rs.width = rs.height = 24;
+        rs.samples = 32;
+        rs.max_bounces = 4;
+        rs.integrator = PHOS_INTEGRATOR_PATH;
+        rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_OFF;
+        float *a = test_render(s, &rs);
+        rs.seed = 1;
+        float *b = test_render(s, &rs);
+        CHECK(a && b);
+        if (a && b) {
+            double m = 0.0, v = 0.0;
+            for (int i = 0; i < 24 * 24; i++) {
+                m += 0.5 * (a[4 * i] + b[4 * i]);
+                v += 0.5 * (a[4 * i] - b[4 * i]) * (a[4 * i] - b[4 * i]);
+            }
+            mean[portal] = m / (24 * 24);
+            var[portal] = v / (24 * 24);
+            se[portal] = sqrt(var[portal] / (2.0 * 24 * 24));
+        }
+        free(a);
+        free(b);
+        phos_scene_destroy(s);
+    }
+    printf("  skylit room%s: mean %.4f ± %.4f without a portal, %.4f ± %.4f with; pixel variance %.3g → %.3g\n",
+           sky ? " under a sky" : "", mean[0], se[0], mean[1], se[1], var[0], var[1]);
+    CHECK_MSG(fabs(mean[1] - mean[0]) < 4.0 * sqrt(se[0] * se[0] + se[1] * se[1]),
+              "the portal changed the image: %.4f vs %.4f", mean[1], mean[0]);
+    CHECK_MSG(var[1] < 0.5 * var[0], "the portal did not lower the noise: variance %.3g vs %.3g", var[1], var[0]);
+}
+
 int main(void)
 {
+    test_portal_interior(0);
+    test_portal_interior(1);
     test_fingerprint_reads_pixels();
     test_resolution_bounds();
     test_directions();

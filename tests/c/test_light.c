@@ -56,12 +56,8 @@ static double pdf_toward(const light_query *q, vec3 w)
     for (uint32_t i = 0; i < s->lights.count; i++) {
         const light *l = &s->lights.lights[i];
         double pick = light_pick_pdf(&s->lights, &q->c, i);
-        if (l->kind == LIGHT_WORLD)
-            pdf += pick * light_world_pdf(&q->c, w);
-        else if (l->kind == LIGHT_ENVIRONMENT)
-            pdf += pick * environment_pdf(s->lights.env, w);
-        else if (l->kind == LIGHT_SUN && l->sun_cos_half < 1.0f && -v3_dot(w, l->direction) >= l->sun_cos_half)
-            pdf += pick / (2.0 * M_PI * (1.0 - l->sun_cos_half));
+        if (light_is_distant(l))
+            pdf += pick * light_escape_pdf(s, &q->c, i, w);
     }
     return pdf;
 }
@@ -230,6 +226,31 @@ static phos_scene *mixed_lights_under_sky(void)
     return s;
 }
 
+/* A uniform world seen from a floor point through two portals above it
+ * (a square window and a round skylight, facing down into the room):
+ * half the world's samples go through them, and the draws follow the
+ * mixture's pdf. */
+static phos_scene *world_with_portals(void)
+{
+    phos_scene *s = scene_with_light(NULL);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_PORTAL;
+    l.position[0] = 0.8f, l.position[2] = 1.5f;
+    l.direction[0] = 0.0f, l.direction[2] = -1.0f;
+    l.axis_u[0] = 0.8f, l.axis_v[1] = 0.5f;
+    phos_scene_add_light(s, &l, NULL);
+    l.position[0] = -1.0f, l.position[1] = 0.5f, l.position[2] = 2.0f;
+    l.area_shape = PHOS_AREA_ELLIPSE;
+    l.axis_u[0] = 0.6f, l.axis_v[1] = 0.6f;
+    phos_scene_add_light(s, &l, NULL);
+    phos_world_desc w;
+    phos_world_desc_init(&w);
+    w.color[0] = w.color[1] = w.color[2] = 0.5f;
+    phos_scene_set_world(s, &w);
+    return s;
+}
+
 static void check_lights_picked_for_a_surface(void)
 {
     vec3 p = v3(0.3f, -0.2f, 0.0f), up = v3(0.0f, 0.0f, 1.0f);
@@ -271,6 +292,7 @@ static void check_lights_picked_for_a_surface(void)
               sum_floor, sum_tilted);
     phos_scene_destroy(s);
 
+    check_receiver("world through portals, floor", world_with_portals(), sampled_floor, up, -1.0, 1);
     check_receiver("mixed lights under a sky, on a floor", mixed_lights_under_sky(), sampled_floor, up, -1.0, 1);
     check_receiver("mixed lights under a sky, on glass", mixed_lights_under_sky(), glass, up, -1.0, 1);
     s = mixed_lights_under_sky();

@@ -31,7 +31,7 @@ class ExportContext:
         self.default_material = None        # id of the grey default, added on first use
         self.world_emits = False            # the world's colour is not black
         self.stats = {"objects": 0, "instances": 0, "meshes": 0, "triangles": 0,
-                      "lights": 0, "materials": 0, "images": 0, "emissive_materials": 0}
+                      "lights": 0, "portals": 0, "materials": 0, "images": 0, "emissive_materials": 0}
 
     def at_least(self, major, minor=0):
         """True when the running Blender is version major.minor or later."""

@@ -45,10 +45,10 @@ def _normalized(v):
 def add_light(ob, matrix_world, ctx):
     """Add one light instance (object + world matrix) to the core scene."""
     light = ob.data
-    cycles = getattr(light, "cycles", None)
-    if cycles is not None and getattr(cycles, "is_portal", False):
-        return None  # portals only guide Cycles' sampling; they emit nothing
     m = np.array(matrix_world, dtype=np.float64).reshape(4, 4)
+    cycles = getattr(light, "cycles", None)
+    if light.type == 'AREA' and cycles is not None and getattr(cycles, "is_portal", False):
+        return add_portal(ob, light, m, ctx)
     strength = light_strength(light, m)
     if not np.any(strength):
         return None
@@ -77,21 +77,12 @@ def add_light(ob, matrix_world, ctx):
         desc.color[:] = [float(v) for v in strength * scale]
     elif light.type == 'AREA':
         desc.type = core.PHOS_LIGHT_AREA
-        ellipse = light.shape in {'DISK', 'ELLIPSE'}
-        size_v = light.size_y if light.shape in {'RECTANGLE', 'ELLIPSE'} else light.size
-        u = m[:3, 0] * light.size
-        v = m[:3, 1] * size_v
-        area = float(np.linalg.norm(np.cross(u, v)))
-        if ellipse:
-            area *= math.pi / 4.0
+        area = _area_shape(light, m, desc)
         if area <= 0.0:
             ctx.warn("Phos: light '%s' has zero area; skipped" % ob.name)
             return None
         denom = (math.pi if ctx.at_least(4, 0) else 4.0) * area
         desc.color[:] = [float(c) for c in strength / denom]
-        desc.axis_u[:] = [float(c) for c in u]
-        desc.axis_v[:] = [float(c) for c in v]
-        desc.area_shape = core.PHOS_AREA_ELLIPSE if ellipse else core.PHOS_AREA_RECTANGLE
         spread = getattr(light, "spread", math.pi)
         if spread < math.pi - 1e-4:
             ctx.warn("Phos: light '%s': area light spread is not supported; using 180°" % ob.name)
@@ -103,6 +94,40 @@ def add_light(ob, matrix_world, ctx):
     except core.PhosError as ex:
         raise core.PhosError("light '%s': %s" % (ob.name, ex), ex.status) from None
     ctx.stats["lights"] += 1
+    return light_id
+
+
+def _area_shape(light, m, desc):
+    """An area light's edges and shape into desc; returns its area (m²)."""
+    ellipse = light.shape in {'DISK', 'ELLIPSE'}
+    size_v = light.size_y if light.shape in {'RECTANGLE', 'ELLIPSE'} else light.size
+    u = m[:3, 0] * light.size
+    v = m[:3, 1] * size_v
+    area = float(np.linalg.norm(np.cross(u, v)))
+    if ellipse:
+        area *= math.pi / 4.0
+    desc.axis_u[:] = [float(c) for c in u]
+    desc.axis_v[:] = [float(c) for c in v]
+    desc.area_shape = core.PHOS_AREA_ELLIPSE if ellipse else core.PHOS_AREA_RECTANGLE
+    return area
+
+
+def add_portal(ob, light, m, ctx):
+    """An area light marked as a portal (Cycles' Portal): no light of its
+    own, an opening the world's light samples are drawn through, facing
+    into the interior as the lamp points."""
+    desc = core.new_light()
+    desc.type = core.PHOS_LIGHT_PORTAL
+    desc.position[:] = [float(v) for v in m[:3, 3]]
+    desc.direction[:] = [float(v) for v in _normalized(-m[:3, 2])]
+    if _area_shape(light, m, desc) <= 0.0:
+        ctx.warn("Phos: portal '%s' has zero area; skipped" % ob.name)
+        return None
+    try:
+        light_id = ctx.core.add_light(desc)
+    except core.PhosError as ex:
+        raise core.PhosError("portal '%s': %s" % (ob.name, ex), ex.status) from None
+    ctx.stats["portals"] += 1
     return light_id
 
 

@@ -505,7 +505,7 @@ static int nonzero3(const float *v) { return v[0] != 0.0f || v[1] != 0.0f || v[2
 phos_status phos_scene_add_light(phos_scene *s, const phos_light_desc *d, uint32_t *out_id)
 {
     CHECK_EDITABLE(s, "phos_scene_add_light", d);
-    if (d->type > PHOS_LIGHT_SUN)
+    if (d->type > PHOS_LIGHT_PORTAL)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: unknown type %u", d->type);
     if (!all_finite_nonnegative(d->color, 3))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: colour must be finite and >= 0");
@@ -514,7 +514,7 @@ phos_status phos_scene_add_light(phos_scene *s, const phos_light_desc *d, uint32
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: position, direction and axes must be finite");
     if (d->type != PHOS_LIGHT_POINT && !nonzero3(d->direction))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: the direction must not be zero");
-    if (d->type == PHOS_LIGHT_AREA) {
+    if (d->type == PHOS_LIGHT_AREA || d->type == PHOS_LIGHT_PORTAL) {
         if (d->area_shape > PHOS_AREA_ELLIPSE)
             FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: unknown area shape %u", d->area_shape);
         float c[3] = {d->axis_u[1] * d->axis_v[2] - d->axis_u[2] * d->axis_v[1],

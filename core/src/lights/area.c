@@ -12,7 +12,7 @@
 #include "lights/light_kind.h"
 #include "sampling/warp.h"
 
-static void area_from_desc(const phos_light_desc *d, light *l)
+void light_area_from_desc(const phos_light_desc *d, light *l)
 {
     l->axis_u = v3_load(d->axis_u);
     l->axis_v = v3_load(d->axis_v);
@@ -30,7 +30,7 @@ static float area_power(const light *l, float scene_radius)
 static int area_hittable(const light *l) { return 1; }
 
 /* Uniform on the shape. */
-static vec3 area_point(const light *l, float2 u)
+vec3 light_area_point(const light *l, float2 u)
 {
     float a, b;
     if (l->area_shape == PHOS_AREA_ELLIPSE) {
@@ -48,7 +48,7 @@ static int area_sample(const scene *s, const light *l, const light_context *c, f
 {
     vec3 wi;
     float d, d2;
-    if (!light_direction_to(c->p, area_point(l, u), &wi, &d, &d2))
+    if (!light_direction_to(c->p, light_area_point(l, u), &wi, &d, &d2))
         return 0;
     float cos_l = -v3_dot(wi, l->direction);
     if (cos_l <= 0.0f)
@@ -70,7 +70,7 @@ static int area_contains(const light *l, vec3 x)
     return l->area_shape == PHOS_AREA_ELLIPSE ? (a * a + b * b <= 0.25f) : (fabsf(a) <= 0.5f && fabsf(b) <= 0.5f);
 }
 
-static int area_intersect(const light *l, vec3 o, vec3 d, float tmax, light_hit *out)
+int light_area_crossing(const light *l, vec3 o, vec3 d, float tmax, float *t_out, float *pdf)
 {
     float denom = v3_dot(d, l->direction);
     if (denom >= 0.0f) /* one-sided: only the emitting face is seen */
@@ -80,9 +80,16 @@ static int area_intersect(const light *l, vec3 o, vec3 d, float tmax, light_hit 
         return 0;
     if (!area_contains(l, v3_sub(v3_madd(o, d, t), l->position)))
         return 0;
-    out->t = t;
+    *t_out = t;
+    *pdf = t * t / (l->area * -denom);
+    return 1;
+}
+
+static int area_intersect(const light *l, vec3 o, vec3 d, float tmax, light_hit *out)
+{
+    if (!light_area_crossing(l, o, d, tmax, &out->t, &out->pdf))
+        return 0;
     out->radiance = l->color;
-    out->pdf = t * t / (l->area * -denom);
     return 1;
 }
 
@@ -97,7 +104,7 @@ static vec3 area_emission_direction(const light *l, float2 u, float *pdf)
 static int area_emit_toward(const scene *s, const light *l, vec3 d, float2 u, vec3 *origin, vec3 *intensity)
 {
     float c = v3_dot(d, l->direction);
-    *origin = area_point(l, u);
+    *origin = light_area_point(l, u);
     *intensity = v3_scale(l->color, l->area * maxf(c, 0.0f)); /* L·A·cos, one-sided */
     return c > 0.0f;
 }
@@ -105,7 +112,7 @@ static int area_emit_toward(const scene *s, const light *l, vec3 d, float2 u, ve
 const light_kind_ops light_area_ops = {
     .name = "area",
     .desc_type = PHOS_LIGHT_AREA,
-    .from_desc = area_from_desc,
+    .from_desc = light_area_from_desc,
     .power = area_power,
     .hittable = area_hittable,
     .sample = area_sample,

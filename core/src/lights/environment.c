@@ -420,14 +420,27 @@ static float environment_power(const light *l, float scene_radius)
 
 static int environment_hittable(const light *l) { return (void)l, 1; }
 
+static vec3 own_sample(const scene *s, const light_context *c, float2 u, float *pdf)
+{
+    (void)c;
+    return environment_sample(env_of(s), u, pdf);
+}
+
+static float own_pdf(const scene *s, const light_context *c, vec3 wi)
+{
+    (void)c;
+    return environment_pdf(env_of(s), wi);
+}
+
+static const world_sampling map_sampling = {own_sample, own_pdf};
+
 static int environment_light_sample(const scene *s, const light *l, const light_context *c, float2 u,
                                     light_sample *out)
 {
-    (void)l, (void)c;
+    (void)l;
     const environment *e = env_of(s);
-    if (!e->weight)
+    if (!e->weight || !portal_mix_sample(s, c, &map_sampling, u, &out->wi, &out->pdf))
         return 0;
-    out->wi = environment_sample(e, u, &out->pdf);
     out->distance = INFINITY;
     out->radiance = environment_radiance(s, e, out->wi, 0);
     out->delta = 0;
@@ -443,7 +456,7 @@ static int environment_escape(const scene *s, const light *l, const light_contex
     (void)l;
     const environment *e = env_of(s);
     *radiance = environment_radiance(s, e, d, camera_ray ? SHADER_RAY_CAMERA : 0);
-    *pdf = from ? environment_pdf(e, d) : 0.0f;
+    *pdf = from && e->weight ? portal_mix_pdf(s, from, &map_sampling, d) : 0.0f;
     return 1;
 }
 

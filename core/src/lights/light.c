@@ -65,6 +65,23 @@ static void light_from_desc(const phos_light_desc *d, light *l)
     }
 }
 
+/* A portal (portal.c): the shape of an area lamp, kept apart from the
+ * lights, since it emits nothing. */
+static int add_portal(light_table *t, const phos_light_desc *d)
+{
+    light *n = realloc(t->portals, sizeof(light) * (t->portal_count + 1));
+    if (!n)
+        return 0;
+    t->portals = n;
+    light *p = &t->portals[t->portal_count++];
+    memset(p, 0, sizeof(*p));
+    p->kind = LIGHT_AREA;
+    p->position = v3_load(d->position);
+    p->direction = v3_normalize(v3_load(d->direction));
+    light_area_from_desc(d, p);
+    return 1;
+}
+
 /* Rays test only the lights they can hit, not every emissive triangle. */
 static phos_status list_shapes(light_table *t)
 {
@@ -104,6 +121,11 @@ phos_status light_table_build(scene *s)
     t->radius = maxf(0.5f * v3_length(v3_sub(s->bounds_max, s->bounds_min)), 1e-3f);
 
     for (uint32_t i = 0; i < s->light_desc_count; i++) {
+        if (s->light_descs[i].type == PHOS_LIGHT_PORTAL) {
+            if (!add_portal(t, &s->light_descs[i]))
+                return PHOS_ERROR_OUT_OF_MEMORY;
+            continue;
+        }
         light l;
         light_from_desc(&s->light_descs[i], &l);
         if (v3_is_zero(l.color))
@@ -214,6 +236,17 @@ int lights_intersect(const scene *s, const light_context *from, vec3 o, vec3 d, 
         }
     }
     return found;
+}
+
+float light_escape_pdf(const scene *s, const light_context *c, uint32_t index, vec3 d)
+{
+    const light *l = &s->lights.lights[index];
+    const light_kind_ops *ops = light_ops(l);
+    vec3 L;
+    float pdf;
+    if (!ops->escape || !ops->escape(s, l, c, d, 0, &L, &pdf))
+        return 0.0f;
+    return pdf;
 }
 
 vec3 lights_escape(const scene *s, const light_context *from, vec3 d, float bsdf_pdf, int bsdf_delta,

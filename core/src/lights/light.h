@@ -127,6 +127,11 @@ int light_emit(const scene *s, uint32_t index, const float u[4], vec3 *origin, v
  * the light sends nothing along d. */
 int light_emit_toward(const scene *s, uint32_t index, vec3 d, float2 u, vec3 *origin, vec3 *intensity);
 
+/* pdf (solid angle, pick not included) with which the distant light
+ * `index` (sun, world, environment) is sampled along d from c; 0 if d
+ * misses it or it is a local light. */
+float light_escape_pdf(const scene *s, const light_context *c, uint32_t index, vec3 d);
+
 /* Spot attenuation for the direction from the light toward the point. */
 float light_spot_attenuation(const light *l, vec3 dir_from_light);
 

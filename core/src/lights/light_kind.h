@@ -99,6 +99,32 @@ phos_status light_mesh_emitters_add(scene *s, light_table *t, uint32_t *capacity
 phos_status light_world_add(const scene *s, light_table *t, uint32_t *capacity);
 phos_status light_environment_add(const scene *s, light_table *t, uint32_t *capacity, const material *world);
 
+/* The shape of area lamps, which portals share (area.c): the fields of an
+ * AREA or PORTAL desc; a uniform point on the shape; the crossing of the
+ * ray o + t·d, 0 < t < tmax, with its emitting face (the side
+ * `direction` points to), and the solid-angle pdf of light_area_point
+ * producing d from o, t²/(A·|cos θ|). */
+void light_area_from_desc(const phos_light_desc *d, light *l);
+vec3 light_area_point(const light *l, float2 u);
+int light_area_crossing(const light *l, vec3 o, vec3 d, float tmax, float *t, float *pdf);
+
+/* A world's own way of drawing a direction toward it from c, and its pdf;
+ * portal.c mixes it with draws through the portals. */
+typedef struct world_sampling {
+    vec3 (*sample)(const scene *s, const light_context *c, float2 u, float *pdf);
+    float (*pdf)(const scene *s, const light_context *c, vec3 wi);
+} world_sampling;
+
+/* The share of a world light sample at c drawn through the portals: ½
+ * where c lies on the inner side of a portal, else 0 (portal.c). */
+float portal_share(const light_table *t, const light_context *c);
+
+/* A direction from c by the mixture of portals (share portal_share) and
+ * the world's own sampling, with the mixture's pdf; the pdf alone. */
+int portal_mix_sample(const scene *s, const light_context *c, const world_sampling *own, float2 u, vec3 *wi,
+                      float *pdf);
+float portal_mix_pdf(const scene *s, const light_context *c, const world_sampling *own, vec3 wi);
+
 /* Distant lights (sun, world) emit photons from the disk of the scene's
  * bounding sphere (radius R, light_table.center and .radius) that faces
  * them (light.c). */

@@ -22,6 +22,7 @@
  * left (light_context_at).
  */
 #include "lights/light.h"
+#include "lights/light_kind.h"
 
 #include <float.h>
 
@@ -124,7 +125,8 @@ static double group_importances(const light_table *t, const light_context *c, fl
         w[g] = group_importance(t, &t->groups[g], c);
         if (!(w[g] > 0.0f) || !isfinite(w[g]))
             w[g] = 0.0f;
-        if (t->lights[t->groups[g].first].kind == LIGHT_WORLD && c->rays_find_world) {
+        /* (with portals the uniform world is sampled through them: portal.c) */
+        if (t->lights[t->groups[g].first].kind == LIGHT_WORLD && c->rays_find_world && !(portal_share(t, c) > 0.0f)) {
             world_group = (int32_t)g;
             continue;
         }

@@ -64,6 +64,8 @@ typedef struct light_table {
     uint32_t group_count;
     int32_t world;              /* index of the world light (uniform or environment), −1 if black */
     struct environment *env;    /* the world's sampling map when it varies with direction, else NULL */
+    light *portals;             /* PORTAL descs, shaped as AREA lights (portal.c); no light of their own */
+    uint32_t portal_count;
     uint32_t *shapes;           /* indices of lights a ray can hit: lamps with area, suns with an angle, world */
     uint32_t shape_count;
     vec3 center;                /* bounding sphere of the scene, for distant lights */
@@ -83,6 +85,7 @@ void environment_destroy(struct environment *e); /* lights/environment.c */
 static inline void light_table_free(light_table *t)
 {
     environment_destroy(t->env);
+    free(t->portals);
     free(t->lights);
     free(t->shapes);
     distribution_free(&t->pick);

@@ -59,12 +59,23 @@ float light_world_pdf(const light_context *c, vec3 wi)
     return maxf(v3_dot(wi, c->ns), 0.0f) * PHOS_INV_PI;
 }
 
+static vec3 own_sample(const scene *s, const light_context *c, float2 u, float *pdf)
+{
+    vec3 wi = world_samples_hemisphere(c) ? warp_cosine_about(c->ns, u) : warp_uniform_sphere(u);
+    *pdf = light_world_pdf(c, wi);
+    return wi;
+}
+
+static float own_pdf(const scene *s, const light_context *c, vec3 wi) { return light_world_pdf(c, wi); }
+
+static const world_sampling uniform_world_sampling = {own_sample, own_pdf};
+
 static int world_sample(const scene *s, const light *l, const light_context *c, float2 u, light_sample *out)
 {
-    out->wi = world_samples_hemisphere(c) ? warp_cosine_about(c->ns, u) : warp_uniform_sphere(u);
+    if (!portal_mix_sample(s, c, &uniform_world_sampling, u, &out->wi, &out->pdf))
+        return 0;
     out->distance = INFINITY;
     out->radiance = l->color;
-    out->pdf = light_world_pdf(c, out->wi);
     out->delta = 0;
     return 1;
 }
@@ -74,7 +85,7 @@ static int world_escape(const scene *s, const light *l, const light_context *fro
                         vec3 *radiance, float *pdf)
 {
     *radiance = l->color;
-    *pdf = light_world_pdf(from, d);
+    *pdf = portal_mix_pdf(s, from, &uniform_world_sampling, d);
     return 1;
 }
 
