@@ -374,6 +374,8 @@ static void fuzz_lights(reader *r, phos_scene *s)
         phos_world_desc w;
         phos_world_desc_init(&w);
         take_floats(r, w.color, 3);
+        uint8_t m = take_u8(r); /* a material as the world (any id, valid or not), or 0xFF: none */
+        w.material = m == 0xFF ? PHOS_WORLD_NO_MATERIAL : m;
         phos_scene_set_world(s, &w);
     }
     if (take_u8(r) != 0xFF) { /* almost always a camera */

@@ -198,12 +198,13 @@ BOX_TRIS = [(0, 1, 2), (0, 2, 3), (4, 6, 5), (4, 7, 6), (0, 4, 5), (0, 5, 1), (1
             (2, 6, 7), (2, 7, 3), (3, 7, 4), (3, 4, 0)]
 
 
-def world_and_camera(s, world=None, camera=True):
+def world_and_camera(s, world=None, camera=True, world_material=0xFF):
     if world is None:
         s.u8(0)
     else:
         s.u8(1)
         s.fs(world)
+        s.u8(world_material)   # 0xFF: the colour; else that material as the world
     if not camera:
         s.u8(0xFF)
         return
@@ -242,7 +243,7 @@ PHOS_STAGE_COUNT = 7
 
 
 def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camera=True,
-          renders=(({}, 0),), vertex_normals=None, programs=None):
+          renders=(({}, 0),), vertex_normals=None, programs=None, world_material=0xFF):
     s = Stream()
     s.u8(0)                    # no images
     materials(s, mats if mats is not None else [[(0, (0.75, 0.75, 0.75))]], programs)
@@ -274,7 +275,7 @@ def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camer
     s.u8(len(lights))
     for kw in lights:
         light(s, **kw)
-    world_and_camera(s, world, camera)
+    world_and_camera(s, world, camera, world_material)
     render_tail(s, list(renders))
     return bytes(s.b)
 
@@ -285,6 +286,9 @@ SEEDS = {
     "valid_photon": scene(renders=[(PHOTON, 0)]),
     "valid_photon_cache_always": scene(renders=[({"irradiance_cache": 2, "ic_rays": 16}, 0)]),
     "world_light_photon": scene(world=(0.2, 0.2, 0.2), renders=[(PHOTON, 0)]),
+    "world_material_photon": scene(world=(0.2, 0.2, 0.2), world_material=0, renders=[(PHOTON, 0)]),
+    "portal_photon": scene(world=(0.5, 0.5, 0.5), lights=[{"kind": 4, "position": (0, 0, 2)}],
+                           renders=[(PHOTON, 0)]),
     "valid_two_renders": scene(renders=[(PHOTON, 0), ({"photon_view": 2, **PHOTON}, 0)]),
     "glass_and_mirror": scene(mats=[[(0, (0.75, 0.75, 0.75), 0.5, 1.5, 0, 0.0, 0, 1)], [(5, (1, 1, 1), 0.0, 1.5)],
                                     [(2, (1, 1, 1), 0.0, 1.5, 0, 0.0, 0, 1)]],
@@ -302,6 +306,8 @@ SEEDS = {
                               meshes=[(BOX, BOX_TRIS, [0] * 6 + [1] * 6)],
                               renders=[({"pass_mask": (1 << 10) | (1 << 11), **PHOTON}, 0), ({"pass_mask": 4095}, 0)]),
     "shader_program_noise": scene(programs={0: noise_program}, renders=[(PHOTON, 0)]),
+    "world_program_photon": scene(programs={0: noise_program}, world=(0.2, 0.2, 0.2), world_material=0,
+                                  renders=[(PHOTON, 0)]),
     "nan_vertex": scene(meshes=[([(0, 0, 0), ("nan", 0, 0), (0, 1, 0)], [(0, 1, 2)], None),
                                 (BOX, BOX_TRIS, None)], instances=[(1, [0]), (0, [0])]),
     "inf_and_huge_vertices": scene(meshes=[([(0, 0, 0), ("inf", 0, 0), (0, 1e30, 0), (1e38, 1e38, 1e38)],
