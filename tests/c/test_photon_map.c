@@ -292,7 +292,7 @@ static double caustic_power(const photon_map *pm, int only_flagged, double *sum2
     return sum;
 }
 
-static void test_caustic_projection_unbiased(void)
+static void test_caustic_projection_unbiased(int sky)
 {
     phos_scene *s = phos_scene_create();
     test_add_instance(s, test_add_quad_mesh(s, 3.0f), test_add_diffuse(s, 0.6f, 0.6f, 0.6f), 0, 0, 0);
@@ -333,10 +333,23 @@ static void test_caustic_projection_unbiased(void)
     l.sun_angle = 0.2f;
     l.color[0] = l.color[1] = l.color[2] = 1.0f;
     phos_scene_add_light(s, &l, NULL);
-    phos_world_desc w;
-    phos_world_desc_init(&w);
-    w.color[0] = w.color[1] = w.color[2] = 0.1f;
-    phos_scene_set_world(s, &w);
+    if (sky) {
+        /* A sky with a bright patch: the world's caustic photons are drawn
+         * from its map and aimed at the spheres' discs. */
+        static float px[32 * 16 * 4];
+        for (int y = 0; y < 16; y++)
+            for (int x = 0; x < 32; x++) {
+                float *q = px + 4 * (y * 32 + x);
+                q[0] = q[1] = q[2] = y >= 11 && x >= 4 && x < 8 ? 3.0f : 0.05f;
+                q[3] = 1.0f;
+            }
+        test_set_environment(s, px, 32, 16, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+    } else {
+        phos_world_desc w;
+        phos_world_desc_init(&w);
+        w.color[0] = w.color[1] = w.color[2] = 0.1f;
+        phos_scene_set_world(s, &w);
+    }
     test_set_camera(s, 0, 0, 3.0f, 0.5f);
     CHECK(phos_scene_commit(s) == PHOS_OK);
     const uint32_t global[3] = {400000, 0, 400000}, caustic[3] = {0, 100000, 100000};
@@ -354,7 +367,7 @@ static void test_caustic_projection_unbiased(void)
             reused = m.caustic_reused;
             own = m.caustic.count - reused;
         }
-        printf("  caustic power, %s: %.5f W (%u photons%s)\n",
+        printf("  caustic power%s, %s: %.5f W (%u photons%s)\n", sky ? " under a sky" : "",
                k == 0 ? "global map's caustic photons" : k == 1 ? "caustic map alone" : "caustic map with reuse",
                sum[k], n[k], k == 2 ? ", some reused" : "");
         photon_maps_free(&m);
@@ -1609,7 +1622,8 @@ int main(void)
     test_emitted_flux_per_light_type();
     test_caustic_pass_needs_a_delta_lobe();
     test_caustic_photons_aimed_at_a_bead();
-    test_caustic_projection_unbiased();
+    test_caustic_projection_unbiased(0);
+    test_caustic_projection_unbiased(1);
     test_radiance_lookup_in_a_corner();
     test_power_in_closed_sphere();
     test_maps_deterministic();

@@ -246,6 +246,8 @@ static float distant_flux_density(const light_table *tab, const light *l, const 
 
 void projection_map_free(projection_map *pm)
 {
+    free(pm->targets);
+    free(pm->target_cdf);
     free(pm->groups);
     free(pm->cells);
     free(pm->cell_cum);
@@ -347,6 +349,107 @@ static float mark_cones(projection_map *pm, uint32_t *capacity, const light_tabl
     return g->power * clampf(share, 1e-4f, 1.0f);
 }
 
+/* ------------------------------------------------------- world discs */
+
+/* The world's caustic photons (Jensen's projection maps for a light at
+ * infinity): a direction ω from the world's own distribution p(ω), a
+ * target sphere k picked by its cross-section (q_k = r_k² / Σ r²), and a
+ * uniform point of the disc of radius r_k about its centre across ω, from
+ * which the photon starts back outside the scene. Every line from the
+ * world that can reach a target crosses its disc, so nothing that makes a
+ * caustic is missed; a line that crosses n of the discs has the density
+ * p(ω) · n / (π Σ r²) per unit area across ω, and carries
+ *
+ *     Φ = L(ω) · π Σ r² / (p(ω) · n).
+ */
+static int store_targets(projection_map *pm, const sphere *t, int nt)
+{
+    pm->targets = malloc(sizeof(float) * 4 * (size_t)nt);
+    pm->target_cdf = malloc(sizeof(float) * (size_t)nt);
+    if (!pm->targets || !pm->target_cdf)
+        return 0;
+    double sum = 0.0;
+    for (int k = 0; k < nt; k++) {
+        pm->targets[4 * k] = t[k].c.x, pm->targets[4 * k + 1] = t[k].c.y, pm->targets[4 * k + 2] = t[k].c.z;
+        pm->targets[4 * k + 3] = t[k].r;
+        sum += (double)t[k].r * t[k].r;
+        pm->target_cdf[k] = (float)sum;
+    }
+    for (int k = 0; k < nt; k++)
+        pm->target_cdf[k] = sum > 0.0 ? (float)(pm->target_cdf[k] / sum) : (float)(k + 1) / (float)nt;
+    pm->target_cdf[nt - 1] = 1.0f;
+    pm->target_count = (uint32_t)nt;
+    return 1;
+}
+
+/* π Σ r² (m²): the discs' total area. */
+static float discs_area(const projection_map *pm)
+{
+    double sum = 0.0;
+    for (uint32_t k = 0; k < pm->target_count; k++)
+        sum += (double)pm->targets[4 * k + 3] * pm->targets[4 * k + 3];
+    return (float)(PHOS_PI * sum);
+}
+
+/* The power the world sends through the discs (W, counting overlaps
+ * twice: a weight among the lights only): ∫ L dω · π Σ r². */
+static float world_disc_power(const light_table *tab, const light *l, const projection_map *pm)
+{
+    float radiance_integral = l->kind == LIGHT_ENVIRONMENT ? (float)tab->env->integral
+                                                           : 4.0f * PHOS_PI * fmaxf(v3_average(l->color), 0.0f);
+    return radiance_integral * discs_area(pm);
+}
+
+/* How many discs across d the line through x along d crosses. */
+static uint32_t discs_crossed(const projection_map *pm, vec3 x, vec3 d)
+{
+    uint32_t n = 0;
+    for (uint32_t k = 0; k < pm->target_count; k++) {
+        vec3 v = v3_sub(v3_load(pm->targets + 4 * k), x);
+        vec3 across = v3_sub(v, v3_scale(d, v3_dot(v, d)));
+        float r = pm->targets[4 * k + 3];
+        n += v3_length2(across) <= r * r;
+    }
+    return n;
+}
+
+static int world_disc_emit(const scene *s, const projection_map *pm, const light *l, const float u[4],
+                           vec3 *origin, vec3 *direction, vec3 *flux)
+{
+    const light_table *tab = &s->lights;
+    float2 ud = {u[2], u[3]};
+    float pdf;
+    vec3 from = l->kind == LIGHT_ENVIRONMENT ? environment_sample(tab->env, ud, &pdf) : warp_uniform_sphere(ud);
+    if (l->kind != LIGHT_ENVIRONMENT)
+        pdf = PHOS_INV_4PI;
+    if (!(pdf > 0.0f))
+        return 0;
+    vec3 d = v3_neg(from);
+    /* A target by its cross-section; u[0] is rescaled to the disc. */
+    float x = u[0];
+    uint32_t k = 0;
+    while (k + 1 < pm->target_count && x >= pm->target_cdf[k])
+        k++;
+    float below = k ? pm->target_cdf[k - 1] : 0.0f;
+    float2 uo = {fminf((x - below) / (pm->target_cdf[k] - below), 0x1.fffffep-1f), u[1]};
+    vec3 c = v3_load(pm->targets + 4 * k);
+    float r = pm->targets[4 * k + 3];
+    frame f = frame_from_normal(d);
+    float2 dk = warp_disk_concentric(uo);
+    vec3 on_disc = v3_add(c, v3_add(v3_scale(f.t, dk.x * r), v3_scale(f.b, dk.y * r)));
+    uint32_t n = discs_crossed(pm, on_disc, d);
+    if (n == 0)
+        return 0;
+    /* Back outside the scene's bounding sphere, so that whatever lies
+     * between the world and the target can block the photon. */
+    float back = v3_length(v3_sub(c, tab->center)) + tab->radius + r;
+    *origin = v3_madd(on_disc, d, -back);
+    *direction = d;
+    vec3 L = l->kind == LIGHT_ENVIRONMENT ? environment_radiance(s, tab->env, from, 0) : l->color;
+    *flux = v3_scale(L, discs_area(pm) / (pdf * (float)n));
+    return 1;
+}
+
 /* Marks group g's cells or cones; returns the power it sends into them. */
 static float mark_group(projection_map *pm, uint32_t *cells_capacity, uint32_t *cones_capacity, const scene *s,
                         const light_group *g, const sphere *t, int nt, int *ok)
@@ -367,6 +470,15 @@ static float mark_group(projection_map *pm, uint32_t *cells_capacity, uint32_t *
             break;
         }
     pg->distant = (uint32_t)distant;
+    if (light_is_world(l)) {
+        /* Bins of directions as wide as π/8 drift a photon so far across
+         * the scene that a plane cell reaching a 10 cm glass is mostly
+         * aimed past it (2 % of the paths stored under an HDR); a disc
+         * across each direction hits what it aims at. */
+        pg->distant = 0;
+        pg->discs = 1;
+        return world_disc_power(tab, l, pm);
+    }
     if (pg->distant)
         return mark_distant(pm, cells_capacity, tab, l, t, nt, ok);
     return mark_cones(pm, cones_capacity, tab, g, t, nt, ok);
@@ -384,7 +496,7 @@ int projection_map_build(projection_map *pm, const scene *s, float max_roughness
         return 0;
     pm->groups = calloc(tab->group_count, sizeof(projection_group));
     float *weight = malloc(sizeof(float) * tab->group_count);
-    int ok = pm->groups && weight;
+    int ok = pm->groups && weight && (nt == 0 || store_targets(pm, t, nt));
     uint32_t cells_capacity = 0, cones_capacity = 0;
     double sent = 0.0, total = 0.0;
     for (uint32_t g = 0; ok && g < tab->group_count; g++) {
@@ -596,6 +708,9 @@ int projection_map_emit(const scene *s, const projection_map *pm, const float u[
     vec3 flux;
     if (pg->all) {
         if (!light_emit(s, li, u + 1, origin, direction, &flux))
+            return 0;
+    } else if (pg->discs) {
+        if (!world_disc_emit(s, pm, l, u + 1, origin, direction, &flux))
             return 0;
     } else if (pg->count == 0) {
         return 0;

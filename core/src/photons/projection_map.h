@@ -37,6 +37,8 @@ typedef struct projection_cone {
 typedef struct projection_group {
     uint32_t first, count;      /* distant: projection_map.cells[first ..]; others: cones[first ..] */
     uint32_t distant;           /* a sun or the world: plane cells */
+    uint32_t discs;             /* the world (caustic map): a direction from the world, then a point on
+                                   the disc of a target sphere across it (projection_map.c) */
     uint32_t all;               /* 1: no projection (the light sits among the specular objects,
                                    or covering every direction), emitted as for the global map */
 } projection_group;
@@ -50,6 +52,9 @@ typedef struct projection_map {
     projection_cone *cones;
     distribution pick;          /* groups by the power they send into their marked cells */
     float marked_fraction;      /* of all power, the share sent into marked cells (diagnostics) */
+    float *targets;             /* the target spheres, 4 floats each (centre, radius), for the discs */
+    uint32_t target_count;
+    float *target_cdf;          /* cumulative r², normalised: a target picked by its cross-section */
 } projection_map;
 
 /* Marks the cells of every light group against the bounding spheres of

@@ -996,12 +996,15 @@ int closure_scatters_caustic(const closure *c, float max_roughness)
         return 1;
     switch (c->type) {
     case PHOS_CLOSURE_REFLECTION:
-    case PHOS_CLOSURE_REFLECTION_FRESNEL:
     case PHOS_CLOSURE_METAL:
     case PHOS_CLOSURE_GLASS:
     case PHOS_CLOSURE_REFRACTION:
         return closure_roughest(c) < max_roughness;
     default:
+        /* A glossy dielectric layer (REFLECTION_FRESNEL: the Principled
+         * specular and coat) reflects a few per cent: its caustics are
+         * faint, and tracing them cost 100 times the photon pass on a
+         * product shot (docs/algorithms.md §12). Sharp, it is a mirror. */
         return 0;
     }
 }

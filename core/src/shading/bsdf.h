@@ -223,7 +223,8 @@ int bsdf_transmits(const bsdf *b);
  * microfacet reflection or refraction whose roughest lobe has Blender
  * roughness below max_roughness. Photons pass such closures without being
  * stored, and the camera and gather rays follow them as they follow
- * mirrors; at max_roughness 0 only deltas do, as before. */
+ * mirrors; at max_roughness 0 only deltas do, as before. Glossy dielectric
+ * layers (REFLECTION_FRESNEL) carry caustics only when sharp. */
 int closure_scatters_caustic(const closure *c, float max_roughness);
 float bsdf_split_caustic(const bsdf *b, float max_roughness, bsdf *caustic, bsdf *rest);
 int bsdf_has_non_caustic(const bsdf *b, float max_roughness);

@@ -590,8 +590,10 @@ int material_can_scatter_caustic(const material *m, float max_roughness)
         float rt = d->transmission_roughness < 0.0f ? r : d->transmission_roughness;
         /* Anisotropic: sharp when √(αx αy) is (bsdf.c). */
         float ry = desc_anisotropic(d) ? d->roughness_y : r;
-        /* Smoother than max_roughness: glossy, but carrying caustics (bsdf.h). */
-        int smooth = fmaxf(r, fmaxf(ry, d->type == PHOS_CLOSURE_GLASS ? rt : 0.0f)) < max_roughness;
+        /* Smoother than max_roughness: glossy, but carrying caustics (bsdf.h;
+         * not a dielectric layer, REFLECTION_FRESNEL). */
+        int smooth = d->type != PHOS_CLOSURE_REFLECTION_FRESNEL &&
+                     fmaxf(r, fmaxf(ry, d->type == PHOS_CLOSURE_GLASS ? rt : 0.0f)) < max_roughness;
         int sharp = r * ry < BSDF_SHARP_ALPHA || smooth, sharp_refraction = rt * rt < BSDF_SHARP_ALPHA;
         int index_matched = fabsf(d->ior - 1.0f) < BSDF_INDEX_MATCHED;
         switch (d->type) {
