@@ -9,9 +9,9 @@ varnished wood instead of white paper: the Principled BSDF, a diffuse
 base under a dielectric coat of roughness 0.25. The sphere's caustic falls
 on the floor's diffuse base, read from the caustic map, and its glossy
 coat reflects the sphere and the lamp; the course's "Caustics On Glossy
-Surfaces". The coat is smoother than *Caustic Roughness* (0.3 by default),
-so photons may also leave by it and stay caustic: the lamp's reflection in
-the floor onto the wall is a caustic too.
+Surfaces". The floor's coat, a glossy dielectric layer, stores photons
+like its base (README, "Glossy caustics"), and its reflections of the
+caustic are path traced from the camera.
 """
 
 import os
