@@ -358,14 +358,7 @@ static phos_scene *skylit_room(int portal, int sky)
         CHECK(phos_scene_add_light(s, &l, NULL) == PHOS_OK);
     }
     if (sky) {
-        static float px[32 * 16 * 4];
-        for (int y = 0; y < 16; y++)
-            for (int x = 0; x < 32; x++) {
-                float *q = px + 4 * (y * 32 + x);
-                q[0] = q[1] = q[2] = y >= 13 && x >= 14 && x < 18 ? 40.0f : 0.5f;
-                q[3] = 1.0f;
-            }
-        test_set_environment(s, px, 32, 16, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+        test_set_sky_with_patch(s, 0.5f, 40.0f, 13, 14, 18);
     } else {
         phos_world_desc w;
         phos_world_desc_init(&w);

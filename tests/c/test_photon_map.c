@@ -336,14 +336,7 @@ static void test_caustic_projection_unbiased(int sky)
     if (sky) {
         /* A sky with a bright patch: the world's caustic photons are drawn
          * from its map and aimed at the spheres' discs. */
-        static float px[32 * 16 * 4];
-        for (int y = 0; y < 16; y++)
-            for (int x = 0; x < 32; x++) {
-                float *q = px + 4 * (y * 32 + x);
-                q[0] = q[1] = q[2] = y >= 11 && x >= 4 && x < 8 ? 3.0f : 0.05f;
-                q[3] = 1.0f;
-            }
-        test_set_environment(s, px, 32, 16, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+        test_set_sky_with_patch(s, 0.05f, 3.0f, 11, 4, 8);
     } else {
         phos_world_desc w;
         phos_world_desc_init(&w);

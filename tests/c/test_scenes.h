@@ -321,6 +321,22 @@ static void test_set_environment(phos_scene *s, const float *pixels, uint32_t w,
     phos_scene_set_world(s, &wd);
 }
 
+/* A 32 × 16 sky of radiance `background` with a patch of radiance `patch`
+ * over rows [row0, 16) and columns [col0, col1) (rows bottom-up: high
+ * rows are near the zenith), as the world. */
+static void test_set_sky_with_patch(phos_scene *s, float background, float patch, int row0, int col0, int col1)
+{
+    float *px = malloc(sizeof(float) * 32 * 16 * 4);
+    for (int y = 0; y < 16; y++)
+        for (int x = 0; x < 32; x++) {
+            float *q = px + 4 * (y * 32 + x);
+            q[0] = q[1] = q[2] = y >= row0 && x >= col0 && x < col1 ? patch : background;
+            q[3] = 1.0f;
+        }
+    test_set_environment(s, px, 32, 16, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+    free(px);
+}
+
 static float *test_render(phos_scene *s, const phos_render_settings *rs)
 {
     phos_render *r = NULL;
