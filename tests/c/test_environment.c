@@ -18,6 +18,7 @@
 #include "cache/fingerprint.h"
 #include "chi2.h"
 #include "lights/environment.h"
+#include "lights/light.h"
 #include "sampling/warp.h"
 #include "scene/scene.h"
 #include "shading/material.h"
@@ -407,8 +408,41 @@ static void test_portal_interior(int sky)
     CHECK_MSG(var[1] < 0.5 * var[0], "the portal did not lower the noise: variance %.3g vs %.3g", var[1], var[0]);
 }
 
+/* A world of no power (an image of zeros, through the map path): it stays
+ * in the light table for the camera, is never picked and emits no photons,
+ * and the photon passes' pilots, which visit every distant light's planes,
+ * draw nothing from its empty map (found by the fuzzer). */
+static void test_world_of_no_power(void)
+{
+    float black[8 * 4 * 4] = {0};
+    for (int i = 3; i < 8 * 4 * 4; i += 4)
+        black[i] = 1.0f;
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quad_mesh(s, 2.0f), test_add_diffuse(s, 0.5f, 0.5f, 0.5f), 0, 0, 0);
+    test_set_environment(s, black, 8, 4, PHOS_PROJECTION_EQUIRECTANGULAR, PHOS_IMAGE_LINEAR);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.position[2] = 1.0f;
+    l.color[0] = l.color[1] = l.color[2] = 1.0f;
+    phos_scene_add_light(s, &l, NULL);
+    test_set_camera(s, 0.0f, 0.0f, 2.0f, 0.5f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    CHECK(s->lights.env && !s->lights.env->weight && light_power(&s->lights.lights[s->lights.world], 1.0f) == 0.0f);
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 8;
+    rs.samples = 4;
+    rs.integrator = PHOS_INTEGRATOR_PHOTON;
+    rs.global_photons = rs.caustic_photons = 2000;
+    float *img = test_render(s, &rs);
+    CHECK(img != NULL);
+    free(img);
+    phos_scene_destroy(s);
+}
+
 int main(void)
 {
+    test_world_of_no_power();
     test_portal_interior(0);
     test_portal_interior(1);
     test_fingerprint_reads_pixels();

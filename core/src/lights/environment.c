@@ -344,6 +344,10 @@ static float cell_weight(const environment *e, uint32_t row, uint32_t column)
 
 vec3 environment_sample(const environment *e, float2 u, float *pdf)
 {
+    if (!e->weight) { /* a world of no power: nothing to draw (pilot photons still ask) */
+        *pdf = 0.0f;
+        return v3(0.0f, 0.0f, 1.0f);
+    }
     float s, t;
     uint32_t row = distribution_sample(&e->marginal, u.x, NULL, &s);
     uint32_t column = row_column(e, row, 0, e->columns, u.y, &t);
@@ -354,6 +358,11 @@ vec3 environment_sample(const environment *e, float2 u, float *pdf)
 
 vec3 environment_sample_in_bin(const environment *e, uint32_t bin, float2 u, float *pdf)
 {
+    if (!e->weight) {
+        float2 centre = {0.5f, 0.5f};
+        *pdf = 0.0f;
+        return environment_bin_direction(bin, centre);
+    }
     uint32_t rb = bin_rows(e), cb = bin_columns(e);
     uint32_t r0 = (bin / ENVIRONMENT_BINS) * rb, c0 = (bin % ENVIRONMENT_BINS) * cb;
     float s, t;

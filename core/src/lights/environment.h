@@ -64,7 +64,7 @@ void environment_free(environment *e);
 vec3 environment_radiance(const scene *s, const environment *e, vec3 d, uint32_t ray_flags);
 
 /* A direction by the distribution over the whole sphere, with its
- * solid-angle density. */
+ * solid-angle density (0 for a world of no power). */
 vec3 environment_sample(const environment *e, float2 u, float *pdf);
 float environment_pdf(const environment *e, vec3 d);
 
