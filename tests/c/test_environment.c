@@ -299,8 +299,8 @@ static void test_resolution_bounds(void)
         {100, 50, 104, 200}, {1, 1, 64, 128}};
     for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]); k++) {
         img->width = cases[k].w, img->height = cases[k].h; /* only the size is read */
-        uint32_t rows, columns, points;
-        environment_resolution(s, m, &rows, &columns, &points);
+        uint32_t rows, columns;
+        environment_resolution(s, m, &rows, &columns);
         CHECK_MSG(rows == cases[k].rows && columns == cases[k].columns, "%ux%u map: %ux%u cells, not %ux%u",
                   cases[k].w, cases[k].h, columns, rows, cases[k].columns, cases[k].rows);
     }

@@ -589,8 +589,8 @@ static phos_status check_environment_memory(phos_scene *s)
 {
     if (s->world.material == PHOS_WORLD_NO_MATERIAL || !s->materials[s->world.material].has_program)
         return PHOS_OK;
-    uint32_t rows, columns, points;
-    environment_resolution(s, &s->materials[s->world.material], &rows, &columns, &points);
+    uint32_t rows, columns;
+    environment_resolution(s, &s->materials[s->world.material], &rows, &columns);
     uint64_t need = environment_bytes(rows, columns), available = memory_available();
     if (need > available)
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY,

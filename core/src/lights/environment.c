@@ -18,7 +18,7 @@
 #define MIN_COLUMNS 128
 /* A cell darker than this share of the mean keeps this much probability:
  * every direction that sends light can still be drawn, so photons, which
- * leave only by the distribution, stay unbiased where a cell's points
+ * leave only by the distribution, stay unbiased where a cell's centre
  * missed a small bright feature (docs/algorithms.md §11). */
 #define FLOOR_SHARE 1e-3f
 
@@ -38,8 +38,7 @@ static uint32_t clamp_u32(uint32_t x, uint32_t lo, uint32_t hi) { return x < lo 
  * Blender's studio HDRs, Phos's pixel variance over Cycles': 2.4 with a
  * cell per pixel and 2 × 2 points, 1.5 with these, 3.3 with cells of equal
  * solid angle that straddle pixels (docs/algorithms.md §11). */
-void environment_resolution(const scene *s, const material *m, uint32_t *rows, uint32_t *columns,
-                            uint32_t *points)
+void environment_resolution(const scene *s, const material *m, uint32_t *rows, uint32_t *columns)
 {
     uint32_t width = 0, height = 0;
     for (uint32_t k = 0; m->has_program && k < m->program.instruction_count; k++) {
@@ -54,7 +53,6 @@ void environment_resolution(const scene *s, const material *m, uint32_t *rows, u
         width = 256, height = 128;
     *columns = clamp_u32(round_up_bins(2 * width), MIN_COLUMNS, ENVIRONMENT_MAX_COLUMNS);
     *rows = clamp_u32(round_up_bins(2 * height), MIN_ROWS, ENVIRONMENT_MAX_ROWS);
-    *points = 1;
 }
 
 size_t environment_bytes(uint32_t rows, uint32_t columns)
@@ -152,23 +150,16 @@ typedef struct build_job {
 
 /* One row of cells: the luminance (Rec. 709 Y) times the cell's solid
  * angle (the sampling weight: pbrt-v4's luminance × sin θ) and the
- * channel mean of the radiance, from the average of a points × points
- * grid in the cell. */
+ * channel mean of the radiance times it, read at the cell's centre
+ * (environment_resolution says why one point). */
 static void build_row(void *ctx, uint32_t row, uint32_t thread)
 {
     (void)thread;
     const build_job *job = ctx;
     const environment *e = job->e;
-    uint32_t n = e->points;
     float omega = cell_solid_angle(e, row);
     for (uint32_t column = 0; column < e->columns; column++) {
-        vec3 sum = v3s(0.0f);
-        for (uint32_t k = 0; k < n * n; k++) {
-            vec3 d = cell_direction(e, row, column, ((float)(k % n) + 0.5f) / (float)n,
-                                    ((float)(k / n) + 0.5f) / (float)n);
-            sum = v3_add(sum, environment_radiance(job->s, e, d, 0));
-        }
-        vec3 L = v3_scale(sum, 1.0f / (float)(n * n));
+        vec3 L = environment_radiance(job->s, e, cell_direction(e, row, column, 0.5f, 0.5f), 0);
         size_t at = (size_t)row * e->columns + column;
         job->luminance[at] = (0.2126f * L.x + 0.7152f * L.y + 0.0722f * L.z) * omega;
         job->mean[at] = v3_average(L) * omega;
@@ -270,7 +261,7 @@ phos_status environment_build(environment *e, const scene *s, const material *m,
     memset(e, 0, sizeof(*e));
     *zero = 1;
     e->mat = m;
-    environment_resolution(s, m, &e->rows, &e->columns, &e->points);
+    environment_resolution(s, m, &e->rows, &e->columns);
     size_t n = (size_t)e->rows * e->columns;
     float *luminance = malloc(sizeof(float) * n), *mean = malloc(sizeof(float) * n);
     phos_status st = PHOS_OK;

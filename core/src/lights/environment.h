@@ -32,7 +32,6 @@
 typedef struct environment {
     const material *mat;        /* the world's material, whose program varies with direction */
     uint32_t rows, columns;     /* cells; multiples of ENVIRONMENT_BINS; row 0 at θ = 0 (+z) */
-    uint32_t points;            /* evaluated per cell side when building (a points² grid) */
     float *weight;              /* per cell, row-major: luminance × solid angle, floored */
     float *row_cdf;             /* per row, columns + 1 cumulative shares of its cells, 0 .. 1 */
     distribution marginal;      /* the rows by their weight */
@@ -45,8 +44,7 @@ typedef struct environment {
 
 /* Cells for a world material: a quarter pixel of the largest image its
  * program reads, within the bounds above; 256 × 512 without one. */
-void environment_resolution(const scene *s, const material *m, uint32_t *rows, uint32_t *columns,
-                            uint32_t *points);
+void environment_resolution(const scene *s, const material *m, uint32_t *rows, uint32_t *columns);
 
 /* Bytes environment_build allocates for that many cells (the memory
  * estimate). */
