@@ -38,7 +38,8 @@ void camera_path_add_direct(camera_path *p, vec3 L)
 
 void camera_path_add_diffuse(camera_path *p, int caustic, vec3 L)
 {
-    /* Two more events at least, the one here diffuse. */
+    /* Two more events at least, the one here read by an estimate (diffuse,
+     * or a glossy receiver's caustics). */
     int component = p->depth == 0 ? (caustic ? COMPONENT_CAUSTICS : COMPONENT_INDIRECT)
                                   : classify(p->depth + 2, p->first_diffuse, 0);
     add_to(p->res, component, p->beta, L, 1.0f);
@@ -108,6 +109,33 @@ static float emission_weight(int prev_delta, float prev_pdf, float light_pdf)
     return prev_delta ? 1.0f : mis_power_heuristic(prev_pdf, light_pdf);
 }
 
+/* Glossy receivers (docs/algorithms.md §12). Where the policy read the
+ * caustic map through a vertex's receivers (rough glossy reflection as
+ * well as diffuse), light that reaches the vertex from an emitter through
+ * closures that carry caustics only (L S+ R) is already counted, and the
+ * path that goes on from there must leave it out, without a bias: a
+ * direction drawn from the mixture of all the closures the path goes on
+ * through is not one closure's, so each closure's share of f at that
+ * direction (bsdf_caustic_shares: a carrying, r receiving) splits the light
+ * it finds. With Q the share of the throughput counted at an earlier
+ * receiver and carried since, light found on the next segment counts by
+ * 1 − a·Q (the rest reached a receiver through carriers only), and Q
+ * becomes r + a·Q. Light found straight after a receiver is direct light
+ * there, counted in full; the light sample at a later vertex scales its
+ * carriers by 1 − Q the same way (diffuse_split.c). */
+static void count_caustics_once(camera_path *p, const bsdf *b, vec3 wo, const bsdf_sample *bs, vec3 *uncounted)
+{
+    if (!p->reads_caustics) {
+        *uncounted = v3s(1.0f);
+        p->caustic_counted = v3s(0.0f);
+        return;
+    }
+    vec3 carry, receive;
+    bsdf_caustic_shares(b, wo, bs, p->is->caustic_roughness, &carry, &receive);
+    *uncounted = v3_sub(v3s(1.0f), v3_mul(carry, p->caustic_counted));
+    p->caustic_counted = v3_add(receive, v3_mul(carry, p->caustic_counted));
+}
+
 /* Where a walk starts: the camera, or a vertex of a camera path. */
 typedef struct walk_start {
     camera_ray ray;
@@ -126,7 +154,10 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
     sample_result res;
     memset(&res, 0, sizeof(res));
     res.first_distance = INFINITY;
-    camera_path p = {s, is, smp, scratch, &res, v3s(1.0f), start->depth, 0, 1};
+    camera_path p = {s, is, smp, scratch, &res, v3s(1.0f), start->depth, 0, 1, v3s(0.0f), 0};
+    /* Per channel, the share of light found on the current segment that no
+     * caustic-map estimate has counted (glossy receivers, see below). */
+    vec3 uncounted = v3s(1.0f);
     vec3 o = start->ray.o, d = start->ray.d;
     float tmin = start->ray.tmin, tmax = start->ray.tmax;
     int camera_segment = start->from_camera;  /* still on the camera ray (through transparency) */
@@ -159,7 +190,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
  * (lamps and the world seen directly or through mirrors), as in Cycles. */
 #define ADD_EMISSION(L, w)                                                                          \
     do {                                                                                            \
-        vec3 L_ = (L);                                                                              \
+        vec3 L_ = v3_mul((L), uncounted);                                                           \
         float w_ = (w);                                                                             \
         add_to(&res, emission_component, p.beta, L_, w_);                                           \
         if (features)                                                                               \
@@ -230,6 +261,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         }
         light_context here = light_context_at(&sf, 1);
         path_vertex v = {&sf, &b, v3_neg(d), v_index, &here};
+        p.reads_caustics = 0;
         const bsdf *next = policy(&p, &v, &storage);
 
         bsdf_sample bs;
@@ -255,6 +287,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
             res.alpha = 1.0f;
         camera_segment = 0;
         transparent_steps = 0;
+        count_caustics_once(&p, next, v.wo, &bs, &uncounted);
         ray_flags = ((bs.flags & BSDF_DIFFUSE) ? SHADER_RAY_DIFFUSE
                      : (bs.flags & BSDF_DELTA) ? SHADER_RAY_SINGULAR | SHADER_RAY_GLOSSY
                                                : SHADER_RAY_GLOSSY) |

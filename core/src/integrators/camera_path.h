@@ -38,6 +38,13 @@ typedef struct camera_path {
     uint32_t depth;         /* scattering events before the current vertex */
     int first_diffuse;      /* the first scattering event took a diffuse lobe */
     int later_delta;        /* every later one took a delta lobe */
+    /* Glossy receivers (docs/algorithms.md §12): per channel, the share of
+     * beta whose light a caustic-map estimate at an earlier vertex already
+     * counted, should it arrive through closures that carry caustics only
+     * (0 on a camera ray, and always under PATH); and whether the policy
+     * read the caustic map through the current vertex's receivers (bsdf.h). */
+    vec3 caustic_counted;
+    int reads_caustics;
 } camera_path;
 
 /* A surface vertex of the walk. */
@@ -63,8 +70,9 @@ const bsdf *path_vertex_policy(camera_path *p, const path_vertex *v, bsdf *stora
 
 /* PHOTON's policy, and PATH's with the irradiance cache (diffuse_split.c):
  * the diffuse part's indirect light and caustics by estimates (the
- * settings' indirect provider, the caustic map), its direct light by a
- * light sample, and on through the rest of the BSDF only. */
+ * settings' indirect provider, the caustic map, which rough glossy
+ * reflection reads too), its direct light by a light sample, and on
+ * through the rest of the BSDF only. */
 const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bsdf *rest);
 
 /* Walks the camera ray; the result holds its light components and alpha. */

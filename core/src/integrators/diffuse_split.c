@@ -14,12 +14,34 @@
  *
  * The caustic map is read only on camera paths, since the global map (and
  * so every gather) already holds caustic photons (docs/algorithms.md §5).
+ * It is read through the glossy receivers too (rough glossy reflection,
+ * bsdf.h): ∫ f_g L_c cos, the course's "caustics on glossy surfaces",
+ * which a path through f_g cannot find from a point, spot or sun lamp and
+ * finds as fireflies from a small area lamp. The path still goes on
+ * through f_g for the rest of its light and leaves out what the map
+ * counted (camera_path.c, count_caustics_once).
  */
 #include "indirect/hemisphere.h"
 #include "indirect/indirect_diffuse.h"
 #include "integrators/camera_path.h"
 #include "photons/radiance_estimate.h"
 #include "transport/direct_light.h"
+
+/* The light sample's share of the part the path goes on through: its
+ * closures that carry caustics count only the light no receiver before
+ * has counted (camera_path.c, count_caustics_once). */
+static vec3 direct_light_once(const camera_path *p, const path_vertex *v, const bsdf *rest, const bsdf *diffuse,
+                              uint32_t gather_rays)
+{
+    const bsdf *sampled = rest;
+    bsdf scaled;
+    if (!v3_is_zero(p->caustic_counted)) {
+        scaled = *rest;
+        bsdf_scale_caustic_carriers(&scaled, p->is->caustic_roughness, v3_sub(v3s(1.0f), p->caustic_counted));
+        sampled = &scaled;
+    }
+    return direct_light(p->s, v->light, v->sf, sampled, diffuse, gather_rays, v->wo, p->smp, v->index);
+}
 
 const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bsdf *rest)
 {
@@ -32,18 +54,22 @@ const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bs
     if (diffuse.count && !gather_rays)
         v->light->rays_find_world = 0; /* the diffuse part's estimates do not count it */
     if (bsdf_has_non_delta(v->b) && s->lights.count > 0)
-        camera_path_add_direct(p, direct_light(s, v->light, v->sf, rest, &diffuse, gather_rays, v->wo, p->smp,
-                                               v->index));
+        camera_path_add_direct(p, direct_light_once(p, v, rest, &diffuse, gather_rays));
     if (diffuse.count) {
         indirect_query q = {s, is, v->sf, v->light, &diffuse, v->wo, p->smp, v->index, p->depth, p->scratch};
         gather_estimate g = is->indirect->estimate(&q);
-        vec3 caustics = is->gathers_find_caustics
-                            ? g.caustic
-                            : photon_radiance(&is->maps->caustic, &diffuse, v->wo, v->sf->p, v->sf->ns,
-                                              &is->caustic_estimate, &p->scratch->caustic);
-        camera_path_add_diffuse(p, 1, caustics);
+        if (is->gathers_find_caustics)
+            camera_path_add_diffuse(p, 1, g.caustic);
         camera_path_add_diffuse(p, 0, g.indirect);
         camera_path_add_direct(p, g.direct);
+    }
+    if (!is->gathers_find_caustics) {
+        bsdf receivers, others;
+        bsdf_split_caustic_receivers(v->b, is->caustic_roughness, &receivers, &others);
+        if (receivers.count)
+            camera_path_add_diffuse(p, 1, photon_radiance(&is->maps->caustic, &receivers, v->wo, v->sf->p, v->sf->ns,
+                                                          &is->caustic_estimate, &p->scratch->caustic));
+        p->reads_caustics = 1;
     }
     /* Go on through the specular and glossy part. */
     return rest->count ? rest : NULL;

@@ -822,7 +822,16 @@ static float bump_shadowing(vec3 n0, vec3 n, vec3 wi)
 /* Σ f·|cos θi| over the closures, each in its own frame and scaled by the
  * layers over it (and, bumped diffuse ones, by their bump shadowing), and
  * Σ (sample_weight_k / sum) pdf_k: the densities are the lobes' own. */
-static vec3 eval_mixture(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
+/* A closure's part on caustic paths (closure_scatters_caustic,
+ * closure_receives_caustic). */
+enum caustic_role { CAUSTIC_CARRIER, CAUSTIC_RECEIVER, CAUSTIC_NEITHER, CAUSTIC_ROLE_COUNT };
+
+static int closure_caustic_role(const closure *c, float max_roughness);
+
+/* Σ over closures of f·|cos θi| and the mixture pdf; with `parts` (not
+ * NULL) also the sums over each caustic role's closures, apart. */
+static vec3 eval_mixture_parts(const bsdf *b, vec3 wo, vec3 wi, float *pdf, float max_roughness,
+                               vec3 parts[CAUSTIC_ROLE_COUNT])
 {
     vec3 value = v3s(0.0f);
     float p = 0.0f;
@@ -844,14 +853,26 @@ static vec3 eval_mixture(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
         if (b->closures[k].under_layers)
             v = v3_mul(v, scale_under(scales, b->closures[k].under_layers));
         value = v3_add(value, v);
+        if (parts) {
+            int role = closure_caustic_role(c, max_roughness);
+            parts[role] = v3_add(parts[role], v);
+        }
         p += b->closures[k].sample_weight * pk;
     }
     *pdf = b->sample_weight_sum > 0.0f ? p / b->sample_weight_sum : 0.0f;
     if (!v3_is_finite(value) || !isfinite(*pdf)) {
         *pdf = 0.0f;
+        if (parts)
+            for (int r = 0; r < CAUSTIC_ROLE_COUNT; r++)
+                parts[r] = v3s(0.0f);
         return v3s(0.0f);
     }
     return value;
+}
+
+static vec3 eval_mixture(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
+{
+    return eval_mixture_parts(b, wo, wi, pdf, 0.0f, NULL);
 }
 
 void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric)
@@ -1013,6 +1034,61 @@ float bsdf_split_caustic(const bsdf *b, float max_roughness, bsdf *caustic, bsdf
 {
     split_closures(b, closure_scatters_caustic, max_roughness, caustic, rest);
     return b->sample_weight_sum > 0.0f ? caustic->sample_weight_sum / b->sample_weight_sum : 0.0f;
+}
+
+int closure_receives_caustic(const closure *c, float max_roughness)
+{
+    if (closure_scatters_caustic(c, max_roughness) || closure_transmits(c))
+        return 0;
+    return closure_is_diffuse(c) || !(closure_roughest(c) < max_roughness);
+}
+
+static int closure_caustic_role(const closure *c, float max_roughness)
+{
+    if (closure_scatters_caustic(c, max_roughness))
+        return CAUSTIC_CARRIER;
+    return closure_receives_caustic(c, max_roughness) ? CAUSTIC_RECEIVER : CAUSTIC_NEITHER;
+}
+
+void bsdf_split_caustic_receivers(const bsdf *b, float max_roughness, bsdf *receivers, bsdf *rest)
+{
+    split_closures(b, closure_receives_caustic, max_roughness, receivers, rest);
+}
+
+/* f_part / f per channel; 0 where f is 0 (the sample then carries nothing). */
+static vec3 share_of(vec3 part, vec3 f)
+{
+    vec3 r;
+    r.x = f.x > 0.0f ? clampf(part.x / f.x, 0.0f, 1.0f) : 0.0f;
+    r.y = f.y > 0.0f ? clampf(part.y / f.y, 0.0f, 1.0f) : 0.0f;
+    r.z = f.z > 0.0f ? clampf(part.z / f.z, 0.0f, 1.0f) : 0.0f;
+    return r;
+}
+
+void bsdf_caustic_shares(const bsdf *b, vec3 wo, const bsdf_sample *bs, float max_roughness, vec3 *carry,
+                         vec3 *receive)
+{
+    /* A delta lobe's direction has no density under the other closures:
+     * the whole sample is the delta's, and deltas carry caustics. */
+    if (bs->flags & BSDF_DELTA) {
+        *carry = v3s(1.0f);
+        *receive = v3s(0.0f);
+        return;
+    }
+    float pdf;
+    vec3 parts[CAUSTIC_ROLE_COUNT] = {{0}};
+    vec3 f = eval_mixture_parts(b, wo, bs->wi, &pdf, max_roughness, parts);
+    *carry = share_of(parts[CAUSTIC_CARRIER], f);
+    *receive = share_of(parts[CAUSTIC_RECEIVER], f);
+}
+
+void bsdf_scale_caustic_carriers(bsdf *b, float max_roughness, vec3 scale)
+{
+    /* The weights only: sample_weight, and so the mixture's pdf, stay
+     * those of the BSDF a path samples. */
+    for (uint32_t i = 0; i < b->count; i++)
+        if (closure_scatters_caustic(&b->closures[i], max_roughness))
+            b->closures[i].weight = v3_mul(b->closures[i].weight, scale);
 }
 
 int bsdf_has_non_caustic(const bsdf *b, float max_roughness)

@@ -228,6 +228,30 @@ int bsdf_transmits(const bsdf *b);
 int closure_scatters_caustic(const closure *c, float max_roughness);
 float bsdf_split_caustic(const bsdf *b, float max_roughness, bsdf *caustic, bsdf *rest);
 int bsdf_has_non_caustic(const bsdf *b, float max_roughness);
+
+/* Glossy receivers (docs/algorithms.md §12; course notes 2002, "Caustics
+ * on glossy surfaces"): at a camera vertex the caustic map's estimate is
+ * read through the closures that store photons, reflect, and are diffuse
+ * or at least max_roughness rough. The other closures that store photons
+ * neither carry caustics nor receive them, and camera paths find the
+ * caustics they show by tracing on: those that transmit (rough glass,
+ * translucency; the photons under them arrived on the other side) and a
+ * glossy dielectric layer smoother than max_roughness, whose lobe is too
+ * narrow for a density estimate. */
+int closure_receives_caustic(const closure *c, float max_roughness);
+void bsdf_split_caustic_receivers(const bsdf *b, float max_roughness, bsdf *receivers, bsdf *rest);
+
+/* The shares, per channel, of f(wo, bs->wi) that the closures carrying
+ * caustics and those receiving them contribute, for a direction b sampled:
+ * what a camera path that goes on from a receiver must leave out of the
+ * light it finds (camera_path.c). A delta sample is all carrier. */
+void bsdf_caustic_shares(const bsdf *b, vec3 wo, const bsdf_sample *bs, float max_roughness, vec3 *carry,
+                         vec3 *receive);
+
+/* Scales the weights of the closures that carry caustics by `scale`,
+ * keeping their sampling weights: the mixture's pdf stays the one of the
+ * BSDF the path samples, for MIS. */
+void bsdf_scale_caustic_carriers(bsdf *b, float max_roughness, vec3 scale);
 int closure_transmits(const closure *c);
 
 /* Sum of transparent closure weights: how much light passes straight
