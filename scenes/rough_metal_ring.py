@@ -20,6 +20,9 @@ import _materials as m  # noqa: E402
 import metal_ring  # noqa: E402
 
 RING_ROUGHNESS = 0.15
+MAX_BOUNCES = metal_ring.MAX_BOUNCES
+DEFAULT_SAMPLES = metal_ring.DEFAULT_SAMPLES
+PHOTON_SETTINGS = metal_ring.PHOTON_SETTINGS
 
 
 def build(scene):
@@ -29,6 +32,6 @@ def build(scene):
 
 
 if __name__ == "__main__":
-    _common.run_scene(build, __doc__.splitlines()[0], metal_ring.MAX_BOUNCES,
-                      photon_settings=metal_ring.PHOTON_SETTINGS, default_samples=metal_ring.DEFAULT_SAMPLES,
+    _common.run_scene(build, __doc__.splitlines()[0], MAX_BOUNCES,
+                      photon_settings=PHOTON_SETTINGS, default_samples=DEFAULT_SAMPLES,
                       default_integrator="PHOTON")
