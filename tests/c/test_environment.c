@@ -408,6 +408,87 @@ static void test_portal_interior(int sky)
     CHECK_MSG(var[1] < 0.5 * var[0], "the portal did not lower the noise: variance %.3g vs %.3g", var[1], var[0]);
 }
 
+/* The environment's photons in the global map (docs/algorithms.md §11):
+ * the skylit room under the sky with a bright patch, the global map read
+ * straight at the first diffuse hit (PHOTON's fast view), where its bias
+ * shows most: the room's corners and the light pool under the opening.
+ * Against PATH at 2048 samples, PHOTON's per-pixel RMS error (the
+ * reference's own noise taken out in quadrature) must fall as global
+ * photons grow, and the mean come within 4 standard errors of both
+ * renders' noise at the largest count. */
+static double rms_of(const float *a, const float *b, uint32_t n)
+{
+    double sum = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++)
+            sum += ((double)a[4 * i + c] - b[4 * i + c]) * ((double)a[4 * i + c] - b[4 * i + c]);
+    return sqrt(sum / (3.0 * n));
+}
+
+static double mean_of(const float *a, uint32_t n)
+{
+    double m = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        m += (a[4 * i] + a[4 * i + 1] + a[4 * i + 2]) / 3.0;
+    return m / n;
+}
+
+static void test_global_map_under_sky(void)
+{
+    enum { W = 24, N = W * W };
+    phos_scene *s = skylit_room(1, 1);
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = W;
+    rs.max_bounces = 4;
+    rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_OFF;
+    rs.integrator = PHOS_INTEGRATOR_PATH;
+    rs.samples = 2048;
+    float *ref = test_render(s, &rs);
+    rs.seed = 1;
+    float *ref2 = test_render(s, &rs);
+    CHECK(ref && ref2);
+    if (!ref || !ref2)
+        return;
+    double ref_mean = 0.5 * (mean_of(ref, N) + mean_of(ref2, N));
+    double ref_noise = rms_of(ref, ref2, N) / sqrt(2.0);
+    double se_ref = ref_noise / sqrt(2.0 * N); /* pixel noise is independent: the mean's */
+    printf("  global map under a sky: PATH %.4f (± %.4f), per-pixel noise %.4f\n", ref_mean, se_ref, ref_noise);
+    const uint32_t photons[] = {10000, 80000, 640000};
+    double rmse[3], mean_err = 0.0, limit = 0.0;
+    for (int i = 0; i < 3; i++) {
+        rs.integrator = PHOS_INTEGRATOR_PHOTON;
+        rs.photon_view = PHOS_PHOTON_VIEW_FAST;
+        rs.samples = 64;
+        rs.global_photons = photons[i];
+        rs.seed = 0;
+        float *a = test_render(s, &rs);
+        rs.seed = 1;
+        float *b = test_render(s, &rs);
+        CHECK(a && b);
+        if (!a || !b)
+            return;
+        double m = 0.5 * (mean_of(a, N) + mean_of(b, N));
+        double se = rms_of(a, b, N) / sqrt(2.0) / sqrt(2.0 * N);
+        double d = rms_of(a, ref, N);
+        rmse[i] = sqrt(fmax(d * d - ref_noise * ref_noise, 0.0));
+        mean_err = m - ref_mean;
+        limit = 4.0 * sqrt(se * se + se_ref * se_ref);
+        printf("    PHOTON (fast view), %6u global photons: %.4f, mean error %+.2f %% (noise limit %.2f %%), "
+               "per-pixel RMS error %.4f\n", photons[i], m, 100.0 * mean_err / ref_mean, 100.0 * limit / ref_mean,
+               rmse[i]);
+        free(a);
+        free(b);
+    }
+    CHECK_MSG(rmse[2] < 0.7 * rmse[0], "global map under a sky: the per-pixel error did not fall (%.4f → %.4f)",
+              rmse[0], rmse[2]);
+    CHECK_MSG(fabs(mean_err) < limit, "global map under a sky: mean error %.4f at the most photons (limit %.4f)",
+              mean_err, limit);
+    free(ref);
+    free(ref2);
+    phos_scene_destroy(s);
+}
+
 /* A world of no power (an image of zeros, through the map path): it stays
  * in the light table for the camera, is never picked and emits no photons,
  * and the photon passes' pilots, which visit every distant light's planes,
@@ -453,5 +534,6 @@ int main(void)
     test_plane_under_sky(PHOS_INTEGRATOR_PHOTON, "PHOTON");
     test_furnace(PHOS_INTEGRATOR_PATH, "PATH");
     test_furnace(PHOS_INTEGRATOR_PHOTON, "PHOTON");
+    test_global_map_under_sky();
     return test_summary("test_environment");
 }
