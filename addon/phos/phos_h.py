@@ -386,6 +386,12 @@ PHOS_POINT_SPHERE = 1
 PHOS_CAMERA_PERSPECTIVE = 0
 PHOS_CAMERA_ORTHOGRAPHIC = 1
 
+# enum phos_scene_change
+PHOS_CHANGE_GEOMETRY = 1
+PHOS_CHANGE_MATERIALS = 2
+PHOS_CHANGE_LIGHTS = 4
+PHOS_CHANGE_CAMERA = 8
+
 # enum phos_integrator
 PHOS_INTEGRATOR_PATH = 0
 PHOS_INTEGRATOR_PHOTON = 1
@@ -491,6 +497,7 @@ ENUMS = {
     'phos_area_shape': {'PHOS_AREA_RECTANGLE': 0, 'PHOS_AREA_ELLIPSE': 1},
     'phos_point_shape': {'PHOS_POINT_DISK': 0, 'PHOS_POINT_SPHERE': 1},
     'phos_camera_type': {'PHOS_CAMERA_PERSPECTIVE': 0, 'PHOS_CAMERA_ORTHOGRAPHIC': 1},
+    'phos_scene_change': {'PHOS_CHANGE_GEOMETRY': 1, 'PHOS_CHANGE_MATERIALS': 2, 'PHOS_CHANGE_LIGHTS': 4, 'PHOS_CHANGE_CAMERA': 8},
     'phos_integrator': {'PHOS_INTEGRATOR_PATH': 0, 'PHOS_INTEGRATOR_PHOTON': 1},
     'phos_irradiance_cache': {'PHOS_IRRADIANCE_CACHE_OFF': 0, 'PHOS_IRRADIANCE_CACHE_PHOTON': 1, 'PHOS_IRRADIANCE_CACHE_ALWAYS': 2},
     'phos_photon_view': {'PHOS_PHOTON_VIEW_FINAL_GATHER': 0, 'PHOS_PHOTON_VIEW_FAST': 1, 'PHOS_PHOTON_VIEW_PATH_TRACED': 2},
@@ -778,6 +785,11 @@ FUNCTIONS = {
     "phos_camera_desc_init": (None, [ctypes.POINTER(phos_camera_desc)]),
     "phos_scene_set_camera": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_camera_desc)]),
     "phos_scene_commit": (ctypes.c_int, [ctypes.c_void_p]),
+    "phos_scene_update_mesh": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32, ctypes.POINTER(phos_mesh_desc)]),
+    "phos_scene_update_instance": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32, ctypes.POINTER(phos_instance_desc)]),
+    "phos_scene_update_material": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32, ctypes.POINTER(phos_material_desc)]),
+    "phos_scene_update_light": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32, ctypes.POINTER(phos_light_desc)]),
+    "phos_scene_changes": (ctypes.c_uint32, [ctypes.c_void_p]),
     "phos_scene_cancel": (None, [ctypes.c_void_p]),
     "phos_pass_channels": (ctypes.c_uint32, [ctypes.c_uint32]),
     "phos_render_settings_init": (None, [ctypes.POINTER(phos_render_settings)]),
@@ -1284,6 +1296,10 @@ __all__ = (
     'PHOS_POINT_SPHERE',
     'PHOS_CAMERA_PERSPECTIVE',
     'PHOS_CAMERA_ORTHOGRAPHIC',
+    'PHOS_CHANGE_GEOMETRY',
+    'PHOS_CHANGE_MATERIALS',
+    'PHOS_CHANGE_LIGHTS',
+    'PHOS_CHANGE_CAMERA',
     'PHOS_INTEGRATOR_PATH',
     'PHOS_INTEGRATOR_PHOTON',
     'PHOS_IRRADIANCE_CACHE_OFF',

@@ -604,11 +604,42 @@ typedef struct phos_camera_desc {
 PHOS_API void phos_camera_desc_init(phos_camera_desc *desc);
 PHOS_API phos_status phos_scene_set_camera(phos_scene *scene, const phos_camera_desc *desc);
 
-/* Builds acceleration structures and light tables. After commit the scene is
- * read-only; adding to it fails with PHOS_ERROR_INVALID_STATE. A commit
- * that fails or is cancelled leaves the scene uncommitted: it may be
- * committed again or destroyed. */
+/* Builds acceleration structures and light tables. A commit that fails or
+ * is cancelled leaves the scene uncommitted: it may be committed again or
+ * destroyed.
+ *
+ * Scene updates: while no render holds a committed scene (phos_render_create
+ * takes a reference, phos_render_destroy drops it), the scene may be
+ * changed again: anything added, the world or camera set, or a mesh,
+ * instance, material or light replaced by id (phos_scene_update_*). A
+ * change uncommits the scene, and the next commit rebuilds only what the
+ * changes touched: the BVH of each replaced or added mesh and the top level
+ * over the instances when geometry changed, the light table when geometry,
+ * materials, lights or the world did, nothing for the camera. A change
+ * while a render holds the scene fails with PHOS_ERROR_INVALID_STATE: the
+ * caller cancels and destroys the render, changes, commits, and starts
+ * another (the viewport, a second F12 of an unchanged scene, a farm's
+ * frames). A change that is refused leaves the scene as it was. */
 PHOS_API phos_status phos_scene_commit(phos_scene *scene);
+
+PHOS_API phos_status phos_scene_update_mesh(phos_scene *scene, uint32_t mesh_id, const phos_mesh_desc *desc);
+PHOS_API phos_status phos_scene_update_instance(phos_scene *scene, uint32_t instance_id,
+                                                const phos_instance_desc *desc);
+PHOS_API phos_status phos_scene_update_material(phos_scene *scene, uint32_t material_id,
+                                                const phos_material_desc *desc);
+PHOS_API phos_status phos_scene_update_light(phos_scene *scene, uint32_t light_id, const phos_light_desc *desc);
+
+/* What the changes before the last commit touched, as a mask of
+ * phos_scene_change bits (a first commit: all of them). A caller keeps what
+ * does not depend on them: photon maps and the irradiance cache hold while
+ * only the camera moved. */
+enum phos_scene_change {
+    PHOS_CHANGE_GEOMETRY = 1u << 0,  /* meshes or instances */
+    PHOS_CHANGE_MATERIALS = 1u << 1, /* materials or images */
+    PHOS_CHANGE_LIGHTS = 1u << 2,    /* lights or the world */
+    PHOS_CHANGE_CAMERA = 1u << 3
+};
+PHOS_API uint32_t phos_scene_changes(const phos_scene *scene);
 
 /* Asks a phos_scene_commit running on another thread to stop (the BVH
  * build of a large scene takes seconds): it returns PHOS_ERROR_CANCELLED

@@ -282,10 +282,15 @@ static void test_lifecycle_errors(void)
     CHECK_MSG(contains(phos_scene_error(s), "committed"), "%s", phos_scene_error(s));
     CHECK(phos_scene_commit(s) == PHOS_OK);
     CHECK(phos_scene_commit(s) == PHOS_ERROR_INVALID_STATE);
+    /* Changed after commit while a render holds it: refused
+     * (test_scene_updates.c has the rest). */
+    phos_render *holder = NULL;
+    CHECK(phos_render_create(s, &rs, &holder) == PHOS_OK);
     phos_world_desc w;
     phos_world_desc_init(&w);
     CHECK(phos_scene_set_world(s, &w) == PHOS_ERROR_INVALID_STATE);
     CHECK(phos_scene_add_mesh(s, &(phos_mesh_desc){0}, NULL) == PHOS_ERROR_INVALID_STATE);
+    phos_render_destroy(holder);
 
     rs.samples = 0;
     CHECK(phos_render_create(s, &rs, &r) == PHOS_ERROR_INVALID_ARGUMENT);

@@ -346,26 +346,33 @@ static void fuzz_vertex_normals(reader *r)
     SAY("vertex normals of %u polygons: %s\n", p, phos_status_string(st));
 }
 
+static void take_light_desc(reader *r, phos_light_desc *out)
+{
+    phos_light_desc d;
+    phos_light_desc_init(&d);
+    d.type = take_u8(r) % 5;
+    take_floats(r, d.color, 3);
+    take_floats(r, d.position, 3);
+    take_floats(r, d.direction, 3);
+    take_floats(r, d.axis_u, 3);
+    take_floats(r, d.axis_v, 3);
+    d.area_shape = take_u8(r) % 3;
+    d.radius = take_float(r);
+    d.point_shape = take_u8(r) % 3;
+    d.spot_angle = take_float(r);
+    d.spot_blend = take_float(r);
+    d.spot_cosine = take_u8(r) % 3;
+    d.sun_angle = take_float(r);
+    d.camera_visible = take_u8(r) % 3;
+    *out = d;
+}
+
 static void fuzz_lights(reader *r, phos_scene *s)
 {
     uint32_t n = take_u8(r) % 4;
     for (uint32_t i = 0; i < n; i++) {
         phos_light_desc d;
-        phos_light_desc_init(&d);
-        d.type = take_u8(r) % 5;
-        take_floats(r, d.color, 3);
-        take_floats(r, d.position, 3);
-        take_floats(r, d.direction, 3);
-        take_floats(r, d.axis_u, 3);
-        take_floats(r, d.axis_v, 3);
-        d.area_shape = take_u8(r) % 3;
-        d.radius = take_float(r);
-        d.point_shape = take_u8(r) % 3;
-        d.spot_angle = take_float(r);
-        d.spot_blend = take_float(r);
-        d.spot_cosine = take_u8(r) % 3;
-        d.sun_angle = take_float(r);
-        d.camera_visible = take_u8(r) % 3;
+        take_light_desc(r, &d);
         uint32_t id;
         if (phos_scene_add_light(s, &d, &id) != PHOS_OK && !phos_scene_error(s)[0])
             abort();
@@ -531,6 +538,47 @@ static void fuzz_render(reader *r, phos_scene *s)
         remove(path);
 }
 
+/* Scene updates after a commit (phos.h): a few replacements by id (any id,
+ * valid or not) of a light, an instance and a mesh, then more of
+ * everything added; each refused with a message or taken. */
+static void fuzz_updates(reader *r, phos_scene *s)
+{
+    uint32_t n = take_u8(r) % 4;
+    for (uint32_t i = 0; i < n; i++) {
+        uint8_t kind = take_u8(r) % 3, id = take_u8(r) % 6;
+        phos_status st;
+        if (kind == 0) {
+            phos_light_desc d;
+            take_light_desc(r, &d);
+            st = phos_scene_update_light(s, id, &d);
+        } else if (kind == 1) {
+            phos_instance_desc d;
+            phos_instance_desc_init(&d);
+            d.mesh_id = take_u8(r) % 5;
+            take_floats(r, d.transform, 12);
+            st = phos_scene_update_instance(s, id, &d);
+        } else {
+            float pos[3 * MAX_VERTICES];
+            uint32_t idx[3 * MAX_TRIANGLES];
+            phos_mesh_desc d;
+            phos_mesh_desc_init(&d);
+            d.vertex_count = take_u8(r) % (MAX_VERTICES + 1);
+            d.triangle_count = take_u8(r) % (MAX_TRIANGLES + 1);
+            take_floats(r, pos, 3 * d.vertex_count);
+            for (uint32_t k = 0; k < 3 * d.triangle_count; k++)
+                idx[k] = take_u8(r) % (d.vertex_count + 2);
+            d.positions = pos;
+            d.indices = idx;
+            st = phos_scene_update_mesh(s, id, &d);
+        }
+        SAY("update %u of id %u: %s %s\n", kind, id, phos_status_string(st), phos_scene_error(s));
+        if (st != PHOS_OK && !phos_scene_error(s)[0])
+            abort();
+    }
+    fuzz_meshes(r, s);
+    fuzz_lights(r, s);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     reader r = {data, size};
@@ -553,6 +601,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         uint32_t renders = 1 + take_u8(&r) % 2; /* two renders may share a scene */
         for (uint32_t i = 0; i < renders; i++)
             fuzz_render(&r, s);
+        if (take_u8(&r) == 0x5B) { /* changed and committed again */
+            fuzz_updates(&r, s);
+            phos_status again = phos_scene_commit(s);
+            SAY("scene: commit again %s %s\n", phos_status_string(again), phos_scene_error(s));
+            if (again == PHOS_OK)
+                fuzz_render(&r, s);
+            else if (!phos_scene_error(s)[0])
+                abort();
+        }
     } else if (commit != 0xFF && !phos_scene_error(s)[0]) {
         abort();
     }

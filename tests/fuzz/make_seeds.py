@@ -280,6 +280,32 @@ def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camer
     return bytes(s.b)
 
 
+def updates_tail(overrides):
+    """After a scene's renders: changed (a light and an instance replaced by
+    id, nothing added), committed again, rendered once more."""
+    s = Stream()
+    s.u8(0x5B)
+    s.u8(2)
+    s.u8(0)                    # a light
+    s.u8(0)                    # id 0
+    light(s, color=(20, 10, 5), position=(0.5, 0, 1.5))
+    s.u8(1)                    # an instance
+    s.u8(0)                    # id 0
+    s.u8(0)                    # of mesh 0
+    s.fs((1, 0, 0, 0.25, 0, 1, 0, 0, 0, 0, 1, 0))
+    s.u8(0)                    # no meshes added
+    s.u8(0)                    # no instances added
+    s.u8(0)                    # no lights added
+    s.u8(0)                    # the world as it was
+    s.u8(0xFF)                 # the camera as it was
+    settings(s, **overrides)
+    s.u8(PHOS_STAGE_COUNT)
+    s.u8(0)
+    for _ in range(6):
+        s.u8(1)
+    return bytes(s.b)
+
+
 PHOTON = {"integrator": 1}
 SEEDS = {
     "valid_path": scene(),
@@ -290,6 +316,7 @@ SEEDS = {
     "portal_photon": scene(world=(0.5, 0.5, 0.5), lights=[{"kind": 4, "position": (0, 0, 2)}],
                            renders=[(PHOTON, 0)]),
     "valid_two_renders": scene(renders=[(PHOTON, 0), ({"photon_view": 2, **PHOTON}, 0)]),
+    "scene_updated": scene(renders=[(PHOTON, 0)]) + updates_tail(PHOTON),
     "glass_and_mirror": scene(mats=[[(0, (0.75, 0.75, 0.75), 0.5, 1.5, 0, 0.0, 0, 1)], [(5, (1, 1, 1), 0.0, 1.5)],
                                     [(2, (1, 1, 1), 0.0, 1.5, 0, 0.0, 0, 1)]],
                               instances=[(0, [0, 1, 2])],

@@ -79,17 +79,27 @@ static int grow(void **items, uint32_t count, uint32_t *capacity, size_t elem)
         return (status);                  \
     } while (0)
 
-/* Common checks of every scene-building call. */
+/* Common checks of every scene-changing call: a committed scene that a
+ * render holds cannot change (phos.h, scene updates). */
 #define CHECK_EDITABLE(s, what, ptr)                                                            \
     do {                                                                                        \
         if (!(s))                                                                               \
             return PHOS_ERROR_INVALID_ARGUMENT;                                                 \
         (s)->error[0] = 0;                                                                      \
-        if ((s)->committed)                                                                     \
-            FAIL((s), PHOS_ERROR_INVALID_STATE, "%s: the scene is committed and can no longer be changed", what); \
+        if ((s)->committed && atomic_load(&(s)->refcount) > 1)                                  \
+            FAIL((s), PHOS_ERROR_INVALID_STATE,                                                 \
+                 "%s: a render holds the committed scene; destroy it before changing the scene", what); \
         if (!(ptr))                                                                             \
             FAIL((s), PHOS_ERROR_INVALID_ARGUMENT, "%s: the description is NULL", what);        \
     } while (0)
+
+/* A change accepted: the scene needs a commit again, which rebuilds what
+ * depends on `what` (enum phos_scene_change). */
+static void scene_changed(scene *s, uint32_t what)
+{
+    s->changed |= what;
+    s->committed = 0;
+}
 
 /* ------------------------------------------------------------ defaults */
 
@@ -245,6 +255,7 @@ phos_status phos_scene_add_image(phos_scene *s, const phos_image_desc *d, uint32
     if (out_id)
         *out_id = s->image_count;
     s->image_count++;
+    scene_changed(s, PHOS_CHANGE_MATERIALS);
     return PHOS_OK;
 }
 
@@ -311,9 +322,10 @@ static phos_status validate_closure(scene *s, const phos_closure_desc *c, uint32
     return PHOS_OK;
 }
 
-phos_status phos_scene_add_material(phos_scene *s, const phos_material_desc *d, uint32_t *out_id)
+/* A material from its description, validated (m's program is its own;
+ * nothing is changed on failure). */
+static phos_status material_from_desc(scene *s, const phos_material_desc *d, material *m)
 {
-    CHECK_EDITABLE(s, "phos_scene_add_material", d);
     if (d->closure_count > PHOS_MAX_CLOSURES)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: %u closures, at most %d are supported", d->closure_count,
              PHOS_MAX_CLOSURES);
@@ -337,20 +349,43 @@ phos_status phos_scene_add_material(phos_scene *s, const phos_material_desc *d, 
             FAIL(s, strcmp(bad, "out of memory") ? PHOS_ERROR_INVALID_ARGUMENT : PHOS_ERROR_OUT_OF_MEMORY,
                  "material: shader program: %s", bad);
     }
-    if (!grow((void **)&s->materials, s->material_count, &s->material_capacity, sizeof(material))) {
-        shader_program_free(&program);
-        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "material: out of memory");
-    }
-    material *m = &s->materials[s->material_count];
     memset(m, 0, sizeof(*m));
     m->closure_count = d->closure_count;
     if (d->closure_count)
         memcpy(m->closures, d->closures, sizeof(phos_closure_desc) * d->closure_count);
     if (d->program)
         material_set_program(s, m, &program);
+    return PHOS_OK;
+}
+
+phos_status phos_scene_add_material(phos_scene *s, const phos_material_desc *d, uint32_t *out_id)
+{
+    CHECK_EDITABLE(s, "phos_scene_add_material", d);
+    if (!grow((void **)&s->materials, s->material_count, &s->material_capacity, sizeof(material)))
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "material: out of memory");
+    phos_status st = material_from_desc(s, d, &s->materials[s->material_count]);
+    if (st != PHOS_OK)
+        return st;
     if (out_id)
         *out_id = s->material_count;
     s->material_count++;
+    scene_changed(s, PHOS_CHANGE_MATERIALS);
+    return PHOS_OK;
+}
+
+phos_status phos_scene_update_material(phos_scene *s, uint32_t id, const phos_material_desc *d)
+{
+    CHECK_EDITABLE(s, "phos_scene_update_material", d);
+    if (id >= s->material_count)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: %u does not exist (the scene has %u materials)", id,
+             s->material_count);
+    material m;
+    phos_status st = material_from_desc(s, d, &m);
+    if (st != PHOS_OK)
+        return st;
+    shader_program_free(&s->materials[id].program);
+    s->materials[id] = m;
+    scene_changed(s, PHOS_CHANGE_MATERIALS);
     return PHOS_OK;
 }
 
@@ -409,9 +444,10 @@ static int mesh_copy_attributes(mesh *m, const phos_mesh_desc *d)
     return 1;
 }
 
-phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t *out_id)
+/* A mesh from its description, validated and copied (nothing is changed
+ * on failure). */
+static phos_status mesh_from_desc(scene *s, const phos_mesh_desc *d, mesh *out)
 {
-    CHECK_EDITABLE(s, "phos_scene_add_mesh", d);
     if (d->vertex_count > (1u << 30) || d->triangle_count > (1u << 30))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: %u vertices / %u triangles exceed the limit of 2^30",
              d->vertex_count, d->triangle_count);
@@ -439,8 +475,6 @@ phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t
     const char *bad_attribute = mesh_attributes_invalid(d, msg, sizeof(msg));
     if (bad_attribute)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: %s", bad_attribute);
-    if (!grow((void **)&s->meshes, s->mesh_count, &s->mesh_capacity, sizeof(mesh)))
-        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "mesh: out of memory");
     mesh m;
     memset(&m, 0, sizeof(m));
     m.vertex_count = d->vertex_count;
@@ -459,16 +493,48 @@ phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t
         mesh_free(&m);
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "mesh: out of memory for %u triangles", d->triangle_count);
     }
-    s->meshes[s->mesh_count] = m;
-    if (out_id)
-        *out_id = s->mesh_count;
-    s->mesh_count++;
+    m.changed = 1;
+    *out = m;
     return PHOS_OK;
 }
 
-phos_status phos_scene_add_instance(phos_scene *s, const phos_instance_desc *d, uint32_t *out_id)
+phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t *out_id)
 {
-    CHECK_EDITABLE(s, "phos_scene_add_instance", d);
+    CHECK_EDITABLE(s, "phos_scene_add_mesh", d);
+    if (!grow((void **)&s->meshes, s->mesh_count, &s->mesh_capacity, sizeof(mesh)))
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "mesh: out of memory");
+    phos_status st = mesh_from_desc(s, d, &s->meshes[s->mesh_count]);
+    if (st != PHOS_OK)
+        return st;
+    if (out_id)
+        *out_id = s->mesh_count;
+    s->mesh_count++;
+    scene_changed(s, PHOS_CHANGE_GEOMETRY);
+    return PHOS_OK;
+}
+
+/* The instances of a replaced mesh keep their slots, which may now name
+ * slots it does not have: they take the default material, as a slot past
+ * an instance's list does (scene_instance_material). */
+phos_status phos_scene_update_mesh(phos_scene *s, uint32_t id, const phos_mesh_desc *d)
+{
+    CHECK_EDITABLE(s, "phos_scene_update_mesh", d);
+    if (id >= s->mesh_count)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: %u does not exist (the scene has %u meshes)", id, s->mesh_count);
+    mesh m;
+    phos_status st = mesh_from_desc(s, d, &m);
+    if (st != PHOS_OK)
+        return st;
+    mesh_free(&s->meshes[id]);
+    s->meshes[id] = m;
+    scene_changed(s, PHOS_CHANGE_GEOMETRY);
+    return PHOS_OK;
+}
+
+/* An instance from its description, validated (nothing is changed on
+ * failure). */
+static phos_status instance_from_desc(scene *s, const phos_instance_desc *d, instance *inst)
+{
     if (d->mesh_id >= s->mesh_count)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: mesh %u does not exist (the scene has %u meshes)", d->mesh_id,
              s->mesh_count);
@@ -482,9 +548,6 @@ phos_status phos_scene_add_instance(phos_scene *s, const phos_instance_desc *d, 
         if (d->materials[i] >= s->material_count)
             FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: slot %u uses material %u, but the scene has %u materials", i,
                  d->materials[i], s->material_count);
-    if (!grow((void **)&s->instances, s->instance_count, &s->instance_capacity, sizeof(instance)))
-        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "instance: out of memory");
-    instance *inst = &s->instances[s->instance_count];
     memset(inst, 0, sizeof(*inst));
     inst->mesh_id = d->mesh_id;
     memcpy(inst->transform, d->transform, sizeof(inst->transform));
@@ -494,17 +557,45 @@ phos_status phos_scene_add_instance(phos_scene *s, const phos_instance_desc *d, 
     inst->materials = copy_array(d->materials, sizeof(uint32_t) * d->material_count);
     if (!inst->materials)
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "instance: out of memory");
+    return PHOS_OK;
+}
+
+phos_status phos_scene_add_instance(phos_scene *s, const phos_instance_desc *d, uint32_t *out_id)
+{
+    CHECK_EDITABLE(s, "phos_scene_add_instance", d);
+    if (!grow((void **)&s->instances, s->instance_count, &s->instance_capacity, sizeof(instance)))
+        FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "instance: out of memory");
+    phos_status st = instance_from_desc(s, d, &s->instances[s->instance_count]);
+    if (st != PHOS_OK)
+        return st;
     if (out_id)
         *out_id = s->instance_count;
     s->instance_count++;
+    scene_changed(s, PHOS_CHANGE_GEOMETRY);
+    return PHOS_OK;
+}
+
+phos_status phos_scene_update_instance(phos_scene *s, uint32_t id, const phos_instance_desc *d)
+{
+    CHECK_EDITABLE(s, "phos_scene_update_instance", d);
+    if (id >= s->instance_count)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: %u does not exist (the scene has %u instances)", id,
+             s->instance_count);
+    instance inst;
+    phos_status st = instance_from_desc(s, d, &inst);
+    if (st != PHOS_OK)
+        return st;
+    free(s->instances[id].materials);
+    free(s->instances[id].emitter_of_triangle);
+    s->instances[id] = inst;
+    scene_changed(s, PHOS_CHANGE_GEOMETRY);
     return PHOS_OK;
 }
 
 static int nonzero3(const float *v) { return v[0] != 0.0f || v[1] != 0.0f || v[2] != 0.0f; }
 
-phos_status phos_scene_add_light(phos_scene *s, const phos_light_desc *d, uint32_t *out_id)
+static phos_status validate_light(scene *s, const phos_light_desc *d)
 {
-    CHECK_EDITABLE(s, "phos_scene_add_light", d);
     if (d->type > PHOS_LIGHT_PORTAL)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: unknown type %u", d->type);
     if (!all_finite_nonnegative(d->color, 3))
@@ -535,12 +626,36 @@ phos_status phos_scene_add_light(phos_scene *s, const phos_light_desc *d, uint32
     }
     if (d->type == PHOS_LIGHT_SUN && !(d->sun_angle >= 0.0f && d->sun_angle < 3.14159265f))
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: sun angle %g must be in [0, π)", (double)d->sun_angle);
+    return PHOS_OK;
+}
+
+phos_status phos_scene_add_light(phos_scene *s, const phos_light_desc *d, uint32_t *out_id)
+{
+    CHECK_EDITABLE(s, "phos_scene_add_light", d);
+    phos_status st = validate_light(s, d);
+    if (st != PHOS_OK)
+        return st;
     if (!grow((void **)&s->light_descs, s->light_desc_count, &s->light_desc_capacity, sizeof(phos_light_desc)))
         FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "light: out of memory");
     s->light_descs[s->light_desc_count] = *d;
     if (out_id)
         *out_id = s->light_desc_count;
     s->light_desc_count++;
+    scene_changed(s, PHOS_CHANGE_LIGHTS);
+    return PHOS_OK;
+}
+
+phos_status phos_scene_update_light(phos_scene *s, uint32_t id, const phos_light_desc *d)
+{
+    CHECK_EDITABLE(s, "phos_scene_update_light", d);
+    if (id >= s->light_desc_count)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: %u does not exist (the scene has %u lights)", id,
+             s->light_desc_count);
+    phos_status st = validate_light(s, d);
+    if (st != PHOS_OK)
+        return st;
+    s->light_descs[id] = *d;
+    scene_changed(s, PHOS_CHANGE_LIGHTS);
     return PHOS_OK;
 }
 
@@ -553,6 +668,7 @@ phos_status phos_scene_set_world(phos_scene *s, const phos_world_desc *d)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "world: material %u does not exist (%u materials added)", d->material,
              s->material_count);
     s->world = *d;
+    scene_changed(s, PHOS_CHANGE_LIGHTS);
     return PHOS_OK;
 }
 
@@ -579,6 +695,7 @@ phos_status phos_scene_set_camera(phos_scene *s, const phos_camera_desc *d)
         FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: clipping needs 0 <= start < end");
     s->camera = *d;
     s->has_camera = 1;
+    scene_changed(s, PHOS_CHANGE_CAMERA);
     return PHOS_OK;
 }
 
@@ -599,6 +716,50 @@ static phos_status check_environment_memory(phos_scene *s)
     return PHOS_OK;
 }
 
+/* What a failed commit built is freed, and every mesh marked changed: the
+ * next commit builds everything again. */
+static void commit_undo(scene *s)
+{
+    embree_bvh_destroy(s->bvh);
+    s->bvh = NULL;
+    light_table_free(&s->lights);
+    for (uint32_t i = 0; i < s->instance_count; i++) {
+        free(s->instances[i].emitter_of_triangle);
+        s->instances[i].emitter_of_triangle = NULL;
+    }
+    for (uint32_t i = 0; i < s->mesh_count; i++)
+        s->meshes[i].changed = 1;
+}
+
+/* The BVH: built whole the first time, then only where geometry changed
+ * (embree_bvh_update). */
+static phos_status commit_bvh(scene *s)
+{
+    if (!s->bvh)
+        return embree_bvh_build(s->meshes, s->mesh_count, s->instances, s->instance_count, &s->cancel, &s->bvh,
+                                s->error, sizeof(s->error));
+    if (!(s->changed & PHOS_CHANGE_GEOMETRY))
+        return PHOS_OK;
+    return embree_bvh_update(s->bvh, s->meshes, s->mesh_count, s->instances, s->instance_count, s->error,
+                             sizeof(s->error));
+}
+
+/* The light table, which reads the lights, the world, the emissive
+ * materials and the triangles they cover: rebuilt when any of them changed. */
+static phos_status commit_lights(scene *s)
+{
+    const uint32_t depends = PHOS_CHANGE_GEOMETRY | PHOS_CHANGE_MATERIALS | PHOS_CHANGE_LIGHTS;
+    if (s->light_table_builds > 0 && !(s->changed & depends))
+        return PHOS_OK;
+    light_table_free(&s->lights);
+    for (uint32_t i = 0; i < s->instance_count; i++) {
+        free(s->instances[i].emitter_of_triangle);
+        s->instances[i].emitter_of_triangle = NULL;
+    }
+    s->light_table_builds++;
+    return light_table_build(s);
+}
+
 phos_status phos_scene_commit(phos_scene *s)
 {
     if (!s)
@@ -606,15 +767,15 @@ phos_status phos_scene_commit(phos_scene *s)
     s->error[0] = 0;
     if (s->committed)
         FAIL(s, PHOS_ERROR_INVALID_STATE, "commit: the scene is already committed");
+    int first = s->bvh == NULL;
     /* Scene data first, then what is derived from it: the BVH, the light table. */
     scene_prepare(s);
     phos_status st = check_environment_memory(s);
     if (st != PHOS_OK)
         return st;
-    st = embree_bvh_build(s->meshes, s->mesh_count, s->instances, s->instance_count, &s->cancel,
-                                      &s->bvh, s->error, sizeof(s->error));
+    st = commit_bvh(s);
     if (st == PHOS_OK) {
-        st = light_table_build(s);
+        st = commit_lights(s);
         if (st == PHOS_ERROR_CANCELLED)
             scene_set_error(s, "commit: cancelled");
         else if (st != PHOS_OK)
@@ -627,18 +788,19 @@ phos_status phos_scene_commit(phos_scene *s)
     atomic_store(&s->cancel, 0);
     if (st != PHOS_OK) {
         /* Uncommitted again: what was built is freed, a commit may retry. */
-        embree_bvh_destroy(s->bvh);
-        s->bvh = NULL;
-        light_table_free(&s->lights);
-        for (uint32_t i = 0; i < s->instance_count; i++) {
-            free(s->instances[i].emitter_of_triangle);
-            s->instances[i].emitter_of_triangle = NULL;
-        }
+        commit_undo(s);
         return st;
     }
+    for (uint32_t i = 0; i < s->mesh_count; i++)
+        s->meshes[i].changed = 0;
+    s->last_changes = first ? (PHOS_CHANGE_GEOMETRY | PHOS_CHANGE_MATERIALS | PHOS_CHANGE_LIGHTS | PHOS_CHANGE_CAMERA)
+                            : s->changed;
+    s->changed = 0;
     s->committed = 1;
     return PHOS_OK;
 }
+
+uint32_t phos_scene_changes(const phos_scene *s) { return s ? s->last_changes : 0; }
 
 void phos_scene_cancel(phos_scene *s)
 {

@@ -29,6 +29,7 @@ struct embree_bvh {
     RTCScene top;
     RTCScene *mesh_scenes;
     uint32_t mesh_count;
+    uint32_t mesh_builds, top_builds; /* BVHs built so far (embree_bvh_build_counts) */
     atomic_int *cancel;
     char error[256];
 };
@@ -96,41 +97,51 @@ static void to_column_major(const float m[12], float out[12])
             out[3 * c + r] = m[4 * r + c];
 }
 
-phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const instance *instances,
-                             uint32_t instance_count, atomic_int *cancel, struct embree_bvh **out, char *error,
-                             size_t error_size)
+/* The BVHs of the meshes that have none yet or were replaced (`all`: of
+ * every mesh); a mesh without triangles has none. */
+static phos_status build_meshes(struct embree_bvh *bvh, const mesh *meshes, uint32_t mesh_count, int all,
+                                char *error, size_t error_size)
 {
-    struct embree_bvh *bvh = calloc(1, sizeof(*bvh));
-    if (!bvh)
-        return PHOS_ERROR_OUT_OF_MEMORY;
-    *out = bvh;
-    bvh->cancel = cancel;
-    bvh->device = rtcNewDevice(device_config);
-    if (!bvh->device) {
-        snprintf(error, error_size, "could not create the Embree device (error %d)", (int)rtcGetDeviceError(NULL));
-        return PHOS_ERROR_EMBREE;
+    if (mesh_count > bvh->mesh_count) {
+        RTCScene *grown = realloc(bvh->mesh_scenes, sizeof(RTCScene) * mesh_count);
+        if (!grown)
+            return PHOS_ERROR_OUT_OF_MEMORY;
+        memset(grown + bvh->mesh_count, 0, sizeof(RTCScene) * (mesh_count - bvh->mesh_count));
+        bvh->mesh_scenes = grown;
+        bvh->mesh_count = mesh_count;
     }
-    rtcSetDeviceErrorFunction(bvh->device, error_callback, bvh);
-    bvh->mesh_scenes = calloc(mesh_count ? mesh_count : 1, sizeof(RTCScene));
-    if (!bvh->mesh_scenes)
-        return PHOS_ERROR_OUT_OF_MEMORY;
-    bvh->mesh_count = mesh_count;
     for (uint32_t i = 0; i < mesh_count; i++) {
         if (cancelled(bvh))
             return PHOS_ERROR_CANCELLED;
+        if (!all && !meshes[i].changed && bvh->mesh_scenes[i])
+            continue;
+        if (bvh->mesh_scenes[i])
+            rtcReleaseScene(bvh->mesh_scenes[i]);
+        bvh->mesh_scenes[i] = NULL;
         if (meshes[i].triangle_count == 0)
             continue;
+        bvh->mesh_builds++;
         if (!build_mesh_scene(bvh, &meshes[i], &bvh->mesh_scenes[i]) || cancelled(bvh)) {
             if (cancelled(bvh))
                 return PHOS_ERROR_CANCELLED;
             snprintf(error, error_size, "could not build the BVH of mesh %u: %s", i,
-                            bvh->error[0] ? bvh->error : "out of memory");
+                     bvh->error[0] ? bvh->error : "out of memory");
             return PHOS_ERROR_EMBREE;
         }
     }
+    return PHOS_OK;
+}
+
+/* The top level, one Embree instance per instance, built anew. */
+static phos_status build_top(struct embree_bvh *bvh, const instance *instances, uint32_t instance_count, char *error,
+                             size_t error_size)
+{
+    if (bvh->top)
+        rtcReleaseScene(bvh->top);
     bvh->top = rtcNewScene(bvh->device);
     if (!bvh->top)
         return PHOS_ERROR_EMBREE;
+    bvh->top_builds++;
     rtcSetSceneProgressMonitorFunction(bvh->top, build_progress, bvh);
     for (uint32_t i = 0; i < instance_count; i++) {
         if ((i & 1023u) == 0 && cancelled(bvh))
@@ -158,6 +169,39 @@ phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const inst
         return PHOS_ERROR_EMBREE;
     }
     return PHOS_OK;
+}
+
+phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const instance *instances,
+                             uint32_t instance_count, atomic_int *cancel, struct embree_bvh **out, char *error,
+                             size_t error_size)
+{
+    struct embree_bvh *bvh = calloc(1, sizeof(*bvh));
+    if (!bvh)
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    *out = bvh;
+    bvh->cancel = cancel;
+    bvh->device = rtcNewDevice(device_config);
+    if (!bvh->device) {
+        snprintf(error, error_size, "could not create the Embree device (error %d)", (int)rtcGetDeviceError(NULL));
+        return PHOS_ERROR_EMBREE;
+    }
+    rtcSetDeviceErrorFunction(bvh->device, error_callback, bvh);
+    phos_status st = build_meshes(bvh, meshes, mesh_count, 1, error, error_size);
+    return st == PHOS_OK ? build_top(bvh, instances, instance_count, error, error_size) : st;
+}
+
+phos_status embree_bvh_update(struct embree_bvh *bvh, const mesh *meshes, uint32_t mesh_count,
+                              const instance *instances, uint32_t instance_count, char *error, size_t error_size)
+{
+    bvh->error[0] = 0;
+    phos_status st = build_meshes(bvh, meshes, mesh_count, 0, error, error_size);
+    return st == PHOS_OK ? build_top(bvh, instances, instance_count, error, error_size) : st;
+}
+
+void embree_bvh_build_counts(const struct embree_bvh *bvh, uint32_t *mesh_builds, uint32_t *top_builds)
+{
+    *mesh_builds = bvh ? bvh->mesh_builds : 0;
+    *top_builds = bvh ? bvh->top_builds : 0;
 }
 
 void embree_bvh_destroy(struct embree_bvh *bvh)

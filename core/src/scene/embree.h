@@ -31,6 +31,16 @@ phos_status embree_bvh_build(const mesh *meshes, uint32_t mesh_count, const inst
                              size_t error_size);
 void embree_bvh_destroy(struct embree_bvh *bvh);
 
+/* After scene updates (docs/architecture.md, "Scene updates"): rebuilds the
+ * BVHs of the meshes marked `changed` and of those added since, then the
+ * top level. A failure leaves bvh to embree_bvh_destroy. */
+phos_status embree_bvh_update(struct embree_bvh *bvh, const mesh *meshes, uint32_t mesh_count,
+                              const instance *instances, uint32_t instance_count, char *error, size_t error_size);
+
+/* How many mesh BVHs and top levels bvh has built, for the tests of scene
+ * updates. */
+void embree_bvh_build_counts(const struct embree_bvh *bvh, uint32_t *mesh_builds, uint32_t *top_builds);
+
 /* The configuration string of the Embree devices built from now on (NULL:
  * Embree's defaults), e.g. "threads=1": lets tests/c/test_determinism.c
  * build the same BVH with another number of build threads. Not thread-safe;

@@ -25,6 +25,7 @@ typedef struct mesh {
     float texspace_location[3], texspace_size[3]; /* the texture space Generated coordinates map to [0,1]³ */
     uint32_t attribute_count;
     mesh_attribute *attributes;
+    int changed;                /* added or replaced since the last commit: its BVH is built anew */
 } mesh;
 
 /* The mesh's attribute of that id, or NULL. */

@@ -154,6 +154,7 @@ static void compute_bounds(scene *s)
 
 void scene_prepare(scene *s)
 {
+    s->has_transparency = 0;
     for (uint32_t i = 0; i < s->instance_count; i++) {
         normal_matrix(s->instances[i].transform, s->instances[i].normal_matrix);
         affine_inverse(s->instances[i].transform, s->instances[i].inverse);

@@ -2,7 +2,10 @@
  * scene.h — the scene as the core holds it: copies of the caller's meshes,
  * instances, materials, images, lights, world and camera, and what
  * phos_scene_commit derives from them (the ray-tracing BVH and the light
- * table). After commit the scene is read-only and shared by renders.
+ * table). After commit the scene is read-only and shared by renders; once
+ * no render holds it, it may be changed and committed again, and commit
+ * then rebuilds only what the changes touched (docs/architecture.md,
+ * "Scene updates").
  */
 #ifndef PHOS_SCENE_H
 #define PHOS_SCENE_H
@@ -40,6 +43,9 @@ struct phos_scene {
     atomic_int refcount;        /* the caller's reference plus one per render */
     atomic_int cancel;          /* phos_scene_cancel: stop the commit running */
     int committed;
+    uint32_t changed;           /* enum phos_scene_change: what changed since the last commit */
+    uint32_t last_changes;      /* what had changed before the last commit (phos_scene_changes) */
+    uint32_t light_table_builds; /* light tables built so far, for the tests of scene updates */
 
     mesh *meshes;         uint32_t mesh_count, mesh_capacity;
     instance *instances;  uint32_t instance_count, instance_capacity;
