@@ -72,8 +72,14 @@ def _stage_text(progress, stage_id, name, samples):
     if stage_id == core.PHOS_STAGE_BUILDING_KDTREES:
         return "{} | {:,} photons".format(name, progress.photons_stored)
     if stage_id in (core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED):
-        text = "%s | Tile %d/%d | %d samples" % (
-            name, progress.tiles_done, progress.tiles_total, progress.samples or samples)
+        total = progress.samples or samples
+        if progress.tiles_total > 0 and progress.samples_done < total:
+            # Progressive refinement: the pass running is the one after
+            # the samples every pixel has.
+            text = "%s | Sample %d/%d | Tile %d/%d" % (
+                name, progress.samples_done, total, progress.tiles_done, progress.tiles_total)
+        else:
+            text = "%s | Tile %d/%d | %d samples" % (name, progress.tiles_done, progress.tiles_total, total)
         if progress.global_photons or progress.caustic_photons:
             text += " | photons {:,} global, {:,} caustic".format(
                 progress.global_photons, progress.caustic_photons)

@@ -679,6 +679,7 @@ class phos_render_settings(ctypes.Structure):
         ("max_bounces", ctypes.c_uint32),
         ("threads", ctypes.c_uint32),
         ("tile_size", ctypes.c_uint32),
+        ("progressive", ctypes.c_uint32),
         ("filter_width", ctypes.c_float),
         ("transparent_background", ctypes.c_uint32),
         ("pass_mask", ctypes.c_uint32),
@@ -713,6 +714,7 @@ class phos_progress(ctypes.Structure):
         ("tiles_done", ctypes.c_uint32),
         ("tiles_total", ctypes.c_uint32),
         ("samples", ctypes.c_uint32),
+        ("samples_done", ctypes.c_uint32),
         ("stage", ctypes.c_char * 64),
         ("stage_id", ctypes.c_uint32),
         ("stage_index", ctypes.c_uint32),
@@ -869,6 +871,11 @@ RENDER_SETTINGS = (
         user=True, prop='tile_size', kind='PIXELS', enum=None, soft_max=1024,
         label='Tile Size',
         description='Edge of the square tiles the image is rendered and delivered in (halved, down to 8, until each thread has 16 tiles to choose from)'),
+    RenderSetting(
+        name='progressive', ctype='uint32_t', default=1, min=0, max=1,
+        user=True, prop='use_progressive_refine', kind='BOOLEAN', enum=None, soft_max=0,
+        label='Progressive Refine',
+        description='Show the whole frame after one sample a pixel, then refine it in passes of doubling sample counts; the final image is the same (costs 8 bytes a pixel per channel of the enabled passes)'),
     RenderSetting(
         name='filter_width', ctype='float', default=1.5, min=0.0, max=10.0,
         user=True, prop='filter_width', kind='PIXELS', enum=None, soft_max=0.0,

@@ -89,6 +89,8 @@ def _property(setting, **override):
         items = ENUM_ITEMS[s.enum]
         default = next(item[0] for item in items if item[3] == s.default)
         return EnumProperty(items=items, default=default, **common)
+    if s.kind == "BOOLEAN":
+        return BoolProperty(default=bool(s.default), **common)
     options = dict(_KIND_OPTIONS[s.kind], **common)
     if s.ctype == "float":
         if s.soft_max:
@@ -156,6 +158,8 @@ def setting_value(settings, setting):
     value = getattr(settings, setting.prop)
     if setting.kind == "ENUM":
         return next((item[3] for item in ENUM_ITEMS[setting.enum] if item[0] == value), setting.default)
+    if setting.kind == "BOOLEAN":
+        return int(value)
     return value
 
 

@@ -173,6 +173,7 @@ class PHOS_RENDER_PT_performance(PhosButtonsPanel, bpy.types.Panel):
         sub.enabled = rd.threads_mode == 'FIXED'
         sub.prop(rd, "threads")
         layout.prop(context.scene.phos, "tile_size")
+        layout.prop(context.scene.phos, "use_progressive_refine")
 
 
 # --------------------------------------------------------------- view layer

@@ -784,6 +784,13 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
     USER(uint32_t, tile_size, 64, 8, 8192, tile_size, PIXELS, 1024, "Tile Size",                  \
          "Edge of the square tiles the image is rendered and delivered in (halved, down to 8, "    \
          "until each thread has 16 tiles to choose from)")                                         \
+    /* Passes of 1, 1, 2, 4 … samples over the whole frame, each pixel's sums                   \
+     * kept between them in double: the image equals a one-pass render's bit                   \
+     * for bit (docs/architecture.md, "Progressive refinement"). */                              \
+    USER(uint32_t, progressive, 1, 0, 1, use_progressive_refine, BOOLEAN, 0, "Progressive Refine", \
+         "Show the whole frame after one sample a pixel, then refine it in passes of doubling "   \
+         "sample counts; the final image is the same (costs 8 bytes a pixel per channel "          \
+         "of the enabled passes)")                                                                \
     /* Blackman-Harris, as Cycles' default filter (width 1.5). */                                 \
     USER(float, filter_width, 1.5f, 0.0f, 10.0f, filter_width, PIXELS, 0, "Filter Width",         \
          "Width of the Blackman-Harris pixel filter (0 is a box of one pixel)")                   \
@@ -928,6 +935,7 @@ typedef struct phos_progress {
     float fraction;            /* of the whole render, 0..1 */
     uint32_t tiles_done, tiles_total;
     uint32_t samples;          /* samples per pixel of this render */
+    uint32_t samples_done;     /* every pixel has this many (progressive refinement's passes done) */
     char stage[64];            /* what is running now, e.g. "Tracing photons" */
     uint32_t stage_id;         /* enum phos_stage */
     uint32_t stage_index;      /* position of stage_id in the plan (phos_render_stages) */

@@ -60,6 +60,9 @@ class _ReadSpy:
 
 
 def test_small_tiles_stream_and_match_large_tiles(glass_scene, tmp_path):
+    # One pass: each tile is delivered once (progressive refinement, below,
+    # delivers it once per pass).
+    glass_scene.phos.use_progressive_refine = False
     # One thread: the 1024 px setting is halved only until that thread has
     # 16 tiles (16 px here), so the two renders tile the frame differently.
     glass_scene.phos.tile_size = 1024
@@ -94,6 +97,32 @@ def test_small_tiles_stream_and_match_large_tiles(glass_scene, tmp_path):
     # Deterministic whatever the tiling.
     diff = np.argwhere(np.any(tiled != large, axis=2))
     assert diff.size == 0, "%d pixels differ between 8 px tiles and 1024 px on one thread, first at (y, x) %s" % (
+        len(diff), diff[:5].tolist())
+
+
+def test_progressive_refinement_streams_passes_and_matches_one_pass(glass_scene, tmp_path):
+    """F12 with progressive refinement (the default): the whole frame after
+    one sample a pixel, then passes of 1, 2, 4 more (8 samples); every pass
+    covers the frame once, and the last image equals the one-pass render's
+    bit for bit."""
+    glass_scene.phos.tile_size = 16
+    assert glass_scene.phos.use_progressive_refine
+    with _ReadSpy() as progressive:
+        refined = pt.render_array(glass_scene, tmp_path, name="progressive")
+    glass_scene.phos.use_progressive_refine = False
+    with _ReadSpy() as single:
+        one_pass = pt.render_array(glass_scene, tmp_path, name="one_pass")
+    n_tiles = len(single.rects)
+    passes = 4  # samples 1, 2, 4, 8
+    assert len(progressive.rects) == passes * n_tiles, (len(progressive.rects), n_tiles)
+    # Each pass's tiles cover the frame once before the next pass begins.
+    for k in range(passes):
+        cover = np.zeros((HEIGHT, WIDTH), int)
+        for x, y, w, h in progressive.rects[k * n_tiles:(k + 1) * n_tiles]:
+            cover[y:y + h, x:x + w] += 1
+        assert np.all(cover == 1), "pass %d: tiles overlap or leave gaps" % k
+    diff = np.argwhere(np.any(refined != one_pass, axis=2))
+    assert diff.size == 0, "%d pixels differ between progressive refinement and one pass, first at %s" % (
         len(diff), diff[:5].tolist())
 
 

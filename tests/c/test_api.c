@@ -322,18 +322,21 @@ static void test_lifecycle_errors(void)
     CHECK(phos_render_start(r) == PHOS_OK);
     CHECK(phos_render_start(r) == PHOS_ERROR_INVALID_STATE);
     CHECK(phos_render_wait(r, -1.0) == PHOS_OK);
-    /* Every tile is handed out exactly once and covers the frame; the
-     * 16-pixel tiles of a 32² frame are split to 8 pixels, so that each
+    /* Every tile is handed out once per pass of progressive refinement
+     * (1, 2, 4 of the 4 samples: 3 passes) and each pass covers the frame;
+     * the 16-pixel tiles of a 32² frame are split to 8 pixels, so that each
      * thread has tiles to choose from (render.c, tile_edge). */
     phos_progress p;
     CHECK(phos_render_progress(r, &p) == PHOS_OK && p.state == PHOS_STATE_DONE && p.fraction == 1.0f);
+    CHECK(p.samples == 4 && p.samples_done == 4);
     uint32_t n = 0, count = 1, area = 0;
     phos_tile t;
     while (phos_render_next_tile(r, &t, &count) == PHOS_OK && count) {
         n++;
         area += t.width * t.height;
     }
-    CHECK(n == p.tiles_total && n == 16 && area == 32 * 32);
+    CHECK_MSG(n == p.tiles_total && n == 3 * 16 && area == 3 * 32 * 32, "%u tiles (%u reported) of %u pixels", n,
+              p.tiles_total, area);
     CHECK(phos_render_read(r, PHOS_PASS_COMBINED, 0, 0, 32, 32, buf, sizeof(buf) / sizeof(float)) == PHOS_OK);
     CHECK(buf[4 * (16 * 32 + 16) + 3] == 1.0f);
     /* The render keeps its scene alive after the caller lets go of it. */
@@ -682,8 +685,17 @@ static void test_memory_estimate(void)
     phos_render_settings_init(&rs);
     memory_estimate e;
     render_memory_estimate(&rs, &e);
-    /* PATH at 640×480: the Combined pass only, 4 floats a pixel. */
-    CHECK(e.film == 640u * 480u * 16u && e.photon_maps == 0 && e.irradiance_cache == 0 && e.total == e.film);
+    /* PATH at 640×480: the Combined pass only, 4 floats a pixel, and its
+     * sums between the passes of progressive refinement, 4 doubles. */
+    CHECK(e.film == 640u * 480u * 48u && e.photon_maps == 0 && e.irradiance_cache == 0 && e.total == e.film);
+    rs.progressive = 0;
+    render_memory_estimate(&rs, &e);
+    CHECK(e.film == 640u * 480u * 16u);
+    rs.progressive = 1;
+    rs.samples = 1; /* one pass: nothing kept */
+    render_memory_estimate(&rs, &e);
+    CHECK(e.film == 640u * 480u * 16u);
+    rs.samples = 128;
     char msg[512];
     CHECK(render_memory_fits(&e, 1u << 30, msg, sizeof(msg)));
 
@@ -703,6 +715,7 @@ static void test_memory_estimate(void)
     phos_render_settings_init(&rs);
     rs.width = rs.height = 65536;
     rs.pass_mask = (1u << PHOS_PASS_COUNT) - 1u;
+    rs.progressive = 0;
     render_memory_estimate(&rs, &e);
     CHECK(e.film == (uint64_t)65536 * 65536 * 4 * (4 + 3 * (PHOS_PASS_COUNT - 1)));
     /* A border renders only its pixels; the cache's pre-pass covers the

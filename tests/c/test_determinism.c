@@ -54,7 +54,7 @@ static phos_scene *box_with_spheres(void)
 }
 
 /* The integrator, photon view and cache setting of the renders below. */
-static uint32_t g_integrator, g_view, g_cache = PHOS_IRRADIANCE_CACHE_PHOTON;
+static uint32_t g_integrator, g_view, g_cache = PHOS_IRRADIANCE_CACHE_PHOTON, g_progressive = 1;
 
 static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32_t seed, uint32_t rx, uint32_t ry,
                           uint32_t rw, uint32_t rh)
@@ -78,15 +78,23 @@ static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32
     rs.region_y = ry;
     rs.region_width = rw;
     rs.region_height = rh;
+    rs.progressive = g_progressive;
     return test_render(s, &rs);
 }
 
-/* Same scene and seed, same image: for 1 and 2 threads, any tile size, and
- * a border region against the same pixels of the full frame. */
+/* Same scene and seed, same image: for 1 and 2 threads, any tile size,
+ * progressive refinement (8 samples in passes of 1, 1, 2, 4) or one pass,
+ * and a border region against the same pixels of the full frame. */
 static void check_deterministic(phos_scene *s, const char *name)
 {
     const size_t n = 4 * 48 * 40;
     float *a = render_with(s, 1, 16, 7, 0, 0, 0, 0);
+    g_progressive = 0;
+    float *one_pass = render_with(s, 2, 16, 7, 0, 0, 0, 0);
+    g_progressive = 1;
+    CHECK_MSG(a && one_pass && memcmp(a, one_pass, n * sizeof(float)) == 0,
+              "%s: progressive refinement's image differs from the one-pass render's", name);
+    free(one_pass);
     float *b = render_with(s, 2, 8, 7, 0, 0, 0, 0);
     float *c = render_with(s, 2, 64, 7, 0, 0, 0, 0);
     float *d = render_with(s, 2, 16, 8, 0, 0, 0, 0);
@@ -132,6 +140,46 @@ static void check_deterministic(phos_scene *s, const char *name)
     free(c);
     free(d);
     free(r);
+}
+
+/* Every pass, progressive or in one pass, bit for bit; and a render
+ * cancelled between passes keeps a whole image of the samples so far. */
+static void check_progressive_passes(phos_scene *s)
+{
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.integrator = PHOS_INTEGRATOR_PHOTON;
+    rs.ic_rays = 64;
+    rs.global_photons = 20000;
+    rs.caustic_photons = 5000;
+    rs.width = 48;
+    rs.height = 40;
+    rs.samples = 6; /* passes end at 1, 2, 4, 6 */
+    rs.threads = 2;
+    rs.pass_mask = (1u << PHOS_PASS_COUNT) - 1u;
+    float *img[2][PHOS_PASS_COUNT];
+    for (int k = 0; k < 2; k++) {
+        rs.progressive = (uint32_t)k;
+        phos_render *r = NULL;
+        CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+        CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
+        for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+            size_t count = (size_t)phos_pass_channels(p) * rs.width * rs.height;
+            img[k][p] = malloc(sizeof(float) * count);
+            CHECK(phos_render_read(r, p, 0, 0, rs.width, rs.height, img[k][p], count) == PHOS_OK);
+        }
+        phos_progress pr;
+        CHECK(phos_render_progress(r, &pr) == PHOS_OK);
+        CHECK_MSG(pr.samples_done == 6 && pr.fraction == 1.0f, "samples done %u, fraction %g", pr.samples_done,
+                  (double)pr.fraction);
+        phos_render_destroy(r);
+    }
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        size_t bytes = sizeof(float) * phos_pass_channels(p) * rs.width * rs.height;
+        CHECK_MSG(memcmp(img[0][p], img[1][p], bytes) == 0, "pass %u differs between progressive and one pass", p);
+        free(img[0][p]);
+        free(img[1][p]);
+    }
 }
 
 /* ------------------------------------------- maps and cache, as files */
@@ -273,6 +321,7 @@ int main(void)
         g_cache = configs[i].cache;
         check_deterministic(s, configs[i].name);
     }
+    check_progressive_passes(s);
     check_caches_identical(s);
     phos_scene_destroy(s);
     check_embree_hits();

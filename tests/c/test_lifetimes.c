@@ -72,7 +72,7 @@ static void render_whole(phos_scene *s, const phos_render_settings *rs, const ch
     while (count)
         CHECK(phos_render_next_tile(r, &t, &count) == PHOS_OK && (tiles += count, 1));
     CHECK_MSG(phos_render_wait(r, -1.0) == PHOS_OK, "%s: %s", what, phos_render_error(r));
-    CHECK(tiles == 6);
+    CHECK(tiles == 6 * 2); /* 6 tiles, each in both passes of 2 samples (1, then 2) */
     size_t n = 4u * rs->width * rs->height;
     float *img = malloc(sizeof(float) * n);
     for (uint32_t pass = 0; pass < PHOS_PASS_COUNT; pass++) {

@@ -892,6 +892,8 @@ phos_status phos_render_create(phos_scene *s, const phos_render_settings *rs, ph
     pthread_cond_init(&r->finished_cond, NULL);
     atomic_init(&r->cancel, 0);
     atomic_init(&r->tiles_done, 0u);
+    atomic_init(&r->samples_done, 0u);
+    atomic_init(&r->work_done, 0u);
     atomic_init(&r->rays_traced, 0u);
     atomic_init(&r->cache_lookups, 0u);
     atomic_init(&r->cache_hits, 0u);
@@ -988,10 +990,11 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     if (r->stage_started >= 0.0) /* a stage is running */
         out->stage_seconds[r->plan.stages[atomic_load(&r->stage_index)]] += monotonic_seconds() - r->stage_started;
     pthread_mutex_unlock(&r->lock);
-    out->tiles_total = r->tile_count;
+    out->tiles_total = r->tile_count * r->pass_count;
     out->tiles_done = atomic_load(&r->tiles_done);
     out->rays_traced = atomic_load(&r->rays_traced);
     out->samples = r->settings.samples;
+    out->samples_done = atomic_load(&r->samples_done);
     out->stage_index = atomic_load(&r->stage_index);
     out->stage_id = r->plan.stages[out->stage_index];
     out->photons_stored = atomic_load(&r->photon_progress.stored);
@@ -1010,7 +1013,9 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     /* The photon stages take the first 20 % of the bar when there are any,
      * the irradiance cache's pre-pass the next 20 % when it runs, the tiles
      * the rest. */
-    float tiles = r->tile_count ? (float)out->tiles_done / (float)r->tile_count : 1.0f;
+    /* The tiles' share: pixel samples done, over all passes. */
+    uint64_t work_total = (uint64_t)r->film.width * r->film.height * r->settings.samples;
+    float tiles = work_total ? (float)((double)atomic_load(&r->work_done) / (double)work_total) : 1.0f;
     float photons_target = (float)r->settings.global_photons + (float)r->settings.caustic_photons;
     float maps_part = r->use_maps ? 0.2f : 0.0f, cache_part = r->use_cache ? 0.2f : 0.0f;
     float before = maps_part + cache_part;

@@ -73,7 +73,7 @@ static const layout_field fields[] = {
     FIELD(phos_stage_info, id) FIELD(phos_stage_info, name)
 
     FIELD(phos_progress, state) FIELD(phos_progress, fraction) FIELD(phos_progress, tiles_done)
-    FIELD(phos_progress, tiles_total) FIELD(phos_progress, samples) FIELD(phos_progress, stage)
+    FIELD(phos_progress, tiles_total) FIELD(phos_progress, samples) FIELD(phos_progress, samples_done) FIELD(phos_progress, stage)
     FIELD(phos_progress, stage_id) FIELD(phos_progress, stage_index) FIELD(phos_progress, photons_stored)
     FIELD(phos_progress, photons_emitted) FIELD(phos_progress, global_photons)
     FIELD(phos_progress, caustic_photons) FIELD(phos_progress, photon_map) FIELD(phos_progress, stage_seconds)

@@ -20,16 +20,20 @@ uint32_t phos_pass_channels(uint32_t pass)
     return pass < PHOS_PASS_COUNT ? pass_channels[pass] : 0;
 }
 
-uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask)
+uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask, int keep_sums)
 {
-    uint64_t floats = 0;
+    uint64_t bytes = 0;
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++)
-        if ((pass_mask | (1u << PHOS_PASS_COMBINED)) & (1u << p))
-            floats += phos_pass_channels(p);
-    return (uint64_t)width * height * floats * sizeof(float);
+        if ((pass_mask | (1u << PHOS_PASS_COMBINED)) & (1u << p)) {
+            bytes += phos_pass_channels(p) * sizeof(float);
+            if (keep_sums && film_pass_is_sample_mean(p))
+                bytes += phos_pass_channels(p) * sizeof(double);
+        }
+    return (uint64_t)width * height * bytes;
 }
 
-int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, uint32_t pass_mask)
+int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, uint32_t pass_mask,
+                int keep_sums)
 {
     memset(f, 0, sizeof(*f));
     f->x0 = x0;
@@ -40,8 +44,11 @@ int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t heig
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
         if (!(f->pass_mask & (1u << p)))
             continue;
-        f->planes[p] = calloc((size_t)width * height * phos_pass_channels(p), sizeof(float));
-        if (!f->planes[p]) {
+        size_t n = (size_t)width * height * phos_pass_channels(p);
+        f->planes[p] = calloc(n, sizeof(float));
+        if (keep_sums && film_pass_is_sample_mean(p))
+            f->sums[p] = calloc(n, sizeof(double));
+        if (!f->planes[p] || (keep_sums && film_pass_is_sample_mean(p) && !f->sums[p])) {
             film_free(f);
             return 0;
         }
@@ -53,7 +60,9 @@ void film_free(film *f)
 {
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
         free(f->planes[p]);
+        free(f->sums[p]);
         f->planes[p] = NULL;
+        f->sums[p] = NULL;
     }
 }
 

@@ -13,18 +13,37 @@ typedef struct film {
     uint32_t x0, y0, width, height;   /* region in full-frame pixels */
     uint32_t pass_mask;
     float *planes[PHOS_PASS_COUNT];   /* width*height*channels each, or NULL if disabled */
+    /* Progressive refinement: the running sums of the samples so far, in
+     * double, of each enabled pass that is a mean over samples, so that a
+     * pixel rendered in several passes sums exactly what one pass sums
+     * (NULL: one pass, the sums stay on the stack). */
+    double *sums[PHOS_PASS_COUNT];
 } film;
 
+/* Whether a pass is the mean of a pixel's samples (the photon and record
+ * dots are drawn once instead). */
+static inline int film_pass_is_sample_mean(uint32_t pass)
+{
+    return pass != PHOS_PASS_PHOTONS && pass != PHOS_PASS_IRRADIANCE_CACHE;
+}
+
+/* Bytes film_create allocates for these passes (keep_sums: and their sums). */
+uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask, int keep_sums);
 /* Returns 0 when memory is exhausted. */
-/* Bytes film_create allocates for these passes. */
-uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask);
-int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, uint32_t pass_mask);
+int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, uint32_t pass_mask,
+                int keep_sums);
 void film_free(film *f);
 
 /* The channels of pixel (x, y) (full-frame coordinates) of a pass. */
 static inline float *film_pixel(const film *f, uint32_t pass, uint32_t x, uint32_t y)
 {
     return f->planes[pass] + ((size_t)(y - f->y0) * f->width + (x - f->x0)) * phos_pass_channels(pass);
+}
+
+/* The running sums of pixel (x, y) of a pass (film.sums[pass] not NULL). */
+static inline double *film_sums(const film *f, uint32_t pass, uint32_t x, uint32_t y)
+{
+    return f->sums[pass] + ((size_t)(y - f->y0) * f->width + (x - f->x0)) * phos_pass_channels(pass);
 }
 
 /* Importance sampling of a separable pixel filter (Cycles' approach: every

@@ -69,7 +69,7 @@ static int make_tiles(render *r)
     uint32_t nx = (f->width + ts - 1) / ts, ny = (f->height + ts - 1) / ts;
     r->tile_count = nx * ny;
     r->tiles = malloc(sizeof(phos_tile) * r->tile_count);
-    r->finished = malloc(sizeof(uint32_t) * r->tile_count);
+    r->finished = malloc(sizeof(uint32_t) * r->tile_count * r->pass_count);
     tile_key *keys = malloc(sizeof(tile_key) * r->tile_count);
     if (!r->tiles || !r->finished || !keys) {
         free(keys);
@@ -101,29 +101,83 @@ static const uint32_t component_pass[COMPONENT_COUNT] = {PHOS_PASS_EMISSION, PHO
 
 static int pass_on(const render *r, uint32_t pass) { return r->film.planes[pass] != NULL; }
 
-/* An RGB pass's pixel: the mean of its samples' sum, if the pass is on. */
-static void write_pass_mean(render *r, uint32_t pass, uint32_t x, uint32_t y, const double sum[3], double inv)
+/* The sums of one pixel's samples, per pass that is a mean over them. */
+typedef struct pixel_sums {
+    double combined[4];          /* RGB (each sample's components added first), alpha */
+    double component[COMPONENT_COUNT][3];
+    double debug[2][3];          /* the photon map's and the caustic map's estimates */
+    double features[2][3];       /* denoising albedo and normal */
+} pixel_sums;
+
+/* Where each sum lives in pixel_sums, by pass (NULL: not a mean). */
+static double *sums_of(pixel_sums *a, uint32_t pass)
 {
-    if (!pass_on(r, pass))
-        return;
-    float *p = film_pixel(&r->film, pass, x, y);
-    for (int ch = 0; ch < 3; ch++)
-        p[ch] = (float)(sum[ch] * inv);
+    switch (pass) {
+    case PHOS_PASS_COMBINED: return a->combined;
+    case PHOS_PASS_PHOTON_MAP: return a->debug[0];
+    case PHOS_PASS_CAUSTIC_MAP: return a->debug[1];
+    case PHOS_PASS_DENOISING_ALBEDO: return a->features[0];
+    case PHOS_PASS_DENOISING_NORMAL: return a->features[1];
+    default:
+        for (int c = 0; c < COMPONENT_COUNT; c++)
+            if (component_pass[c] == pass)
+                return a->component[c];
+        return NULL;
+    }
 }
 
-/* Renders one pixel; returns 0 if cancelled part-way (checked before
- * every sample, and inside its gathers, so even pixels of millions of
- * samples stop at once). */
-static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *scratch)
+/* Progressive refinement: the sums kept on the film between passes
+ * (film.sums), read before a pass and written after it. */
+static void exchange_sums(const render *r, uint32_t x, uint32_t y, pixel_sums *a, int store)
+{
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        double *kept = r->film.sums[p];
+        double *mine = sums_of(a, p);
+        if (!kept || !mine)
+            continue;
+        kept = film_sums(&r->film, p, x, y);
+        size_t bytes = sizeof(double) * phos_pass_channels(p);
+        memcpy(store ? kept : mine, store ? mine : kept, bytes);
+    }
+}
+
+/* The film's pixel of every enabled mean pass: its sum over `samples`. */
+static void write_means(render *r, uint32_t x, uint32_t y, pixel_sums *a, uint32_t samples)
+{
+    double inv = 1.0 / (double)samples;
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        const double *sum = sums_of(a, p);
+        if (!pass_on(r, p) || !sum)
+            continue;
+        float *px = film_pixel(&r->film, p, x, y);
+        for (uint32_t ch = 0; ch < phos_pass_channels(p); ch++)
+            px[ch] = (float)(sum[ch] * inv);
+    }
+}
+
+static void add3(double sum[3], vec3 v)
+{
+    sum[0] += v.x;
+    sum[1] += v.y;
+    sum[2] += v.z;
+}
+
+/* Renders samples [first, end) of one pixel, on top of the sums of those
+ * before (progressive refinement), and writes the mean of all so far;
+ * returns 0 if cancelled part-way (checked before every sample, and inside
+ * its gathers, so even pixels of millions of samples stop at once): the
+ * pixel then keeps what the passes before gave it. */
+static int render_pixel(render *r, uint32_t x, uint32_t y, uint32_t first, uint32_t end,
+                        integrator_scratch *scratch)
 {
     const phos_render_settings *rs = &r->settings;
     const scene *s = r->scene;
     int debug = pass_on(r, PHOS_PASS_PHOTON_MAP) || pass_on(r, PHOS_PASS_CAUSTIC_MAP);
-    double comp[COMPONENT_COUNT][3], alpha = 0.0, dbg[2][3], features[2][3];
-    memset(comp, 0, sizeof(comp));
-    memset(dbg, 0, sizeof(dbg));
-    memset(features, 0, sizeof(features));
-    for (uint32_t i = 0; i < rs->samples; i++) {
+    pixel_sums a;
+    memset(&a, 0, sizeof(a));
+    if (first > 0)
+        exchange_sums(r, x, y, &a, 0);
+    for (uint32_t i = first; i < end; i++) {
         if (atomic_load_explicit(&r->cancel, memory_order_relaxed))
             return 0;
         sampler smp = sampler_for_pixel(rs->seed, x, y, i);
@@ -144,39 +198,29 @@ static int render_pixel(render *r, uint32_t x, uint32_t y, integrator_scratch *s
             finite &= v3_is_finite(sr.component[c]);
         if (!finite)
             memset(sr.component, 0, sizeof(sr.component));
+        double total[3] = {0.0, 0.0, 0.0};
         for (int c = 0; c < COMPONENT_COUNT; c++) {
-            comp[c][0] += sr.component[c].x;
-            comp[c][1] += sr.component[c].y;
-            comp[c][2] += sr.component[c].z;
+            add3(a.component[c], sr.component[c]);
+            add3(total, sr.component[c]);
         }
+        for (int ch = 0; ch < 3; ch++)
+            a.combined[ch] += total[ch];
+        a.combined[3] += sr.alpha;
         if (v3_is_finite(sr.photon_map) && v3_is_finite(sr.caustic_map)) {
-            dbg[0][0] += sr.photon_map.x, dbg[0][1] += sr.photon_map.y, dbg[0][2] += sr.photon_map.z;
-            dbg[1][0] += sr.caustic_map.x, dbg[1][1] += sr.caustic_map.y, dbg[1][2] += sr.caustic_map.z;
+            add3(a.debug[0], sr.photon_map);
+            add3(a.debug[1], sr.caustic_map);
         }
+        /* The features' means over the samples: the normal is not
+         * renormalised, so a pixel straddling an edge holds the mean
+         * direction (Cycles). */
         if (v3_is_finite(sr.denoising_albedo) && v3_is_finite(sr.denoising_normal)) {
-            const vec3 f[2] = {sr.denoising_albedo, sr.denoising_normal};
-            for (int k = 0; k < 2; k++)
-                features[k][0] += f[k].x, features[k][1] += f[k].y, features[k][2] += f[k].z;
+            add3(a.features[0], sr.denoising_albedo);
+            add3(a.features[1], sr.denoising_normal);
         }
-        alpha += sr.alpha;
     }
-    double inv = 1.0 / (double)rs->samples;
-    float *px = film_pixel(&r->film, PHOS_PASS_COMBINED, x, y);
-    for (int ch = 0; ch < 3; ch++) {
-        double sum = 0.0;
-        for (int c = 0; c < COMPONENT_COUNT; c++)
-            sum += comp[c][ch];
-        px[ch] = (float)(sum * inv);
-    }
-    px[3] = (float)(alpha * inv);
-    for (int c = 0; c < COMPONENT_COUNT; c++)
-        write_pass_mean(r, component_pass[c], x, y, comp[c], inv);
-    write_pass_mean(r, PHOS_PASS_PHOTON_MAP, x, y, dbg[0], inv);
-    write_pass_mean(r, PHOS_PASS_CAUSTIC_MAP, x, y, dbg[1], inv);
-    /* The features' means over the samples: the normal is not renormalised,
-     * so a pixel straddling an edge holds the mean direction (Cycles). */
-    write_pass_mean(r, PHOS_PASS_DENOISING_ALBEDO, x, y, features[0], inv);
-    write_pass_mean(r, PHOS_PASS_DENOISING_NORMAL, x, y, features[1], inv);
+    if (end < rs->samples)
+        exchange_sums(r, x, y, &a, 1);
+    write_means(r, x, y, &a, end);
     return 1;
 }
 
@@ -190,7 +234,8 @@ static void render_tile(void *ctx, uint32_t item, uint32_t thread)
     int whole = 1;
     for (uint32_t y = t->y; y < t->y + t->height && whole; y++)
         for (uint32_t x = t->x; x < t->x + t->width && whole; x++)
-            whole = !atomic_load_explicit(&r->cancel, memory_order_relaxed) && render_pixel(r, x, y, sc);
+            whole = !atomic_load_explicit(&r->cancel, memory_order_relaxed) &&
+                    render_pixel(r, x, y, r->pass_first, r->pass_end, sc);
     atomic_fetch_add(&r->rays_traced, embree_thread_rays() - rays_before);
     atomic_fetch_add(&r->cache_lookups, sc->cache_lookups - lookups_before);
     atomic_fetch_add(&r->cache_hits, sc->cache_hits - hits_before);
@@ -201,6 +246,7 @@ static void render_tile(void *ctx, uint32_t item, uint32_t thread)
     r->finished[r->finished_count++] = item;
     pthread_mutex_unlock(&r->lock);
     atomic_fetch_add(&r->tiles_done, 1u);
+    atomic_fetch_add(&r->work_done, (uint64_t)t->width * t->height * (r->pass_end - r->pass_first));
 }
 
 /* -------------------------------------------------------- photon dots */
@@ -359,8 +405,16 @@ static phos_status run_stage(render *r, uint32_t stage)
                 draw_records(r, &r->cache);
             r->integrator.cache = &r->cache;
         }
-        if (!parallel_for(r->tile_count, r->threads, render_tile, r, &r->cancel))
-            return atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_INTERNAL;
+        /* Pass after pass over the whole frame (progressive refinement);
+         * the end of each parallel_for is the barrier that keeps a tile's
+         * next pass from starting before its last one ended. */
+        for (uint32_t p = 0; p < r->pass_count; p++) {
+            r->pass_first = p ? r->pass_ends[p - 1] : 0;
+            r->pass_end = r->pass_ends[p];
+            if (!parallel_for(r->tile_count, r->threads, render_tile, r, &r->cancel))
+                return atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_INTERNAL;
+            atomic_store(&r->samples_done, r->pass_end);
+        }
         return PHOS_OK;
     default: /* WAITING and FINISHED only mark the ends of the plan */
         return PHOS_OK;
@@ -423,7 +477,9 @@ int render_prepare(render *r)
     const phos_render_settings *rs = &r->settings;
     r->threads = parallel_thread_count(rs->threads);
     pixel_filter_init(&r->filter, rs->filter_width);
-    if (!film_create(&r->film, rs->region_x, rs->region_y, rs->region_width, rs->region_height, rs->pass_mask) ||
+    r->pass_count = render_sample_passes(rs, r->pass_ends);
+    if (!film_create(&r->film, rs->region_x, rs->region_y, rs->region_width, rs->region_height, rs->pass_mask,
+                     r->pass_count > 1) ||
         !make_tiles(r))
         return 0;
     stage_plan_make(rs, &r->plan);

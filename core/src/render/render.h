@@ -43,14 +43,20 @@ struct phos_render {
 
     phos_tile *tiles;
     uint32_t tile_count;
-    atomic_uint tiles_done;
+    atomic_uint tiles_done;        /* tiles finished over all sample passes */
+    /* The rendering stage's passes over the frame (render_sample_passes):
+     * their ends, the one running, and the samples every pixel has. */
+    uint32_t pass_count, pass_ends[RENDER_MAX_SAMPLE_PASSES];
+    uint32_t pass_first, pass_end;
+    atomic_uint samples_done;
+    atomic_uint_fast64_t work_done; /* pixel samples of finished tiles, for the progress bar */
     atomic_uint_fast64_t rays_traced; /* by the tiles (render_tile) */
     stage_plan plan;               /* the stages it runs, fixed at create */
     atomic_uint stage_index;       /* the one running now, an index into plan */
 
     pthread_mutex_t lock;          /* guards everything below */
     pthread_cond_t finished_cond;
-    uint32_t *finished;            /* finished tile indices, in finishing order */
+    uint32_t *finished;            /* finished tile indices, in finishing order (a tile once per pass) */
     uint32_t finished_count, finished_read;
     int started, running, joined, controller_started;
     uint32_t state;                /* enum phos_render_state */

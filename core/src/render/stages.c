@@ -58,3 +58,19 @@ const char *stage_name(uint32_t stage, uint32_t integrator)
     }
     return "Unknown stage";
 }
+
+uint32_t render_sample_passes(const phos_render_settings *rs, uint32_t ends[RENDER_MAX_SAMPLE_PASSES])
+{
+    uint32_t count = 0;
+    if (rs->progressive)
+        for (uint32_t end = 1; end < rs->samples && count + 1 < RENDER_MAX_SAMPLE_PASSES; end *= 2)
+            ends[count++] = end;
+    ends[count++] = rs->samples;
+    return count;
+}
+
+int render_keeps_sums(const phos_render_settings *rs)
+{
+    uint32_t ends[RENDER_MAX_SAMPLE_PASSES];
+    return render_sample_passes(rs, ends) > 1;
+}

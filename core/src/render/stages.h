@@ -27,6 +27,17 @@ int stage_plan_uses_cache(const phos_render_settings *rs);
 /* 1 if the plan runs the stage. */
 int stage_plan_has(const stage_plan *plan, uint32_t stage);
 
+/* The rendering stage's passes over the whole frame: with progressive
+ * refinement and more than one sample, pass k ends at sample 2^k (1, 2,
+ * 4 …) and the last at `samples`, so the first look at the whole frame
+ * costs one sample a pixel; else one pass of every sample. Writes the
+ * passes' ends (at most RENDER_MAX_SAMPLE_PASSES) and returns their count. */
+#define RENDER_MAX_SAMPLE_PASSES 32
+uint32_t render_sample_passes(const phos_render_settings *rs, uint32_t ends[RENDER_MAX_SAMPLE_PASSES]);
+
+/* Whether a render keeps its pixels' sums between passes (film.h). */
+int render_keeps_sums(const phos_render_settings *rs);
+
 /* The name of a stage as a status line shows it ("Tracing photons"); the
  * rendering stage is named after the integrator. Never NULL. */
 const char *stage_name(uint32_t stage, uint32_t integrator);
