@@ -124,6 +124,9 @@ def test_scene_properties_are_the_settings_table(scene):
             assert {i.identifier: i.value for i in p.enum_items} == {i[0]: i[3] for i in items}, s.prop
             assert p.enum_items[p.default].value == s.default, s.prop
             continue
+        if s.kind == "BOOLEAN":
+            assert p.type == 'BOOLEAN' and p.default == bool(s.default) and (s.min, s.max) == (0, 1), s.prop
+            continue
         assert p.default == pytest.approx(s.default), s.prop
         assert p.hard_min == pytest.approx(s.min), s.prop
         assert p.hard_max == pytest.approx(min(s.max, INT_MAX) if s.ctype != "float" else s.max), s.prop
