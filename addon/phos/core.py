@@ -393,6 +393,34 @@ class Scene(_Handle):
                        "adding an instance")
         return out.value
 
+    def add_instances(self, mesh_ids, transforms, material_lists, randoms, pass_indices):
+        """Add many instances in one call (phos_scene_add_instances): mesh ids,
+        row-major 3x4 transforms as an (n, 12) array, a sequence of material
+        id lists, and Object Info's random and pass index per instance.
+        Returns the first instance's id. A refusal adds none, and its message
+        names the instance by its index ("instance 7 of 1000: ...")."""
+        n = len(mesh_ids)
+        ids = np.ascontiguousarray(mesh_ids, dtype=np.uint32)
+        xf = np.ascontiguousarray(transforms, dtype=np.float32).reshape(n, 12)
+        counts = np.fromiter((len(m) for m in material_lists), dtype=np.uint32, count=n)
+        offsets = np.zeros(n + 1, dtype=np.uint32)
+        np.cumsum(counts, out=offsets[1:])
+        mats = np.fromiter((m for ms in material_lists for m in ms), dtype=np.uint32, count=int(offsets[-1]))
+        rnd = np.ascontiguousarray(randoms, dtype=np.float32)
+        idx = np.ascontiguousarray(pass_indices, dtype=np.float32)
+        d = phos_instances_desc()
+        d.count = n
+        d.mesh_ids = _ptr(ids, ctypes.c_uint32)
+        d.transforms = _ptr(xf, ctypes.c_float)
+        d.material_offsets = _ptr(offsets, ctypes.c_uint32)
+        d.materials = _ptr(mats, ctypes.c_uint32) if mats.size else None
+        d.randoms = _ptr(rnd, ctypes.c_float)
+        d.pass_indices = _ptr(idx, ctypes.c_float)
+        first = _u32()
+        self._raise_on(self._lib.phos_scene_add_instances(self.handle, ctypes.byref(d), ctypes.byref(first)),
+                       "adding instances")
+        return first.value
+
     def add_light(self, desc):
         out = _u32()
         self._raise_on(self._lib.phos_scene_add_light(self.handle, ctypes.byref(desc), ctypes.byref(out)),

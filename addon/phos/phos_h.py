@@ -626,6 +626,18 @@ class phos_instance_desc(ctypes.Structure):
     ]
 
 
+class phos_instances_desc(ctypes.Structure):
+    _fields_ = [
+        ("count", ctypes.c_uint32),
+        ("mesh_ids", ctypes.POINTER(ctypes.c_uint32)),
+        ("transforms", ctypes.POINTER(ctypes.c_float)),
+        ("material_offsets", ctypes.POINTER(ctypes.c_uint32)),
+        ("materials", ctypes.POINTER(ctypes.c_uint32)),
+        ("randoms", ctypes.POINTER(ctypes.c_float)),
+        ("pass_indices", ctypes.POINTER(ctypes.c_float)),
+    ]
+
+
 class phos_light_desc(ctypes.Structure):
     _fields_ = [
         ("type", ctypes.c_uint32),
@@ -752,6 +764,7 @@ STRUCTS = (
     phos_mesh_attribute,
     phos_mesh_desc,
     phos_instance_desc,
+    phos_instances_desc,
     phos_light_desc,
     phos_world_desc,
     phos_camera_desc,
@@ -780,6 +793,7 @@ FUNCTIONS = {
     "phos_vertex_normals": (ctypes.c_int, [ctypes.c_uint32, ctypes.POINTER(ctypes.c_float), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint32), ctypes.POINTER(ctypes.c_uint32), ctypes.POINTER(ctypes.c_float), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint32), ctypes.POINTER(ctypes.c_float)]),
     "phos_instance_desc_init": (None, [ctypes.POINTER(phos_instance_desc)]),
     "phos_scene_add_instance": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_instance_desc), ctypes.POINTER(ctypes.c_uint32)]),
+    "phos_scene_add_instances": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_instances_desc), ctypes.POINTER(ctypes.c_uint32)]),
     "phos_light_desc_init": (None, [ctypes.POINTER(phos_light_desc)]),
     "phos_scene_add_light": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_light_desc), ctypes.POINTER(ctypes.c_uint32)]),
     "phos_world_desc_init": (None, [ctypes.POINTER(phos_world_desc)]),
@@ -1365,6 +1379,7 @@ __all__ = (
     'phos_mesh_attribute',
     'phos_mesh_desc',
     'phos_instance_desc',
+    'phos_instances_desc',
     'phos_light_desc',
     'phos_world_desc',
     'phos_camera_desc',

@@ -537,6 +537,24 @@ PHOS_API void phos_instance_desc_init(phos_instance_desc *desc);
 PHOS_API phos_status phos_scene_add_instance(phos_scene *scene, const phos_instance_desc *desc,
                                              uint32_t *out_instance_id);
 
+/* Many instances in one call (a geometry-nodes scatter of a million, one
+ * call instead of a million): instance k places mesh mesh_ids[k] by
+ * transforms[12k … 12k+11] with the material ids materials[offsets[k] …
+ * offsets[k+1] − 1]. randoms and pass_indices may be NULL (0). All are
+ * checked before any is added: a refusal adds none, and its message names
+ * the instance by its index k. Their ids are *out_first_id onwards. */
+typedef struct phos_instances_desc {
+    uint32_t count;
+    const uint32_t *mesh_ids;         /* count */
+    const float *transforms;          /* count × 12, each row-major 3x4 */
+    const uint32_t *material_offsets; /* count + 1, non-decreasing, from 0 */
+    const uint32_t *materials;        /* material_offsets[count] ids */
+    const float *randoms;             /* count, or NULL */
+    const float *pass_indices;        /* count, or NULL */
+} phos_instances_desc;
+PHOS_API phos_status phos_scene_add_instances(phos_scene *scene, const phos_instances_desc *desc,
+                                              uint32_t *out_first_id);
+
 /*
  * Lights, in physical quantities; the add-on converts Blender's units (which
  * differ between Blender versions) into these.

@@ -198,6 +198,35 @@ def test_geometry_nodes_instances(scene, tmp_path):
     assert covered == pytest.approx(5 * (0.3 * 16) ** 2, rel=0.05)
 
 
+def test_thousand_instances_in_one_call(scene, tmp_path):
+    """A geometry-nodes scatter of 1000 cubes reaches the core in one
+    phos_scene_add_instances call, none one by one, and renders as Cycles
+    does."""
+    from phos import core
+    ortho_top_camera(scene)
+    pt.set_world(scene, (0, 0, 0))
+    _geometry_nodes_instancer(scene, 1000)
+    calls = {"bulk": [], "single": 0}
+    bulk, single = core.Scene.add_instances, core.Scene.add_instance
+
+    def add_instances(self, mesh_ids, *args):
+        calls["bulk"].append(len(mesh_ids))
+        return bulk(self, mesh_ids, *args)
+
+    def add_instance(self, *args, **kwargs):
+        calls["single"] += 1
+        return single(self, *args, **kwargs)
+    core.Scene.add_instances, core.Scene.add_instance = add_instances, add_instance
+    try:
+        ctx = export(scene)
+    finally:
+        core.Scene.add_instances, core.Scene.add_instance = bulk, single
+    assert calls == {"bulk": [1000], "single": 0}, calls
+    assert ctx.stats["instances"] == 1000 and ctx.stats["meshes"] == 1
+    p, c = silhouettes(scene, tmp_path)
+    assert_same_silhouette(p, c, what="a thousand geometry-nodes instances")
+
+
 def _particle_instancer(scene, count):
     target = pt.add_cube(scene, "Particle", size=0.15, location=(50, 50, 50),
                          material=white_emission("Particle Emission"))

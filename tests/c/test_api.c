@@ -738,9 +738,103 @@ static void test_memory_estimate(void)
     CHECK(memory_available() > 0);
 }
 
+/* A grid of small instances of two meshes with two materials, added one
+ * by one or (bulk) in one phos_scene_add_instances call. */
+enum { GRID = 30 };
+static phos_scene *grid_scene(int bulk)
+{
+    phos_scene *s = phos_scene_create();
+    uint32_t meshes[2] = {test_add_sphere_mesh(s, 0.04f, 8, 4, 0), test_add_quad_mesh(s, 0.04f)};
+    uint32_t mats[2] = {test_add_diffuse(s, 0.8f, 0.3f, 0.2f), test_add_diffuse(s, 0.2f, 0.5f, 0.8f)};
+    static uint32_t mesh_ids[GRID * GRID], offsets[GRID * GRID + 1], materials[GRID * GRID];
+    static float transforms[GRID * GRID * 12], randoms[GRID * GRID];
+    offsets[0] = 0;
+    for (uint32_t k = 0; k < GRID * GRID; k++) {
+        float t[12] = {1, 0, 0, -1.0f + 2.0f * (float)(k % GRID) / GRID, 0, 1, 0, -1.0f + 2.0f * (float)(k / GRID) / GRID,
+                       0, 0, 1, 0};
+        memcpy(transforms + 12 * k, t, sizeof(t));
+        mesh_ids[k] = meshes[k % 2];
+        materials[k] = mats[(k / 3) % 2];
+        offsets[k + 1] = k + 1;
+        randoms[k] = (float)k / (GRID * GRID);
+    }
+    if (bulk) {
+        phos_instances_desc d = {GRID * GRID, mesh_ids, transforms, offsets, materials, randoms, NULL};
+        uint32_t first = 99;
+        CHECK(phos_scene_add_instances(s, &d, &first) == PHOS_OK && first == 0);
+    } else {
+        for (uint32_t k = 0; k < GRID * GRID; k++) {
+            phos_instance_desc d;
+            phos_instance_desc_init(&d);
+            d.mesh_id = mesh_ids[k];
+            memcpy(d.transform, transforms + 12 * k, sizeof(d.transform));
+            d.material_count = 1;
+            d.materials = &materials[k];
+            d.random = randoms[k];
+            CHECK(phos_scene_add_instance(s, &d, NULL) == PHOS_OK);
+        }
+    }
+    phos_world_desc w;
+    phos_world_desc_init(&w);
+    w.color[0] = w.color[1] = w.color[2] = 1.0f;
+    phos_scene_set_world(s, &w);
+    test_set_camera(s, 0, 0, 3, 0.4f);
+    return s;
+}
+
+/* Bulk instances render what the same instances added one by one render;
+ * a bad one refuses the whole call, names its index and adds nothing. */
+static void test_bulk_instances(void)
+{
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.width = rs.height = 32;
+    rs.samples = 4;
+    float *img[2];
+    for (int bulk = 0; bulk < 2; bulk++) {
+        phos_scene *s = grid_scene(bulk);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        CHECK(s->instance_count == GRID * GRID);
+        img[bulk] = test_render(s, &rs);
+        phos_scene_destroy(s);
+    }
+    CHECK(img[0] && img[1] && memcmp(img[0], img[1], sizeof(float) * 4 * 32 * 32) == 0);
+    free(img[0]);
+    free(img[1]);
+
+    phos_scene *s = small_scene();
+    uint32_t mesh_ids[3] = {0, 0, 7}, offsets[4] = {0, 1, 1, 1}, materials[1] = {0};
+    float transforms[36] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0,
+                            1, 0, 0, 2, 0, 1, 0, 0, 0, 0, 1, 0};
+    phos_instances_desc d = {3, mesh_ids, transforms, offsets, materials, NULL, NULL};
+    CHECK(phos_scene_add_instances(s, &d, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "instance 2 of 3") && contains(phos_scene_error(s), "mesh 7"), "%s",
+              phos_scene_error(s));
+    CHECK(s->instance_count == 1);
+    mesh_ids[2] = 0;
+    transforms[12 + 5] = NAN;
+    CHECK(phos_scene_add_instances(s, &d, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "instance 1 of 3") && contains(phos_scene_error(s), "finite"), "%s",
+              phos_scene_error(s));
+    transforms[12 + 5] = 0.0f;
+    offsets[2] = 0;
+    CHECK(phos_scene_add_instances(s, &d, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(contains(phos_scene_error(s), "decrease"), "%s", phos_scene_error(s));
+    offsets[2] = 1;
+    d.materials = NULL;
+    CHECK(phos_scene_add_instances(s, &d, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    d.materials = materials;
+    CHECK(phos_scene_add_instances(s, NULL, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    uint32_t first = 0;
+    CHECK(phos_scene_add_instances(s, &d, &first) == PHOS_OK && first == 1 && s->instance_count == 4);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    phos_scene_destroy(s);
+}
+
 int main(void)
 {
     test_memory_estimate();
+    test_bulk_instances();
     test_singular_instances_render_nothing();
     test_vertex_normals();
     test_version_and_layout();

@@ -327,6 +327,33 @@ static void fuzz_meshes(reader *r, phos_scene *s)
     }
 }
 
+/* phos_scene_add_instances: a few instances in one call, with fuzzed mesh
+ * ids, transforms, material offsets (possibly decreasing) and ids, and
+ * NULL arrays. */
+static void fuzz_bulk_instances(reader *r, phos_scene *s)
+{
+    enum { MAX_BULK = 4 };
+    uint32_t count = take_u8(r) % (MAX_BULK + 1), ids[MAX_BULK], offsets[MAX_BULK + 1], materials[2 * MAX_BULK];
+    float transforms[12 * MAX_BULK], randoms[MAX_BULK];
+    offsets[0] = take_u8(r) % 2; /* 1 is refused */
+    for (uint32_t k = 0; k < count; k++) {
+        ids[k] = take_u8(r) % 5;
+        take_floats(r, transforms + 12 * k, 12);
+        offsets[k + 1] = take_u8(r) % (2 * MAX_BULK + 1);
+        randoms[k] = take_float(r);
+    }
+    for (uint32_t k = 0; k < 2 * MAX_BULK; k++)
+        materials[k] = take_u8(r) % 5;
+    uint8_t nulls = take_u8(r);
+    phos_instances_desc d = {count, (nulls & 1) ? NULL : ids, (nulls & 2) ? NULL : transforms,
+                             (nulls & 4) ? NULL : offsets, (nulls & 8) ? NULL : materials,
+                             (nulls & 16) ? NULL : randoms, NULL};
+    phos_status st = phos_scene_add_instances(s, &d, NULL);
+    SAY("%u instances in one call: %s %s\n", count, phos_status_string(st), phos_scene_error(s));
+    if (st != PHOS_OK && !phos_scene_error(s)[0])
+        abort();
+}
+
 /* phos_vertex_normals on a fuzzed polygon soup (a few polygons of up to
  * 6 corners, starts and totals anywhere). */
 static void fuzz_vertex_normals(reader *r)
@@ -589,8 +616,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fuzz_images(&r, s);
     fuzz_materials(&r, s);
     fuzz_meshes(&r, s);
-    if (take_u8(&r) == 0x5A)
+    uint8_t extra = take_u8(&r);
+    if (extra == 0x5A)
         fuzz_vertex_normals(&r);
+    else if (extra == 0x5C)
+        fuzz_bulk_instances(&r, s);
     fuzz_lights(&r, s);
     uint8_t commit = take_u8(&r);
     if (commit == 0xFE)

@@ -243,7 +243,7 @@ PHOS_STAGE_COUNT = 7
 
 
 def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camera=True,
-          renders=(({}, 0),), vertex_normals=None, programs=None, world_material=0xFF):
+          renders=(({}, 0),), vertex_normals=None, programs=None, world_material=0xFF, bulk_instances=None):
     s = Stream()
     s.u8(0)                    # no images
     materials(s, mats if mats is not None else [[(0, (0.75, 0.75, 0.75))]], programs)
@@ -255,7 +255,19 @@ def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camer
     s.u8(len(instances))
     for i in instances:
         instance(s, *i)
-    if vertex_normals is None:
+    if bulk_instances is not None:
+        s.u8(0x5C)
+        s.u8(len(bulk_instances))
+        s.u8(0)                # offsets start at 0
+        for k, (mesh_id, transform) in enumerate(bulk_instances):
+            s.u8(mesh_id)
+            s.fs(transform)
+            s.u8(k + 1)        # one material each
+            s.f(0.5)           # random
+        for _ in range(8):
+            s.u8(0)            # material 0
+        s.u8(0)                # no NULL arrays
+    elif vertex_normals is None:
         s.u8(0)
     else:
         s.u8(0x5A)
@@ -317,6 +329,8 @@ SEEDS = {
                            renders=[(PHOTON, 0)]),
     "valid_two_renders": scene(renders=[(PHOTON, 0), ({"photon_view": 2, **PHOTON}, 0)]),
     "scene_updated": scene(renders=[(PHOTON, 0)]) + updates_tail(PHOTON),
+    "bulk_instances": scene(bulk_instances=[(0, (1, 0, 0, 0.5, 0, 1, 0, 0, 0, 0, 1, 0)),
+                                            (0, (0.5, 0, 0, -0.5, 0, 0.5, 0, 0, 0, 0, 0.5, 0))]),
     "glass_and_mirror": scene(mats=[[(0, (0.75, 0.75, 0.75), 0.5, 1.5, 0, 0.0, 0, 1)], [(5, (1, 1, 1), 0.0, 1.5)],
                                     [(2, (1, 1, 1), 0.0, 1.5, 0, 0.0, 0, 1)]],
                               instances=[(0, [0, 1, 2])],

@@ -15,6 +15,8 @@ while an object with modifiers gets its own evaluated mesh, so the key
 tells them apart without comparing modifier stacks.
 """
 
+import collections
+import re
 import time
 
 import numpy as np
@@ -81,6 +83,85 @@ def _attribute_keys(material_ids, ctx):
     return keys
 
 
+class _PendingInstances:
+    """Instances gathered for one phos_scene_add_instances call per BATCH:
+    one ctypes call per instance cost more than the rest of its export in a
+    geometry-nodes scatter of a million. Each instance keeps the entry of
+    the (object, mesh) it shares with the others of that pair (mesh id,
+    materials, pass index, object name)."""
+
+    BATCH = 65536
+
+    def __init__(self, ctx):
+        self.ctx = ctx
+        self.transforms = np.empty((self.BATCH, 12), dtype=np.float32)
+        self._clear()
+
+    def _clear(self):
+        self.entries, self.randoms = [], []
+
+    def add(self, entry, matrix, random):
+        n = len(self.entries)
+        # A Matrix's rows unpacked: a sixth of np.array(matrix)'s cost.
+        self.transforms[n] = (*matrix[0], *matrix[1], *matrix[2])
+        self.entries.append(entry)
+        self.randoms.append(random)
+        if n + 1 == self.BATCH:
+            self.flush()
+
+    def flush(self):
+        n = len(self.entries)
+        if n == 0:
+            return
+        transforms, entries, randoms = self.transforms[:n], self.entries, self.randoms
+        finite = np.isfinite(transforms).all(axis=1)
+        if not finite.all():
+            for name in sorted({entries[k].name for k in np.flatnonzero(~finite)}):
+                self.ctx.warn("Phos: object '%s': its transform is not finite (NaN/Inf); skipped" % name)
+            keep = np.flatnonzero(finite)
+            transforms = transforms[keep]
+            entries = [entries[k] for k in keep]
+            randoms = [randoms[k] for k in keep]
+        try:
+            self.ctx.core.add_instances([e.mesh_id for e in entries], transforms, [e.materials for e in entries],
+                                        randoms, [e.pass_index for e in entries])
+        except core.PhosError as ex:
+            # The core names the instance by its index in the call.
+            m = re.search(r"instance (\d+) of \d+: (.*)", str(ex))
+            if m and int(m.group(1)) < len(entries):
+                raise core.PhosError("object '%s': %s" % (entries[int(m.group(1))].name, m.group(2)),
+                                     ex.status) from None
+            raise
+        self.ctx.stats["instances"] += len(entries)
+        self._clear()
+
+
+# What the instances of one evaluated mesh under one object share.
+_Entry = collections.namedtuple("_Entry", "mesh_id materials pass_index name")
+
+
+def _entry(ob, ctx):
+    """The core mesh, materials and pass index of an object's evaluated mesh
+    (None if the mesh has nothing to render)."""
+    # Materials first: the mesh exports the attributes they read.
+    mats = _materials(ob, ctx)
+    key = ob.data.as_pointer()
+    attribute_keys = _attribute_keys(mats, ctx)
+    if attribute_keys:
+        # Objects sharing mesh data share a core mesh when their materials
+        # read the same attributes (object-linked materials may not), and
+        # Object attributes, constants of each object, agree.
+        object_keys = sorted(k for k in attribute_keys if k[0] == "object")
+        key = (key, frozenset(attribute_keys),
+               tuple(mesh_attributes.object_rgba(ob, k[1]) for k in object_keys))
+    if key not in ctx.meshes:
+        ctx.meshes[key] = mesh.add_mesh(ob, ctx, attribute_keys)
+    mesh_id = ctx.meshes[key]
+    if mesh_id is None:
+        return None
+    return _Entry(mesh_id, mats, float(getattr(ob, "pass_index", 0)), ob.name)
+
+
 def export_instances(depsgraph, ctx, progress=None, cancelled=None):
     """Add every visible mesh and light instance of the depsgraph.
 
@@ -90,7 +171,8 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
     """
     total = len(depsgraph.objects)
     done = 0
-    material_lists = {}  # (object, mesh) → material ids: instances share them
+    entries = {}  # (object, evaluated mesh) → _Entry (or None): its instances share it
+    pending = _PendingInstances(ctx)
     clock = time.monotonic
     next_check = clock() + CANCEL_CHECK_SECONDS
     for inst in depsgraph.object_instances:
@@ -101,7 +183,8 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
                 return False
             next_check = clock() + CANCEL_CHECK_SECONDS
         ob = inst.object
-        if not inst.is_instance:
+        is_instance = inst.is_instance
+        if not is_instance:
             done += 1
         kind = ob.type
         if kind == 'LIGHT':
@@ -116,42 +199,18 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
                 ctx.warn("Phos: objects of type %s are not supported; '%s' skipped"
                          % (kind.replace('_', ' ').lower(), ob.name))
             continue
-        if not inst.is_instance:
+        if not is_instance:
             _check_object(ob, ctx)
         if not inst.show_self:
             continue  # an emitter whose particles render but not itself
-        matrix = np.array(inst.matrix_world, dtype=np.float64)
-        if not np.isfinite(matrix).all():
-            ctx.warn("Phos: object '%s': its transform is not finite (NaN/Inf); skipped" % ob.name)
+        key = (ob.original.as_pointer(), ob.data.as_pointer())
+        entry = entries.get(key, False)
+        if entry is False:
+            entry = entries[key] = _entry(ob, ctx)
+        if entry is None:
             continue
-
-        # Materials first: the mesh exports the attributes they read.
-        key = ob.data.as_pointer()
-        mat_key = (ob.original.as_pointer(), key)
-        mats = material_lists.get(mat_key)
-        if mats is None:
-            mats = material_lists[mat_key] = _materials(ob, ctx)
-        attribute_keys = _attribute_keys(mats, ctx)
-        if attribute_keys:
-            # Objects sharing mesh data share a core mesh when their
-            # materials read the same attributes (object-linked materials may
-            # not), and Object attributes, constants of each object, agree.
-            object_keys = sorted(k for k in attribute_keys if k[0] == "object")
-            key = (key, frozenset(attribute_keys),
-                   tuple(mesh_attributes.object_rgba(ob, k[1]) for k in object_keys))
-        if key not in ctx.meshes:
-            ctx.meshes[key] = mesh.add_mesh(ob, ctx, attribute_keys)
-        mesh_id = ctx.meshes[key]
-        if mesh_id is None:
-            continue
-
-        try:
-            random = object_random(inst, ob)
-            ctx.core.add_instance(mesh_id, core.matrix_to_3x4(matrix), mats, random=random,
-                                  pass_index=float(getattr(ob, "pass_index", 0)))
-        except core.PhosError as ex:
-            raise core.PhosError("object '%s': %s" % (ob.name, ex), ex.status) from None
-        ctx.stats["instances"] += 1
+        pending.add(entry, inst.matrix_world, object_random(inst, ob))
+    pending.flush()
     ctx.stats["objects"] = total
     if progress is not None:
         progress(total, total)

@@ -575,6 +575,67 @@ phos_status phos_scene_add_instance(phos_scene *s, const phos_instance_desc *d, 
     return PHOS_OK;
 }
 
+/* Instance k of a bulk description as a single one (materials pointing
+ * into the shared list). */
+static phos_instance_desc instance_of_bulk(const phos_instances_desc *d, uint32_t k)
+{
+    phos_instance_desc one;
+    phos_instance_desc_init(&one);
+    one.mesh_id = d->mesh_ids[k];
+    memcpy(one.transform, d->transforms + 12 * (size_t)k, sizeof(one.transform));
+    one.material_count = d->material_offsets[k + 1] - d->material_offsets[k];
+    one.materials = one.material_count ? d->materials + d->material_offsets[k] : NULL;
+    one.random = d->randoms ? d->randoms[k] : 0.0f;
+    one.pass_index = d->pass_indices ? d->pass_indices[k] : 0.0f;
+    return one;
+}
+
+phos_status phos_scene_add_instances(phos_scene *s, const phos_instances_desc *d, uint32_t *out_first_id)
+{
+    CHECK_EDITABLE(s, "phos_scene_add_instances", d);
+    if (d->count == 0) {
+        if (out_first_id)
+            *out_first_id = s->instance_count;
+        return PHOS_OK;
+    }
+    if (!d->mesh_ids || !d->transforms || !d->material_offsets)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instances: mesh ids, transforms or material offsets are NULL");
+    if (d->count > UINT32_MAX - s->instance_count)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instances: %u more would pass 2^32", d->count);
+    if (d->material_offsets[0] != 0)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instances: material offsets must start at 0");
+    for (uint32_t k = 0; k < d->count; k++)
+        if (d->material_offsets[k + 1] < d->material_offsets[k])
+            FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instances: material offsets decrease at instance %u", k);
+    if (d->material_offsets[d->count] > 0 && !d->materials)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instances: materials are NULL");
+    /* Every instance checked before any is added. */
+    uint32_t capacity = s->instance_count + d->count;
+    if (capacity > s->instance_capacity) {
+        instance *grown = realloc(s->instances, sizeof(instance) * capacity);
+        if (!grown)
+            FAIL(s, PHOS_ERROR_OUT_OF_MEMORY, "instances: out of memory for %u instances", capacity);
+        s->instances = grown;
+        s->instance_capacity = capacity;
+    }
+    for (uint32_t k = 0; k < d->count; k++) {
+        phos_instance_desc one = instance_of_bulk(d, k);
+        phos_status st = instance_from_desc(s, &one, &s->instances[s->instance_count + k]);
+        if (st != PHOS_OK) {
+            for (uint32_t j = 0; j < k; j++)
+                free(s->instances[s->instance_count + j].materials);
+            char msg[sizeof(s->error)];
+            snprintf(msg, sizeof(msg), "%s", s->error);
+            FAIL(s, st, "instance %u of %u: %s", k, d->count, msg);
+        }
+    }
+    if (out_first_id)
+        *out_first_id = s->instance_count;
+    s->instance_count += d->count;
+    scene_changed(s, PHOS_CHANGE_GEOMETRY);
+    return PHOS_OK;
+}
+
 phos_status phos_scene_update_instance(phos_scene *s, uint32_t id, const phos_instance_desc *d)
 {
     CHECK_EDITABLE(s, "phos_scene_update_instance", d);

@@ -54,6 +54,9 @@ static const layout_field fields[] = {
     FIELD(phos_instance_desc, mesh_id) FIELD(phos_instance_desc, transform)
     FIELD(phos_instance_desc, material_count) FIELD(phos_instance_desc, materials)
     FIELD(phos_instance_desc, random) FIELD(phos_instance_desc, pass_index)
+    FIELD(phos_instances_desc, count) FIELD(phos_instances_desc, mesh_ids) FIELD(phos_instances_desc, transforms)
+    FIELD(phos_instances_desc, material_offsets) FIELD(phos_instances_desc, materials)
+    FIELD(phos_instances_desc, randoms) FIELD(phos_instances_desc, pass_indices)
 
     FIELD(phos_light_desc, type) FIELD(phos_light_desc, color) FIELD(phos_light_desc, position)
     FIELD(phos_light_desc, direction) FIELD(phos_light_desc, axis_u) FIELD(phos_light_desc, axis_v)
@@ -97,6 +100,7 @@ static const struct {
     {"phos_mesh_attribute", sizeof(phos_mesh_attribute)},
     {"phos_mesh_desc", sizeof(phos_mesh_desc)},
     {"phos_instance_desc", sizeof(phos_instance_desc)},
+    {"phos_instances_desc", sizeof(phos_instances_desc)},
     {"phos_light_desc", sizeof(phos_light_desc)},
     {"phos_world_desc", sizeof(phos_world_desc)},
     {"phos_camera_desc", sizeof(phos_camera_desc)},
