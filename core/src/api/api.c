@@ -1077,7 +1077,8 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     /* The tiles' share: pixel samples done, over all passes. */
     uint64_t work_total = (uint64_t)r->film.width * r->film.height * r->settings.samples;
     float tiles = work_total ? (float)((double)atomic_load(&r->work_done) / (double)work_total) : 1.0f;
-    float photons_target = (float)r->settings.global_photons + (float)r->settings.caustic_photons;
+    /* The maps it really traces (no global map for the path-traced gather). */
+    float photons_target = (float)r->photon_settings.global_photons + (float)r->photon_settings.caustic_photons;
     float maps_part = r->use_maps ? 0.2f : 0.0f, cache_part = r->use_cache ? 0.2f : 0.0f;
     float before = maps_part + cache_part;
     float photon_part = photons_target > 0.0f ? fminf((float)out->photons_stored / photons_target, 1.0f) : 1.0f;
