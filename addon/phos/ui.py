@@ -55,43 +55,88 @@ class PHOS_RENDER_PT_sampling(PhosButtonsPanel, bpy.types.Panel):
         layout.prop(phos, "integrator")
         col = layout.column(align=True)
         col.prop(phos, "samples", text="Render")
-        col.prop(phos, "preview_samples", text="Preview")
+        col.prop(phos, "preview_samples", text="Previews")
         layout.prop(phos, "seed")
 
 
+def uses_photon_maps(context):
+    """Whether a render builds photon maps: PHOTON, or a photon debug pass
+    (which builds them under PATH too)."""
+    return context.scene.phos.integrator == 'PHOTON' or _debug_passes_enabled(context)
+
+
 class PHOS_RENDER_PT_photon_mapping(PhosButtonsPanel, bpy.types.Panel):
-    """The photon maps and their estimates. Shown for every integrator (the
-    photon debug passes build the maps with PATH too), active with PHOTON."""
+    """The photon maps and how they are read; hidden when no map is built.
+    Its sub-panels name each map, so their rows need no prefix that the
+    default panel width would cut."""
 
     bl_label = "Photon Mapping"
     bl_context = "render"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and uses_photon_maps(context)
 
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
         phos = context.scene.phos
-        uses_maps = phos.integrator == 'PHOTON' or _debug_passes_enabled(context)
-        layout.active = uses_maps
-        if not uses_maps:
-            layout.label(text="Used by the Photon Mapping integrator", icon='INFO')
-        col = layout.column(align=True)
-        col.prop(phos, "global_photons", text="Photons Global")
-        col.prop(phos, "caustic_photons", text="Caustic")
-        col = layout.column(align=True)
-        col.prop(phos, "global_estimate_photons", text="Estimate Global")
-        col.prop(phos, "caustic_estimate_photons", text="Caustic")
-        layout.prop(phos, "max_radius")
-        layout.prop(phos, "caustic_roughness")
-        layout.prop(phos, "photon_view")
+        layout.prop(phos, "photon_view", text="Indirect")
         sub = layout.column()
         sub.active = phos.photon_view in {'FINAL_GATHER', 'PATH_TRACED'}
-        sub.prop(phos, "final_gather_rays")
-        layout.prop(phos, "max_photons_emitted")
-        layout.prop(phos, "photon_map_file_mode")
+        sub.prop(phos, "final_gather_rays", text="Gather Rays")
+
+
+class PHOS_RENDER_PT_photon_mapping_global(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Global Map"
+    bl_context = "render"
+    bl_parent_id = "PHOS_RENDER_PT_photon_mapping"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        phos = context.scene.phos
+        col = layout.column(align=True)
+        col.prop(phos, "global_photons", text="Photons")
+        col.prop(phos, "global_estimate_photons", text="Estimate")
+
+
+class PHOS_RENDER_PT_photon_mapping_caustic(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Caustic Map"
+    bl_context = "render"
+    bl_parent_id = "PHOS_RENDER_PT_photon_mapping"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        phos = context.scene.phos
+        col = layout.column(align=True)
+        col.prop(phos, "caustic_photons", text="Photons")
+        col.prop(phos, "caustic_estimate_photons", text="Estimate")
+        # Glossy lobes smoother than this carry caustics (docs/algorithms.md §12).
+        layout.prop(phos, "caustic_roughness", text="Roughness")
+
+
+class PHOS_RENDER_PT_photon_mapping_advanced(PhosButtonsPanel, bpy.types.Panel):
+    bl_label = "Advanced"
+    bl_context = "render"
+    bl_parent_id = "PHOS_RENDER_PT_photon_mapping"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        phos = context.scene.phos
+        layout.prop(phos, "max_radius")
+        layout.prop(phos, "max_photons_emitted", text="Max Paths (M)")
+        layout.prop(phos, "photon_map_file_mode", text="File")
         sub = layout.column()
         sub.active = phos.photon_map_file_mode != 'NONE'
-        sub.prop(phos, "photon_map_file")
+        sub.prop(phos, "photon_map_file", text="Path")
 
 
 def cache_used(phos):
@@ -117,14 +162,14 @@ class PHOS_RENDER_PT_irradiance_cache(PhosButtonsPanel, bpy.types.Panel):
         layout = layout.column()
         layout.active = cache_used(phos)
         layout.prop(phos, "ic_accuracy")
-        layout.prop(phos, "ic_rays")
+        layout.prop(phos, "ic_rays", text="Rays")
         col = layout.column(align=True)
         col.prop(phos, "ic_min_spacing", text="Spacing Min")
         col.prop(phos, "ic_max_spacing", text="Max")
-        layout.prop(phos, "ic_file_mode")
+        layout.prop(phos, "ic_file_mode", text="File")
         sub = layout.column()
         sub.active = phos.ic_file_mode != 'NONE'
-        sub.prop(phos, "ic_file")
+        sub.prop(phos, "ic_file", text="Path")
 
 
 def _debug_passes_enabled(context):
@@ -142,6 +187,47 @@ class PHOS_RENDER_PT_light_paths(PhosButtonsPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.use_property_decorate = False
         layout.prop(context.scene.phos, "max_bounces")
+
+
+class PHOS_RENDER_PT_simplify(PhosButtonsPanel, bpy.types.Panel):
+    """Blender's Simplify settings, here instead of above Sampling (where
+    Blender's own panel would sit): the depsgraph applies them before Phos
+    sees the geometry."""
+
+    bl_label = "Simplify"
+    bl_context = "render"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.render, "use_simplify", text="")
+
+    def draw(self, context):
+        pass
+
+
+class PhosSimplifyPanel(PhosButtonsPanel):
+    bl_context = "render"
+    bl_parent_id = "PHOS_RENDER_PT_simplify"
+    suffix = ""
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        rd = context.scene.render
+        layout.active = rd.use_simplify
+        col = layout.column()
+        col.prop(rd, "simplify_subdivision" + self.suffix, text="Subdivision")
+        col.prop(rd, "simplify_child_particles" + self.suffix, text="Children")
+
+
+class PHOS_RENDER_PT_simplify_viewport(PhosSimplifyPanel, bpy.types.Panel):
+    bl_label = "Viewport"
+
+
+class PHOS_RENDER_PT_simplify_render(PhosSimplifyPanel, bpy.types.Panel):
+    bl_label = "Render"
+    suffix = "_render"
 
 
 class PHOS_RENDER_PT_film(PhosButtonsPanel, bpy.types.Panel):
@@ -369,11 +455,20 @@ class PHOS_LIGHT_PT_light(PhosButtonsPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.use_property_decorate = False
         col = layout.column()
-        col.prop(light, "color")
-        col.prop(light, "energy")
+        # Cycles' portal flag, which Phos reads too (export/light.py): a
+        # portal emits nothing, so its colour and power are not shown.
+        cycles = getattr(light, "cycles", None)
+        portal = light.type == 'AREA' and cycles is not None and getattr(cycles, "is_portal", False)
+        if light.type == 'AREA' and cycles is not None and hasattr(cycles, "is_portal"):
+            col.prop(cycles, "is_portal", text="Portal")
+        if not portal:
+            col.prop(light, "color")
+            col.prop(light, "energy")
         col.separator()
         if light.type in {'POINT', 'SPOT'}:
             col.prop(light, "shadow_soft_size", text="Radius")
+            if hasattr(light, "use_soft_falloff"):  # Blender 4.1+
+                col.prop(light, "use_soft_falloff")
         elif light.type == 'SUN':
             col.prop(light, "angle")
         elif light.type == 'AREA':
@@ -446,8 +541,14 @@ class PHOS_WORLD_PT_surface(PhosButtonsPanel, bpy.types.Panel):
 classes = (
     PHOS_RENDER_PT_sampling,
     PHOS_RENDER_PT_photon_mapping,
+    PHOS_RENDER_PT_photon_mapping_global,
+    PHOS_RENDER_PT_photon_mapping_caustic,
+    PHOS_RENDER_PT_photon_mapping_advanced,
     PHOS_RENDER_PT_irradiance_cache,
     PHOS_RENDER_PT_light_paths,
+    PHOS_RENDER_PT_simplify,
+    PHOS_RENDER_PT_simplify_viewport,
+    PHOS_RENDER_PT_simplify_render,
     PHOS_RENDER_PT_film,
     PHOS_RENDER_PT_performance,
     PHOS_VIEW_LAYER_PT_passes,
@@ -474,6 +575,12 @@ EXCLUDED_PANELS = {
     'DATA_PT_spot',           # PHOS_LIGHT_PT_spot
     'DATA_PT_falloff_curve',  # falloff curves are not supported
     'NODE_DATA_PT_light',
+    # PHOS_RENDER_PT_simplify, below Sampling as in Cycles: Blender's
+    # registers first and would sit above every Phos panel.
+    'RENDER_PT_simplify',
+    'RENDER_PT_simplify_viewport',
+    'RENDER_PT_simplify_render',
+    'RENDER_PT_simplify_greasepencil',
 }
 
 _patched_panels = []

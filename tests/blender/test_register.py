@@ -184,15 +184,20 @@ class _Layout:
     """A stand-in for bpy.types.UILayout in background mode: records the
     properties a panel draws and checks that each exists on its data."""
 
-    def __init__(self, drawn):
+    def __init__(self, drawn, labels=None):
         self.drawn = drawn
+        self.labels = labels if labels is not None else []
         self.active = True
         self.use_property_split = self.use_property_decorate = False
         self.alert = False
 
-    def prop(self, data, name, **_kw):
+    def prop(self, data, name, text=None, **_kw):
         assert name in data.bl_rna.properties, "%s has no property %r" % (data, name)
         self.drawn.append(name)
+        rna = data.bl_rna.properties[name]
+        # A checkbox's text sits in the value column, not the label's.
+        if rna.type != 'BOOLEAN':
+            self.labels.append(text if text is not None else rna.name)
 
     def label(self, **_kw):
         pass
@@ -204,7 +209,7 @@ class _Layout:
     separator = label
 
 
-def _fake_panel(cls, drawn):
+def _fake_panel(cls, drawn, labels=None):
     """An object that draw() can take as `self`: the stand-in layout, and
     the panel class's own attributes and methods (bound to it)."""
     class Fake:
@@ -212,8 +217,52 @@ def _fake_panel(cls, drawn):
             value = getattr(cls, name)
             return value.__get__(self) if callable(value) and hasattr(value, "__get__") else value
     fake = Fake()
-    fake.layout = _Layout(drawn)
+    fake.layout = _Layout(drawn, labels)
     return fake
+
+
+# The longest row label that Blender's property split shows uncut in a
+# Properties editor of its default width (measured on Blender 3.4 at UI
+# scale 1: "Estimate Global", 15 characters, showed as "Estimate Glo…").
+LABEL_MAX = 13
+
+
+def _render_panels():
+    from phos import ui
+    return [c for c in ui.classes if issubclass(c, bpy.types.Panel) and getattr(c, "bl_context", "") == "render"]
+
+
+def test_render_tab_reads_as_cycles(scene):
+    """The Render tab as a Cycles user reads it: Sampling first (Blender's
+    Simplify, which registers first, is replaced by a Phos panel below Light
+    Paths); every row's label fits the default width and names one thing in
+    its panel; the Photon Mapping panel is hidden when no map is built."""
+    from phos import ui
+    names = [c.__name__ for c in _render_panels() if not getattr(c, "bl_parent_id", "")]
+    assert names[0] == "PHOS_RENDER_PT_sampling", names
+    assert names.index("PHOS_RENDER_PT_simplify") > names.index("PHOS_RENDER_PT_light_paths"), names
+    shown = [c.__name__ for c in _panels_with("PHOS") if getattr(c, "bl_context", "") == "render"
+             and not getattr(c, "bl_parent_id", "") and getattr(c, "bl_order", 0) <= 0
+             and not c.__name__.startswith("PHOS_")]
+    assert not shown, "built-in Render panels that sit above Sampling: %s" % shown
+    scene.render.engine = "PHOS"
+    context = type("Context", (), {"scene": scene, "view_layer": scene.view_layers[0], "engine": "PHOS"})()
+    for integrator in ("PATH", "PHOTON"):
+        scene.phos.integrator = integrator
+        assert ui.PHOS_RENDER_PT_photon_mapping.poll(context) == (integrator == "PHOTON"), integrator
+        for cls in _render_panels():
+            drawn, labels = [], []
+            fake = _fake_panel(cls, drawn, labels)
+            for method in ("draw_header", "draw"):
+                if method in vars(cls) or any(method in vars(b) for b in cls.__mro__[1:] if pt.addon_module_of(b)):
+                    getattr(cls, method)(fake, context)
+            too_long = [t for t in labels if len(t) > LABEL_MAX]
+            assert not too_long, "%s: labels cut at the default width: %s" % (cls.__name__, too_long)
+            named = [t for t in labels if t]
+            assert len(set(named)) == len(named), "%s: two rows named alike: %s" % (cls.__name__, named)
+    scene.phos.integrator = "PATH"
+    scene.view_layers[0].phos.use_pass_photons = True  # a photon debug pass builds the maps under PATH
+    assert ui.PHOS_RENDER_PT_photon_mapping.poll(context)
 
 
 def test_phos_panels_draw(scene):
@@ -240,3 +289,26 @@ def test_phos_panels_draw(scene):
                         getattr(cls, method)(fake, context)
                 names.update(drawn)
     assert {"irradiance_cache", "ic_accuracy", "ic_rays", "use_pass_irradiance_cache"} <= names, sorted(names)
+
+
+def test_light_panel_draws_what_phos_reads(scene):
+    """The light panel shows each kind's settings Phos reads: Cycles' portal
+    flag on area lights (a portal emits nothing, so no colour or power),
+    the radius and (4.1+) soft falloff of point and spot lamps."""
+    from phos import ui
+    for kind in ("POINT", "SPOT", "SUN", "AREA"):
+        light = bpy.data.lights.new("L_" + kind, kind)
+        portal_values = (False, True) if kind == "AREA" and hasattr(getattr(light, "cycles", None), "is_portal") \
+            else (False,)
+        for portal in portal_values:
+            if kind == "AREA" and len(portal_values) == 2:
+                light.cycles.is_portal = portal
+            context = type("Context", (), {"scene": scene, "light": light, "engine": "PHOS"})()
+            drawn = []
+            ui.PHOS_LIGHT_PT_light.draw(_fake_panel(ui.PHOS_LIGHT_PT_light, drawn), context)
+            assert ("energy" in drawn) == (not portal), (kind, portal, drawn)
+            if kind == "AREA" and len(portal_values) == 2:
+                assert "is_portal" in drawn, drawn
+            if kind in ("POINT", "SPOT"):
+                assert "shadow_soft_size" in drawn
+                assert ("use_soft_falloff" in drawn) == hasattr(light, "use_soft_falloff"), drawn
