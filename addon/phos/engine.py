@@ -27,6 +27,7 @@ import bpy
 import numpy as np
 
 from . import core, export
+from .export import camera
 from .properties import PASSES, USER_SETTINGS, cache_files, enabled_passes, setting_value
 
 POLL_SECONDS = 0.03
@@ -60,6 +61,27 @@ PASS_IDS.update((p.name, p.pass_id) for p in PASSES)
 
 # How Blender is told what a pass holds (channel names, type), by kind.
 PASS_REGISTRATION = {core.PHOS_PASS_KIND_COLOR: ("RGB", 'COLOR'), core.PHOS_PASS_KIND_VECTOR: ("XYZ", 'VECTOR')}
+
+
+def _scene_signature(depsgraph):
+    """What the export reads from the scene itself that depsgraph.updates
+    may not list as a change of its own: the world assigned."""
+    world = depsgraph.scene.world
+    return world.original.as_pointer() if world is not None else 0
+
+
+def _only_camera_changed(depsgraph):
+    """Whether every change the depsgraph reports since the last render is
+    to a camera or to the scene's own settings (render settings reach the
+    core through the render, not the scene)."""
+    for update in depsgraph.updates:
+        block = update.id
+        if isinstance(block, bpy.types.Object):
+            if block.type != 'CAMERA':
+                return False
+        elif not isinstance(block, (bpy.types.Camera, bpy.types.Scene)):
+            return False
+    return True
 
 
 def _stage_text(progress, stage_id, name, samples):
@@ -197,30 +219,11 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         if camera_object is None:
             raise core.PhosError("the scene has no active camera")
 
-        self._stats("Phos | Exporting", force=True)
         t0 = time.perf_counter()
-        with core.Scene() as core_scene:
-            def progress(done, total):
-                self._stats("Phos | Exporting | Object %d/%d" % (done, total), force=done == total)
-
-            ctx = export.export_scene(
-                depsgraph, core_scene, camera_object,
-                self.camera_model_matrix(camera_object),
-                is_preview=self.is_preview, progress=progress, cancelled=self.test_break)
-            if not self.is_preview:
-                for message in ctx.warnings:
-                    self.report({'WARNING'}, message)
-            if self.test_break():
-                return
-            self._stats("Phos | Building acceleration structures", force=True)
-            if not core_scene.commit(cancelled=self.test_break):
-                return
-            if not self.is_preview:
-                s = ctx.stats
-                print("Phos: exported %d instances of %d meshes (%d triangles), %d lights, "
-                      "%d materials, %d images in %.2f s"
-                      % (s["instances"], s["meshes"], s["triangles"], s["lights"],
-                         s["materials"], s["images"], time.perf_counter() - t0))
+        core_scene = self._scene_for(depsgraph, scene, camera_object)
+        if core_scene is None:
+            return
+        try:
 
             rs = core.new_render_settings()
             # The user's settings, by the core's table; then those Blender
@@ -252,6 +255,85 @@ class PhosRenderEngine(bpy.types.RenderEngine):
                     last_render_seconds.clear()
                     last_render_seconds.update(seconds)
                     print("Phos: " + text)
+        finally:
+            if not self._keeps(scene):
+                core_scene.close()
+
+    # ------------------------------------------------------- the core scene
+
+    def _keeps(self, scene):
+        """Whether this render's core scene is kept for the next one:
+        Blender's Persistent Data (Render Properties → Performance), which
+        keeps this engine between F12 renders; never for previews."""
+        return scene.render.use_persistent_data and not self.is_preview
+
+    def _scene_for(self, depsgraph, scene, camera_object):
+        """The committed core scene of this view layer, or None if the export
+        or the BVH build was cancelled.
+
+        With Persistent Data the last render's scene is reused when the
+        depsgraph reports no change that the export reads, but to the camera
+        (set again every render; a camera change rebuilds nothing at commit,
+        phos_scene_changes); any other change exports afresh. Blender's own
+        record of what changed (depsgraph.updates, empty for an unchanged
+        scene) decides it."""
+        kept = getattr(self, "_kept_scenes", None)
+        if kept is None:
+            kept = self._kept_scenes = {}
+        layer = depsgraph.view_layer.name
+        entry = kept.pop(layer, None)
+        signature = _scene_signature(depsgraph)
+        matrix = self.camera_model_matrix(camera_object)
+        if entry is not None and self._keeps(scene) and entry[2] == signature \
+                and _only_camera_changed(depsgraph):
+            core_scene, ctx = entry[0], entry[1]
+            camera.export_camera(camera_object, matrix, ctx)
+            self._stats("Phos | Reusing the scene (Persistent Data)", force=True)
+            print("Phos: reused the scene of the last render (Persistent Data)")
+        else:
+            if entry is not None:
+                entry[0].close()
+            core_scene, ctx = self._export(depsgraph, camera_object, matrix)
+            if ctx is None:
+                core_scene.close()
+                return None
+        # Committed again after the camera set on a kept scene: that
+        # rebuilds nothing (phos_scene_commit).
+        self._stats("Phos | Building acceleration structures", force=True)
+        if not core_scene.commit(cancelled=self.test_break):
+            core_scene.close()
+            return None
+        if self._keeps(scene):
+            kept[layer] = (core_scene, ctx, signature)
+        return core_scene
+
+    def _export(self, depsgraph, camera_object, matrix):
+        """A new core scene filled from the depsgraph, not committed; its
+        ExportContext, or None if the export was cancelled."""
+        self._stats("Phos | Exporting", force=True)
+        t0 = time.perf_counter()
+        core_scene = core.Scene()
+
+        def progress(done, total):
+            self._stats("Phos | Exporting | Object %d/%d" % (done, total), force=done == total)
+
+        try:
+            ctx = export.export_scene(depsgraph, core_scene, camera_object, matrix, is_preview=self.is_preview,
+                                      progress=progress, cancelled=self.test_break)
+        except BaseException:
+            core_scene.close()
+            raise
+        if not self.is_preview:
+            for message in ctx.warnings:
+                self.report({'WARNING'}, message)
+            s = ctx.stats
+            print("Phos: exported %d instances of %d meshes (%d triangles), %d lights, "
+                  "%d materials, %d images in %.2f s"
+                  % (s["instances"], s["meshes"], s["triangles"], s["lights"],
+                     s["materials"], s["images"], time.perf_counter() - t0))
+        if self.test_break():
+            return core_scene, None
+        return core_scene, ctx
 
     def _poll(self, render, rs):
         """Deliver tiles as they finish until the render ends or is cancelled."""

@@ -1,0 +1,100 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Persistent Data (Render Properties → Performance): Blender keeps the
+engine between F12 renders, and Phos keeps its committed scene. An
+unchanged scene, or one whose camera alone moved, renders without a new
+export; any other change exports afresh. Either way the image is the one a
+render without Persistent Data gives, bit for bit (the core is
+deterministic and a kept scene is the same scene)."""
+
+import bpy
+import numpy as np
+import pytest
+
+import phostest as pt
+
+
+@pytest.fixture
+def lit_scene(scene):
+    pt.add_plane(scene, "Floor", size=6.0, material=pt.diffuse("Floor", (0.7, 0.7, 0.7)))
+    pt.add_cube(scene, "Box", size=1.0, location=(0, 0, 0.5), material=pt.diffuse("Box", (0.8, 0.3, 0.2)))
+    pt.add_light(scene, "POINT", 500.0, location=(2, -2, 3), name="Lamp")
+    pt.add_camera(scene, location=(0, -5, 2), target=(0, 0, 0.5))
+    pt.set_world(scene, (0.05, 0.05, 0.05))
+    pt.configure_output(scene, 32, 24)
+    pt.configure_phos(scene, 4, max_bounces=4, seed=3)
+    scene.render.engine = "PHOS"
+    return scene
+
+
+class _ExportCounter:
+    """Counts the add-on's exports (phos.export.export_scene calls)."""
+
+    def __init__(self):
+        from phos import export
+        self.module, self.count = export, 0
+
+    def __enter__(self):
+        original = self.original = self.module.export_scene
+
+        def counted(*args, **kwargs):
+            self.count += 1
+            return original(*args, **kwargs)
+        self.module.export_scene = counted
+        return self
+
+    def __exit__(self, *exc):
+        self.module.export_scene = self.original
+        return False
+
+
+def _fresh(scene, tmp_path, name):
+    """The image of a render without Persistent Data (exported afresh)."""
+    scene.render.use_persistent_data = False
+    image = pt.render_array(scene, tmp_path, name=name)
+    scene.render.use_persistent_data = True
+    return image
+
+
+def test_persistent_data_reuses_the_scene(lit_scene, tmp_path):
+    scene = lit_scene
+    scene.render.use_persistent_data = True
+    with _ExportCounter() as exports:
+        first = pt.render_array(scene, tmp_path, name="first")
+        again = pt.render_array(scene, tmp_path, name="again")
+        assert exports.count == 1, "an unchanged scene was exported again"
+        assert np.array_equal(first, again)
+
+        # The camera alone: no export, the image of a fresh render.
+        scene.camera.location.x += 0.4
+        moved = pt.render_array(scene, tmp_path, name="camera_moved")
+        assert exports.count == 1, "a camera move exported the scene again"
+        assert not np.array_equal(moved, first)
+        assert np.array_equal(moved, _fresh(scene, tmp_path, "camera_moved_fresh"))
+
+        # A light: exported afresh.
+        before = exports.count
+        bpy.data.objects["Lamp"].data.energy = 900.0
+        brighter = pt.render_array(scene, tmp_path, name="light_changed")
+        assert exports.count == before + 1, "a light change did not reach the scene"
+        assert brighter[..., :3].mean() > moved[..., :3].mean()
+        assert np.array_equal(brighter, _fresh(scene, tmp_path, "light_changed_fresh"))
+
+        # A moved object and a material: exported afresh too.
+        for change in (lambda: setattr(bpy.data.objects["Box"], "location", (0.5, 0.2, 0.5)),
+                       lambda: pt.setup_node(bpy.data.materials["Box"].node_tree.nodes["Diffuse BSDF"],
+                                             inputs={"Color": (0.2, 0.8, 0.3, 1.0)})):
+            before = exports.count
+            change()
+            changed = pt.render_array(scene, tmp_path)
+            assert exports.count == before + 1
+            assert np.array_equal(changed, _fresh(scene, tmp_path, "fresh_%d" % before))
+
+
+def test_without_persistent_data_every_render_exports(lit_scene, tmp_path):
+    scene = lit_scene
+    scene.render.use_persistent_data = False
+    with _ExportCounter() as exports:
+        a = pt.render_array(scene, tmp_path, name="a")
+        b = pt.render_array(scene, tmp_path, name="b")
+    assert exports.count == 2
+    assert np.array_equal(a, b)
