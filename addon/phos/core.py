@@ -325,6 +325,21 @@ class Scene(_Handle):
         closures vary over the surface, the shader program that sets them
         (a phos_shader_program_desc whose arrays the caller keeps alive);
         returns its id."""
+        d, arr = self._material_desc(closures, program)
+        out = _u32()
+        self._raise_on(self._lib.phos_scene_add_material(self.handle, ctypes.byref(d), ctypes.byref(out)),
+                       "adding a material")
+        return out.value
+
+    def update_material(self, material_id, closures, program=None):
+        """Replace material `material_id` (phos_scene_update_material): the
+        scene must be committed with no render holding it, or still open."""
+        d, arr = self._material_desc(closures, program)
+        self._raise_on(self._lib.phos_scene_update_material(self.handle, material_id, ctypes.byref(d)),
+                       "changing a material")
+
+    def _material_desc(self, closures, program):
+        """(phos_material_desc, the closure array it points into)."""
         n = len(closures)
         arr = (phos_closure_desc * max(n, 1))(*closures)
         d = phos_material_desc()
@@ -332,10 +347,7 @@ class Scene(_Handle):
         d.closure_count = n
         d.closures = ctypes.cast(arr, ctypes.POINTER(phos_closure_desc)) if n else None
         d.program = ctypes.pointer(program) if program is not None else None
-        out = _u32()
-        self._raise_on(self._lib.phos_scene_add_material(self.handle, ctypes.byref(d), ctypes.byref(out)),
-                       "adding a material")
-        return out.value
+        return d, arr
 
     def add_mesh(self, positions, indices, normals=None, uvs=None, material_slots=None, tangents=None,
                  texspace=None, attributes=()):
@@ -426,6 +438,10 @@ class Scene(_Handle):
         self._raise_on(self._lib.phos_scene_add_light(self.handle, ctypes.byref(desc), ctypes.byref(out)),
                        "adding a light")
         return out.value
+
+    def update_light(self, light_id, desc):
+        self._raise_on(self._lib.phos_scene_update_light(self.handle, light_id, ctypes.byref(desc)),
+                       "changing a light")
 
     def set_world(self, desc):
         self._raise_on(self._lib.phos_scene_set_world(self.handle, ctypes.byref(desc)),

@@ -27,7 +27,7 @@ import bpy
 import numpy as np
 
 from . import core, export
-from .export import camera
+from .export import camera, light, material
 from .properties import PASSES, USER_SETTINGS, cache_files, enabled_passes, setting_value
 
 POLL_SECONDS = 0.03
@@ -70,18 +70,38 @@ def _scene_signature(depsgraph):
     return world.original.as_pointer() if world is not None else 0
 
 
-def _only_camera_changed(depsgraph):
-    """Whether every change the depsgraph reports since the last render is
-    to a camera or to the scene's own settings (render settings reach the
-    core through the render, not the scene)."""
+def _changes_in_place(depsgraph):
+    """The changes the depsgraph reports since the last render, if a kept
+    scene can take them in place: (light objects, materials), evaluated;
+    else None. Cameras (set again every render) and the scene's own
+    settings (render settings reach the core through the render) need
+    nothing; a light object or its light data, and a material or its node
+    tree, are changed in place; anything else (geometry, objects moved,
+    added or removed, the world, images) needs an export."""
+    lights, light_data, materials, trees = {}, set(), {}, set()
     for update in depsgraph.updates:
         block = update.id
         if isinstance(block, bpy.types.Object):
-            if block.type != 'CAMERA':
-                return False
+            if block.type == 'LIGHT':
+                ob = block.evaluated_get(depsgraph)
+                lights[ob.original.as_pointer()] = ob
+            elif block.type != 'CAMERA':
+                return None
+        elif isinstance(block, bpy.types.Light):
+            light_data.add(block.original.as_pointer())
+        elif isinstance(block, bpy.types.Material):
+            mat = block.evaluated_get(depsgraph)
+            materials[mat.original.as_pointer()] = mat
+        elif isinstance(block, bpy.types.NodeTree):
+            trees.add(block.original.as_pointer())
         elif not isinstance(block, (bpy.types.Camera, bpy.types.Scene)):
-            return False
-    return True
+            return None
+    # Light data and node trees only with the object or material that uses them.
+    if light_data - {ob.data.original.as_pointer() for ob in lights.values()}:
+        return None
+    if trees - {m.node_tree.original.as_pointer() for m in materials.values() if m.node_tree is not None}:
+        return None
+    return list(lights.values()), list(materials.values())
 
 
 def _stage_text(progress, stage_id, name, samples):
@@ -284,12 +304,14 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         entry = kept.pop(layer, None)
         signature = _scene_signature(depsgraph)
         matrix = self.camera_model_matrix(camera_object)
-        if entry is not None and self._keeps(scene) and entry[2] == signature \
-                and _only_camera_changed(depsgraph):
+        changes = _changes_in_place(depsgraph) if entry is not None and entry[2] == signature else None
+        if changes is not None and self._keeps(scene) and self._apply(entry[1], depsgraph, changes):
             core_scene, ctx = entry[0], entry[1]
             camera.export_camera(camera_object, matrix, ctx)
             self._stats("Phos | Reusing the scene (Persistent Data)", force=True)
-            print("Phos: reused the scene of the last render (Persistent Data)")
+            lights, materials = changes
+            print("Phos: reused the scene of the last render (Persistent Data); changed in place: "
+                  "%d lights, %d materials" % (len(lights), len(materials)))
         else:
             if entry is not None:
                 entry[0].close()
@@ -306,6 +328,23 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         if self._keeps(scene):
             kept[layer] = (core_scene, ctx, signature)
         return core_scene
+
+    def _apply(self, ctx, depsgraph, changes):
+        """Apply the changed lights and materials to a kept scene through
+        the core's scene updates; False if one of them cannot be changed in
+        place (the caller then exports afresh)."""
+        ctx.scene, ctx.view_layer = depsgraph.scene, depsgraph.view_layer
+        lights, materials = changes
+        for ob in lights:
+            if not light.update_light(ob, ctx):
+                return False
+        for mat in materials:
+            if not material.update_material(mat, ctx):
+                return False
+        if not self.is_preview:
+            for message in ctx.warnings:
+                self.report({'WARNING'}, message)
+        return True
 
     def _export(self, depsgraph, camera_object, matrix):
         """A new core scene filled from the depsgraph, not committed; its

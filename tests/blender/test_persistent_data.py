@@ -1,10 +1,11 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Persistent Data (Render Properties → Performance): Blender keeps the
 engine between F12 renders, and Phos keeps its committed scene. An
-unchanged scene, or one whose camera alone moved, renders without a new
-export; any other change exports afresh. Either way the image is the one a
-render without Persistent Data gives, bit for bit (the core is
-deterministic and a kept scene is the same scene)."""
+unchanged scene, a camera move, and changes to lights and materials render
+without a new export (the latter through the core's scene updates); other
+changes export afresh. Either way the image is the one a render without
+Persistent Data gives, bit for bit (the core is deterministic, and a scene
+changed in place is the scene built afresh: tests/c/test_scene_updates.c)."""
 
 import bpy
 import numpy as np
@@ -71,23 +72,32 @@ def test_persistent_data_reuses_the_scene(lit_scene, tmp_path):
         assert not np.array_equal(moved, first)
         assert np.array_equal(moved, _fresh(scene, tmp_path, "camera_moved_fresh"))
 
-        # A light: exported afresh.
-        before = exports.count
-        bpy.data.objects["Lamp"].data.energy = 900.0
-        brighter = pt.render_array(scene, tmp_path, name="light_changed")
-        assert exports.count == before + 1, "a light change did not reach the scene"
-        assert brighter[..., :3].mean() > moved[..., :3].mean()
-        assert np.array_equal(brighter, _fresh(scene, tmp_path, "light_changed_fresh"))
-
-        # A moved object and a material: exported afresh too.
-        for change in (lambda: setattr(bpy.data.objects["Box"], "location", (0.5, 0.2, 0.5)),
-                       lambda: pt.setup_node(bpy.data.materials["Box"].node_tree.nodes["Diffuse BSDF"],
-                                             inputs={"Color": (0.2, 0.8, 0.3, 1.0)})):
-            before = exports.count
+        # A light's power, then its place, and a material's colour: changed
+        # in place (phos_scene_update_light, _material), no export.
+        lamp = bpy.data.objects["Lamp"]
+        for name, change in (("energy", lambda: setattr(lamp.data, "energy", 900.0)),
+                             ("light_moved", lambda: setattr(lamp, "location", (-2.0, -2.0, 3.0))),
+                             ("material", lambda: pt.setup_node(
+                                 bpy.data.materials["Box"].node_tree.nodes["Diffuse BSDF"],
+                                 inputs={"Color": (0.2, 0.8, 0.3, 1.0)}))):
+            before = pt.render_array(scene, tmp_path, name=name + "_before")
+            count = exports.count
             change()
+            changed = pt.render_array(scene, tmp_path, name=name)
+            assert exports.count == count, "%s: the scene was exported again" % name
+            assert not np.array_equal(changed, before), "%s: the change did not reach the image" % name
+            assert np.array_equal(changed, _fresh(scene, tmp_path, name + "_fresh")), name
+
+        # A moved object, a mesh edit: exported afresh.
+        box = bpy.data.objects["Box"]
+        for change in (lambda: setattr(box, "location", (0.5, 0.2, 0.5)),
+                       lambda: box.data.vertices[0].co.__setitem__(2, 1.5)):
+            count = exports.count
+            change()
+            box.data.update()
             changed = pt.render_array(scene, tmp_path)
-            assert exports.count == before + 1
-            assert np.array_equal(changed, _fresh(scene, tmp_path, "fresh_%d" % before))
+            assert exports.count == count + 1
+            assert np.array_equal(changed, _fresh(scene, tmp_path, "fresh_%d" % count))
 
 
 def test_without_persistent_data_every_render_exports(lit_scene, tmp_path):

@@ -22,6 +22,7 @@ class ExportContext:
         # Caches: Blender datablock → core id, so each is added once per frame.
         self.meshes = {}                    # geometry key → mesh id, or None for no triangles
         self.materials = {}                 # material pointer → material id
+        self.light_ids = {}                 # light object pointer → core light ids (None: instanced, or none)
         self.images = {}                    # image pointer → image id or None
         self.tangents_wanted = False        # a material reads tangents (a Normal Map in tangent space)
         self.view_layer = None              # the view layer rendered (its properties: Attribute nodes)

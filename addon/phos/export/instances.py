@@ -190,7 +190,7 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
         if kind == 'LIGHT':
             matrix = np.array(inst.matrix_world, dtype=np.float64)
             if np.isfinite(matrix).all():
-                light.add_light(ob, matrix, ctx)
+                light.add_light(ob, matrix, ctx, is_instance=is_instance)
             else:
                 ctx.warn("Phos: light '%s': its transform is not finite (NaN/Inf); skipped" % ob.name)
             continue

@@ -42,13 +42,57 @@ def _normalized(v):
     return v / n if n > 0.0 else v
 
 
-def add_light(ob, matrix_world, ctx):
-    """Add one light instance (object + world matrix) to the core scene."""
+def add_light(ob, matrix_world, ctx, is_instance=False):
+    """Add one light instance (object + world matrix) to the core scene; its
+    id (or None) is recorded for update_light."""
+    light_id = _add_light(ob, matrix_world, ctx)
+    ctx.light_ids.setdefault(ob.original.as_pointer(), []).append(None if is_instance else light_id)
+    return light_id
+
+
+def update_light(ob, ctx):
+    """Replace an exported light in place (scene updates, phos.h). Returns
+    False when that cannot stand for an export: the object is instanced or
+    new, was not added (no light), becomes a portal or stops emitting."""
+    ids = ctx.light_ids.get(ob.original.as_pointer())
+    if ids is None or len(ids) != 1 or ids[0] is None:
+        return False
     light = ob.data
+    cycles = getattr(light, "cycles", None)
+    if light.type == 'AREA' and cycles is not None and getattr(cycles, "is_portal", False):
+        return False
+    desc = light_desc(ob, np.array(ob.matrix_world, dtype=np.float64), ctx)
+    if desc is None:
+        return False
+    try:
+        ctx.core.update_light(ids[0], desc)
+    except core.PhosError as ex:
+        raise core.PhosError("light '%s': %s" % (ob.name, ex), ex.status) from None
+    return True
+
+
+def _add_light(ob, matrix_world, ctx):
     m = np.array(matrix_world, dtype=np.float64).reshape(4, 4)
+    light = ob.data
     cycles = getattr(light, "cycles", None)
     if light.type == 'AREA' and cycles is not None and getattr(cycles, "is_portal", False):
         return add_portal(ob, light, m, ctx)
+    desc = light_desc(ob, m, ctx)
+    if desc is None:
+        return None
+    try:
+        light_id = ctx.core.add_light(desc)
+    except core.PhosError as ex:
+        raise core.PhosError("light '%s': %s" % (ob.name, ex), ex.status) from None
+    ctx.stats["lights"] += 1
+    return light_id
+
+
+def light_desc(ob, matrix_world, ctx):
+    """The core description of a light (not a portal) at a world matrix, or
+    None when it adds nothing (no light, zero area, an unknown type)."""
+    light = ob.data
+    m = np.array(matrix_world, dtype=np.float64).reshape(4, 4)
     strength = light_strength(light, m)
     if not np.any(strength):
         return None
@@ -89,12 +133,7 @@ def add_light(ob, matrix_world, ctx):
     else:
         ctx.warn("Phos: light '%s' of type %s is not supported; skipped" % (ob.name, light.type))
         return None
-    try:
-        light_id = ctx.core.add_light(desc)
-    except core.PhosError as ex:
-        raise core.PhosError("light '%s': %s" % (ob.name, ex), ex.status) from None
-    ctx.stats["lights"] += 1
-    return light_id
+    return desc
 
 
 def _area_shape(light, m, desc):

@@ -873,6 +873,21 @@ def add_material(mat, ctx):
     mat_id = ctx.materials.get(key)
     if mat_id is not None:
         return mat_id
+    closures, descs, program = _material_parts(mat, ctx)
+    try:
+        mat_id = ctx.core.add_material(descs, None if program.empty() else program.desc())
+    except core.PhosError as ex:
+        raise core.PhosError("material '%s': %s" % (mat.name, ex), ex.status) from None
+    ctx.materials[key] = mat_id
+    ctx.material_attributes[mat_id] = frozenset(program.attributes)
+    ctx.stats["materials"] += 1
+    if any(c.type == core.PHOS_CLOSURE_EMISSION for c in closures):
+        ctx.stats["emissive_materials"] += 1
+    return mat_id
+
+
+def _material_parts(mat, ctx):
+    """(closures, their descriptions, program) of a Blender material."""
     closures, program = compile_material(mat, ctx)
     closures = [c for c in closures if not c.negligible()]
     if len(closures) > core.PHOS_MAX_CLOSURES:
@@ -885,16 +900,25 @@ def add_material(mat, ctx):
                  "instructions); it renders without them: white colours, roughness 0.5"
                  % (mat.name, core.PHOS_SHADER_MAX_REGISTERS, core.PHOS_SHADER_MAX_INSTRUCTIONS))
         program = Program()
+    return closures, descs, program
+
+
+def update_material(mat, ctx):
+    """Replace an exported material in place (scene updates, phos.h).
+    Returns False when that cannot stand for an export: the scene never
+    used the material, or its program now reads other mesh attributes
+    than the meshes were exported with."""
+    mat_id = ctx.materials.get(mat.original.as_pointer())
+    if mat_id is None:
+        return False
+    closures, descs, program = _material_parts(mat, ctx)
+    if frozenset(program.attributes) != ctx.material_attributes.get(mat_id):
+        return False
     try:
-        mat_id = ctx.core.add_material(descs, None if program.empty() else program.desc())
+        ctx.core.update_material(mat_id, descs, None if program.empty() else program.desc())
     except core.PhosError as ex:
         raise core.PhosError("material '%s': %s" % (mat.name, ex), ex.status) from None
-    ctx.materials[key] = mat_id
-    ctx.material_attributes[mat_id] = frozenset(program.attributes)
-    ctx.stats["materials"] += 1
-    if any(c.type == core.PHOS_CLOSURE_EMISSION for c in closures):
-        ctx.stats["emissive_materials"] += 1
-    return mat_id
+    return True
 
 
 def default_material(ctx):
