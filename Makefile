@@ -61,7 +61,7 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
 .PHONY: test-asan test-tsan valgrind fuzz
-.PHONY: deps build binding check-binding test test-blender4 test-blender-latest bench bench-official bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
+.PHONY: deps build binding check-binding test test-gui test-blender4 test-blender-latest bench bench-official bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
 
 help:
 	@sed -n '3,33p' Makefile | sed 's/^# \{0,1\}//'
@@ -94,6 +94,12 @@ test: check-binding build
 	@echo "version: $$(python3 tools/version.py) (CMake, phos.h, bl_info and manifest agree)"
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python tests/blender/run_tests.py -- $(PYTEST_ARGS)
+
+# Blender's GUI under Xvfb with software OpenGL: a 3D view in Rendered
+# shading with Phos (tests/gui/viewport.py; skipped where Xvfb cannot run).
+test-gui: build
+	@tools/install-deps.sh --gui
+	$(BLENDER_ISOLATED) tools/test-gui.sh $(BLENDER) $(CURDIR)/$(BUILD_DIR)/gui/viewport.json
 
 # The C tests under the sanitizers (docs/reliability.md): RelWithDebInfo, so
 # reports have lines; a report is an error (halt_on_error, and UBSan does

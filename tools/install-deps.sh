@@ -8,6 +8,7 @@
 #   tools/install-deps.sh --reliability  also valgrind and clang's libFuzzer (`make valgrind`, `make fuzz`)
 #   tools/install-deps.sh --bpy      also what Blender as a Python module needs (tools/bpy-env.sh)
 #   tools/install-deps.sh --chroot   also debootstrap, for the Debian 13 chroot (tools/test-blender4.sh)
+#   tools/install-deps.sh --gui      also Xvfb, for the GUI test (`make test-gui`)
 set -euo pipefail
 
 PACKAGES=(
@@ -45,6 +46,13 @@ CHROOT_PACKAGES=(
   debian-archive-keyring
 )
 
+# Only for `make test-gui`: a virtual X server for Blender's GUI, drawn with
+# Mesa's software OpenGL (libgl1-mesa-dri).
+GUI_PACKAGES=(
+  xvfb
+  libgl1-mesa-dri
+)
+
 # Only for `make valgrind` and `make fuzz` (gcc's sanitizers come with gcc).
 RELIABILITY_PACKAGES=(
   valgrind
@@ -60,7 +68,8 @@ for arg in "$@"; do
     --reliability) PACKAGES+=("${RELIABILITY_PACKAGES[@]}") ;;
     --bpy) PACKAGES+=("${BPY_PACKAGES[@]}") ;;
     --chroot) PACKAGES+=("${CHROOT_PACKAGES[@]}") ;;
-    *) echo "usage: $0 [--check] [--bench] [--reliability] [--bpy] [--chroot]" >&2; exit 2 ;;
+    --gui) PACKAGES+=("${GUI_PACKAGES[@]}") ;;
+    *) echo "usage: $0 [--check] [--bench] [--reliability] [--bpy] [--chroot] [--gui]" >&2; exit 2 ;;
   esac
 done
 

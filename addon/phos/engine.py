@@ -27,6 +27,7 @@ import bpy
 import numpy as np
 
 from . import core, export
+from . import viewport
 from .export import camera, light, material
 from .properties import PASSES, USER_SETTINGS, cache_files, enabled_passes, setting_value
 
@@ -205,6 +206,44 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             if x1 > x0 and y1 > y0:
                 return x0, y0, x1 - x0, y1 - y0
         return 0, 0, width, height
+
+    # -------------------------------------------------------------- viewport
+
+    def view_update(self, context, depsgraph):
+        """Rendered viewport shading: the scene, exported once and then
+        changed in place as Blender edits it (viewport.py)."""
+        if core.load() is None:
+            return
+        session = getattr(self, "_viewport", None)
+        if session is None:
+            session = self._viewport = viewport.ViewportSession()
+        try:
+            session.update(depsgraph, lambda message: self.report({'WARNING'}, message))
+        except core.PhosError as ex:
+            self.report({'ERROR'}, "Phos: %s" % ex)
+            session.close_scene()
+
+    def view_draw(self, context, depsgraph):
+        session = getattr(self, "_viewport", None)
+        if session is None:
+            return
+        try:
+            session.restart_if_needed(context, depsgraph)
+        except core.PhosError as ex:
+            self.report({'ERROR'}, "Phos: %s" % ex)
+            session.close_scene()
+            return
+        session.draw(self, depsgraph.scene)
+        if not session.done():
+            self.tag_redraw()  # the render goes on: draw again soon
+
+    def __del__(self):
+        # Blender frees a viewport's engine when the view leaves Rendered
+        # shading, the engine changes or the view closes (RenderEngine has
+        # no __del__ of its own in Blender 3.4).
+        session = getattr(self, "_viewport", None)
+        if session is not None:
+            session.close()
 
     # ---------------------------------------------------------------- render
 

@@ -110,7 +110,8 @@ def _scene_settings():
         props[s.prop] = _property(s)
         if s.name == "samples":
             props["preview_samples"] = _property(
-                s, label="Preview Samples", description="Samples per pixel of material and light previews",
+                s, label="Viewport Samples",
+                description="Samples per pixel in the viewport's Rendered shading and in material and light previews",
                 default=16, soft_max=1024)
     # Not numbers, so not rows of the core's table: where the caches are
     # kept between renders (phos_render_set_cache_file).

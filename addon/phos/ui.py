@@ -55,7 +55,7 @@ class PHOS_RENDER_PT_sampling(PhosButtonsPanel, bpy.types.Panel):
         layout.prop(phos, "integrator")
         col = layout.column(align=True)
         col.prop(phos, "samples", text="Render")
-        col.prop(phos, "preview_samples", text="Previews")
+        col.prop(phos, "preview_samples", text="Viewport")
         layout.prop(phos, "seed")
 
 

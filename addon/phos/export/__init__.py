@@ -57,7 +57,8 @@ def export_scene(depsgraph, core_scene, camera_object, camera_matrix, is_preview
     ctx = ExportContext(depsgraph.scene, core_scene, is_preview)
     ctx.view_layer = depsgraph.view_layer
     _check_render_settings(ctx)
-    camera.export_camera(camera_object, camera_matrix, ctx)
+    if camera_object is not None:  # None: the caller sets the camera (the viewport's view)
+        camera.export_camera(camera_object, camera_matrix, ctx)
     world.export_world(ctx)
     ctx.cancelled = not instances.export_instances(depsgraph, ctx, progress, cancelled)
     if not ctx.cancelled:

@@ -1,0 +1,184 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Rendered viewport shading in Blender's GUI, under Xvfb with software
+OpenGL (`make test-gui`; tools/test-gui.sh starts it):
+
+    xvfb-run -a -s "-screen 0 1280x800x24" blender --factory-startup --python tests/gui/viewport.py -- RESULT.json
+
+1. A 3D view switched to Rendered with Phos shows Phos's image: the
+   viewport's pixels, captured from the screen, are the session's film
+   through the scene's display transform (Standard: the sRGB curve), mean
+   within 3 %, and not black; the film equals a render of the same view
+   and settings through the core, bit for bit (an F12 of that view).
+2. A light moved: the image changes, with no new export.
+3. Leaving Rendered shading frees the session.
+
+Blender runs the steps from timers (the GUI must draw between them); the
+outcome is written as JSON to RESULT.json and the exit code is 0 only if
+every check passed.
+"""
+
+import json
+import os
+import sys
+import tempfile
+import time
+import traceback
+
+import bpy
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "blender"))
+import phostest as pt  # noqa: E402
+
+RESULT = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else os.path.join(tempfile.gettempdir(),
+                                                                                    "phos_gui.json")
+TIMEOUT = 120.0
+state = {"checks": [], "failed": False, "step": 0, "t0": time.monotonic()}
+
+
+def check(name, ok, detail=""):
+    state["checks"].append({"check": name, "ok": bool(ok), "detail": detail})
+    print("GUI %s: %s %s" % ("PASS" if ok else "FAIL", name, detail), flush=True)
+    if not ok:
+        state["failed"] = True
+
+
+def finish():
+    with open(RESULT, "w") as f:
+        json.dump(state["checks"], f, indent=1)
+    os._exit(1 if state["failed"] or not state["checks"] else 0)
+
+
+def view3d():
+    window = bpy.context.window_manager.windows[0]
+    area = next(a for a in window.screen.areas if a.type == 'VIEW_3D')
+    region = next(r for r in area.regions if r.type == 'WINDOW')
+    return window, area, region
+
+
+def session():
+    from phos import viewport
+    alive = [s for s in viewport.SESSIONS if s.scene is not None]
+    return alive[0] if alive else None
+
+
+def srgb(linear):
+    c = np.clip(linear, 0.0, 1.0)
+    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1.0 / 2.4) - 0.055)
+
+
+def inner(a):
+    """The middle half of an image of the drawing region (rows bottom-up),
+    away from the header and toolbar Blender draws over its edges."""
+    h, w = a.shape[:2]
+    return a[h // 4:h - h // 4, w // 4:w - w // 4]
+
+
+def screen_mean(path):
+    """Mean RGB of the middle of the 3D view's drawing region, in a
+    screenshot of its area."""
+    window, area, region = view3d()
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        bpy.ops.screen.screenshot_area(filepath=path)
+    img = bpy.data.images.load(path)
+    w, h = img.size
+    px = np.array(img.pixels[:], dtype=np.float32).reshape(h, w, 4)
+    bpy.data.images.remove(img)
+    x0, y0 = region.x - area.x, region.y - area.y
+    crop = inner(px[y0:y0 + region.height, x0:x0 + region.width, :3])
+    return float(crop.mean()), crop.shape
+
+
+def setup():
+    pt.reset_file()
+    pt.enable_addon()
+    scene = bpy.context.scene
+    pt.add_plane(scene, "Floor", size=8.0, material=pt.diffuse("Floor", (0.6, 0.6, 0.6)))
+    pt.add_cube(scene, "Box", size=1.0, location=(0, 0, 0.5), material=pt.diffuse("Box", (0.8, 0.3, 0.2)))
+    pt.add_light(scene, "POINT", 800.0, location=(2, -2, 3), name="Lamp")
+    cam = pt.add_camera(scene, location=(0, -6, 3), target=(0, 0, 0.5))
+    cam.data.show_passepartout = False
+    pt.set_world(scene, (0.1, 0.1, 0.1))
+    scene.view_settings.view_transform = 'Standard'
+    scene.view_settings.look = 'None'
+    scene.view_settings.exposure, scene.view_settings.gamma = 0.0, 1.0
+    scene.render.engine = "PHOS"
+    scene.phos.preview_samples = 8
+    window, area, region = view3d()
+    space = area.spaces.active
+    space.overlay.show_overlays = False
+    space.show_gizmo = False
+    space.region_3d.view_perspective = 'CAMERA'
+    space.shading.type = 'RENDERED'
+
+
+def wait_done(after=0):
+    """Whether a render later than the `after`-th is done."""
+    s = session()
+    return s is not None and s.render is not None and s.renders > after and s.done()
+
+
+def step():
+    try:
+        if time.monotonic() - state["t0"] > TIMEOUT:
+            check("finished within %.0f s" % TIMEOUT, False, "stuck at step %d" % state["step"])
+            finish()
+        n = state["step"]
+        if n == 0:
+            setup()
+            state["step"] = 1
+        elif n == 1 and wait_done():
+            s = session()
+            state["exports"] = s.ctx
+            shot, shape = screen_mean(os.path.join(tempfile.gettempdir(), "phos_gui_1.png"))
+            film = inner(s.pixels.reshape(s.size[1], s.size[0], 4)[..., :3])
+            expect = float(srgb(film).mean())
+            check("the viewport is not black", shot > 0.02, "mean %.4f" % shot)
+            check("the viewport shows the film through the display transform",
+                  abs(shot - expect) <= 0.03 * expect, "screen %.4f, film %.4f, %s" % (shot, expect, shape))
+            # The film against a one-pass render of the same camera and
+            # settings through the core: an F12 of this view.
+            from phos import core
+            rs = s._settings(bpy.context.scene, *s.size)
+            rs.progressive = 0
+            with core.Render(s.scene, rs) as r:
+                r.start()
+                r.wait(-1.0)
+                ref = r.read(core.PHOS_PASS_COMBINED, 0, 0, s.size[0], s.size[1])
+            check("the film is the F12 render of the view", np.array_equal(ref.reshape(-1, 4), s.pixels),
+                  "max difference %g" % float(np.abs(ref.reshape(-1, 4) - s.pixels).max()))
+            state["first"], state["renders"] = shot, s.renders
+            print("GUI TIME: %dx%d px, first whole image %.2f s after the render started (a draw later)"
+                  % (s.size[0], s.size[1], s.first_image or -1.0), flush=True)
+            bpy.data.objects["Lamp"].location.x -= 3.0
+            state["step"] = 2
+        elif n == 2 and wait_done(state["renders"]):
+            s = session()
+            shot, _ = screen_mean(os.path.join(tempfile.gettempdir(), "phos_gui_2.png"))
+            check("moving a light changes the image", abs(shot - state["first"]) > 0.005,
+                  "%.4f → %.4f" % (state["first"], shot))
+            check("moving a light exports nothing", s.ctx is state["exports"])
+            window, area, region = view3d()
+            area.spaces.active.shading.type = 'SOLID'
+            state["step"], state["left"] = 3, time.monotonic()
+        elif n == 3:
+            import gc
+            gc.collect()
+            if session() is None:
+                check("leaving Rendered frees the session", True)
+                finish()
+            if time.monotonic() - state["left"] > 10.0:
+                check("leaving Rendered frees the session", False, "still alive after 10 s")
+                finish()
+        for window in bpy.context.window_manager.windows:
+            for area in window.screen.areas:
+                area.tag_redraw()
+    except Exception:
+        traceback.print_exc()
+        check("no exception", False, traceback.format_exc(limit=3))
+        finish()
+    return 0.25
+
+
+bpy.app.timers.register(step, first_interval=1.0, persistent=True)
