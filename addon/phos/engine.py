@@ -28,7 +28,7 @@ import numpy as np
 
 from . import core, export
 from . import viewport
-from .export import camera, light, material
+from .export import camera, instances, light, material
 from .properties import PASSES, USER_SETTINGS, cache_files, enabled_passes, setting_value
 
 POLL_SECONDS = 0.03
@@ -65,29 +65,42 @@ PASS_REGISTRATION = {core.PHOS_PASS_KIND_COLOR: ("RGB", 'COLOR'), core.PHOS_PASS
 
 
 def _scene_signature(depsgraph):
-    """What the export reads from the scene itself that depsgraph.updates
-    may not list as a change of its own: the world assigned."""
+    """What the export reads that depsgraph.updates may not list as a change
+    of its own: the world assigned, and which objects the render sees (an
+    object hidden or shown, or moved into another collection, is tagged
+    without a change of geometry, transform or shading)."""
     world = depsgraph.scene.world
-    return world.original.as_pointer() if world is not None else 0
+    return (world.original.as_pointer() if world is not None else 0,
+            frozenset(ob.original.as_pointer() for ob in depsgraph.objects))
 
 
-def _changes_in_place(depsgraph):
-    """The changes the depsgraph reports since the last render, if a kept
-    scene can take them in place: (light objects, materials), evaluated;
-    else None. Cameras (set again every render) and the scene's own
-    settings (render settings reach the core through the render) need
+def _changes_in_place(depsgraph, ctx):
+    """The changes the depsgraph reports since the last render, if the kept
+    scene of export context `ctx` can take them in place: (light objects,
+    materials), evaluated; else None.
+
+    Cameras (set again every render), the scene's own settings (render
+    settings reach the core through the render) and collections need
     nothing; a light object or its light data, and a material or its node
-    tree, are changed in place; anything else (geometry, objects moved,
-    added or removed, the world, images) needs an export."""
+    tree, are changed in place. Blender 4.x tags objects for shading when a
+    material they use is edited, and every object when a datablock is added
+    (a relations update): an object tagged for shading alone is no change
+    while its materials and Object Info values are as exported. Anything
+    else (geometry, objects moved, the world, images) needs an export, as
+    do objects added, removed, hidden or shown (_scene_signature)."""
     lights, light_data, materials, trees = {}, set(), {}, set()
     for update in depsgraph.updates:
         block = update.id
         if isinstance(block, bpy.types.Object):
-            if block.type == 'LIGHT':
-                ob = block.evaluated_get(depsgraph)
+            ob = block.evaluated_get(depsgraph)
+            if ob.type == 'LIGHT':
                 lights[ob.original.as_pointer()] = ob
-            elif block.type != 'CAMERA':
-                return None
+            elif ob.type != 'CAMERA':
+                if update.is_updated_geometry or update.is_updated_transform:
+                    return None
+                if update.is_updated_shading and \
+                        instances.object_shading(ob) != ctx.object_shading.get(ob.original.as_pointer()):
+                    return None
         elif isinstance(block, bpy.types.Light):
             light_data.add(block.original.as_pointer())
         elif isinstance(block, bpy.types.Material):
@@ -95,7 +108,12 @@ def _changes_in_place(depsgraph):
             materials[mat.original.as_pointer()] = mat
         elif isinstance(block, bpy.types.NodeTree):
             trees.add(block.original.as_pointer())
-        elif not isinstance(block, (bpy.types.Camera, bpy.types.Scene)):
+        elif isinstance(block, bpy.types.Mesh):
+            # 4.x tags the mesh data of an edited material's objects too;
+            # its slots are compared with its objects' (object_shading).
+            if update.is_updated_geometry or update.is_updated_transform:
+                return None
+        elif not isinstance(block, (bpy.types.Camera, bpy.types.Scene, bpy.types.Collection)):
             return None
     # Light data and node trees only with the object or material that uses them.
     if light_data - {ob.data.original.as_pointer() for ob in lights.values()}:
@@ -343,7 +361,7 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         entry = kept.pop(layer, None)
         signature = _scene_signature(depsgraph)
         matrix = self.camera_model_matrix(camera_object)
-        changes = _changes_in_place(depsgraph) if entry is not None and entry[2] == signature else None
+        changes = _changes_in_place(depsgraph, entry[1]) if entry is not None and entry[2] == signature else None
         if changes is not None and self._keeps(scene) and self._apply(entry[1], depsgraph, changes):
             core_scene, ctx = entry[0], entry[1]
             camera.export_camera(camera_object, matrix, ctx)

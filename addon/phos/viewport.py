@@ -83,7 +83,7 @@ class ViewportSession:
         changes Blender reports (in place where the core can, else a new
         export)."""
         from .engine import _changes_in_place
-        changes = _changes_in_place(depsgraph) if self.scene is not None else None
+        changes = _changes_in_place(depsgraph, self.ctx) if self.scene is not None else None
         if changes is not None and not changes[0] and not changes[1]:
             return  # cameras and the scene's settings only: view_draw sees those
         self.stop()

@@ -23,6 +23,7 @@ class ExportContext:
         self.meshes = {}                    # geometry key → mesh id, or None for no triangles
         self.materials = {}                 # material pointer → material id
         self.light_ids = {}                 # light object pointer → core light ids (None: instanced, or none)
+        self.object_shading = {}            # object pointer → instances.object_shading when exported
         self.images = {}                    # image pointer → image id or None
         self.tangents_wanted = False        # a material reads tangents (a Normal Map in tangent space)
         self.view_layer = None              # the view layer rendered (its properties: Attribute nodes)

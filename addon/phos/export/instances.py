@@ -140,9 +140,18 @@ class _PendingInstances:
 _Entry = collections.namedtuple("_Entry", "mesh_id materials pass_index name")
 
 
+def object_shading(ob):
+    """What an object gives shading besides its geometry and transform: its
+    slots' materials and Object Info's colour and index (compared by
+    Persistent Data and the viewport, engine._changes_in_place)."""
+    return (tuple(slot.material.original.as_pointer() if slot.material else 0 for slot in ob.material_slots),
+            tuple(getattr(ob, "color", ())), float(getattr(ob, "pass_index", 0)))
+
+
 def _entry(ob, ctx):
     """The core mesh, materials and pass index of an object's evaluated mesh
     (None if the mesh has nothing to render)."""
+    ctx.object_shading[ob.original.as_pointer()] = object_shading(ob)
     # Materials first: the mesh exports the attributes they read.
     mats = _materials(ob, ctx)
     key = ob.data.as_pointer()
