@@ -115,10 +115,14 @@ def _changes_in_place(depsgraph, ctx):
                 return None
         elif not isinstance(block, (bpy.types.Camera, bpy.types.Scene, bpy.types.Collection)):
             return None
-    # Light data and node trees only with the object or material that uses them.
+    # Light data and node trees only with the object, light or material that uses them.
     if light_data - {ob.data.original.as_pointer() for ob in lights.values()}:
         return None
-    if trees - {m.node_tree.original.as_pointer() for m in materials.values() if m.node_tree is not None}:
+    owned = {m.node_tree.original.as_pointer() for m in materials.values() if m.node_tree is not None}
+    # Lights have node trees too (used by default from Blender 5.0).
+    owned |= {ob.data.node_tree.original.as_pointer() for ob in lights.values()
+              if getattr(ob.data, "node_tree", None) is not None}
+    if trees - owned:
         return None
     return list(lights.values()), list(materials.values())
 

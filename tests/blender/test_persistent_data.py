@@ -89,7 +89,10 @@ def test_persistent_data_reuses_the_scene(lit_scene, tmp_path):
         assert np.array_equal(moved, _fresh(scene, tmp_path, "camera_moved_fresh"))
 
         # A light's power, then its place, and a material's colour: changed
-        # in place (phos_scene_update_light, _material), no export.
+        # in place (phos_scene_update_light, _material), no export. Blender
+        # 5.x tags the objects using an edited material for geometry as well,
+        # which a modifier's edit also does: Phos exports again there.
+        material_exports = 1 if bpy.app.version >= (5, 0, 0) else 0
         lamp = bpy.data.objects["Lamp"]
         for name, change in (("energy", lambda: setattr(lamp.data, "energy", 900.0)),
                              ("light_moved", lambda: setattr(lamp, "location", (-2.0, -2.0, 3.0))),
@@ -100,7 +103,9 @@ def test_persistent_data_reuses_the_scene(lit_scene, tmp_path):
             count = exports.count
             change()
             changed = _render(scene, tmp_path, name=name)
-            assert exports.count == count, "%s: the scene was exported again" % name
+            expected = count + (material_exports if name == "material" else 0)
+            assert exports.count == expected, "%s: %d exports, expected %d" % (name, exports.count - count,
+                                                                             expected - count)
             assert not np.array_equal(changed, before), "%s: the change did not reach the image" % name
             assert np.array_equal(changed, _fresh(scene, tmp_path, name + "_fresh")), name
 
