@@ -93,6 +93,14 @@ static int grow(void **items, uint32_t count, uint32_t *capacity, size_t elem)
             FAIL((s), PHOS_ERROR_INVALID_ARGUMENT, "%s: the description is NULL", what);        \
     } while (0)
 
+/* An update names something the scene has (phos_scene_update_*). */
+#define CHECK_EXISTS(s, kind, id, count)                                                        \
+    do {                                                                                        \
+        if ((id) >= (count))                                                                    \
+            FAIL((s), PHOS_ERROR_INVALID_ARGUMENT, "%s: %u does not exist (the scene has %u)",  \
+                 kind, (id), (count));                                                          \
+    } while (0)
+
 /* A change accepted: the scene needs a commit again, which rebuilds what
  * depends on `what` (enum phos_scene_change). */
 static void scene_changed(scene *s, uint32_t what)
@@ -376,9 +384,7 @@ phos_status phos_scene_add_material(phos_scene *s, const phos_material_desc *d, 
 phos_status phos_scene_update_material(phos_scene *s, uint32_t id, const phos_material_desc *d)
 {
     CHECK_EDITABLE(s, "phos_scene_update_material", d);
-    if (id >= s->material_count)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "material: %u does not exist (the scene has %u materials)", id,
-             s->material_count);
+    CHECK_EXISTS(s, "material", id, s->material_count);
     material m;
     phos_status st = material_from_desc(s, d, &m);
     if (st != PHOS_OK)
@@ -519,8 +525,7 @@ phos_status phos_scene_add_mesh(phos_scene *s, const phos_mesh_desc *d, uint32_t
 phos_status phos_scene_update_mesh(phos_scene *s, uint32_t id, const phos_mesh_desc *d)
 {
     CHECK_EDITABLE(s, "phos_scene_update_mesh", d);
-    if (id >= s->mesh_count)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "mesh: %u does not exist (the scene has %u meshes)", id, s->mesh_count);
+    CHECK_EXISTS(s, "mesh", id, s->mesh_count);
     mesh m;
     phos_status st = mesh_from_desc(s, d, &m);
     if (st != PHOS_OK)
@@ -639,9 +644,7 @@ phos_status phos_scene_add_instances(phos_scene *s, const phos_instances_desc *d
 phos_status phos_scene_update_instance(phos_scene *s, uint32_t id, const phos_instance_desc *d)
 {
     CHECK_EDITABLE(s, "phos_scene_update_instance", d);
-    if (id >= s->instance_count)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "instance: %u does not exist (the scene has %u instances)", id,
-             s->instance_count);
+    CHECK_EXISTS(s, "instance", id, s->instance_count);
     instance inst;
     phos_status st = instance_from_desc(s, d, &inst);
     if (st != PHOS_OK)
@@ -709,9 +712,7 @@ phos_status phos_scene_add_light(phos_scene *s, const phos_light_desc *d, uint32
 phos_status phos_scene_update_light(phos_scene *s, uint32_t id, const phos_light_desc *d)
 {
     CHECK_EDITABLE(s, "phos_scene_update_light", d);
-    if (id >= s->light_desc_count)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "light: %u does not exist (the scene has %u lights)", id,
-             s->light_desc_count);
+    CHECK_EXISTS(s, "light", id, s->light_desc_count);
     phos_status st = validate_light(s, d);
     if (st != PHOS_OK)
         return st;

@@ -64,8 +64,8 @@ const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bs
         camera_path_add_direct(p, g.direct);
     }
     if (!is->gathers_find_caustics) {
-        bsdf receivers, others;
-        bsdf_split_caustic_receivers(v->b, is->caustic_roughness, &receivers, &others);
+        bsdf receivers;
+        bsdf_caustic_receivers(v->b, is->caustic_roughness, &receivers);
         if (receivers.count)
             camera_path_add_diffuse(p, 1, photon_radiance(&is->maps->caustic, &receivers, v->wo, v->sf->p, v->sf->ns,
                                                           &is->caustic_estimate, &p->scratch->caustic));

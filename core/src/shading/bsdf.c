@@ -819,17 +819,16 @@ static float bump_shadowing(vec3 n0, vec3 n, vec3 wi)
     return -g2 * g + g2 + g;
 }
 
-/* Σ f·|cos θi| over the closures, each in its own frame and scaled by the
- * layers over it (and, bumped diffuse ones, by their bump shadowing), and
- * Σ (sample_weight_k / sum) pdf_k: the densities are the lobes' own. */
 /* A closure's part on caustic paths (closure_scatters_caustic,
  * closure_receives_caustic). */
 enum caustic_role { CAUSTIC_CARRIER, CAUSTIC_RECEIVER, CAUSTIC_NEITHER, CAUSTIC_ROLE_COUNT };
 
 static int closure_caustic_role(const closure *c, float max_roughness);
 
-/* Σ over closures of f·|cos θi| and the mixture pdf; with `parts` (not
- * NULL) also the sums over each caustic role's closures, apart. */
+/* Σ f·|cos θi| over the closures, each in its own frame and scaled by the
+ * layers over it (and, bumped diffuse ones, by their bump shadowing), and
+ * Σ (sample_weight_k / sum) pdf_k: the densities are the lobes' own. With
+ * `parts` (not NULL) also the sums over each caustic role's closures. */
 static vec3 eval_mixture_parts(const bsdf *b, vec3 wo, vec3 wi, float *pdf, float max_roughness,
                                vec3 parts[CAUSTIC_ROLE_COUNT])
 {
@@ -918,21 +917,31 @@ vec3 bsdf_normal(const bsdf *b)
 
 /* Splits b's closures into those `in_first` accepts and the others. */
 /* Closures for which in_first(c, threshold) holds go to `first`. */
+/* The closures of b into `first` (those in_first accepts) and `second`
+ * (the rest; NULL: not wanted), each with b's frames and layers. */
 static void split_closures(const bsdf *b, int (*in_first)(const closure *, float), float threshold, bsdf *first,
                           bsdf *second)
 {
-    first->frame_count = second->frame_count = b->frame_count;
-    for (uint32_t f = 0; f < b->frame_count; f++)
-        first->frames[f] = second->frames[f] = b->frames[f];
-    first->ng = second->ng = b->ng;
-    first->count = second->count = 0;
-    first->sample_weight_sum = second->sample_weight_sum = 0.0f;
-    first->layer_count = second->layer_count = b->layer_count;
-    for (uint32_t j = 0; j < b->layer_count; j++)
-        first->layers[j] = second->layers[j] = b->layers[j];
+    bsdf *parts[2] = {first, second};
+    for (int k = 0; k < 2; k++) {
+        bsdf *part = parts[k];
+        if (!part)
+            continue;
+        part->frame_count = b->frame_count;
+        for (uint32_t f = 0; f < b->frame_count; f++)
+            part->frames[f] = b->frames[f];
+        part->ng = b->ng;
+        part->count = 0;
+        part->sample_weight_sum = 0.0f;
+        part->layer_count = b->layer_count;
+        for (uint32_t j = 0; j < b->layer_count; j++)
+            part->layers[j] = b->layers[j];
+    }
     for (uint32_t i = 0; i < b->count; i++) {
         const closure *c = &b->closures[i];
         bsdf *dst = in_first(c, threshold) ? first : second;
+        if (!dst)
+            continue;
         dst->closures[dst->count++] = *c;
         dst->sample_weight_sum += c->sample_weight;
     }
@@ -1050,9 +1059,9 @@ static int closure_caustic_role(const closure *c, float max_roughness)
     return closure_receives_caustic(c, max_roughness) ? CAUSTIC_RECEIVER : CAUSTIC_NEITHER;
 }
 
-void bsdf_split_caustic_receivers(const bsdf *b, float max_roughness, bsdf *receivers, bsdf *rest)
+void bsdf_caustic_receivers(const bsdf *b, float max_roughness, bsdf *receivers)
 {
-    split_closures(b, closure_receives_caustic, max_roughness, receivers, rest);
+    split_closures(b, closure_receives_caustic, max_roughness, receivers, NULL);
 }
 
 /* f_part / f per channel; 0 where f is 0 (the sample then carries nothing). */
@@ -1073,6 +1082,18 @@ void bsdf_caustic_shares(const bsdf *b, vec3 wo, const bsdf_sample *bs, float ma
     if (bs->flags & BSDF_DELTA) {
         *carry = v3s(1.0f);
         *receive = v3s(0.0f);
+        return;
+    }
+    /* Where the non-delta closures all have one role, the shares are 0
+     * and 1 without evaluating them (a rough metal or a plain diffuse
+     * surface: most vertices). */
+    int roles = 0;
+    for (uint32_t k = 0; k < b->count; k++)
+        if (closure_has_non_delta(&b->closures[k]))
+            roles |= 1 << closure_caustic_role(&b->closures[k], max_roughness);
+    if (roles == 0 || (roles & (roles - 1)) == 0) {
+        *carry = v3s(roles == 1 << CAUSTIC_CARRIER ? 1.0f : 0.0f);
+        *receive = v3s(roles == 1 << CAUSTIC_RECEIVER ? 1.0f : 0.0f);
         return;
     }
     float pdf;

@@ -239,7 +239,7 @@ int bsdf_has_non_caustic(const bsdf *b, float max_roughness);
  * glossy dielectric layer smoother than max_roughness, whose lobe is too
  * narrow for a density estimate. */
 int closure_receives_caustic(const closure *c, float max_roughness);
-void bsdf_split_caustic_receivers(const bsdf *b, float max_roughness, bsdf *receivers, bsdf *rest);
+void bsdf_caustic_receivers(const bsdf *b, float max_roughness, bsdf *receivers);
 
 /* The shares, per channel, of f(wo, bs->wi) that the closures carrying
  * caustics and those receiving them contribute, for a direction b sampled:
