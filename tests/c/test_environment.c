@@ -416,23 +416,6 @@ static void test_portal_interior(int sky)
  * reference's own noise taken out in quadrature) must fall as global
  * photons grow, and the mean come within 4 standard errors of both
  * renders' noise at the largest count. */
-static double rms_of(const float *a, const float *b, uint32_t n)
-{
-    double sum = 0.0;
-    for (uint32_t i = 0; i < n; i++)
-        for (int c = 0; c < 3; c++)
-            sum += ((double)a[4 * i + c] - b[4 * i + c]) * ((double)a[4 * i + c] - b[4 * i + c]);
-    return sqrt(sum / (3.0 * n));
-}
-
-static double mean_of(const float *a, uint32_t n)
-{
-    double m = 0.0;
-    for (uint32_t i = 0; i < n; i++)
-        m += (a[4 * i] + a[4 * i + 1] + a[4 * i + 2]) / 3.0;
-    return m / n;
-}
-
 static void test_global_map_under_sky(void)
 {
     enum { W = 24, N = W * W };
@@ -450,8 +433,8 @@ static void test_global_map_under_sky(void)
     CHECK(ref && ref2);
     if (!ref || !ref2)
         return;
-    double ref_mean = 0.5 * (mean_of(ref, N) + mean_of(ref2, N));
-    double ref_noise = rms_of(ref, ref2, N) / sqrt(2.0);
+    double ref_mean = 0.5 * (test_mean_rgb(ref, 4, N) + test_mean_rgb(ref2, 4, N));
+    double ref_noise = test_rms_difference(ref, ref2, 4, N) / sqrt(2.0);
     double se_ref = ref_noise / sqrt(2.0 * N); /* pixel noise is independent: the mean's */
     printf("  global map under a sky: PATH %.4f (± %.4f), per-pixel noise %.4f\n", ref_mean, se_ref, ref_noise);
     const uint32_t photons[] = {10000, 80000, 640000};
@@ -468,9 +451,9 @@ static void test_global_map_under_sky(void)
         CHECK(a && b);
         if (!a || !b)
             return;
-        double m = 0.5 * (mean_of(a, N) + mean_of(b, N));
-        double se = rms_of(a, b, N) / sqrt(2.0) / sqrt(2.0 * N);
-        double d = rms_of(a, ref, N);
+        double m = 0.5 * (test_mean_rgb(a, 4, N) + test_mean_rgb(b, 4, N));
+        double se = test_rms_difference(a, b, 4, N) / sqrt(2.0) / sqrt(2.0 * N);
+        double d = test_rms_difference(a, ref, 4, N);
         rmse[i] = sqrt(fmax(d * d - ref_noise * ref_noise, 0.0));
         mean_err = m - ref_mean;
         limit = 4.0 * sqrt(se * se + se_ref * se_ref);

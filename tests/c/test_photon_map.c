@@ -786,14 +786,6 @@ static void free_pass_sets(float *a[PHOS_PASS_COUNT], float *b[PHOS_PASS_COUNT],
     }
 }
 
-static double pass_mean(const float *p, uint32_t channels, uint32_t n)
-{
-    double m = 0.0;
-    for (uint32_t i = 0; i < n; i++)
-        m += p[i * channels] + p[i * channels + 1] + p[i * channels + 2];
-    return m / (3.0 * n);
-}
-
 /* Standard error of the mean of two renders a and b with different seeds:
  * per pixel, Var(a − b) = 2σ², and the mean of (a + b)/2 over n pixels has
  * variance σ²/(2n) = Var(a − b)/(4n). */
@@ -823,7 +815,7 @@ static void pass_mean_of_pair(phos_scene *s, phos_render_settings rs, uint32_t p
     CHECK(render_settings_passes(s, &rs, a, NULL) != NULL);
     rs.seed++;
     CHECK(render_settings_passes(s, &rs, b, NULL) != NULL);
-    *mean = 0.5 * (pass_mean(a[pass], ch, n) + pass_mean(b[pass], ch, n));
+    *mean = 0.5 * (test_mean_rgb(a[pass], ch, n) + test_mean_rgb(b[pass], ch, n));
     *se = pair_stderr(a[pass], b[pass], ch, n);
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
         free(a[p]);
@@ -850,8 +842,8 @@ static void test_photon_vs_path(void)
      * camera sees no emitter here, so both must read exactly 0. */
     for (uint32_t p = 0; p <= PHOS_PASS_INDIRECT; p++) {
         uint32_t ch = phos_pass_channels(p);
-        double a = 0.5 * (pass_mean(path[p], ch, n) + pass_mean(path2[p], ch, n));
-        double b = 0.5 * (pass_mean(pm[p], ch, n) + pass_mean(pm2[p], ch, n));
+        double a = 0.5 * (test_mean_rgb(path[p], ch, n) + test_mean_rgb(path2[p], ch, n));
+        double b = 0.5 * (test_mean_rgb(pm[p], ch, n) + test_mean_rgb(pm2[p], ch, n));
         double se_a = pair_stderr(path[p], path2[p], ch, n), se_b = pair_stderr(pm[p], pm2[p], ch, n);
         double limit = 4.0 * sqrt(se_a * se_a + se_b * se_b);
         printf("  %-9s PATH %.5f  PHOTON %.5f  (limit ±%.5f)\n", names[p], a, b, limit);
@@ -873,10 +865,10 @@ static void test_photon_vs_path(void)
     /* The debug passes see the maps: the photon map's estimate is close to
      * Combined (the scene is diffuse where the camera looks), and photons
      * are drawn. */
-    double photon_map = pass_mean(pm[PHOS_PASS_PHOTON_MAP], 3, n), combined = pass_mean(pm[0], 4, n);
+    double photon_map = test_mean_rgb(pm[PHOS_PASS_PHOTON_MAP], 3, n), combined = test_mean_rgb(pm[0], 4, n);
     CHECK_MSG(fabs(photon_map - combined) < 0.1 * combined, "photon map pass %.4f vs combined %.4f", photon_map, combined);
-    CHECK(pass_mean(pm[PHOS_PASS_PHOTONS], 3, n) > 0.0);
-    CHECK(pass_mean(pm[PHOS_PASS_CAUSTIC_MAP], 3, n) > 0.0);
+    CHECK(test_mean_rgb(pm[PHOS_PASS_PHOTONS], 3, n) > 0.0);
+    CHECK(test_mean_rgb(pm[PHOS_PASS_CAUSTIC_MAP], 3, n) > 0.0);
     free_pass_sets(path, path2, pm, pm2);
     phos_scene_destroy(s);
 }
@@ -929,8 +921,8 @@ static void path_traced_gather_vs_path(const char *name, phos_scene *s)
         if (p == PHOS_PASS_CAUSTICS)
             continue; /* the caustic map's estimate: test_photon_vs_path */
         uint32_t ch = phos_pass_channels(p);
-        double a = 0.5 * (pass_mean(path[p], ch, n) + pass_mean(path2[p], ch, n));
-        double b = 0.5 * (pass_mean(pt[p], ch, n) + pass_mean(pt2[p], ch, n));
+        double a = 0.5 * (test_mean_rgb(path[p], ch, n) + test_mean_rgb(path2[p], ch, n));
+        double b = 0.5 * (test_mean_rgb(pt[p], ch, n) + test_mean_rgb(pt2[p], ch, n));
         double se_a = pair_stderr(path[p], path2[p], ch, n), se_b = pair_stderr(pt[p], pt2[p], ch, n);
         double limit = 4.0 * sqrt(se_a * se_a + se_b * se_b);
         printf("    %-9s PATH %.5f  PHOTON, path-traced gather %.5f  (limit ±%.5f)\n", names[p], a, b, limit);
@@ -1004,8 +996,8 @@ static void test_world_light_noise(void)
         CHECK(render_settings_passes(s, &rs, k ? pm2 : pm, NULL) != NULL);
     }
     double v_path = pair_variance(path[0], path2[0], 4, n), v_pm = pair_variance(pm[0], pm2[0], 4, n);
-    double a = 0.5 * (pass_mean(path[0], 4, n) + pass_mean(path2[0], 4, n));
-    double b = 0.5 * (pass_mean(pm[0], 4, n) + pass_mean(pm2[0], 4, n));
+    double a = 0.5 * (test_mean_rgb(path[0], 4, n) + test_mean_rgb(path2[0], 4, n));
+    double b = 0.5 * (test_mean_rgb(pm[0], 4, n) + test_mean_rgb(pm2[0], 4, n));
     double se = sqrt(pow(pair_stderr(path[0], path2[0], 4, n), 2) + pow(pair_stderr(pm[0], pm2[0], 4, n), 2));
     printf("  world-lit ball: mean PATH %.5f PHOTON %.5f (±%.5f); pixel variance PATH %.3g PHOTON %.3g (%.2fx)\n", a,
            b, 4.0 * se, v_path, v_pm, v_pm / v_path);
@@ -1084,15 +1076,6 @@ static void test_glossy_gather_hits(void)
  * mean within 4 standard errors of both renders' noise, and its per-pixel
  * RMS error falling as caustic photons grow (the reference's own noise,
  * measured from a second seed, is subtracted in quadrature). */
-static double rms_difference(const float *a, const float *b, uint32_t n)
-{
-    double sum = 0.0;
-    for (uint32_t i = 0; i < 4 * n; i++)
-        if (i % 4 != 3)
-            sum += ((double)a[i] - b[i]) * ((double)a[i] - b[i]);
-    return sqrt(sum / (3.0 * n));
-}
-
 static void test_glossy_caustic_on_a_floor(void)
 {
     phos_scene *s = metal_ceiling_scene_of(0.25f);
@@ -1102,9 +1085,9 @@ static void test_glossy_caustic_on_a_floor(void)
     CHECK(render_settings_passes(s, &rs, ref, NULL) != NULL);
     rs.seed++;
     CHECK(render_settings_passes(s, &rs, ref2, NULL) != NULL);
-    double mean_ref = 0.5 * (pass_mean(ref[0], 4, n) + pass_mean(ref2[0], 4, n));
+    double mean_ref = 0.5 * (test_mean_rgb(ref[0], 4, n) + test_mean_rgb(ref2[0], 4, n));
     double se_ref = pair_stderr(ref[0], ref2[0], 4, n);
-    double ref_noise = rms_difference(ref[0], ref2[0], n) / sqrt(2.0); /* one render's noise per pixel */
+    double ref_noise = test_rms_difference(ref[0], ref2[0], 4, n) / sqrt(2.0); /* one render's noise per pixel */
     printf("  glossy caustic: PATH %.5f (± %.5f), per-pixel noise %.4f\n", mean_ref, se_ref, ref_noise);
     const uint32_t photons[] = {5000, 40000, 320000};
     double rmse[3];
@@ -1115,7 +1098,7 @@ static void test_glossy_caustic_on_a_floor(void)
         double m, se;
         pass_mean_of_pair(s, pr, PHOS_PASS_COMBINED, &m, &se);
         CHECK(render_settings_passes(s, &pr, pm, NULL) != NULL);
-        double d = rms_difference(pm[0], ref[0], n);
+        double d = test_rms_difference(pm[0], ref[0], 4, n);
         rmse[i] = sqrt(fmax(d * d - ref_noise * ref_noise, 0.0));
         double limit = 4.0 * sqrt(se * se + se_ref * se_ref);
         printf("    PHOTON, %6u caustic photons: %.5f (± %.5f), mean error %.2f %% (noise limit %.2f %%), "
@@ -1180,17 +1163,6 @@ static phos_scene *glossy_receiver_scene(int mirrored, float lamp_radius)
     return s;
 }
 
-static double rms_difference_of(const float *a, const float *b, uint32_t channels, uint32_t n)
-{
-    double sum = 0.0;
-    for (uint32_t i = 0; i < n; i++)
-        for (uint32_t c = 0; c < 3; c++) {
-            double d = (double)a[i * channels + c] - b[i * channels + c];
-            sum += d * d;
-        }
-    return sqrt(sum / (3.0 * n));
-}
-
 /* Under a point spot no path can find the caustic: the floor's Caustics
  * pass under PHOTON must match the mirrored scene's Direct pass under PATH
  * (mean within 4 standard errors of both renders' noise at every count),
@@ -1209,7 +1181,7 @@ static void test_glossy_receivers(void)
     rs.seed++;
     CHECK(render_settings_passes(virt, &rs, ref2, NULL) != NULL);
     const uint32_t ch = phos_pass_channels(PHOS_PASS_DIRECT), cc = phos_pass_channels(PHOS_PASS_CAUSTICS);
-    double mean_ref = 0.5 * (pass_mean(ref[PHOS_PASS_DIRECT], ch, n) + pass_mean(ref2[PHOS_PASS_DIRECT], ch, n));
+    double mean_ref = 0.5 * (test_mean_rgb(ref[PHOS_PASS_DIRECT], ch, n) + test_mean_rgb(ref2[PHOS_PASS_DIRECT], ch, n));
     double se_ref = pair_stderr(ref[PHOS_PASS_DIRECT], ref2[PHOS_PASS_DIRECT], ch, n);
     printf("  glossy receiver: mirrored lamp's direct light (PATH) %.5f (± %.5f)\n", mean_ref, se_ref);
     CHECK(mean_ref > 0.01);
@@ -1224,9 +1196,9 @@ static void test_glossy_receivers(void)
         pr.seed++;
         CHECK(render_settings_passes(s, &pr, pm2, NULL) != NULL);
         const float *a = pm[PHOS_PASS_CAUSTICS], *b = pm2[PHOS_PASS_CAUSTICS];
-        double m = 0.5 * (pass_mean(a, cc, n) + pass_mean(b, cc, n)), se = pair_stderr(a, b, cc, n);
+        double m = 0.5 * (test_mean_rgb(a, cc, n) + test_mean_rgb(b, cc, n)), se = pair_stderr(a, b, cc, n);
         double limit = 4.0 * sqrt(se * se + se_ref * se_ref);
-        rmse[i] = rms_difference_of(a, ref[PHOS_PASS_DIRECT], cc, n);
+        rmse[i] = test_rms_difference(a, ref[PHOS_PASS_DIRECT], cc, n);
         printf("    PHOTON, %6u caustic photons: caustics %.5f (± %.5f), mean error %.2f %% (noise limit %.2f %%), "
                "per-pixel RMS error %.4f\n", photons[i], m, se, 100.0 * fabs(m / mean_ref - 1.0),
                100.0 * limit / mean_ref, rmse[i]);
@@ -1285,8 +1257,8 @@ static void photon_vs_path_passes(const char *name, phos_scene *s, uint32_t phot
         if (!(asserted & (1u << p)))
             continue;
         uint32_t ch = phos_pass_channels(p);
-        double a = 0.5 * (pass_mean(path[p], ch, n) + pass_mean(path2[p], ch, n));
-        double b = 0.5 * (pass_mean(pm[p], ch, n) + pass_mean(pm2[p], ch, n));
+        double a = 0.5 * (test_mean_rgb(path[p], ch, n) + test_mean_rgb(path2[p], ch, n));
+        double b = 0.5 * (test_mean_rgb(pm[p], ch, n) + test_mean_rgb(pm2[p], ch, n));
         double se = sqrt(pow(pair_stderr(path[p], path2[p], ch, n), 2) + pow(pair_stderr(pm[p], pm2[p], ch, n), 2));
         printf("    %-9s PATH %.5f PHOTON %.5f (error %+.2f %%, noise limit %.2f %%)\n", names[p], a, b,
                100.0 * (b / a - 1.0), 400.0 * se / a);

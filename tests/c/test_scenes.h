@@ -357,6 +357,29 @@ static float *test_render(phos_scene *s, const phos_render_settings *rs)
     return img;
 }
 
+/* Mean over n pixels and their RGB channels of an image of `channels`
+ * floats a pixel. */
+static double test_mean_rgb(const float *img, uint32_t channels, uint32_t n)
+{
+    double m = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        m += img[i * channels] + img[i * channels + 1] + img[i * channels + 2];
+    return m / (3.0 * n);
+}
+
+/* Root mean square over n pixels and their RGB channels of a − b, images
+ * of `channels` floats a pixel. */
+static double test_rms_difference(const float *a, const float *b, uint32_t channels, uint32_t n)
+{
+    double sum = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        for (uint32_t c = 0; c < 3; c++) {
+            double d = (double)a[i * channels + c] - b[i * channels + c];
+            sum += d * d;
+        }
+    return sqrt(sum / (3.0 * n));
+}
+
 /* Mean and standard error of the mean of one channel over all pixels. */
 static void test_image_stats(const float *img, size_t pixels, int channel, double *mean, double *stderr_mean)
 {
