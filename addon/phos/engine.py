@@ -28,8 +28,8 @@ import numpy as np
 
 from . import core, export
 from . import viewport
-from .export import camera, instances, light, material
-from .properties import PASSES, USER_SETTINGS, cache_files, enabled_passes, setting_value
+from .export import camera, changes as scene_changes
+from .properties import PASSES, cache_files, enabled_passes, render_settings
 
 POLL_SECONDS = 0.03
 STATS_SECONDS_BACKGROUND = 2.0
@@ -62,69 +62,6 @@ PASS_IDS.update((p.name, p.pass_id) for p in PASSES)
 
 # How Blender is told what a pass holds (channel names, type), by kind.
 PASS_REGISTRATION = {core.PHOS_PASS_KIND_COLOR: ("RGB", 'COLOR'), core.PHOS_PASS_KIND_VECTOR: ("XYZ", 'VECTOR')}
-
-
-def _scene_signature(depsgraph):
-    """What the export reads that depsgraph.updates may not list as a change
-    of its own: the world assigned, and which objects the render sees (an
-    object hidden or shown, or moved into another collection, is tagged
-    without a change of geometry, transform or shading)."""
-    world = depsgraph.scene.world
-    return (world.original.as_pointer() if world is not None else 0,
-            frozenset(ob.original.as_pointer() for ob in depsgraph.objects))
-
-
-def _changes_in_place(depsgraph, ctx):
-    """The changes the depsgraph reports since the last render, if the kept
-    scene of export context `ctx` can take them in place: (light objects,
-    materials), evaluated; else None.
-
-    Cameras (set again every render), the scene's own settings (render
-    settings reach the core through the render) and collections need
-    nothing; a light object or its light data, and a material or its node
-    tree, are changed in place. Blender 4.x tags objects for shading when a
-    material they use is edited, and every object when a datablock is added
-    (a relations update): an object tagged for shading alone is no change
-    while its materials and Object Info values are as exported. Anything
-    else (geometry, objects moved, the world, images) needs an export, as
-    do objects added, removed, hidden or shown (_scene_signature)."""
-    lights, light_data, materials, trees = {}, set(), {}, set()
-    for update in depsgraph.updates:
-        block = update.id
-        if isinstance(block, bpy.types.Object):
-            ob = block.evaluated_get(depsgraph)
-            if ob.type == 'LIGHT':
-                lights[ob.original.as_pointer()] = ob
-            elif ob.type != 'CAMERA':
-                if update.is_updated_geometry or update.is_updated_transform:
-                    return None
-                if update.is_updated_shading and \
-                        instances.object_shading(ob) != ctx.object_shading.get(ob.original.as_pointer()):
-                    return None
-        elif isinstance(block, bpy.types.Light):
-            light_data.add(block.original.as_pointer())
-        elif isinstance(block, bpy.types.Material):
-            mat = block.evaluated_get(depsgraph)
-            materials[mat.original.as_pointer()] = mat
-        elif isinstance(block, bpy.types.NodeTree):
-            trees.add(block.original.as_pointer())
-        elif isinstance(block, bpy.types.Mesh):
-            # 4.x tags the mesh data of an edited material's objects too;
-            # its slots are compared with its objects' (object_shading).
-            if update.is_updated_geometry or update.is_updated_transform:
-                return None
-        elif not isinstance(block, (bpy.types.Camera, bpy.types.Scene, bpy.types.Collection)):
-            return None
-    # Light data and node trees only with the object, light or material that uses them.
-    if light_data - {ob.data.original.as_pointer() for ob in lights.values()}:
-        return None
-    owned = {m.node_tree.original.as_pointer() for m in materials.values() if m.node_tree is not None}
-    # Lights have node trees too (used by default from Blender 5.0).
-    owned |= {ob.data.node_tree.original.as_pointer() for ob in lights.values()
-              if getattr(ob.data, "node_tree", None) is not None}
-    if trees - owned:
-        return None
-    return list(lights.values()), list(materials.values())
 
 
 def _stage_text(progress, stage_id, name, samples):
@@ -305,20 +242,10 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         if core_scene is None:
             return
         try:
-
-            rs = core.new_render_settings()
-            # The user's settings, by the core's table; then those Blender
-            # decides (the "host" rows of the table).
-            for setting in USER_SETTINGS:
-                setattr(rs, setting.name, setting_value(settings, setting))
+            rs = render_settings(scene, width, height)
             if self.is_preview:
                 rs.samples = settings.preview_samples
-            rs.width, rs.height = width, height
             rs.region_x, rs.region_y, rs.region_width, rs.region_height = region
-            # The effective thread count, whether threads_mode is AUTO or FIXED.
-            rs.threads = scene.render.threads
-            rs.transparent_background = 1 if scene.render.film_transparent else 0
-            rs.pass_mask = 1 << core.PHOS_PASS_COMBINED
             if not self.is_preview:
                 for p in enabled_passes(depsgraph.view_layer):
                     rs.pass_mask |= 1 << p.pass_id
@@ -363,9 +290,9 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             kept = self._kept_scenes = {}
         layer = depsgraph.view_layer.name
         entry = kept.pop(layer, None)
-        signature = _scene_signature(depsgraph)
+        signature = scene_changes.signature(depsgraph)
         matrix = self.camera_model_matrix(camera_object)
-        changes = _changes_in_place(depsgraph, entry[1]) if entry is not None and entry[2] == signature else None
+        changes = scene_changes.changes_in_place(depsgraph, entry[1], entry[2]) if entry is not None else None
         if changes is not None and self._keeps(scene) and self._apply(entry[1], depsgraph, changes):
             core_scene, ctx = entry[0], entry[1]
             camera.export_camera(camera_object, matrix, ctx)
@@ -391,20 +318,12 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         return core_scene
 
     def _apply(self, ctx, depsgraph, changes):
-        """Apply the changed lights and materials to a kept scene through
-        the core's scene updates; False if one of them cannot be changed in
-        place (the caller then exports afresh)."""
-        ctx.scene, ctx.view_layer = depsgraph.scene, depsgraph.view_layer
-        lights, materials = changes
-        for ob in lights:
-            if not light.update_light(ob, ctx):
-                return False
-        for mat in materials:
-            if not material.update_material(mat, ctx):
-                return False
-        if not self.is_preview:
-            for message in ctx.warnings:
-                self.report({'WARNING'}, message)
+        """Apply the changed lights and materials to a kept scene
+        (export/changes.py); False if the scene must be exported afresh."""
+        if not scene_changes.apply_changes(depsgraph, ctx, changes):
+            return False
+        for message in ctx.warnings:
+            self.report({'WARNING'}, message)
         return True
 
     def _export(self, depsgraph, camera_object, matrix):

@@ -154,6 +154,23 @@ def cache_files(settings):
     return out
 
 
+def render_settings(scene, width, height):
+    """The core's settings of a render of `scene` at width × height pixels:
+    the user's (scene.phos), by the core's table, then those Blender decides
+    (the table's "host" rows: the effective thread count whether
+    threads_mode is AUTO or FIXED, the transparent film), with Combined
+    alone of the passes."""
+    settings = scene.phos
+    rs = core.new_render_settings()
+    for setting in USER_SETTINGS:
+        setattr(rs, setting.name, setting_value(settings, setting))
+    rs.width, rs.height = width, height
+    rs.threads = scene.render.threads
+    rs.transparent_background = 1 if scene.render.film_transparent else 0
+    rs.pass_mask = 1 << core.PHOS_PASS_COMBINED
+    return rs
+
+
 def setting_value(settings, setting):
     """The core's value of a user setting in `scene.phos` (an enum item → its index)."""
     value = getattr(settings, setting.prop)

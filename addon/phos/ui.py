@@ -88,34 +88,38 @@ class PHOS_RENDER_PT_photon_mapping(PhosButtonsPanel, bpy.types.Panel):
         sub.prop(phos, "final_gather_rays", text="Gather Rays")
 
 
-class PHOS_RENDER_PT_photon_mapping_global(PhosButtonsPanel, bpy.types.Panel):
+class PhotonMapPanel(PhosButtonsPanel):
+    """A sub-panel of one photon map: its photons stored and per estimate
+    (the settings <map>_photons and <map>_estimate_photons)."""
+
+    bl_context = "render"
+    bl_parent_id = "PHOS_RENDER_PT_photon_mapping"
+    map_name = ""
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        phos = context.scene.phos
+        col = layout.column(align=True)
+        col.prop(phos, self.map_name + "_photons", text="Photons")
+        col.prop(phos, self.map_name + "_estimate_photons", text="Estimate")
+        self.draw_more(layout, phos)
+
+    def draw_more(self, layout, phos):
+        pass
+
+
+class PHOS_RENDER_PT_photon_mapping_global(PhotonMapPanel, bpy.types.Panel):
     bl_label = "Global Map"
-    bl_context = "render"
-    bl_parent_id = "PHOS_RENDER_PT_photon_mapping"
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        phos = context.scene.phos
-        col = layout.column(align=True)
-        col.prop(phos, "global_photons", text="Photons")
-        col.prop(phos, "global_estimate_photons", text="Estimate")
+    map_name = "global"
 
 
-class PHOS_RENDER_PT_photon_mapping_caustic(PhosButtonsPanel, bpy.types.Panel):
+class PHOS_RENDER_PT_photon_mapping_caustic(PhotonMapPanel, bpy.types.Panel):
     bl_label = "Caustic Map"
-    bl_context = "render"
-    bl_parent_id = "PHOS_RENDER_PT_photon_mapping"
+    map_name = "caustic"
 
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        phos = context.scene.phos
-        col = layout.column(align=True)
-        col.prop(phos, "caustic_photons", text="Photons")
-        col.prop(phos, "caustic_estimate_photons", text="Estimate")
+    def draw_more(self, layout, phos):
         # Glossy lobes smoother than this carry caustics (docs/algorithms.md §12).
         layout.prop(phos, "caustic_roughness", text="Roughness")
 

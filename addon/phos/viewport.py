@@ -23,8 +23,8 @@ import numpy as np
 from gpu_extras.presets import draw_texture_2d
 
 from . import core, export
-from .export import light, material
-from .properties import USER_SETTINGS, setting_value
+from .export import changes as scene_changes
+from .properties import render_settings
 
 
 def view_camera(region, rv3d, space):
@@ -67,6 +67,7 @@ class ViewportSession:
         SESSIONS.add(self)
         self.scene = None          # core.Scene, committed between renders
         self.ctx = None            # its ExportContext
+        self.signature = None      # export/changes.py's signature of what it was exported from
         self.render = None         # the core.Render running or done
         self.render_key = None     # (camera, size, settings) the render was started with
         self.scene_changed = True  # the scene changed since the render started
@@ -82,12 +83,13 @@ class ViewportSession:
         """view_update: export the scene the first time, then apply the
         changes Blender reports (in place where the core can, else a new
         export)."""
-        from .engine import _changes_in_place
-        changes = _changes_in_place(depsgraph, self.ctx) if self.scene is not None else None
+        changes = None
+        if self.scene is not None:
+            changes = scene_changes.changes_in_place(depsgraph, self.ctx, self.signature)
         if changes is not None and not changes[0] and not changes[1]:
             return  # cameras and the scene's settings only: view_draw sees those
-        self.stop()
-        if changes is not None and self._apply(depsgraph, changes):
+        self.stop()  # the core changes no scene a render holds
+        if changes is not None and scene_changes.apply_changes(depsgraph, self.ctx, changes):
             self.scene_changed = True
             return
         self.close_scene()
@@ -100,27 +102,14 @@ class ViewportSession:
         for message in ctx.warnings:
             report(message)
         self.scene, self.ctx, self.scene_changed = scene, ctx, True
-
-    def _apply(self, depsgraph, changes):
-        ctx = self.ctx
-        ctx.scene, ctx.view_layer = depsgraph.scene, depsgraph.view_layer
-        lights, materials = changes
-        return all(light.update_light(ob, ctx) for ob in lights) and \
-            all(material.update_material(mat, ctx) for mat in materials)
+        self.signature = scene_changes.signature(depsgraph)
 
     # ---------------------------------------------------------- the render
 
     def _settings(self, scene, width, height):
-        settings = scene.phos
-        rs = core.new_render_settings()
-        for setting in USER_SETTINGS:
-            setattr(rs, setting.name, setting_value(settings, setting))
-        rs.samples = max(1, settings.preview_samples)
+        rs = render_settings(scene, width, height)
+        rs.samples = max(1, scene.phos.preview_samples)
         rs.progressive = 1
-        rs.width, rs.height = width, height
-        rs.threads = scene.render.threads
-        rs.transparent_background = 1 if scene.render.film_transparent else 0
-        rs.pass_mask = 1 << core.PHOS_PASS_COMBINED
         return rs
 
     def restart_if_needed(self, context, depsgraph):

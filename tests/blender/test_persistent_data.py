@@ -109,10 +109,11 @@ def test_persistent_data_reuses_the_scene(lit_scene, tmp_path):
             assert not np.array_equal(changed, before), "%s: the change did not reach the image" % name
             assert np.array_equal(changed, _fresh(scene, tmp_path, name + "_fresh")), name
 
-        # A moved object, a mesh edit: exported afresh.
+        # A moved object, a mesh edit, a hidden object: exported afresh.
         box = bpy.data.objects["Box"]
         for change in (lambda: setattr(box, "location", (0.5, 0.2, 0.5)),
-                       lambda: box.data.vertices[0].co.__setitem__(2, 1.5)):
+                       lambda: box.data.vertices[0].co.__setitem__(2, 1.5),
+                       lambda: setattr(box, "hide_render", True)):
             count = exports.count
             change()
             box.data.update()

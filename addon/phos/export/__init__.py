@@ -9,6 +9,8 @@
     light.py      lights → physical units of the running Blender version
     camera.py     the scene camera
     world.py      the world background
+    changes.py    Blender's edits applied to a kept core scene (Persistent
+                  Data, the viewport) instead of a new export
 
 Everything here runs on the thread that called RenderEngine.render() and
 never touches bpy.context.
