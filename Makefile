@@ -227,6 +227,7 @@ bench: bench-programs build
 	  $(BENCH_DIR)/bench/bench_core dump $(BENCH_OUT)/cornell_$$n.photons $$n; done
 	$(BENCH_DIR)/bench/bench_kdtree $(foreach n,$(BENCH_DUMPS),--input $(BENCH_OUT)/cornell_$(n).photons) \
 	  --queries 20000 --csv $(BENCH_OUT)/kdtree.csv
+	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python bench/export.py -- --csv $(BENCH_OUT)/export.csv | $(BENCH_QUIET)
 	for s in $(BENCH_SCENES_ALL); do \
 	  $(BENCH_QUALITY) reference --scene $$s --resolution $(BENCH_RESOLUTION) \
 	    --chunks $(BENCH_REF_CHUNKS) --reference-dir $(BENCH_REF_DIR) | $(BENCH_QUIET); \
