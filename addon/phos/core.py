@@ -512,6 +512,24 @@ def vertex_normals(positions, loop_starts, loop_totals, polygon_normals, loop_ve
 
 # ------------------------------------------------------------------- render
 
+class PhotonMaps(_Handle):
+    """A reference to photon maps kept between renders of one scene
+    (Render.keep_photon_maps, Render.use_photon_maps); close() releases it,
+    and the maps go with their last holder."""
+
+    _kind = "photon maps"
+
+    def __init__(self, library, handle):
+        self._lib = library
+        self._handle = handle
+
+    def _destroy(self, handle):
+        self._lib.phos_photon_maps_release(handle)
+
+    def _error_text(self, handle):
+        return ""
+
+
 class Render(_Handle):
     """Owner of a phos_render handle created from a committed Scene.
 
@@ -549,6 +567,28 @@ class Render(_Handle):
         (enum phos_cache_kind, enum phos_cache_file_mode); before start()."""
         self._raise_on(self._lib.phos_render_set_cache_file(self.handle, kind, os.fsencode(path), mode),
                        "setting the cache file")
+
+    def keep_photon_maps(self):
+        """The photon maps of this render as a PhotonMaps that outlives it,
+        once its photon stages have finished; None before that, or for a
+        render that uses no maps."""
+        out = _vp()
+        status = self._lib.phos_render_keep_photon_maps(self.handle, ctypes.byref(out))
+        if status == PHOS_ERROR_INVALID_STATE:
+            return None
+        self._raise_on(status, "keeping the photon maps")
+        return PhotonMaps(self._lib, out.value)
+
+    def use_photon_maps(self, maps, any_view=False):
+        """Before start(): read `maps` (kept from an earlier render) instead
+        of tracing. Returns False, with the reason in error(), when the core
+        refuses them: another scene or version of it, other settings, or
+        (unless any_view) photons aimed at another view."""
+        status = self._lib.phos_render_use_photon_maps(self.handle, maps.handle, 1 if any_view else 0)
+        if status == PHOS_ERROR_INVALID_ARGUMENT:
+            return False
+        self._raise_on(status, "using kept photon maps")
+        return True
 
     def start(self):
         self._raise_on(self._lib.phos_render_start(self.handle), "starting the render")

@@ -252,12 +252,14 @@ class PhosRenderEngine(bpy.types.RenderEngine):
 
             export_seconds = time.perf_counter() - t0
             with core.Render(core_scene, rs) as render:
-                if not self.is_preview:
-                    for kind, path, mode in cache_files(settings):
-                        render.set_cache_file(kind, bpy.path.abspath(path), mode)
+                files = cache_files(settings) if not self.is_preview else []
+                for kind, path, mode in files:
+                    render.set_cache_file(kind, bpy.path.abspath(path), mode)
+                self._use_kept_maps(render, depsgraph, scene, files)
                 self._plan = render.stages()
                 render.start()
                 self._poll(render, rs)
+                self._keep_maps(render, depsgraph, scene)
                 if not self.is_preview:
                     seconds, text = _timing(self._plan, render.progress(), export_seconds)
                     last_render_seconds.clear()
@@ -316,6 +318,32 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         if self._keeps(scene):
             kept[layer] = (core_scene, ctx, signature)
         return core_scene
+
+    def _use_kept_maps(self, render, depsgraph, scene, files):
+        """With Persistent Data, give the render the photon maps the last
+        render of this view layer built, if the core finds they still fit:
+        the same scene unchanged but for a camera that aimed nothing, the
+        same photon settings (phos_render_use_photon_maps, never from
+        another view, so the image is the one tracing them gives)."""
+        maps = getattr(self, "_kept_maps", {}).pop(depsgraph.view_layer.name, None)
+        if maps is None:
+            return
+        with maps:
+            if not self._keeps(scene) or any(kind == core.PHOS_CACHE_PHOTON_MAPS for kind, _, _ in files):
+                return
+            if render.use_photon_maps(maps):
+                print("Phos: reusing the photon maps of the last render (Persistent Data)")
+
+    def _keep_maps(self, render, depsgraph, scene):
+        """With Persistent Data, keep the finished render's photon maps for
+        the next F12 of this view layer (released with the engine)."""
+        if not self._keeps(scene) or render.progress().state != core.PHOS_STATE_DONE:
+            return
+        maps = render.keep_photon_maps()
+        if maps is not None:
+            if not hasattr(self, "_kept_maps"):
+                self._kept_maps = {}
+            self._kept_maps[depsgraph.view_layer.name] = maps
 
     def _apply(self, ctx, depsgraph, changes):
         """Apply the changed lights and materials to a kept scene

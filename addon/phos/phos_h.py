@@ -512,7 +512,7 @@ ENUMS = {
 }
 
 # Opaque handles, passed as c_void_p.
-HANDLES = ('phos_scene', 'phos_render')
+HANDLES = ('phos_scene', 'phos_render', 'phos_photon_maps')
 
 
 class phos_image_desc(ctypes.Structure):
@@ -813,6 +813,9 @@ FUNCTIONS = {
     "phos_render_destroy": (None, [ctypes.c_void_p]),
     "phos_render_error": (ctypes.c_char_p, [ctypes.c_void_p]),
     "phos_render_set_cache_file": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32, ctypes.c_char_p, ctypes.c_uint32]),
+    "phos_render_keep_photon_maps": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
+    "phos_render_use_photon_maps": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint32]),
+    "phos_photon_maps_release": (None, [ctypes.c_void_p]),
     "phos_render_start": (ctypes.c_int, [ctypes.c_void_p]),
     "phos_render_stages": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_stage_info), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint32)]),
     "phos_render_progress": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_progress)]),

@@ -8,7 +8,10 @@ engine changes or the view closes). The session keeps the core scene it
 exported; view_update applies what the depsgraph reports changed through
 the core's scene updates (lights and materials in place, the rest by a new
 export), and view_draw starts a new render whenever the scene, the view or
-the viewport's size changed since the one running. The core renders on its
+the viewport's size changed since the one running. A render that only
+follows the view reads the photon maps the last one built (the core's kept
+maps, taken from any view): moving the view never traces photons again;
+an edit of the scene does. The core renders on its
 own threads (progressive refinement: the whole view at one sample a pixel
 first), so neither call waits for it: view_draw shows what the film holds
 and asks for another redraw until the render is done.
@@ -70,6 +73,7 @@ class ViewportSession:
         self.signature = None      # export/changes.py's signature of what it was exported from
         self.render = None         # the core.Render running or done
         self.render_key = None     # (camera, size, settings) the render was started with
+        self.maps = None           # core.PhotonMaps kept from the last render that built them
         self.scene_changed = True  # the scene changed since the render started
         self.texture = None
         self.pixels = None
@@ -89,6 +93,7 @@ class ViewportSession:
         if changes is not None and not changes[0] and not changes[1]:
             return  # cameras and the scene's settings only: view_draw sees those
         self.stop()  # the core changes no scene a render holds
+        self.drop_maps()  # made for the scene before this change
         if changes is not None and scene_changes.apply_changes(depsgraph, self.ctx, changes):
             self.scene_changed = True
             return
@@ -129,6 +134,8 @@ class ViewportSession:
         self.scene.set_camera(camera)
         self.scene.commit()   # rebuilds nothing for the camera (phos_scene_changes)
         self.render = core.Render(self.scene, rs)
+        if self.maps is not None and not self.render.use_photon_maps(self.maps, any_view=True):
+            self.drop_maps()  # other photon settings: trace them again
         self.render.start()
         self.renders += 1
         self.render_key, self.scene_changed = key, False
@@ -139,8 +146,11 @@ class ViewportSession:
         return True
 
     def stop(self):
-        """Cancel and free the render, so that the scene can change."""
+        """Cancel and free the render, so that the scene can change; keep
+        its photon maps if it got as far as building them."""
         if self.render is not None:
+            if self.maps is None:
+                self.maps = self.render.keep_photon_maps()
             self.render.cancel()
             self.render.wait(-1.0)
             self.render.close()
@@ -174,8 +184,14 @@ class ViewportSession:
 
     # ---------------------------------------------------------- cleanup
 
+    def drop_maps(self):
+        if self.maps is not None:
+            self.maps.close()
+            self.maps = None
+
     def close_scene(self):
         self.stop()
+        self.drop_maps()
         if self.scene is not None:
             self.scene.close()
         self.scene, self.ctx = None, None

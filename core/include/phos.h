@@ -911,6 +911,35 @@ enum phos_cache_file_mode {
 PHOS_API phos_status phos_render_set_cache_file(phos_render *render, uint32_t kind, const char *path,
                                                 uint32_t mode);
 
+/* Photon maps kept between renders of one scene: the viewport keeps them
+ * while only the view moves, and a second render of an unchanged scene
+ * (Blender's Persistent Data) reads them instead of tracing again. Maps
+ * are read-only once built, so several renders may hold them; each
+ * reference is released once.
+ *
+ * phos_render_keep_photon_maps: once the render's photon stages have
+ * finished (stage_index past them, or the render DONE), a reference to
+ * its maps that outlives the render; PHOS_ERROR_INVALID_STATE before, or
+ * for a render that uses no maps.
+ *
+ * phos_render_use_photon_maps: before phos_render_start, the render reads
+ * these maps instead of making its own, and its plan leaves out the photon
+ * stages. Refused with PHOS_ERROR_INVALID_ARGUMENT and a message saying
+ * why when they were made for another scene, for this scene before a
+ * change other than the camera, with other settings that shape them
+ * (photon counts, bounces, seed, radii, caustic roughness), or without the
+ * radiance photons final gathering reads. A scene with a sun or a world
+ * aims those photons at what its camera sees: such maps are refused after
+ * a camera change unless any_view is 1 (they stay an unbiased map for any
+ * view, if a less dense one where the first camera did not look; the
+ * viewport takes them, a final render should not, so that its image does
+ * not depend on an earlier view). Also refused for a render that uses no
+ * maps or reads or writes its photon maps' file. */
+typedef struct phos_photon_maps phos_photon_maps;
+PHOS_API phos_status phos_render_keep_photon_maps(phos_render *render, phos_photon_maps **out_maps);
+PHOS_API phos_status phos_render_use_photon_maps(phos_render *render, phos_photon_maps *maps, uint32_t any_view);
+PHOS_API void phos_photon_maps_release(phos_photon_maps *maps);
+
 /* Starts the worker threads and returns at once. A render starts once. */
 PHOS_API phos_status phos_render_start(phos_render *render);
 
@@ -920,7 +949,8 @@ enum phos_render_state {
 };
 
 /* The stages a render goes through. Which of them it runs, in which order,
- * is its plan, fixed at create (phos_render_stages): WAITING, then the
+ * is its plan, fixed at create (phos_render_stages; less the photon stages
+ * for a render given maps by phos_render_use_photon_maps): WAITING, then the
  * photon stages if it uses photon maps (the PHOTON integrator or a photon
  * debug pass; PRECOMPUTING_RADIANCE for final gathering only), the
  * irradiance cache's pre-pass if the cache is on, RENDERING, FINISHED. */

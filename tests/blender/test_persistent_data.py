@@ -130,3 +130,36 @@ def test_without_persistent_data_every_render_exports(lit_scene, tmp_path):
         b = _render(scene, tmp_path, name="b")
     assert exports.count == 2
     assert np.array_equal(a, b)
+
+
+def test_persistent_data_keeps_the_photon_maps(lit_scene, tmp_path):
+    """A second F12 of an unchanged PHOTON scene reads the photon maps the
+    first built (no photon stage in its plan) and renders the same image;
+    a camera move (the world's photons are aimed at the view) and a light
+    edit trace them again, and render what a fresh render does."""
+    from phos import core, engine
+    scene = lit_scene
+    scene.phos.integrator = "PHOTON"
+    scene.phos.global_photons, scene.phos.caustic_photons = 4000, 0
+    scene.phos.ic_rays = 64
+    scene.render.use_persistent_data = True
+
+    def traced():
+        return core.PHOS_STAGE_TRACING_PHOTONS in engine.last_render_seconds
+
+    first = _render(scene, tmp_path, name="photons_first")
+    assert traced()
+    again = _render(scene, tmp_path, name="photons_again")
+    assert not traced(), "an unchanged scene traced its photon maps again"
+    assert np.array_equal(first, again)
+
+    scene.camera.location.x += 0.4
+    moved = _render(scene, tmp_path, name="photons_moved")
+    assert traced(), "maps aimed at the old view were read by a final render"
+    assert np.array_equal(moved, _fresh(scene, tmp_path, "photons_moved_fresh"))
+
+    _render(scene, tmp_path, name="photons_before_light")  # keeps maps again (the fresh render exported)
+    bpy.data.objects["Lamp"].data.energy = 900.0
+    lit = _render(scene, tmp_path, name="photons_light")
+    assert traced(), "a light edit kept the old photon maps"
+    assert np.array_equal(lit, _fresh(scene, tmp_path, "photons_light_fresh"))

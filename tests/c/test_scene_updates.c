@@ -4,7 +4,10 @@
  * place and committed again renders exactly what a scene built with the
  * final data renders, every integrator; a commit rebuilds only what the
  * changes touched; a scene a render holds refuses changes; a refused change
- * leaves the scene committed as it was.
+ * leaves the scene committed as it was. Photon maps kept from one render
+ * and given to the next (phos_render_keep_photon_maps/use_photon_maps)
+ * render exactly what tracing them again renders, and are refused once
+ * they no longer fit the scene or the settings.
  */
 #include <stdio.h>
 #include <string.h>
@@ -328,11 +331,137 @@ static void test_refused_changes_leave_the_scene(void)
     phos_scene_destroy(s);
 }
 
+/* A render of s given `maps` (if not NULL, from any view if any_view):
+ * its image, or NULL with *status the refusal. Its own maps are kept in
+ * *keep if asked; *traced says whether its plan traced photons. */
+static float *render_with_maps(phos_scene *s, const phos_render_settings *rs, phos_photon_maps *maps,
+                               uint32_t any_view, phos_photon_maps **keep, phos_status *status, int *traced)
+{
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, rs, &r) == PHOS_OK);
+    if (!r)
+        return NULL;
+    *status = maps ? phos_render_use_photon_maps(r, maps, any_view) : PHOS_OK;
+    if (*status != PHOS_OK) {
+        phos_render_destroy(r);
+        return NULL;
+    }
+    phos_stage_info stages[PHOS_STAGE_COUNT];
+    uint32_t n = 0;
+    CHECK(phos_render_stages(r, stages, PHOS_STAGE_COUNT, &n) == PHOS_OK);
+    *traced = 0;
+    for (uint32_t i = 0; i < n; i++)
+        *traced |= stages[i].id == PHOS_STAGE_TRACING_PHOTONS;
+    CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
+    size_t count = (size_t)4 * rs->width * rs->height;
+    float *img = malloc(sizeof(float) * count);
+    CHECK(phos_render_read(r, PHOS_PASS_COMBINED, 0, 0, rs->width, rs->height, img, count) == PHOS_OK);
+    if (keep)
+        CHECK(phos_render_keep_photon_maps(r, keep) == PHOS_OK && *keep);
+    phos_render_destroy(r);
+    return img;
+}
+
+static int same_image(const float *a, const float *b, const phos_render_settings *rs)
+{
+    return a && b && memcmp(a, b, sizeof(float) * 4 * rs->width * rs->height) == 0;
+}
+
+/* Kept maps, given back: the same image without tracing, for the same
+ * scene and, where no photons were aimed at the view, after a camera move;
+ * refused after any other change, with other settings, for another scene
+ * or without radiance photons; maps aimed at the view are taken after a
+ * camera move only when any view is allowed. */
+static void test_kept_photon_maps(void)
+{
+    phos_render_settings rs = settings(PHOS_INTEGRATOR_PHOTON);
+    variant dark = BEFORE, moved = BEFORE;
+    dark.world = 0.0f;  /* no world light: nothing aimed at the view */
+    moved.camera_z = AFTER.camera_z;
+    for (int aimed = 0; aimed < 2; aimed++) {
+        ids id;
+        phos_scene *s = build(aimed ? &BEFORE : &dark, &id);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        phos_photon_maps *maps = NULL;
+        phos_status st;
+        int traced = 0;
+        float *first = render_with_maps(s, &rs, NULL, 0, &maps, &st, &traced);
+        CHECK(traced && maps);
+        float *again = render_with_maps(s, &rs, maps, 0, NULL, &st, &traced);
+        CHECK_MSG(st == PHOS_OK && !traced, "aimed %d: kept maps refused by the same scene: %s", aimed,
+                  phos_scene_error(s));
+        CHECK_MSG(same_image(first, again, &rs), "aimed %d: kept maps render otherwise than tracing them", aimed);
+
+        /* The camera moves. */
+        update(s, &id, &moved, PART_CAMERA);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        float *traced_moved = render_with_maps(s, &rs, NULL, 0, NULL, &st, &traced);
+        float *kept_moved = render_with_maps(s, &rs, maps, 0, NULL, &st, &traced);
+        if (aimed) {
+            CHECK_MSG(!kept_moved && st == PHOS_ERROR_INVALID_ARGUMENT,
+                      "maps aimed at another view taken for a final render");
+            free(kept_moved);
+            kept_moved = render_with_maps(s, &rs, maps, 1, NULL, &st, &traced);
+            CHECK_MSG(kept_moved && !traced, "maps aimed at another view refused with any_view");
+            CHECK_MSG(kept_moved && !same_image(kept_moved, first, &rs), "the moved view renders as before");
+        } else {
+            CHECK_MSG(same_image(kept_moved, traced_moved, &rs),
+                      "after a camera move, kept maps render otherwise than tracing them");
+        }
+        free(first);
+        free(again);
+        free(traced_moved);
+        free(kept_moved);
+
+        /* Other settings, other maps, another scene. */
+        phos_render_settings more = rs;
+        more.global_photons += 1;
+        CHECK(!render_with_maps(s, &more, maps, 1, NULL, &st, &traced) && st == PHOS_ERROR_INVALID_ARGUMENT);
+        phos_render_settings fast = rs;
+        fast.photon_view = PHOS_PHOTON_VIEW_FAST;
+        phos_photon_maps *fast_maps = NULL;
+        free(render_with_maps(s, &fast, NULL, 0, &fast_maps, &st, &traced));
+        CHECK(!render_with_maps(s, &rs, fast_maps, 1, NULL, &st, &traced) && st == PHOS_ERROR_INVALID_ARGUMENT);
+        phos_photon_maps_release(fast_maps);
+        ids other_ids;
+        phos_scene *other = build(aimed ? &BEFORE : &dark, &other_ids);
+        CHECK(phos_scene_commit(other) == PHOS_OK);
+        CHECK(!render_with_maps(other, &rs, maps, 1, NULL, &st, &traced) && st == PHOS_ERROR_INVALID_ARGUMENT);
+        phos_scene_destroy(other);
+
+        /* A light changes: the maps no longer fit. */
+        update(s, &id, &AFTER, PART_LIGHT);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        phos_render *r = NULL;
+        CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+        CHECK(phos_render_use_photon_maps(r, maps, 1) == PHOS_ERROR_INVALID_ARGUMENT);
+        CHECK_MSG(strstr(phos_render_error(r), "changed") != NULL, "%s", phos_render_error(r));
+        /* Not built yet: nothing to keep. */
+        phos_photon_maps *none = NULL;
+        CHECK(phos_render_keep_photon_maps(r, &none) == PHOS_ERROR_INVALID_STATE && none == NULL);
+        phos_render_destroy(r);
+        phos_photon_maps_release(maps);
+        phos_scene_destroy(s);
+    }
+    /* A render without photon maps has none to keep or take. */
+    ids id;
+    phos_scene *s = build(&BEFORE, &id);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    phos_render_settings path = settings(PHOS_INTEGRATOR_PATH);
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, &path, &r) == PHOS_OK);
+    phos_photon_maps *none = NULL;
+    CHECK(phos_render_keep_photon_maps(r, &none) == PHOS_ERROR_INVALID_STATE);
+    phos_render_destroy(r);
+    phos_scene_destroy(s);
+}
+
 int main(void)
 {
     test_updates_match_fresh_scene();
     test_rebuilds_only_what_changed();
     test_changes_while_a_render_holds_the_scene();
     test_refused_changes_leave_the_scene();
+    test_kept_photon_maps();
     return test_summary("test_scene_updates");
 }

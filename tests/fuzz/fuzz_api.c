@@ -504,7 +504,10 @@ static void read_tiles(reader *r, phos_render *render)
     phos_render_read(render, take_u8(r) % (PHOS_PASS_COUNT + 1), x, y, w, h, small, take_u8(r) % 65);
 }
 
-static void fuzz_render(reader *r, phos_scene *s)
+/* One render; *kept holds the photon maps an earlier render of the scene
+ * built (phos_render_keep_photon_maps), which this one may be given: taken
+ * or refused with a message, never a crash, whatever changed in between. */
+static void fuzz_render(reader *r, phos_scene *s, phos_photon_maps **kept)
 {
     phos_render_settings rs;
     fuzz_settings(r, &rs);
@@ -536,6 +539,15 @@ static void fuzz_render(reader *r, phos_scene *s)
         }
         phos_render_set_cache_file(render, kind, path, mode);
     }
+    if (*kept) {
+        uint8_t use = take_u8(r);
+        if (use & 1) {
+            phos_status used = phos_render_use_photon_maps(render, *kept, use >> 1 & 1);
+            SAY("  use kept maps: %s %s\n", phos_status_string(used), phos_render_error(render));
+            if (used != PHOS_OK && !phos_render_error(render)[0])
+                abort();
+        }
+    }
     if (phos_render_start(render) == PHOS_OK) {
         st = phos_render_wait(render, RENDER_BUDGET_S);
         if (st == PHOS_ERROR_TIMEOUT) {
@@ -553,6 +565,11 @@ static void fuzz_render(reader *r, phos_scene *s)
         if (st != PHOS_OK && st != PHOS_ERROR_CANCELLED && !phos_render_error(render)[0])
             abort();
         read_tiles(r, render);
+    }
+    phos_photon_maps *maps = NULL;
+    if (phos_render_keep_photon_maps(render, &maps) == PHOS_OK) {
+        phos_photon_maps_release(*kept);
+        *kept = maps;
     }
     phos_progress p;
     phos_render_progress(render, &p);
@@ -627,16 +644,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         phos_scene_cancel(s);
     phos_status committed = commit == 0xFF ? PHOS_ERROR_INVALID_STATE : phos_scene_commit(s);
     SAY("scene: commit %s %s\n", phos_status_string(committed), phos_scene_error(s));
+    phos_photon_maps *kept = NULL;
     if (committed == PHOS_OK) {
         uint32_t renders = 1 + take_u8(&r) % 2; /* two renders may share a scene */
         for (uint32_t i = 0; i < renders; i++)
-            fuzz_render(&r, s);
+            fuzz_render(&r, s, &kept);
         if (take_u8(&r) == 0x5B) { /* changed and committed again */
             fuzz_updates(&r, s);
             phos_status again = phos_scene_commit(s);
             SAY("scene: commit again %s %s\n", phos_status_string(again), phos_scene_error(s));
             if (again == PHOS_OK)
-                fuzz_render(&r, s);
+                fuzz_render(&r, s, &kept);
             else if (!phos_scene_error(s)[0])
                 abort();
         }
@@ -644,6 +662,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         abort();
     }
     phos_scene_destroy(s);
+    phos_photon_maps_release(kept); /* may outlive its scene */
     SAY("done\n");
     return 0;
 }

@@ -228,13 +228,18 @@ def settings(s, **overrides):
 
 
 def render_tail(s, renders):
-    """commit, then each render's settings, stage query, cache-file byte and read."""
+    """commit, then each render's settings, stage query, cache-file byte, the
+    byte that gives it the photon maps kept from an earlier render (present
+    only when an earlier render of the input built maps: a third element),
+    and read."""
     s.u8(0)                    # commit
     s.u8(len(renders) - 1)
-    for overrides, file_byte in renders:
+    for overrides, file_byte, *use_maps in renders:
         settings(s, **overrides)
         s.u8(PHOS_STAGE_COUNT)
         s.u8(file_byte)
+        for byte in use_maps:
+            s.u8(byte)         # bit 0: use them; bit 1: from any view
         for _ in range(6):     # the fuzzed read: x, y, w, h, pass, count
             s.u8(1)
 
@@ -292,9 +297,10 @@ def scene(mats=None, meshes=None, instances=None, lights=None, world=None, camer
     return bytes(s.b)
 
 
-def updates_tail(overrides):
+def updates_tail(overrides, use_maps=None):
     """After a scene's renders: changed (a light and an instance replaced by
-    id, nothing added), committed again, rendered once more."""
+    id, nothing added), committed again, rendered once more (given the kept
+    photon maps with the use_maps byte, if an earlier render built them)."""
     s = Stream()
     s.u8(0x5B)
     s.u8(2)
@@ -313,6 +319,8 @@ def updates_tail(overrides):
     settings(s, **overrides)
     s.u8(PHOS_STAGE_COUNT)
     s.u8(0)
+    if use_maps is not None:
+        s.u8(use_maps)
     for _ in range(6):
         s.u8(1)
     return bytes(s.b)
@@ -327,8 +335,12 @@ SEEDS = {
     "world_material_photon": scene(world=(0.2, 0.2, 0.2), world_material=0, renders=[(PHOTON, 0)]),
     "portal_photon": scene(world=(0.5, 0.5, 0.5), lights=[{"kind": 4, "position": (0, 0, 2)}],
                            renders=[(PHOTON, 0)]),
-    "valid_two_renders": scene(renders=[(PHOTON, 0), ({"photon_view": 2, **PHOTON}, 0)]),
-    "scene_updated": scene(renders=[(PHOTON, 0)]) + updates_tail(PHOTON),
+    "valid_two_renders": scene(renders=[(PHOTON, 0), ({"photon_view": 2, **PHOTON}, 0, 0)]),
+    # The maps kept from the first render, taken by the second (the same
+    # scene and settings), then refused after a change (the third).
+    "photon_maps_kept": scene(renders=[(PHOTON, 0), (PHOTON, 0, 1)]) +
+    updates_tail(PHOTON, use_maps=3),
+    "scene_updated": scene(renders=[(PHOTON, 0)]) + updates_tail(PHOTON, use_maps=0),
     "bulk_instances": scene(bulk_instances=[(0, (1, 0, 0, 0.5, 0, 1, 0, 0, 0, 0, 1, 0)),
                                             (0, (0.5, 0, 0, -0.5, 0, 0.5, 0, 0, 0, 0, 0.5, 0))]),
     "glass_and_mirror": scene(mats=[[(0, (0.75, 0.75, 0.75), 0.5, 1.5, 0, 0.0, 0, 1)], [(5, (1, 1, 1), 0.0, 1.5)],
@@ -345,7 +357,7 @@ SEEDS = {
                                     [(10, (1, 1, 1), 0.5, 1.5), (5, (1, 1, 1), 0.3, 1.5, 2, 400.0, 0, 2)]],
                               instances=[(0, [0, 1])],
                               meshes=[(BOX, BOX_TRIS, [0] * 6 + [1] * 6)],
-                              renders=[({"pass_mask": (1 << 10) | (1 << 11), **PHOTON}, 0), ({"pass_mask": 4095}, 0)]),
+                              renders=[({"pass_mask": (1 << 10) | (1 << 11), **PHOTON}, 0), ({"pass_mask": 4095}, 0, 1)]),
     "shader_program_noise": scene(programs={0: noise_program}, renders=[(PHOTON, 0)]),
     "world_program_photon": scene(programs={0: noise_program}, world=(0.2, 0.2, 0.2), world_material=0,
                                   renders=[(PHOTON, 0)]),

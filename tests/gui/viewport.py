@@ -10,7 +10,9 @@ OpenGL (`make test-gui`; tools/test-gui.sh starts it):
    within 3 %, and not black; the film equals a render of the same view
    and settings through the core, bit for bit (an F12 of that view).
 2. A light moved: the image changes, with no new export.
-3. Leaving Rendered shading frees the session.
+3. With PHOTON, a view move renders from the photon maps already built
+   (no photon stage in the new render's plan), a light move traces again.
+4. Leaving Rendered shading frees the session.
 
 Blender runs the steps from timers (the GUI must draw between them); the
 outcome is written as JSON to RESULT.json and the exit code is 0 only if
@@ -119,6 +121,11 @@ def wait_done(after=0):
     return s is not None and s.render is not None and s.renders > after and s.done()
 
 
+def traces_photons(render):
+    from phos import core
+    return any(stage == core.PHOS_STAGE_TRACING_PHOTONS for stage, _ in render.stages())
+
+
 def step():
     try:
         if time.monotonic() - state["t0"] > TIMEOUT:
@@ -159,6 +166,28 @@ def step():
             check("moving a light changes the image", abs(shot - state["first"]) > 0.005,
                   "%.4f → %.4f" % (state["first"], shot))
             check("moving a light exports nothing", s.ctx is state["exports"])
+            scene = bpy.context.scene
+            scene.phos.global_photons, scene.phos.caustic_photons = 20000, 0
+            scene.phos.integrator = 'PHOTON'
+            state["step"], state["renders"] = 4, s.renders
+        elif n == 4 and wait_done(state["renders"]):
+            s = session()
+            check("a PHOTON viewport traces its photon maps", traces_photons(s.render))
+            window, area, region = view3d()
+            r3d = area.spaces.active.region_3d
+            r3d.view_perspective = 'PERSP'
+            r3d.view_rotation.rotate(__import__("mathutils").Euler((0.0, 0.0, 0.3)))
+            state["step"], state["renders"], state["film"] = 5, s.renders, s.pixels.copy()
+        elif n == 5 and wait_done(state["renders"]):
+            s = session()
+            check("moving the view renders a new image", not np.array_equal(s.pixels, state["film"]))
+            check("moving the view keeps the photon maps", not traces_photons(s.render),
+                  "plan %s" % [name for _, name in s.render.stages()])
+            bpy.data.objects["Lamp"].location.x += 3.0
+            state["step"], state["renders"] = 6, s.renders
+        elif n == 6 and wait_done(state["renders"]):
+            s = session()
+            check("moving a light traces the photon maps again", traces_photons(s.render))
             window, area, region = view3d()
             area.spaces.active.shading.type = 'SOLID'
             state["step"], state["left"] = 3, time.monotonic()

@@ -106,6 +106,8 @@ static int grow(void **items, uint32_t count, uint32_t *capacity, size_t elem)
 static void scene_changed(scene *s, uint32_t what)
 {
     s->changed |= what;
+    if (what & ~PHOS_CHANGE_CAMERA)
+        s->version++;
     s->committed = 0;
 }
 
@@ -226,6 +228,8 @@ phos_scene *phos_scene_create(void)
     scene *s = calloc(1, sizeof(scene));
     if (!s)
         return NULL;
+    static atomic_uint_fast64_t scenes_created;
+    s->id = atomic_fetch_add(&scenes_created, 1) + 1;
     atomic_init(&s->refcount, 1);
     atomic_init(&s->cancel, 0);
     s->lights.world = -1;
@@ -1019,8 +1023,74 @@ phos_status phos_render_set_cache_file(phos_render *r, uint32_t kind, const char
     pthread_mutex_unlock(&r->lock);
     if (started)
         return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "set_cache_file: the render has started");
+    if (kind == PHOS_CACHE_PHOTON_MAPS && mode != PHOS_CACHE_FILE_NONE && r->maps_given)
+        return cache_file_error(r, PHOS_ERROR_INVALID_STATE,
+                                "set_cache_file: the render was given photon maps (phos_render_use_photon_maps)");
     snprintf(r->cache_path[kind], sizeof(r->cache_path[kind]), "%s", mode != PHOS_CACHE_FILE_NONE ? path : "");
     r->cache_file_mode[kind] = mode;
+    return PHOS_OK;
+}
+
+/* ------------------------------------------------- photon maps kept */
+
+static int render_started(render *r)
+{
+    pthread_mutex_lock(&r->lock);
+    int started = r->started;
+    pthread_mutex_unlock(&r->lock);
+    return started;
+}
+
+phos_status phos_render_keep_photon_maps(phos_render *r, phos_photon_maps **out)
+{
+    if (!r)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    if (!out)
+        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "keep_photon_maps: the output pointer is NULL");
+    *out = NULL;
+    if (!r->use_maps)
+        return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "keep_photon_maps: this render uses no photon maps");
+    if (!atomic_load(&r->maps_complete))
+        return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "keep_photon_maps: the photon maps are not built yet");
+    shared_maps_retain(r->shared);
+    *out = r->shared;
+    return PHOS_OK;
+}
+
+void phos_photon_maps_release(phos_photon_maps *maps) { shared_maps_release(maps); }
+
+phos_status phos_render_use_photon_maps(phos_render *r, phos_photon_maps *maps, uint32_t any_view)
+{
+    if (!r)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    if (!maps)
+        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "use_photon_maps: the maps are NULL");
+    if (render_started(r))
+        return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "use_photon_maps: the render has started");
+    if (!r->use_maps)
+        return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "use_photon_maps: this render uses no photon maps");
+    if (r->cache_file_mode[PHOS_CACHE_PHOTON_MAPS] != PHOS_CACHE_FILE_NONE)
+        return cache_file_error(r, PHOS_ERROR_INVALID_STATE,
+                                "use_photon_maps: this render reads or writes its photon maps' file");
+    if (maps == r->shared)
+        return PHOS_OK;
+    char detail[160], msg[256];
+    const char *why = shared_maps_mismatch(maps, r->scene, &r->photon_settings,
+                                           stage_plan_has(&r->plan, PHOS_STAGE_PRECOMPUTING_RADIANCE),
+                                           any_view != 0, detail, sizeof(detail));
+    if (why) {
+        snprintf(msg, sizeof(msg), "use_photon_maps: %s", why);
+        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, msg);
+    }
+    shared_maps_retain(maps);
+    shared_maps_release(r->shared);
+    r->shared = maps;
+    r->maps = &maps->maps;
+    r->maps_given = 1;
+    atomic_store(&r->maps_complete, 1);
+    stage_plan_drop_photon_stages(&r->plan);
+    atomic_store(&r->photon_progress.stored, r->maps->global.count + r->maps->caustic.count);
+    atomic_store(&r->photon_progress.emitted, r->maps->global_emitted + r->maps->caustic_emitted);
     return PHOS_OK;
 }
 
@@ -1063,8 +1133,8 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     out->photons_emitted = atomic_load(&r->photon_progress.emitted);
     out->photon_map = atomic_load(&r->photon_progress.map);
     if (out->stage_id >= PHOS_STAGE_FILLING_IRRADIANCE_CACHE) {
-        out->global_photons = r->maps.global.count;
-        out->caustic_photons = r->maps.caustic.count;
+        out->global_photons = r->maps->global.count;
+        out->caustic_photons = r->maps->caustic.count;
     }
     if (out->stage_id >= PHOS_STAGE_RENDERING)
         out->cache_records = r->cache.count;

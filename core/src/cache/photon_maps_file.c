@@ -17,32 +17,6 @@
 #define WHAT "photon map"
 #define SITE_WORDS 9u   /* a radiance photon's site: position, normal, reflectance */
 
-/* What the maps depend on, in file order (the camera is not: photons aimed
- * at one view are an unbiased map for any other, if a less dense one). */
-#define MAP_SETTINGS(U, F)                                                                        \
-    U(global_photons) U(caustic_photons) U(max_emitted_lo) U(max_emitted_hi) U(max_bounces) U(seed) \
-    U(radiance_k) F(max_radius) F(caustic_roughness)
-#define COUNT_SETTING(name) +1
-#define MAP_SETTING_COUNT (0 MAP_SETTINGS(COUNT_SETTING, COUNT_SETTING))
-
-static void settings_words(const photon_trace_settings *ps, uint32_t *w)
-{
-    uint32_t max_emitted_lo = (uint32_t)ps->max_emitted, max_emitted_hi = (uint32_t)(ps->max_emitted >> 32);
-    uint32_t global_photons = ps->global_photons, caustic_photons = ps->caustic_photons;
-    uint32_t max_bounces = ps->max_bounces, seed = ps->seed, radiance_k = ps->radiance_k;
-    float max_radius = ps->max_radius, caustic_roughness = ps->caustic_roughness;
-    uint32_t n = 0;
-#define SETTING_U(name) w[n++] = name;
-#define SETTING_F(name) w[n++] = file_float_bits(name);
-    MAP_SETTINGS(SETTING_U, SETTING_F)
-#undef SETTING_U
-#undef SETTING_F
-}
-
-static const char *const setting_names[MAP_SETTING_COUNT] = {
-    "global_photons", "caustic_photons", "max_photons_emitted_millions", "max_photons_emitted_millions",
-    "max_bounces", "seed", "global_estimate_photons", "max_radius", "caustic_roughness"};
-
 /* A photon as 5 words: position (3 floats), RGBE power (4 bytes, in
  * order), direction bytes and flags (theta | phi << 8 | flags << 16). */
 static int write_photons(FILE *f, const photon_map *m)
@@ -91,9 +65,9 @@ phos_status photon_maps_save(const photon_maps *maps, const scene *s, const phot
     FILE *f = file_open(path, "wb", WHAT, msg, msg_size);
     if (!f)
         return PHOS_ERROR_INVALID_ARGUMENT;
-    uint32_t settings[MAP_SETTING_COUNT];
-    settings_words(ps, settings);
-    int ok = file_write_header(f, PM_FILE_MAGIC, PM_FILE_VERSION, s, settings, MAP_SETTING_COUNT) &&
+    uint32_t settings[PHOTON_TRACE_SETTING_WORDS];
+    photon_trace_settings_words(ps, settings);
+    int ok = file_write_header(f, PM_FILE_MAGIC, PM_FILE_VERSION, s, settings, PHOTON_TRACE_SETTING_WORDS) &&
              file_write_u64(f, maps->global_emitted) && file_write_u64(f, maps->caustic_emitted) &&
              file_write_u32(f, maps->caustic_reused) && write_photons(f, &maps->global) &&
              write_photons(f, &maps->caustic) && file_write_u32(f, SITE_WORDS) &&
@@ -110,10 +84,10 @@ phos_status photon_maps_load(photon_maps *maps, const scene *s, const photon_tra
     if (!f)
         return PHOS_ERROR_INVALID_ARGUMENT;
     char detail[160];
-    uint32_t settings[MAP_SETTING_COUNT], words = 0, sites = 0;
-    settings_words(ps, settings);
-    const char *why = file_check_header(f, PM_FILE_MAGIC, PM_FILE_VERSION, WHAT, s, settings, setting_names,
-                                        MAP_SETTING_COUNT, detail, sizeof(detail));
+    uint32_t settings[PHOTON_TRACE_SETTING_WORDS], words = 0, sites = 0;
+    photon_trace_settings_words(ps, settings);
+    const char *why = file_check_header(f, PM_FILE_MAGIC, PM_FILE_VERSION, WHAT, s, settings, photon_trace_setting_names,
+                                        PHOTON_TRACE_SETTING_WORDS, detail, sizeof(detail));
     if (!why && (!file_read_u64(f, &maps->global_emitted) || !file_read_u64(f, &maps->caustic_emitted) ||
                  !file_read_u32(f, &maps->caustic_reused)))
         why = "it ends in its header";
@@ -136,5 +110,8 @@ phos_status photon_maps_load(photon_maps *maps, const scene *s, const photon_tra
         }
         maps->radiance_site_count = why ? 0 : sites;
     }
+    /* Whether they were aimed at a view is not saved: assume so, so that
+     * maps kept from this render are not taken as view-independent. */
+    maps->aimed_at_view = 1;
     return file_finish_read(f, why, path, WHAT, msg, msg_size);
 }

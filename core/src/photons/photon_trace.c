@@ -397,6 +397,31 @@ void photon_maps_init(photon_maps *m)
     photon_map_init(&m->radiance);
 }
 
+static uint32_t float_bits(float x)
+{
+    uint32_t v;
+    memcpy(&v, &x, 4);
+    return v;
+}
+
+void photon_trace_settings_words(const photon_trace_settings *ps, uint32_t w[PHOTON_TRACE_SETTING_WORDS])
+{
+    uint32_t n = 0;
+    w[n++] = ps->global_photons;
+    w[n++] = ps->caustic_photons;
+    w[n++] = (uint32_t)ps->max_emitted;
+    w[n++] = (uint32_t)(ps->max_emitted >> 32);
+    w[n++] = ps->max_bounces;
+    w[n++] = ps->seed;
+    w[n++] = ps->radiance_k;
+    w[n++] = float_bits(ps->max_radius);
+    w[n++] = float_bits(ps->caustic_roughness);
+}
+
+const char *const photon_trace_setting_names[PHOTON_TRACE_SETTING_WORDS] = {
+    "global_photons", "caustic_photons", "max_photons_emitted_millions", "max_photons_emitted_millions",
+    "max_bounces", "seed", "global_estimate_photons", "max_radius", "caustic_roughness"};
+
 void photon_maps_free(photon_maps *m)
 {
     photon_map_free(&m->global);
@@ -581,6 +606,7 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     if (st == PHOS_OK && global_count > 0)
         st = trace_radiance_sites(s, ps, ga, out, (global_count + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE,
                                   cancel, progress);
+    out->aimed_at_view = aimed;
     if (aimed)
         projection_map_free(&global_aim);
     if (st == PHOS_OK)

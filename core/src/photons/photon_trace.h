@@ -27,6 +27,10 @@ typedef struct photon_maps {
      * Freed by photon_maps_precompute_radiance. */
     float *radiance_sites;
     uint32_t radiance_site_count;
+    /* The global map's sun and world photons were aimed at what the scene's
+     * camera reads (photon_importance.h): an unbiased map for any view, but
+     * densest where that camera looked. */
+    int aimed_at_view;
 } photon_maps;
 
 typedef struct photon_trace_settings {
@@ -41,6 +45,15 @@ typedef struct photon_trace_settings {
     float caustic_roughness;   /* glossy closures smoother than this carry caustic paths and store no
                                   photons (bsdf.h, closure_scatters_caustic) */
 } photon_trace_settings;
+
+/* What the maps depend on besides the scene, as 32-bit words (floats by
+ * their bits), for saved maps and maps kept between renders to be refused
+ * when made otherwise. The camera is not among them: photons aimed at one
+ * view are an unbiased map for any other, if a less dense one. */
+#define PHOTON_TRACE_SETTING_WORDS 9u
+void photon_trace_settings_words(const photon_trace_settings *ps, uint32_t w[PHOTON_TRACE_SETTING_WORDS]);
+/* The user's name of the setting behind each word. */
+extern const char *const photon_trace_setting_names[PHOTON_TRACE_SETTING_WORDS];
 
 typedef struct photon_trace_progress {
     atomic_uint_fast64_t emitted;  /* paths emitted so far, both maps */

@@ -341,7 +341,7 @@ static phos_status fill_cache(render *r)
         return st;
     }
     if (r->use_maps)
-        r->integrator.maps = &r->maps;
+        r->integrator.maps = r->maps;
     uint64_t before = scratch_gather_rays(r);
     phos_status st = irradiance_cache_fill(&r->cache, r->scene, &r->integrator, &r->cache_fill, r->scratch, &r->cancel,
                                            &r->cache_passes_done, &r->cache_rays);
@@ -363,13 +363,13 @@ static phos_status trace_photons(render *r)
     uint32_t mode = r->cache_file_mode[PHOS_CACHE_PHOTON_MAPS];
     phos_status st;
     if (mode == PHOS_CACHE_FILE_LOAD) {
-        st = photon_maps_load(&r->maps, r->scene, &r->photon_settings, path, msg, sizeof(msg));
-        atomic_store(&r->photon_progress.stored, r->maps.global.count + r->maps.caustic.count);
-        atomic_store(&r->photon_progress.emitted, r->maps.global_emitted + r->maps.caustic_emitted);
+        st = photon_maps_load(r->maps, r->scene, &r->photon_settings, path, msg, sizeof(msg));
+        atomic_store(&r->photon_progress.stored, r->maps->global.count + r->maps->caustic.count);
+        atomic_store(&r->photon_progress.emitted, r->maps->global_emitted + r->maps->caustic_emitted);
     } else {
-        st = photon_maps_trace(r->scene, &r->photon_settings, &r->maps, &r->cancel, &r->photon_progress);
+        st = photon_maps_trace(r->scene, &r->photon_settings, r->maps, &r->cancel, &r->photon_progress);
         if (st == PHOS_OK && mode == PHOS_CACHE_FILE_SAVE)
-            st = photon_maps_save(&r->maps, r->scene, &r->photon_settings, path, msg, sizeof(msg));
+            st = photon_maps_save(r->maps, r->scene, &r->photon_settings, path, msg, sizeof(msg));
         else if (st != PHOS_OK)
             return st;
     }
@@ -385,9 +385,9 @@ static phos_status run_stage(render *r, uint32_t stage)
     case PHOS_STAGE_TRACING_PHOTONS:
         return trace_photons(r);
     case PHOS_STAGE_BUILDING_KDTREES:
-        return photon_maps_build(&r->maps, &r->cancel);
+        return photon_maps_build(r->maps, &r->cancel);
     case PHOS_STAGE_PRECOMPUTING_RADIANCE:
-        return photon_maps_precompute_radiance(r->scene, &r->photon_settings, &r->maps, &r->cancel);
+        return photon_maps_precompute_radiance(r->scene, &r->photon_settings, r->maps, &r->cancel);
     case PHOS_STAGE_FILLING_IRRADIANCE_CACHE:
         return fill_cache(r);
     case PHOS_STAGE_RENDERING:
@@ -395,10 +395,10 @@ static phos_status run_stage(render *r, uint32_t stage)
          * integrators. */
         if (r->use_maps) {
             if (pass_on(r, PHOS_PASS_PHOTONS)) {
-                draw_photons(r, &r->maps.global);
-                draw_photons(r, &r->maps.caustic);
+                draw_photons(r, &r->maps->global);
+                draw_photons(r, &r->maps->caustic);
             }
-            r->integrator.maps = &r->maps;
+            r->integrator.maps = r->maps;
         }
         if (r->use_cache) {
             if (pass_on(r, PHOS_PASS_IRRADIANCE_CACHE))
@@ -444,6 +444,13 @@ static void *controller_main(void *arg)
         atomic_store(&r->stage_index, i);
         pthread_mutex_unlock(&r->lock);
         st = run_stage(r, r->plan.stages[i]);
+        if (st == PHOS_OK && r->use_maps && !atomic_load(&r->maps_complete) &&
+            !stage_is_photon_stage(r->plan.stages[i + 1])) {
+            /* The last photon stage is done: the maps may now be kept. */
+            shared_maps_seal(r->shared, r->scene, &r->photon_settings,
+                             stage_plan_has(&r->plan, PHOS_STAGE_PRECOMPUTING_RADIANCE));
+            atomic_store(&r->maps_complete, 1);
+        }
         pthread_mutex_lock(&r->lock);
         r->stage_seconds[r->plan.stages[i]] += monotonic_seconds() - r->stage_started;
         r->stage_started = -1.0;
@@ -484,7 +491,10 @@ int render_prepare(render *r)
         return 0;
     stage_plan_make(rs, &r->plan);
     r->use_maps = stage_plan_has(&r->plan, PHOS_STAGE_TRACING_PHOTONS);
-    photon_maps_init(&r->maps);
+    r->shared = shared_maps_create();
+    if (!r->shared)
+        return 0;
+    r->maps = &r->shared->maps;
     float radius = rs->max_radius > 0.0f ? rs->max_radius : scene_size(r->scene) / 40.0f;
     integrator_settings *is = &r->integrator;
     is->max_bounces = rs->max_bounces;
@@ -587,6 +597,6 @@ void render_free(render *r)
         }
         free(r->scratch);
     }
-    photon_maps_free(&r->maps);
+    shared_maps_release(r->shared);
     irradiance_cache_free(&r->cache);
 }

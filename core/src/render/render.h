@@ -15,6 +15,7 @@
 #include "indirect/irradiance_cache.h"
 #include "indirect/irradiance_cache_fill.h"
 #include "photons/photon_trace.h"
+#include "photons/shared_maps.h"
 #include "scene/scene.h"
 
 struct phos_render {
@@ -25,8 +26,14 @@ struct phos_render {
     pixel_filter filter;
     uint32_t threads;
 
-    photon_maps maps;
+    /* The photon maps: traced by this render, or given to it complete
+     * (phos_render_use_photon_maps, whose plan then leaves out the photon
+     * stages); `maps` is &shared->maps. */
+    shared_maps *shared;
+    photon_maps *maps;
     int use_maps;                  /* the PHOTON integrator or a photon debug pass */
+    int maps_given;
+    atomic_int maps_complete;      /* built (and radiance precomputed): they may be kept */
     photon_trace_settings photon_settings;
     photon_trace_progress photon_progress;
     integrator_scratch *scratch;   /* one per thread */

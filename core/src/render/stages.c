@@ -44,6 +44,21 @@ int stage_plan_has(const stage_plan *plan, uint32_t stage)
     return 0;
 }
 
+int stage_is_photon_stage(uint32_t stage)
+{
+    return stage == PHOS_STAGE_TRACING_PHOTONS || stage == PHOS_STAGE_BUILDING_KDTREES ||
+           stage == PHOS_STAGE_PRECOMPUTING_RADIANCE;
+}
+
+void stage_plan_drop_photon_stages(stage_plan *plan)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < plan->count; i++)
+        if (!stage_is_photon_stage(plan->stages[i]))
+            plan->stages[n++] = plan->stages[i];
+    plan->count = n;
+}
+
 const char *stage_name(uint32_t stage, uint32_t integrator)
 {
     switch (stage) {

@@ -27,6 +27,13 @@ int stage_plan_uses_cache(const phos_render_settings *rs);
 /* 1 if the plan runs the stage. */
 int stage_plan_has(const stage_plan *plan, uint32_t stage);
 
+/* 1 for the stages that make the photon maps (tracing, kd-trees, radiance). */
+int stage_is_photon_stage(uint32_t stage);
+
+/* Leaves the photon stages out of the plan: a render given complete maps
+ * (phos_render_use_photon_maps). */
+void stage_plan_drop_photon_stages(stage_plan *plan);
+
 /* The rendering stage's passes over the whole frame: with progressive
  * refinement and more than one sample, pass k ends at sample 2^k (1, 2,
  * 4 …) and the last at `samples`, so the first look at the whole frame

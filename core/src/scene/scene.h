@@ -46,6 +46,10 @@ struct phos_scene {
     uint32_t changed;           /* enum phos_scene_change: what changed since the last commit */
     uint32_t last_changes;      /* what had changed before the last commit (phos_scene_changes) */
     uint32_t light_table_builds; /* light tables built so far, for the tests of scene updates */
+    /* Which scene, and which version of everything but its camera: what
+     * photon maps kept between renders were made from (photons/shared_maps.h). */
+    uint64_t id;
+    uint64_t version;
 
     mesh *meshes;         uint32_t mesh_count, mesh_capacity;
     instance *instances;  uint32_t instance_count, instance_capacity;
