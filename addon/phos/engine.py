@@ -27,7 +27,7 @@ import bpy
 import numpy as np
 
 from . import core, export
-from . import viewport
+from . import status, viewport
 from .export import camera, changes as scene_changes
 from .properties import PASSES, cache_files, enabled_passes, render_settings
 
@@ -64,41 +64,6 @@ PASS_IDS.update((p.name, p.pass_id) for p in PASSES)
 PASS_REGISTRATION = {core.PHOS_PASS_KIND_COLOR: ("RGB", 'COLOR'), core.PHOS_PASS_KIND_VECTOR: ("XYZ", 'VECTOR')}
 
 
-def _stage_text(progress, stage_id, name, samples):
-    """The status line's stage part: the core's name of the stage and what it
-    has counted so far, e.g. "Tracing photons | 123,456 stored"."""
-    if stage_id == core.PHOS_STAGE_TRACING_PHOTONS:
-        which = "caustic map" if progress.photon_map == core.PHOS_MAP_CAUSTIC else "global map"
-        return "{} | {} | {:,} stored | {:,} emitted".format(
-            name, which, progress.photons_stored, progress.photons_emitted)
-    if stage_id == core.PHOS_STAGE_BUILDING_KDTREES:
-        return "{} | {:,} photons".format(name, progress.photons_stored)
-    if stage_id in (core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED):
-        total = progress.samples or samples
-        if progress.tiles_total > 0 and progress.samples_done < total:
-            # Progressive refinement: the pass running is the one after
-            # the samples every pixel has.
-            text = "%s | Sample %d/%d | Tile %d/%d" % (
-                name, progress.samples_done, total, progress.tiles_done, progress.tiles_total)
-        else:
-            text = "%s | Tile %d/%d | %d samples" % (name, progress.tiles_done, progress.tiles_total, total)
-        if progress.global_photons or progress.caustic_photons:
-            text += " | photons {:,} global, {:,} caustic".format(
-                progress.global_photons, progress.caustic_photons)
-        return text + _cache_text(progress)
-    return name
-
-
-def _cache_text(progress):
-    """" | irradiance cache 1,234 records, 97.5 % interpolated", or "" without a cache."""
-    if not progress.cache_records:
-        return ""
-    text = " | irradiance cache {:,} records".format(progress.cache_records)
-    if progress.cache_lookups:
-        text += ", %.1f %% interpolated" % (100.0 * progress.cache_interpolated / progress.cache_lookups)
-    return text
-
-
 # Wall time (s) of the last final render: "export" (export and BVH build)
 # and each stage it ran, by enum phos_stage; with the tiles' ray count
 # ("rays") and the irradiance cache's records and share of lookups
@@ -122,7 +87,7 @@ def _timing(plan, progress, export_seconds):
                                      if progress.cache_lookups else 0.0)
     if progress.rays_traced and tiles > 0.0:
         text += "; %.1f M rays, %.2f M rays/s" % (progress.rays_traced * 1e-6, progress.rays_traced * 1e-6 / tiles)
-    text += _cache_text(progress).replace(" | ", "; ", 1)
+    text += status.cache_text(progress).replace(" | ", "; ", 1)
     return seconds, text
 
 
@@ -193,8 +158,9 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             session.close_scene()
             return
         session.draw(self, depsgraph.scene)
-        if not session.done():
-            self.tag_redraw()  # the render goes on: draw again soon
+        self.update_stats("", session.status_text(max(1, depsgraph.scene.phos.preview_samples)))
+        if not session.done() or session.divider > 1:
+            self.tag_redraw()  # the render goes on, or the next resolution: draw again soon
 
     def __del__(self):
         # Blender frees a viewport's engine when the view leaves Rendered
@@ -431,10 +397,10 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             # the plan's order, so the stats line and `blender -b` show every
             # stage.
             for stage_id, name in self._plan[self._last_stage + 1:index]:
-                self._stats("Phos | " + _stage_text(progress, stage_id, name, rs.samples), force=True)
+                self._stats("Phos | " + status.stage_text(progress, stage_id, name, rs.samples), force=True)
         self._last_stage = index
         stage_id, name = self._plan[index]
-        self._stats("Phos | " + _stage_text(progress, stage_id, name, rs.samples), force=final or new_stage)
+        self._stats("Phos | " + status.stage_text(progress, stage_id, name, rs.samples), force=final or new_stage)
 
     def _stats(self, text, force=False):
         """update_stats with changed text only, and sparingly in background mode.

@@ -11,7 +11,8 @@ later must not silently change saved files.
 PHOS_RENDER_SETTINGS, mirrored in core.RENDER_SETTINGS): each user setting's
 property name, label, description, default, range and kind come from its
 row, so the add-on cannot offer a value the core refuses. Only the enum
-items' texts and preview_samples are written here.
+items' texts, preview_samples and the viewport's preview_start_resolution
+are written here.
 """
 
 import collections
@@ -113,6 +114,13 @@ def _scene_settings():
                 s, label="Viewport Samples",
                 description="Samples per pixel in the viewport's Rendered shading and in material and light previews",
                 default=16, soft_max=1024)
+    # The viewport's alone (viewport.py), as Cycles' Performance → Viewport.
+    props["preview_start_resolution"] = IntProperty(
+        name="Start Pixels",
+        description="The viewport's first images are rendered at most this many pixels wide and high, "
+                    "one sample each, doubling up to the full resolution before samples accumulate "
+                    "(so that a moved view answers at once)",
+        default=64, min=8, max=16384, subtype='PIXEL')
     # Not numbers, so not rows of the core's table: where the caches are
     # kept between renders (phos_render_set_cache_file).
     for kind, prefix, what, default in CACHE_FILES:

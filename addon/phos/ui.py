@@ -264,6 +264,7 @@ class PHOS_RENDER_PT_performance(PhosButtonsPanel, bpy.types.Panel):
         sub.prop(rd, "threads")
         layout.prop(context.scene.phos, "tile_size")
         layout.prop(context.scene.phos, "use_progressive_refine")
+        layout.prop(context.scene.phos, "preview_start_resolution")
 
 
 # --------------------------------------------------------------- view layer

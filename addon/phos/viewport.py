@@ -11,10 +11,12 @@ export), and view_draw starts a new render whenever the scene, the view or
 the viewport's size changed since the one running. A render that only
 follows the view reads the photon maps the last one built (the core's kept
 maps, taken from any view): moving the view never traces photons again;
-an edit of the scene does. The core renders on its
-own threads (progressive refinement: the whole view at one sample a pixel
-first), so neither call waits for it: view_draw shows what the film holds
-and asks for another redraw until the render is done.
+an edit of the scene does. As Cycles' viewport does, a restart first
+renders one sample a pixel at a reduced resolution (at most Start Pixels
+on a side), then at twice that until the full resolution, which then
+refines progressively up to the Viewport samples. The core renders on its
+own threads, so neither call waits for it: view_draw shows what the film
+holds and asks for another redraw until the render is done.
 """
 
 import time
@@ -25,7 +27,7 @@ import gpu
 import numpy as np
 from gpu_extras.presets import draw_texture_2d
 
-from . import core, export
+from . import core, export, status
 from .export import changes as scene_changes
 from .properties import render_settings
 
@@ -54,6 +56,34 @@ def view_camera(region, rv3d, space):
     return desc
 
 
+def start_divider(width, height, start_pixels):
+    """The first render's divider: the smallest power of two that brings
+    the view to at most start_pixels on each side (Cycles' viewport starts
+    likewise; its resolution then doubles up to the full one)."""
+    divider = 1
+    while max(width, height) > start_pixels * divider:
+        divider *= 2
+    return divider
+
+
+# A reduced-resolution step whose time, predicted from the last step's,
+# stays under this is skipped for a finer one: each step costs a draw
+# (tens of ms) beside its render, so on a fast scene halving six times
+# would delay the full image for nothing.
+STEP_SECONDS = 0.1
+
+
+def next_divider(divider, seconds_per_pixel, width, height):
+    """The divider after a reduced render at `divider`: the finest (down to
+    1) whose render is predicted to take at most STEP_SECONDS at the last
+    render's cost per pixel, and at least half the last one."""
+    finer = divider // 2
+    while finer > 1 and seconds_per_pixel * (-(-width // (finer // 2))) * (-(-height // (finer // 2))) \
+            <= STEP_SECONDS:
+        finer //= 2
+    return finer
+
+
 def _camera_key(desc):
     return (desc.type, tuple(desc.transform), tuple(desc.frame_min), tuple(desc.frame_max), desc.clip_start,
             desc.clip_end)
@@ -79,7 +109,12 @@ class ViewportSession:
         self.pixels = None
         self.started = 0.0
         self.renders = 0           # renders started so far
-        self.first_image = None    # seconds from the last start to its first whole image
+        self.photon_traces = 0     # of them, those that traced photon maps
+        self.divider = 1           # the render running is at 1/divider of the view's resolution
+        self.size = self.render_size = (1, 1)  # the view's and the render's pixels
+        # Seconds from the last restart (a view or scene change) to its
+        # first whole image, and to the first at the view's full resolution.
+        self.first_image = self.full_image = None
 
     # ---------------------------------------------------------- the scene
 
@@ -119,35 +154,63 @@ class ViewportSession:
 
     def restart_if_needed(self, context, depsgraph):
         """Start a new render when the view, its size, the settings or the
-        scene changed since the one running. Returns whether one runs."""
+        scene changed since the one running, at the start resolution; when
+        a reduced-resolution render is done, start the next one at twice
+        its resolution. Returns whether a render runs."""
         if self.scene is None:
             return False
         region, scene = context.region, depsgraph.scene
         width, height = max(region.width, 1), max(region.height, 1)
         camera = view_camera(region, context.region_data, context.space_data)
         rs = self._settings(scene, width, height)
-        key = (_camera_key(camera), width, height,
+        key = (_camera_key(camera), width, height, scene.phos.preview_start_resolution,
                tuple(getattr(rs, s.name) for s in core.RENDER_SETTINGS))
-        if key == self.render_key and not self.scene_changed:
-            return True
-        self.stop()
-        self.scene.set_camera(camera)
-        self.scene.commit()   # rebuilds nothing for the camera (phos_scene_changes)
+        if key != self.render_key or self.scene_changed:
+            self.stop()
+            self.scene.set_camera(camera)
+            self.scene.commit()   # rebuilds nothing for the camera (phos_scene_changes)
+            self.render_key, self.scene_changed = key, False
+            self.divider = start_divider(width, height, scene.phos.preview_start_resolution)
+            self.started = time.perf_counter()
+            self.first_image = self.full_image = None
+            self._start(rs, width, height)
+        elif self.divider > 1 and self.done():
+            self._take_image()  # done between two draws: show it while the next one renders
+            self.divider = next_divider(self.divider, self._seconds_per_pixel(), width, height)
+            self._end_render()
+            self._start(rs, width, height)
+        return True
+
+    def _start(self, rs, width, height):
+        """A render of the view at 1/divider of its resolution: one sample
+        a pixel while reduced, else the viewport's samples, progressively.
+        It reads the photon maps kept from the last render when the core
+        finds they fit (only the view moved)."""
+        d = self.divider
+        if d > 1:
+            rs.width, rs.height = -(-width // d), -(-height // d)
+            rs.samples, rs.progressive = 1, 0
         self.render = core.Render(self.scene, rs)
         if self.maps is not None and not self.render.use_photon_maps(self.maps, any_view=True):
             self.drop_maps()  # other photon settings: trace them again
+        if any(stage == core.PHOS_STAGE_TRACING_PHOTONS for stage, _ in self.render.stages()):
+            self.photon_traces += 1
         self.render.start()
         self.renders += 1
-        self.render_key, self.scene_changed = key, False
-        self.pixels = np.zeros((width * height, 4), dtype=np.float32)
-        self.size = (width, height)
-        self.started = time.perf_counter()
-        self.first_image = None
-        return True
+        self.size, self.render_size = (width, height), (rs.width, rs.height)
+        self.pixels = np.zeros((rs.width * rs.height, 4), dtype=np.float32)
 
-    def stop(self):
-        """Cancel and free the render, so that the scene can change; keep
-        its photon maps if it got as far as building them."""
+    def _seconds_per_pixel(self):
+        """What the finished render spent per pixel, its photon stages left
+        out (the next render reads its maps)."""
+        progress = self.render.progress()
+        seconds = sum(progress.stage_seconds[i] for i in (core.PHOS_STAGE_FILLING_IRRADIANCE_CACHE,
+                                                         core.PHOS_STAGE_RENDERING))
+        return seconds / (self.render_size[0] * self.render_size[1])
+
+    def _end_render(self):
+        """Cancel and free the render; keep its photon maps if it got as far
+        as building them."""
         if self.render is not None:
             if self.maps is None:
                 self.maps = self.render.keep_photon_maps()
@@ -155,7 +218,12 @@ class ViewportSession:
             self.render.wait(-1.0)
             self.render.close()
             self.render = None
-            self.render_key = None
+
+    def stop(self):
+        """End the render, so that the scene can change; the next draw
+        starts another."""
+        self._end_render()
+        self.render_key = None
 
     def done(self):
         return self.render is None or self.render.progress().state in (
@@ -163,24 +231,49 @@ class ViewportSession:
 
     # ---------------------------------------------------------- drawing
 
-    def draw(self, engine, scene):
-        """Draw the film as it is now, through the scene's display
-        transform (engine.bind_display_space_shader)."""
-        if self.render is None:
+    def _take_image(self):
+        """Upload the running render's film once it holds a whole image
+        (every pixel has a sample); until then the last image stays on
+        screen, so a restart or the next resolution never flashes black."""
+        if self.render is None or self.render.progress().samples_done < 1:
             return
-        width, height = self.size
-        if self.first_image is None and self.render.progress().samples_done >= 1:
-            self.first_image = time.perf_counter() - self.started
         while self.render.next_tile() is not None:
             pass  # the finished tiles are in the film; it is read whole below
-        self.render.read(core.PHOS_PASS_COMBINED, 0, 0, width, height, out=self.pixels)
-        buffer = gpu.types.Buffer('FLOAT', width * height * 4, self.pixels.reshape(-1))
-        self.texture = gpu.types.GPUTexture((width, height), format='RGBA16F', data=buffer)
+        rw, rh = self.render_size
+        self.render.read(core.PHOS_PASS_COMBINED, 0, 0, rw, rh, out=self.pixels)
+        buffer = gpu.types.Buffer('FLOAT', rw * rh * 4, self.pixels.reshape(-1))
+        self.texture = gpu.types.GPUTexture((rw, rh), format='RGBA16F', data=buffer)
+        now = time.perf_counter() - self.started
+        if self.first_image is None:
+            self.first_image = now
+        if self.full_image is None and self.divider == 1:
+            self.full_image = now
+
+    def draw(self, engine, scene):
+        """Draw the last whole image, stretched over the view when reduced,
+        through the scene's display transform (engine.bind_display_space_shader)."""
+        self._take_image()
+        if self.texture is None:
+            return
+        width, height = self.size
         gpu.state.blend_set('ALPHA_PREMULT')
         engine.bind_display_space_shader(scene)
         draw_texture_2d(self.texture, (0, 0), width, height)
         engine.unbind_display_space_shader()
         gpu.state.blend_set('NONE')
+
+    def status_text(self, samples):
+        """What the view's corner shows: the stage, the resolution while
+        reduced, then the samples so far."""
+        if self.render is None:
+            return ""
+        progress = self.render.progress()
+        stage_id, name = self.render.stages()[progress.stage_index]
+        if stage_id in (core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED):
+            if self.divider > 1:
+                return "Rendering at 1/%d resolution" % self.divider
+            return "Sample %d/%d" % (progress.samples_done, samples)
+        return status.stage_text(progress, stage_id, name, samples)
 
     # ---------------------------------------------------------- cleanup
 

@@ -52,3 +52,25 @@ def test_view_camera_is_the_cameras(scene, kind, shift):
                                                                                      want.frame_min[:])
     assert np.allclose(got.frame_max[:], want.frame_max[:], rtol=1e-4, atol=1e-5), (got.frame_max[:],
                                                                                      want.frame_max[:])
+
+
+def test_start_resolution_steps():
+    """The first render is at most Start Pixels on a side, in a power-of-two
+    divider; each later step at least halves it, and skips to a finer one
+    only when the last step's cost per pixel predicts that one within
+    STEP_SECONDS; the last step is the full resolution."""
+    from phos import viewport
+    assert viewport.start_divider(1057, 667, 64) == 32      # 34 × 21 px
+    assert viewport.start_divider(64, 10, 64) == 1
+    assert viewport.start_divider(65, 10, 64) == 2
+    slow, fast = 1e-3, 1e-9                                  # seconds per pixel
+    assert viewport.next_divider(32, slow, 1057, 667) == 16
+    assert viewport.next_divider(2, slow, 1057, 667) == 1
+    assert viewport.next_divider(32, fast, 1057, 667) == 1
+    # 4.4e-7 s a pixel: the full 1057 × 667 view is predicted at 0.31 s, a
+    # half-resolution one at 0.078 s (under STEP_SECONDS).
+    assert viewport.next_divider(32, 4.4e-7, 1057, 667) == 2
+    divider, steps = viewport.start_divider(1057, 667, 64), 0
+    while divider > 1:
+        divider, steps = viewport.next_divider(divider, slow, 1057, 667), steps + 1
+    assert steps == 5

@@ -116,14 +116,10 @@ def setup():
 
 
 def wait_done(after=0):
-    """Whether a render later than the `after`-th is done."""
+    """Whether a render later than the `after`-th, at the view's full
+    resolution, is done."""
     s = session()
-    return s is not None and s.render is not None and s.renders > after and s.done()
-
-
-def traces_photons(render):
-    from phos import core
-    return any(stage == core.PHOS_STAGE_TRACING_PHOTONS for stage, _ in render.stages())
+    return s is not None and s.render is not None and s.renders > after and s.divider == 1 and s.done()
 
 
 def step():
@@ -156,8 +152,11 @@ def step():
             check("the film is the F12 render of the view", np.array_equal(ref.reshape(-1, 4), s.pixels),
                   "max difference %g" % float(np.abs(ref.reshape(-1, 4) - s.pixels).max()))
             state["first"], state["renders"] = shot, s.renders
-            print("GUI TIME: %dx%d px, first whole image %.2f s after the render started (a draw later)"
-                  % (s.size[0], s.size[1], s.first_image or -1.0), flush=True)
+            check("the first image is at a reduced resolution", s.renders > 1 and s.first_image < s.full_image,
+                  "%d renders" % s.renders)
+            print("GUI TIME: %dx%d px, first whole image %.2f s after the restart, at full resolution %.2f s "
+                  "(a draw later)" % (s.size[0], s.size[1], s.first_image or -1.0, s.full_image or -1.0),
+                  flush=True)
             bpy.data.objects["Lamp"].location.x -= 3.0
             state["step"] = 2
         elif n == 2 and wait_done(state["renders"]):
@@ -169,25 +168,28 @@ def step():
             scene = bpy.context.scene
             scene.phos.global_photons, scene.phos.caustic_photons = 20000, 0
             scene.phos.integrator = 'PHOTON'
-            state["step"], state["renders"] = 4, s.renders
+            state["step"], state["renders"], state["traces"] = 4, s.renders, s.photon_traces
         elif n == 4 and wait_done(state["renders"]):
             s = session()
-            check("a PHOTON viewport traces its photon maps", traces_photons(s.render))
+            check("a PHOTON viewport traces its photon maps once", s.photon_traces == state["traces"] + 1,
+                  "%d traces" % (s.photon_traces - state["traces"]))
             window, area, region = view3d()
             r3d = area.spaces.active.region_3d
             r3d.view_perspective = 'PERSP'
             r3d.view_rotation.rotate(__import__("mathutils").Euler((0.0, 0.0, 0.3)))
             state["step"], state["renders"], state["film"] = 5, s.renders, s.pixels.copy()
+            state["traces"] = s.photon_traces
         elif n == 5 and wait_done(state["renders"]):
             s = session()
             check("moving the view renders a new image", not np.array_equal(s.pixels, state["film"]))
-            check("moving the view keeps the photon maps", not traces_photons(s.render),
-                  "plan %s" % [name for _, name in s.render.stages()])
+            check("moving the view keeps the photon maps", s.photon_traces == state["traces"],
+                  "%d traces" % (s.photon_traces - state["traces"]))
             bpy.data.objects["Lamp"].location.x += 3.0
             state["step"], state["renders"] = 6, s.renders
         elif n == 6 and wait_done(state["renders"]):
             s = session()
-            check("moving a light traces the photon maps again", traces_photons(s.render))
+            check("moving a light traces the photon maps again", s.photon_traces == state["traces"] + 1,
+                  "%d traces" % (s.photon_traces - state["traces"]))
             window, area, region = view3d()
             area.spaces.active.shading.type = 'SOLID'
             state["step"], state["left"] = 3, time.monotonic()
