@@ -349,14 +349,9 @@ class Scene(_Handle):
         d.program = ctypes.pointer(program) if program is not None else None
         return d, arr
 
-    def add_mesh(self, positions, indices, normals=None, uvs=None, material_slots=None, tangents=None,
-                 texspace=None, attributes=()):
-        """Add a triangle mesh in object space; returns the mesh id.
-
-        positions (V*3), indices (T*3), per-corner normals (T*9) and UVs (T*6),
-        per-triangle slots (T); the optional ones may be None. attributes:
-        (id, enum phos_attribute_type, T*12 per-corner values) each.
-        """
+    def _mesh_desc(self, positions, indices, normals=None, uvs=None, material_slots=None, tangents=None,
+                   texspace=None, attributes=()):
+        """A phos_mesh_desc of the arrays, and what keeps its arrays alive."""
         pos = np.ascontiguousarray(positions, dtype=np.float32).reshape(-1)
         idx = np.ascontiguousarray(indices, dtype=np.uint32).reshape(-1)
         if pos.size % 3 or idx.size % 3:
@@ -384,14 +379,29 @@ class Scene(_Handle):
         if texspace is not None:
             d.texspace_location[:] = [float(x) for x in texspace[0]]
             d.texspace_size[:] = [float(x) for x in texspace[1]]
+        return d, (pos, idx, nrm, uv, slots, tan, attr_values, attrs)
+
+    def add_mesh(self, *arrays, **named):
+        """Add a triangle mesh in object space; returns the mesh id.
+
+        positions (V*3), indices (T*3), per-corner normals (T*9) and UVs (T*6),
+        per-triangle slots (T), tangents (T*12), texspace ((location, size));
+        the optional ones may be None. attributes: (id, enum
+        phos_attribute_type, T*12 per-corner values) each.
+        """
+        d, _keep = self._mesh_desc(*arrays, **named)
         out = _u32()
         self._raise_on(self._lib.phos_scene_add_mesh(self.handle, ctypes.byref(d), ctypes.byref(out)),
                        "adding a mesh")
         return out.value
 
-    def add_instance(self, mesh_id, transform, materials, random=0.0, pass_index=0.0):
-        """Place a mesh with a row-major 3x4 transform and per-slot material ids
-        (random and pass_index: what Object Info reads)."""
+    def update_mesh(self, mesh_id, *arrays, **named):
+        """Replace mesh `mesh_id` (phos_scene_update_mesh) by the arrays, as add_mesh takes them."""
+        d, _keep = self._mesh_desc(*arrays, **named)
+        self._raise_on(self._lib.phos_scene_update_mesh(self.handle, mesh_id, ctypes.byref(d)),
+                       "replacing a mesh")
+
+    def _instance_desc(self, mesh_id, transform, materials, random, pass_index):
         mats = np.ascontiguousarray(materials, dtype=np.uint32).reshape(-1)
         d = phos_instance_desc()
         self._lib.phos_instance_desc_init(ctypes.byref(d))
@@ -400,10 +410,22 @@ class Scene(_Handle):
         d.material_count = mats.size
         d.materials = _ptr(mats, ctypes.c_uint32) if mats.size else None
         d.random, d.pass_index = float(random), float(pass_index)
+        return d, mats
+
+    def add_instance(self, mesh_id, transform, materials, random=0.0, pass_index=0.0):
+        """Place a mesh with a row-major 3x4 transform and per-slot material ids
+        (random and pass_index: what Object Info reads)."""
+        d, _keep = self._instance_desc(mesh_id, transform, materials, random, pass_index)
         out = _u32()
         self._raise_on(self._lib.phos_scene_add_instance(self.handle, ctypes.byref(d), ctypes.byref(out)),
                        "adding an instance")
         return out.value
+
+    def update_instance(self, instance_id, mesh_id, transform, materials, random=0.0, pass_index=0.0):
+        """Replace instance `instance_id` (phos_scene_update_instance), as add_instance takes it."""
+        d, _keep = self._instance_desc(mesh_id, transform, materials, random, pass_index)
+        self._raise_on(self._lib.phos_scene_update_instance(self.handle, instance_id, ctypes.byref(d)),
+                       "replacing an instance")
 
     def add_instances(self, mesh_ids, transforms, material_lists, randoms, pass_indices):
         """Add many instances in one call (phos_scene_add_instances): mesh ids,

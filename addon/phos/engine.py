@@ -265,9 +265,8 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             core_scene, ctx = entry[0], entry[1]
             camera.export_camera(camera_object, matrix, ctx)
             self._stats("Phos | Reusing the scene (Persistent Data)", force=True)
-            lights, materials = changes
             print("Phos: reused the scene of the last render (Persistent Data); changed in place: "
-                  "%d lights, %d materials" % (len(lights), len(materials)))
+                  + changes.summary())
         else:
             if entry is not None:
                 entry[0].close()

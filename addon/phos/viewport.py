@@ -125,7 +125,7 @@ class ViewportSession:
         changes = None
         if self.scene is not None:
             changes = scene_changes.changes_in_place(depsgraph, self.ctx, self.signature)
-        if changes is not None and not changes[0] and not changes[1]:
+        if changes is not None and not changes:
             return  # cameras and the scene's settings only: view_draw sees those
         self.stop()  # the core changes no scene a render holds
         self.drop_maps()  # made for the scene before this change

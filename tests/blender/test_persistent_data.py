@@ -91,8 +91,8 @@ def test_persistent_data_reuses_the_scene(lit_scene, tmp_path):
         # A light's power, then its place, and a material's colour: changed
         # in place (phos_scene_update_light, _material), no export. Blender
         # 5.x tags the objects using an edited material for geometry as well,
-        # which a modifier's edit also does: Phos exports again there.
-        material_exports = 1 if bpy.app.version >= (5, 0, 0) else 0
+        # which a modifier's edit also does: their meshes are replaced too.
+        material_exports = 0
         lamp = bpy.data.objects["Lamp"]
         for name, change in (("energy", lambda: setattr(lamp.data, "energy", 900.0)),
                              ("light_moved", lambda: setattr(lamp, "location", (-2.0, -2.0, 3.0))),
@@ -109,17 +109,24 @@ def test_persistent_data_reuses_the_scene(lit_scene, tmp_path):
             assert not np.array_equal(changed, before), "%s: the change did not reach the image" % name
             assert np.array_equal(changed, _fresh(scene, tmp_path, name + "_fresh")), name
 
-        # A moved object, a mesh edit, a hidden object: exported afresh.
+        # A moved object and a mesh edit: changed in place
+        # (phos_scene_update_instance, _mesh); a hidden object: exported
+        # afresh. Blender 3.4 tags the object for geometry on a move too,
+        # which replaces its mesh as well; still no export.
         box = bpy.data.objects["Box"]
-        for change in (lambda: setattr(box, "location", (0.5, 0.2, 0.5)),
-                       lambda: box.data.vertices[0].co.__setitem__(2, 1.5),
-                       lambda: setattr(box, "hide_render", True)):
+        for name, change, expected in (
+                ("moved", lambda: setattr(box, "location", (0.5, 0.2, 0.5)), 0),
+                ("reshaped", lambda: box.data.vertices[0].co.__setitem__(2, 1.5), 0),
+                ("hidden", lambda: setattr(box, "hide_render", True), 1)):
+            before = _render(scene, tmp_path, name=name + "_before")
             count = exports.count
             change()
             box.data.update()
-            changed = _render(scene, tmp_path)
-            assert exports.count == count + 1
-            assert np.array_equal(changed, _fresh(scene, tmp_path, "fresh_%d" % count))
+            changed = _render(scene, tmp_path, name=name)
+            assert exports.count == count + expected, "%s: %d exports, expected %d" % (
+                name, exports.count - count, expected)
+            assert not np.array_equal(changed, before), "%s: the change did not reach the image" % name
+            assert np.array_equal(changed, _fresh(scene, tmp_path, name + "_fresh")), name
 
 
 def test_without_persistent_data_every_render_exports(lit_scene, tmp_path):
@@ -163,3 +170,46 @@ def test_persistent_data_keeps_the_photon_maps(lit_scene, tmp_path):
     lit = _render(scene, tmp_path, name="photons_light")
     assert traced(), "a light edit kept the old photon maps"
     assert np.array_equal(lit, _fresh(scene, tmp_path, "photons_light_fresh"))
+
+
+def test_edits_in_place_only_where_they_stand_for_an_export(lit_scene, tmp_path):
+    """An edit is applied in place only where the kept scene can take it:
+    a modifier added to one of two objects sharing a mesh (their core mesh
+    is shared), a moved object that a collection instance also shows, and
+    a moved object whose place a material reads (Texture Coordinate's
+    Object) each export afresh, to the image a fresh render gives."""
+    scene = lit_scene
+    scene.render.use_persistent_data = True
+    box = bpy.data.objects["Box"]
+    twin = bpy.data.objects.new("Twin", box.data)   # a linked duplicate
+    twin.location = (-1.5, 0.5, 0.5)
+    scene.collection.objects.link(twin)
+    shown = pt.add_cube(scene, "Shown", size=0.4, location=(1.5, 0.5, 0.2),
+                        material=bpy.data.materials["Box"])
+    group = bpy.data.collections.new("Group")
+    group.objects.link(shown)
+    holder = bpy.data.objects.new("Holder", None)
+    holder.instance_type, holder.instance_collection = 'COLLECTION', group
+    holder.location = (0.0, 1.5, 0.0)
+    scene.collection.objects.link(holder)
+    floor = bpy.data.materials["Floor"]
+    nodes, links = floor.node_tree.nodes, floor.node_tree.links
+    coords, checker = nodes.new("ShaderNodeTexCoord"), nodes.new("ShaderNodeTexChecker")
+    coords.object = holder
+    links.new(coords.outputs["Object"], checker.inputs["Vector"])
+    links.new(checker.outputs["Color"], nodes["Diffuse BSDF"].inputs["Color"])
+
+    def modifier():
+        twin.modifiers.new("Bevel", 'BEVEL').width = 0.1
+
+    with _ExportCounter() as exports:
+        for name, change in (("modifier", modifier),
+                             ("instanced_moved", lambda: setattr(shown, "location", (1.5, 0.5, 0.6))),
+                             ("referenced_moved", lambda: setattr(holder, "location", (0.4, 1.5, 0.0)))):
+            before = _render(scene, tmp_path, name=name + "_before")
+            count = exports.count
+            change()
+            changed = _render(scene, tmp_path, name=name)
+            assert exports.count == count + 1, "%s: applied in place" % name
+            assert not np.array_equal(changed, before), "%s: the change did not reach the image" % name
+            assert np.array_equal(changed, _fresh(scene, tmp_path, name + "_fresh")), name

@@ -11,7 +11,8 @@ OpenGL (`make test-gui`; tools/test-gui.sh starts it):
    and settings through the core, bit for bit (an F12 of that view).
 2. A light moved: the image changes, with no new export.
 3. With PHOTON, a view move renders from the photon maps already built
-   (no photon stage in the new render's plan), a light move traces again.
+   (no photon stage in the new render's plan); an object moved (in place,
+   no export) traces them again.
 4. Leaving Rendered shading frees the session.
 
 Blender runs the steps from timers (the GUI must draw between them); the
@@ -184,12 +185,13 @@ def step():
             check("moving the view renders a new image", not np.array_equal(s.pixels, state["film"]))
             check("moving the view keeps the photon maps", s.photon_traces == state["traces"],
                   "%d traces" % (s.photon_traces - state["traces"]))
-            bpy.data.objects["Lamp"].location.x += 3.0
+            bpy.data.objects["Box"].location.x += 0.5
             state["step"], state["renders"] = 6, s.renders
         elif n == 6 and wait_done(state["renders"]):
             s = session()
-            check("moving a light traces the photon maps again", s.photon_traces == state["traces"] + 1,
+            check("moving an object traces the photon maps again", s.photon_traces == state["traces"] + 1,
                   "%d traces" % (s.photon_traces - state["traces"]))
+            check("moving an object exports nothing", s.ctx is state["exports"])
             window, area, region = view3d()
             area.spaces.active.shading.type = 'SOLID'
             state["step"], state["left"] = 3, time.monotonic()

@@ -24,6 +24,16 @@ class ExportContext:
         self.materials = {}                 # material pointer → material id
         self.light_ids = {}                 # light object pointer → core light ids (None: instanced, or none)
         self.object_shading = {}            # object pointer → instances.object_shading when exported
+        # What lets an edit of an object be applied in place (instances.py,
+        # move_object, reshape_objects): the core instances of each object
+        # placed as itself (None: not placed), the objects that are
+        # instanced or instance others, the core meshes instances use, each
+        # core mesh's objects, and the objects a material reads the place of.
+        self.object_instances = {}          # object pointer → [instances._Placed] or None
+        self.instanced = set()
+        self.instanced_meshes = set()
+        self.mesh_users = {}                # mesh id → {object pointer}
+        self.referenced_objects = set()
         self.images = {}                    # image pointer → image id or None
         self.tangents_wanted = False        # a material reads tangents (a Normal Map in tangent space)
         self.view_layer = None              # the view layer rendered (its properties: Attribute nodes)

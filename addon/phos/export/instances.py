@@ -98,14 +98,17 @@ class _PendingInstances:
         self._clear()
 
     def _clear(self):
-        self.entries, self.randoms = [], []
+        self.entries, self.randoms, self.owners = [], [], []
 
-    def add(self, entry, matrix, random):
+    def add(self, entry, matrix, random, owner):
+        """owner: the object's original pointer when the instance is the
+        object itself (not instanced), else None."""
         n = len(self.entries)
         # A Matrix's rows unpacked: a sixth of np.array(matrix)'s cost.
         self.transforms[n] = (*matrix[0], *matrix[1], *matrix[2])
         self.entries.append(entry)
         self.randoms.append(random)
+        self.owners.append(owner)
         if n + 1 == self.BATCH:
             self.flush()
 
@@ -113,18 +116,23 @@ class _PendingInstances:
         n = len(self.entries)
         if n == 0:
             return
-        transforms, entries, randoms = self.transforms[:n], self.entries, self.randoms
+        transforms, entries, randoms, owners = self.transforms[:n], self.entries, self.randoms, self.owners
         finite = np.isfinite(transforms).all(axis=1)
         if not finite.all():
             for name in sorted({entries[k].name for k in np.flatnonzero(~finite)}):
                 self.ctx.warn("Phos: object '%s': its transform is not finite (NaN/Inf); skipped" % name)
+            for k in np.flatnonzero(~finite):
+                if owners[k] is not None:
+                    self.ctx.object_instances[owners[k]] = None  # not placed: a move must export again
             keep = np.flatnonzero(finite)
             transforms = transforms[keep]
             entries = [entries[k] for k in keep]
             randoms = [randoms[k] for k in keep]
+            owners = [owners[k] for k in keep]
         try:
-            self.ctx.core.add_instances([e.mesh_id for e in entries], transforms, [e.materials for e in entries],
-                                        randoms, [e.pass_index for e in entries])
+            first = self.ctx.core.add_instances([e.mesh_id for e in entries], transforms,
+                                                [e.materials for e in entries], randoms,
+                                                [e.pass_index for e in entries])
         except core.PhosError as ex:
             # The core names the instance by its index in the call.
             m = re.search(r"instance (\d+) of \d+: (.*)", str(ex))
@@ -132,12 +140,20 @@ class _PendingInstances:
                 raise core.PhosError("object '%s': %s" % (entries[int(m.group(1))].name, m.group(2)),
                                      ex.status) from None
             raise
+        # Objects placed as themselves can later move, or change shape, in
+        # place (move_object, reshape_object).
+        for k, owner in enumerate(owners):
+            placed = self.ctx.object_instances.setdefault(owner, []) if owner is not None else None
+            if placed is not None:
+                placed.append(_Placed(first + k, entries[k], randoms[k]))
         self.ctx.stats["instances"] += len(entries)
         self._clear()
 
 
 # What the instances of one evaluated mesh under one object share.
 _Entry = collections.namedtuple("_Entry", "mesh_id materials pass_index name")
+# A core instance of an object placed as itself: its id, entry and Object Info random.
+_Placed = collections.namedtuple("_Placed", "instance_id entry random")
 
 
 def object_shading(ob):
@@ -168,7 +184,59 @@ def _entry(ob, ctx):
     mesh_id = ctx.meshes[key]
     if mesh_id is None:
         return None
+    ctx.mesh_users.setdefault(mesh_id, set()).add(ob.original.as_pointer())
     return _Entry(mesh_id, mats, float(getattr(ob, "pass_index", 0)), ob.name)
+
+
+def _placed(ob, ctx):
+    """The core instances of an object placed as itself, or None if an edit
+    of it cannot be applied in place: it was not exported as itself (new,
+    empty, or not a mesh), instances others or is instanced, or a material
+    reads its place (Texture Coordinate's Object)."""
+    original = ob.original.as_pointer()
+    if original in ctx.instanced or original in ctx.referenced_objects:
+        return None
+    return ctx.object_instances.get(original)
+
+
+def move_object(ob, ctx):
+    """Move an exported object's instances to its new transform (scene
+    updates, phos.h); False if that cannot stand for an export."""
+    placed = _placed(ob, ctx)
+    m = ob.matrix_world
+    transform = (*m[0], *m[1], *m[2])
+    if placed is None or not np.isfinite(transform).all():
+        return False
+    for p in placed:
+        e = p.entry
+        ctx.core.update_instance(p.instance_id, e.mesh_id, transform, e.materials, p.random, e.pass_index)
+    return True
+
+
+def reshape_objects(obs, ctx):
+    """Replace the core meshes of objects whose geometry changed (scene
+    updates); False if that cannot stand for an export: an object not
+    placed as itself, a core mesh also used by an object not in `obs`, by
+    an instance, or by objects whose evaluated meshes now differ, or
+    geometry that no longer renders."""
+    meshes, evaluated = {}, {}
+    for ob in obs:
+        placed = _placed(ob, ctx)
+        if not placed:
+            return False
+        for p in placed:
+            meshes.setdefault(p.entry.mesh_id, (ob, p.entry))
+            evaluated.setdefault(p.entry.mesh_id, set()).add(ob.data.as_pointer())
+    changed = {ob.original.as_pointer() for ob in obs}
+    for mesh_id, (ob, e) in meshes.items():
+        # A shared core mesh stays shared only if its objects still share
+        # one evaluated mesh (a modifier added to one of them parts them).
+        if mesh_id in ctx.instanced_meshes or not ctx.mesh_users.get(mesh_id, set()) <= changed or \
+                len(evaluated[mesh_id]) > 1:
+            return False
+        if not mesh.update_mesh(ob, ctx, mesh_id, _attribute_keys(e.materials, ctx)):
+            return False
+    return True
 
 
 def export_instances(depsgraph, ctx, progress=None, cancelled=None):
@@ -212,13 +280,24 @@ def export_instances(depsgraph, ctx, progress=None, cancelled=None):
             _check_object(ob, ctx)
         if not inst.show_self:
             continue  # an emitter whose particles render but not itself
-        key = (ob.original.as_pointer(), ob.data.as_pointer())
+        original = ob.original.as_pointer()
+        key = (original, ob.data.as_pointer())
         entry = entries.get(key, False)
         if entry is False:
             entry = entries[key] = _entry(ob, ctx)
+        if is_instance:
+            # Instanced geometry, and what instances it: only a new export
+            # follows their edits.
+            ctx.instanced.add(original)
+            if inst.parent is not None:
+                ctx.instanced.add(inst.parent.original.as_pointer())
+            if entry is not None:
+                ctx.instanced_meshes.add(entry.mesh_id)
         if entry is None:
+            if not is_instance:
+                ctx.object_instances[original] = None  # nothing to render now: an edit must export again
             continue
-        pending.add(entry, inst.matrix_world, object_random(inst, ob))
+        pending.add(entry, inst.matrix_world, object_random(inst, ob), None if is_instance else original)
     pending.flush()
     ctx.stats["objects"] = total
     if progress is not None:

@@ -423,3 +423,16 @@ def add_mesh(ob, ctx, attribute_keys=()):
     ctx.stats["meshes"] += 1
     ctx.stats["triangles"] += arrays["indices"].size // 3
     return mesh_id
+
+
+def update_mesh(ob, ctx, mesh_id, attribute_keys=()):
+    """Replace core mesh `mesh_id` by the evaluated object's geometry
+    (scene updates); False if it no longer has triangles to render."""
+    arrays = read_mesh(ob, ctx, attribute_keys)
+    if arrays is None:
+        return False
+    try:
+        ctx.core.update_mesh(mesh_id, **arrays)
+    except core.PhosError as ex:
+        raise core.PhosError("object '%s': %s" % (ob.name, ex), ex.status) from None
+    return True

@@ -580,6 +580,7 @@ def _tex_coord(nc, node, stack):
         # Cycles: the world position in the named object's space (its
         # inverse world matrix, a constant of the render).
         inverse = other.matrix_world.inverted_safe()
+        nc.ctx.referenced_objects.add(other.original.as_pointer())  # its move changes this material
         obj = _affine(nc, [list(inverse[r]) for r in range(3)], pos)
     if getattr(node, "from_instancer", False):
         nc.walker.note(node, "'From Instancer' is not supported; the instance's own coordinates are used")
