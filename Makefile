@@ -99,7 +99,7 @@ test: check-binding build
 # shading with Phos (tests/gui/viewport.py; skipped where Xvfb cannot run).
 test-gui: build
 	@tools/install-deps.sh --gui
-	$(BLENDER_ISOLATED) tools/test-gui.sh $(BLENDER) $(CURDIR)/$(BUILD_DIR)/gui/viewport.json
+	$(BLENDER_ISOLATED) tools/test-gui.sh $(BLENDER) $(CURDIR)/$(BUILD_DIR)/gui
 
 # The C tests under the sanitizers (docs/reliability.md): RelWithDebInfo, so
 # reports have lines; a report is an error (halt_on_error, and UBSan does

@@ -112,7 +112,8 @@ def _scene_settings():
         if s.name == "samples":
             props["preview_samples"] = _property(
                 s, label="Viewport Samples",
-                description="Samples per pixel in the viewport's Rendered shading and in material and light previews",
+                description="Samples per pixel in the viewport's Rendered shading (material, world and light "
+                            "previews render in Blender's preview scene, at a fixed 64)",
                 default=16, soft_max=1024)
     # The viewport's alone (viewport.py), as Cycles' Performance → Viewport.
     props["preview_start_resolution"] = IntProperty(

@@ -358,17 +358,24 @@ def draw_node_view(layout, id_data, output_idname, input_name):
 
 # ----------------------------------------------------------------- material
 
-class PHOS_MATERIAL_PT_preview(PhosButtonsPanel, bpy.types.Panel):
+class PhosPreviewPanel(PhosButtonsPanel):
+    """A datablock's preview, rendered by Phos in Blender's preview scene
+    (engine.PREVIEW_SAMPLES): the datablock is context.<datablock>."""
+
     bl_label = "Preview"
-    bl_context = "material"
     bl_options = {'DEFAULT_CLOSED'}
+    datablock = ""
 
     @classmethod
     def poll(cls, context):
-        return context.material is not None and super().poll(context)
+        return getattr(context, cls.datablock, None) is not None and super().poll(context)
 
     def draw(self, context):
-        self.layout.template_preview(context.material)
+        self.layout.template_preview(getattr(context, self.datablock))
+
+
+class PHOS_MATERIAL_PT_preview(PhosPreviewPanel, bpy.types.Panel):
+    bl_context = datablock = "material"
 
 
 class PHOS_MATERIAL_PT_context_material(PhosButtonsPanel, bpy.types.Panel):
@@ -445,6 +452,11 @@ class PHOS_MATERIAL_PT_surface(PhosButtonsPanel, bpy.types.Panel):
 
 # -------------------------------------------------------------------- light
 
+class PHOS_LIGHT_PT_preview(PhosPreviewPanel, bpy.types.Panel):
+    bl_context = "data"
+    datablock = "light"
+
+
 class PHOS_LIGHT_PT_light(PhosButtonsPanel, bpy.types.Panel):
     bl_label = "Light"
     bl_context = "data"
@@ -509,17 +521,8 @@ class PHOS_LIGHT_PT_spot(PhosButtonsPanel, bpy.types.Panel):
 
 # -------------------------------------------------------------------- world
 
-class PHOS_WORLD_PT_preview(PhosButtonsPanel, bpy.types.Panel):
-    bl_label = "Preview"
-    bl_context = "world"
-    bl_options = {'DEFAULT_CLOSED'}
-
-    @classmethod
-    def poll(cls, context):
-        return context.world is not None and super().poll(context)
-
-    def draw(self, context):
-        self.layout.template_preview(context.world)
+class PHOS_WORLD_PT_preview(PhosPreviewPanel, bpy.types.Panel):
+    bl_context = datablock = "world"
 
 
 class PHOS_WORLD_PT_surface(PhosButtonsPanel, bpy.types.Panel):
@@ -564,6 +567,7 @@ classes = (
     PHOS_MATERIAL_PT_preview,
     PHOS_MATERIAL_PT_context_material,
     PHOS_MATERIAL_PT_surface,
+    PHOS_LIGHT_PT_preview,
     PHOS_LIGHT_PT_light,
     PHOS_LIGHT_PT_spot,
     PHOS_WORLD_PT_preview,

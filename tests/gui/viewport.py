@@ -15,49 +15,30 @@ OpenGL (`make test-gui`; tools/test-gui.sh starts it):
    no export) traces them again.
 4. Leaving Rendered shading frees the session.
 
-Blender runs the steps from timers (the GUI must draw between them); the
-outcome is written as JSON to RESULT.json and the exit code is 0 only if
-every check passed.
+The steps run from a timer and the outcome is written as JSON to
+RESULT.json (tests/gui/guitest.py); the exit code is 0 only if every check
+passed.
 """
 
-import json
 import os
 import sys
 import tempfile
 import time
-import traceback
 
 import bpy
+import mathutils
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "blender"))
-import phostest as pt  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import guitest  # noqa: E402
+from guitest import check  # noqa: E402
+import phostest as pt  # noqa: E402 (tests/blender, put on the path by guitest)
 
-RESULT = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else os.path.join(tempfile.gettempdir(),
-                                                                                    "phos_gui.json")
-TIMEOUT = 120.0
-state = {"checks": [], "failed": False, "step": 0, "t0": time.monotonic()}
-
-
-def check(name, ok, detail=""):
-    state["checks"].append({"check": name, "ok": bool(ok), "detail": detail})
-    print("GUI %s: %s %s" % ("PASS" if ok else "FAIL", name, detail), flush=True)
-    if not ok:
-        state["failed"] = True
-
-
-def finish():
-    with open(RESULT, "w") as f:
-        json.dump(state["checks"], f, indent=1)
-    os._exit(1 if state["failed"] or not state["checks"] else 0)
+state = {}
 
 
 def view3d():
-    window = bpy.context.window_manager.windows[0]
-    area = next(a for a in window.screen.areas if a.type == 'VIEW_3D')
-    region = next(r for r in area.regions if r.type == 'WINDOW')
-    return window, area, region
+    return guitest.area('VIEW_3D')
 
 
 def session():
@@ -123,95 +104,87 @@ def wait_done(after=0):
     return s is not None and s.render is not None and s.renders > after and s.divider == 1 and s.done()
 
 
-def step():
-    try:
-        if time.monotonic() - state["t0"] > TIMEOUT:
-            check("finished within %.0f s" % TIMEOUT, False, "stuck at step %d" % state["step"])
-            finish()
-        n = state["step"]
-        if n == 0:
-            setup()
-            state["step"] = 1
-        elif n == 1 and wait_done():
-            s = session()
-            state["exports"] = s.ctx
-            shot, shape = screen_mean(os.path.join(tempfile.gettempdir(), "phos_gui_1.png"))
-            film = inner(s.pixels.reshape(s.size[1], s.size[0], 4)[..., :3])
-            expect = float(srgb(film).mean())
-            check("the viewport is not black", shot > 0.02, "mean %.4f" % shot)
-            check("the viewport shows the film through the display transform",
-                  abs(shot - expect) <= 0.03 * expect, "screen %.4f, film %.4f, %s" % (shot, expect, shape))
-            # The film against a one-pass render of the same camera and
-            # settings through the core: an F12 of this view.
-            from phos import core
-            rs = s._settings(bpy.context.scene, *s.size)
-            rs.progressive = 0
-            with core.Render(s.scene, rs) as r:
-                r.start()
-                r.wait(-1.0)
-                ref = r.read(core.PHOS_PASS_COMBINED, 0, 0, s.size[0], s.size[1])
-            check("the film is the F12 render of the view", np.array_equal(ref.reshape(-1, 4), s.pixels),
-                  "max difference %g" % float(np.abs(ref.reshape(-1, 4) - s.pixels).max()))
-            state["first"], state["renders"] = shot, s.renders
-            check("the first image is at a reduced resolution", s.renders > 1 and s.first_image < s.full_image,
-                  "%d renders" % s.renders)
-            print("GUI TIME: %dx%d px, first whole image %.2f s after the restart, at full resolution %.2f s "
-                  "(a draw later)" % (s.size[0], s.size[1], s.first_image or -1.0, s.full_image or -1.0),
-                  flush=True)
-            bpy.data.objects["Lamp"].location.x -= 3.0
-            state["step"] = 2
-        elif n == 2 and wait_done(state["renders"]):
-            s = session()
-            shot, _ = screen_mean(os.path.join(tempfile.gettempdir(), "phos_gui_2.png"))
-            check("moving a light changes the image", abs(shot - state["first"]) > 0.005,
-                  "%.4f → %.4f" % (state["first"], shot))
-            check("moving a light exports nothing", s.ctx is state["exports"])
-            scene = bpy.context.scene
-            scene.phos.global_photons, scene.phos.caustic_photons = 20000, 0
-            scene.phos.integrator = 'PHOTON'
-            state["step"], state["renders"], state["traces"] = 4, s.renders, s.photon_traces
-        elif n == 4 and wait_done(state["renders"]):
-            s = session()
-            check("a PHOTON viewport traces its photon maps once", s.photon_traces == state["traces"] + 1,
-                  "%d traces" % (s.photon_traces - state["traces"]))
-            window, area, region = view3d()
-            r3d = area.spaces.active.region_3d
-            r3d.view_perspective = 'PERSP'
-            r3d.view_rotation.rotate(__import__("mathutils").Euler((0.0, 0.0, 0.3)))
-            state["step"], state["renders"], state["film"] = 5, s.renders, s.pixels.copy()
-            state["traces"] = s.photon_traces
-        elif n == 5 and wait_done(state["renders"]):
-            s = session()
-            check("moving the view renders a new image", not np.array_equal(s.pixels, state["film"]))
-            check("moving the view keeps the photon maps", s.photon_traces == state["traces"],
-                  "%d traces" % (s.photon_traces - state["traces"]))
-            bpy.data.objects["Box"].location.x += 0.5
-            state["step"], state["renders"] = 6, s.renders
-        elif n == 6 and wait_done(state["renders"]):
-            s = session()
-            check("moving an object traces the photon maps again", s.photon_traces == state["traces"] + 1,
-                  "%d traces" % (s.photon_traces - state["traces"]))
-            check("moving an object exports nothing", s.ctx is state["exports"])
-            window, area, region = view3d()
-            area.spaces.active.shading.type = 'SOLID'
-            state["step"], state["left"] = 3, time.monotonic()
-        elif n == 3:
-            import gc
-            gc.collect()
-            if session() is None:
-                check("leaving Rendered frees the session", True)
-                finish()
-            if time.monotonic() - state["left"] > 10.0:
-                check("leaving Rendered frees the session", False, "still alive after 10 s")
-                finish()
-        for window in bpy.context.window_manager.windows:
-            for area in window.screen.areas:
-                area.tag_redraw()
-    except Exception:
-        traceback.print_exc()
-        check("no exception", False, traceback.format_exc(limit=3))
-        finish()
-    return 0.25
+def step(n):
+    """One step of the test (guitest.run): the next step's number."""
+    if n == 0:
+        setup()
+        return 1
+    if n == 1 and wait_done():
+        s = session()
+        state["exports"] = s.ctx
+        shot, shape = screen_mean(os.path.join(tempfile.gettempdir(), "phos_gui_1.png"))
+        film = inner(s.pixels.reshape(s.size[1], s.size[0], 4)[..., :3])
+        expect = float(srgb(film).mean())
+        check("the viewport is not black", shot > 0.02, "mean %.4f" % shot)
+        check("the viewport shows the film through the display transform",
+              abs(shot - expect) <= 0.03 * expect, "screen %.4f, film %.4f, %s" % (shot, expect, shape))
+        # The film against a one-pass render of the same camera and
+        # settings through the core: an F12 of this view.
+        from phos import core
+        rs = s._settings(bpy.context.scene, *s.size)
+        rs.progressive = 0
+        with core.Render(s.scene, rs) as r:
+            r.start()
+            r.wait(-1.0)
+            ref = r.read(core.PHOS_PASS_COMBINED, 0, 0, s.size[0], s.size[1])
+        check("the film is the F12 render of the view", np.array_equal(ref.reshape(-1, 4), s.pixels),
+              "max difference %g" % float(np.abs(ref.reshape(-1, 4) - s.pixels).max()))
+        check("the first image is at a reduced resolution", s.renders > 1 and s.first_image < s.full_image,
+              "%d renders" % s.renders)
+        print("GUI TIME: %dx%d px, first whole image %.2f s after the restart, at full resolution %.2f s "
+              "(a draw later)" % (s.size[0], s.size[1], s.first_image or -1.0, s.full_image or -1.0),
+              flush=True)
+        state["first"], state["renders"] = shot, s.renders
+        bpy.data.objects["Lamp"].location.x -= 3.0
+        return 2
+    if n == 2 and wait_done(state["renders"]):
+        s = session()
+        shot, _ = screen_mean(os.path.join(tempfile.gettempdir(), "phos_gui_2.png"))
+        check("moving a light changes the image", abs(shot - state["first"]) > 0.005,
+              "%.4f → %.4f" % (state["first"], shot))
+        check("moving a light exports nothing", s.ctx is state["exports"])
+        scene = bpy.context.scene
+        scene.phos.global_photons, scene.phos.caustic_photons = 20000, 0
+        scene.phos.integrator = 'PHOTON'
+        state["renders"], state["traces"] = s.renders, s.photon_traces
+        return 3
+    if n == 3 and wait_done(state["renders"]):
+        s = session()
+        check("a PHOTON viewport traces its photon maps once", s.photon_traces == state["traces"] + 1,
+              "%d traces" % (s.photon_traces - state["traces"]))
+        window, area, region = view3d()
+        r3d = area.spaces.active.region_3d
+        r3d.view_perspective = 'PERSP'
+        r3d.view_rotation.rotate(mathutils.Euler((0.0, 0.0, 0.3)))
+        state["renders"], state["film"], state["traces"] = s.renders, s.pixels.copy(), s.photon_traces
+        return 4
+    if n == 4 and wait_done(state["renders"]):
+        s = session()
+        check("moving the view renders a new image", not np.array_equal(s.pixels, state["film"]))
+        check("moving the view keeps the photon maps", s.photon_traces == state["traces"],
+              "%d traces" % (s.photon_traces - state["traces"]))
+        bpy.data.objects["Box"].location.x += 0.5
+        state["renders"] = s.renders
+        return 5
+    if n == 5 and wait_done(state["renders"]):
+        s = session()
+        check("moving an object traces the photon maps again", s.photon_traces == state["traces"] + 1,
+              "%d traces" % (s.photon_traces - state["traces"]))
+        check("moving an object exports nothing", s.ctx is state["exports"])
+        window, area, region = view3d()
+        area.spaces.active.shading.type = 'SOLID'
+        state["left"] = time.monotonic()
+        return 6
+    if n == 6:
+        import gc
+        gc.collect()
+        if session() is None:
+            check("leaving Rendered frees the session", True)
+            return None
+        if time.monotonic() - state["left"] > 10.0:
+            check("leaving Rendered frees the session", False, "still alive after 10 s")
+            return None
+    return n
 
 
-bpy.app.timers.register(step, first_interval=1.0, persistent=True)
+guitest.run(step)
