@@ -101,12 +101,20 @@ def set_single_exr(image_settings):
 
 def compositor_tree(scene):
     """The scene's compositor node tree, made if needed: scene.node_tree
-    before 5.0, a node group in scene.compositing_node_group from 5.0."""
+    before 5.0, a node group in scene.compositing_node_group in 5.0–5.2,
+    the node group of the scene's first compositor effect from 5.3 (which
+    deprecates compositing_node_group)."""
+    if hasattr(scene.render, "compositor_device"):
+        scene.render.compositor_device = 'CPU'   # 5.3 defaults to the GPU, which this has not
+    if hasattr(scene, "compositor_effects"):
+        effects = scene.compositor_effects
+        effect = effects[0] if len(effects) else effects.new(name="Compositing")
+        if effect.node_group is None:
+            effect.node_group = bpy.data.node_groups.new("Compositing", "CompositorNodeTree")
+        return effect.node_group
     if hasattr(scene, "compositing_node_group"):
         if scene.compositing_node_group is None:
             scene.compositing_node_group = bpy.data.node_groups.new("Compositing", "CompositorNodeTree")
-        if hasattr(scene.render, "compositor_device"):
-            scene.render.compositor_device = 'CPU'   # 5.3 defaults to the GPU, which this has not
         return scene.compositing_node_group
     scene.use_nodes = True
     return scene.node_tree

@@ -16,6 +16,10 @@ def stage_text(progress, stage_id, name, samples):
     if stage_id == core.PHOS_STAGE_BUILDING_KDTREES:
         return "{} | {:,} photons".format(name, progress.photons_stored)
     if stage_id in (core.PHOS_STAGE_RENDERING, core.PHOS_STAGE_FINISHED):
+        if stage_id == core.PHOS_STAGE_FINISHED:
+            # What stays on the status line when the render is done: its
+            # time (the stages', export aside), then samples, photons, records.
+            name = "%s in %.2f s" % (name, sum(progress.stage_seconds))
         total = progress.samples or samples
         if progress.tiles_total > 0 and progress.samples_done < total:
             # Progressive refinement: the pass running is the one after

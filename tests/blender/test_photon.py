@@ -21,6 +21,8 @@ samples, moves the image mean by ±3 % from seed to seed.
 
 import os
 
+import re
+
 import bpy
 import numpy as np
 import pytest
@@ -463,9 +465,10 @@ def test_background_render_prints_stages(tmp_path):
     tracing = next(line for line in lines if "Tracing photons" in line)
     assert " stored" in tracing
     finished = next(line for line in lines if "Phos | Finished" in line)
+    # The last line keeps the render's time beside its photons and records.
+    assert re.search(r"Phos \| Finished in \d+\.\d\d s \|", finished), finished
     # A map stops after the path that fills it, which may store a photon at
     # each of its surfaces (at most max_bounces + 1).
-    import re
     m = re.search(r"photons ([\d,]+) global, ([\d,]+) caustic", finished)
     assert m, finished
     stored = [int(g.replace(",", "")) for g in m.groups()]
