@@ -28,7 +28,7 @@ import numpy as np
 
 from . import core, export
 from . import status, viewport
-from .export import camera, changes as scene_changes
+from .export import camera, changes as scene_changes, image as image_cache
 from .properties import PASSES, cache_files, enabled_passes, render_settings
 
 POLL_SECONDS = 0.03
@@ -505,11 +505,21 @@ class PhosRenderEngine(bpy.types.RenderEngine):
 classes = (PhosRenderEngine,)
 
 
+@bpy.app.handlers.persistent
+def _forget_converted_images(*_args):
+    """Another file is loaded: its images are others (export/image.py's cache)."""
+    image_cache.CONVERTED.clear()
+
+
 def register():
     for cls in classes:
         bpy.utils.register_class(cls)
+    bpy.app.handlers.load_pre.append(_forget_converted_images)
 
 
 def unregister():
+    if _forget_converted_images in bpy.app.handlers.load_pre:
+        bpy.app.handlers.load_pre.remove(_forget_converted_images)
+    image_cache.CONVERTED.clear()
     for cls in reversed(classes):
         bpy.utils.unregister_class(cls)

@@ -977,3 +977,54 @@ def test_normal_correction_per_version(scene):
                         core.PHOS_CLOSURE_GLASS: one, core.PHOS_CLOSURE_TRANSLUCENT: one, **free}
         mat.cycles.use_bump_map_correction = False
         assert mexp.normal_correction(core.PHOS_CLOSURE_REFLECTION, ctx, mat) == 0
+
+
+def test_converted_images_kept_between_exports(scene, tmp_path):
+    """An image read from a file is converted once and reused by the next
+    export (the next F12, without Persistent Data) while its file, its
+    colour settings and its pixels in Blender are unchanged; a touched
+    file, another colour space or an edited image is converted again. The
+    image is the same either way."""
+    import os
+    import shutil
+    from phos.export import image as image_cache
+    cache = image_cache.CONVERTED
+    cache.clear()
+    hdr = str(tmp_path / "sky.exr")
+    shutil.copy(pt.studio_hdr("forest"), hdr)
+    pt.add_plane(scene, "Floor", size=4.0, material=pt.diffuse("Floor", (0.5, 0.5, 0.5)))
+    pt.add_camera(scene, location=(0, -4, 2), target=(0, 0, 0))
+    pt.set_world_hdr(scene)
+    env = next(n for n in scene.world.node_tree.nodes if n.type == 'TEX_ENVIRONMENT')
+    env.image = bpy.data.images.load(hdr)
+    pt.configure_output(scene, 16, 12)
+    pt.configure_phos(scene, 2)
+    scene.render.engine = "PHOS"
+
+    def render():
+        before = cache.conversions
+        image = pt.render_array(scene, tmp_path)
+        return image, cache.conversions - before
+
+    first, converted = render()
+    assert converted == 1
+    again, converted = render()
+    assert converted == 0, "an unchanged image file was converted again"
+    assert np.array_equal(first, again)
+
+    stat = os.stat(hdr)
+    os.utime(hdr, ns=(stat.st_atime_ns, stat.st_mtime_ns + 10**9))
+    touched, converted = render()
+    assert converted == 1, "a touched file was not converted again"
+    assert np.array_equal(touched, first)
+
+    env.image.colorspace_settings.name = "Non-Color"
+    _, converted = render()
+    assert converted == 1, "another colour space reused the old conversion"
+
+    pixels = np.array(env.image.pixels[:], dtype=np.float32)
+    env.image.pixels.foreach_set(pixels * 0.5)  # edited in Blender: is_dirty
+    dimmer, converted = render()
+    assert converted == 1 and dimmer.mean() < touched.mean()
+    _, converted = render()
+    assert converted == 1, "an edited image must be read every time"
