@@ -56,6 +56,10 @@ def view_camera(region, rv3d, space):
     return desc
 
 
+# The fewest photons a map of a reduced-resolution render holds (_start).
+MIN_PREVIEW_PHOTONS = 2000
+
+
 def start_divider(width, height, start_pixels):
     """The first render's divider: the smallest power of two that brings
     the view to at most start_pixels on each side (Cycles' viewport starts
@@ -109,7 +113,9 @@ class ViewportSession:
         self.pixels = None
         self.started = 0.0
         self.renders = 0           # renders started so far
-        self.photon_traces = 0     # of them, those that traced photon maps
+        self.photon_traces = 0     # of them, those that traced the full photon maps
+        self.reduced_traces = 0    # and those that traced reduced ones (_start)
+        self.keep_maps = True      # the running render's maps are worth keeping
         self.divider = 1           # the render running is at 1/divider of the view's resolution
         self.size = self.render_size = (1, 1)  # the view's and the render's pixels
         # Seconds from the last restart (a view or scene change) to its
@@ -185,16 +191,28 @@ class ViewportSession:
         """A render of the view at 1/divider of its resolution: one sample
         a pixel while reduced, else the viewport's samples, progressively.
         It reads the photon maps kept from the last render when the core
-        finds they fit (only the view moved)."""
+        finds they fit (only the view moved). Without such maps a reduced
+        render traces maps of 1/divider² the photons (at least
+        MIN_PREVIEW_PHOTONS), each of its pixels being divider² of the
+        view's: its image comes in a fraction of the full maps' time, which
+        only the full-resolution render waits for."""
         d = self.divider
+        reduced = d > 1 and self.maps is None
         if d > 1:
             rs.width, rs.height = -(-width // d), -(-height // d)
             rs.samples, rs.progressive = 1, 0
+        if reduced:
+            rs.global_photons = min(rs.global_photons, max(MIN_PREVIEW_PHOTONS, rs.global_photons // (d * d)))
+            rs.caustic_photons = min(rs.caustic_photons, max(MIN_PREVIEW_PHOTONS, rs.caustic_photons // (d * d)))
         self.render = core.Render(self.scene, rs)
         if self.maps is not None and not self.render.use_photon_maps(self.maps, any_view=True):
             self.drop_maps()  # other photon settings: trace them again
         if any(stage == core.PHOS_STAGE_TRACING_PHOTONS for stage, _ in self.render.stages()):
-            self.photon_traces += 1
+            if reduced:
+                self.reduced_traces += 1
+            else:
+                self.photon_traces += 1
+        self.keep_maps = not reduced
         self.render.start()
         self.renders += 1
         self.size, self.render_size = (width, height), (rs.width, rs.height)
@@ -210,9 +228,9 @@ class ViewportSession:
 
     def _end_render(self):
         """Cancel and free the render; keep its photon maps if it got as far
-        as building them."""
+        as building them (full ones only: reduced maps serve one render)."""
         if self.render is not None:
-            if self.maps is None:
+            if self.maps is None and self.keep_maps:
                 self.maps = self.render.keep_photon_maps()
             self.render.cancel()
             self.render.wait(-1.0)
