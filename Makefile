@@ -228,6 +228,8 @@ bench: bench-programs build
 	$(BENCH_DIR)/bench/bench_kdtree $(foreach n,$(BENCH_DUMPS),--input $(BENCH_OUT)/cornell_$(n).photons) \
 	  --queries 20000 --csv $(BENCH_OUT)/kdtree.csv
 	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python bench/export.py -- --csv $(BENCH_OUT)/export.csv | $(BENCH_QUIET)
+	@tools/install-deps.sh --gui
+	$(BLENDER_ISOLATED) tools/bench-viewport.sh $(BLENDER) $(BENCH_OUT)/viewport.csv
 	for s in $(BENCH_SCENES_ALL); do \
 	  $(BENCH_QUALITY) reference --scene $$s --resolution $(BENCH_RESOLUTION) \
 	    --chunks $(BENCH_REF_CHUNKS) --reference-dir $(BENCH_REF_DIR) | $(BENCH_QUIET); \

@@ -8,7 +8,8 @@ matplotlib; not inside Blender).
 Reads   bench_<scene>.csv and bench_<scene>.npz (bench/quality.py bench;
         budgets_<scene>.csv, from --parts budgets, replaces its budget rows),
         rays.csv, threads.csv, photons.csv (bench_core), kdtree.csv
-        (bench_kdtree), scaling.csv (bench/scaling.py), official_<scene>.csv
+        (bench_kdtree), scaling.csv (bench/scaling.py), viewport.csv
+        (bench/viewport.py), official_<scene>.csv
         (quality.py bench --parts official, under an official Blender), when present.
 Writes  quality_vs_time.png (relative MSE against render time, log-log,
         a panel per scene), strip_<scene>.png (reference, Phos, Cycles and
@@ -232,6 +233,13 @@ def main():
     kd = read_csv(os.path.join(out_dir, "kdtree.csv"))
     if kd:
         md += ["## kd-tree against nanoflann", "", table(kd, list(kd[0].keys()), list(kd[0].keys())), ""]
+    viewport = read_csv(os.path.join(out_dir, "viewport.csv"))
+    if viewport:
+        md += ["## Viewport latency against Cycles' viewport", "",
+               "From switching to Rendered, and from each edit, to the first image on the screen "
+               "(bench/viewport.py); the ratio is this engine's time over Cycles'.", "",
+               table(viewport, ["engine", "what", "seconds", "ratio_to_cycles"],
+                     ["engine", "", "seconds", "/ Cycles"]), ""]
     scaling = read_csv(os.path.join(out_dir, "scaling.csv"))
     if scaling:
         md += ["## Cost against triangles", "", table(scaling, list(scaling[0].keys()), list(scaling[0].keys())), ""]

@@ -3,7 +3,8 @@
 # under Blender 4.3, inside a Debian 13 (trixie) chroot. Needs root.
 #
 #   tools/test-blender4.sh [pytest args]   build, ctest, Blender tests (default args: -q),
-#                                          then the extension check (below)
+#                                          the GUI tests (tools/test-gui.sh), then the
+#                                          extension check (below)
 #   tools/test-blender4.sh --bpy VERSION [pytest args]
 #                                          build, then the Blender tests against the official
 #                                          Blender VERSION as a Python module (bpy, Python 3.13)
@@ -55,6 +56,8 @@ PACKAGES=(
   # reads as installed, and every run would call apt again)
   python3-venv
   libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 libxt6t64 libsm6 libice6 libgl1
+  # the GUI tests (tools/test-gui.sh): Blender 4.3's window on Xvfb, Mesa's software OpenGL
+  xvfb xauth libgl1-mesa-dri
 )
 SUITE=trixie
 STAMP=var/lib/phos-chroot/ready   # inside the chroot: written once every package is in
@@ -386,6 +389,16 @@ BLENDER_USER_CONFIG=/phos-build/blender-user/config \
   blender -b --factory-startup --python-exit-code 1 \
     --python /phos-src/tests/blender/run_tests.py -- "$@" || { rc=1; say "Blender tests FAILED"; }
 say "Blender tests: $(dur $t)"
+# The GUI tests (viewport, previews) in Blender 4.3's window on Xvfb, with
+# the whole suite (not for a chosen subset of tests).
+if [[ "$*" == "-q" ]]; then
+  t=$(now)
+  PHOS_LIBRARY=/phos-build/lib/libphos.so \
+  BLENDER_USER_SCRIPTS=/phos-build/blender-user/scripts \
+  BLENDER_USER_CONFIG=/phos-build/blender-user/config \
+    /phos-src/tools/test-gui.sh blender /phos-build/gui || { rc=1; say "GUI tests FAILED"; }
+  say "GUI tests: $(dur $t)"
+fi
 # The 4.2+ extension: the zip of tools/package.py with this Embree-4
 # libphos.so, installed with `blender --command extension install-file` into
 # throw-away user folders and rendered from there, PHOS_LIBRARY unset.

@@ -88,8 +88,9 @@ def test_persistent_data_reuses_the_scene(lit_scene, tmp_path):
         assert not np.array_equal(moved, first)
         assert np.array_equal(moved, _fresh(scene, tmp_path, "camera_moved_fresh"))
 
-        # A light's power, then its place, and a material's colour: changed
-        # in place (phos_scene_update_light, _material), no export. Blender
+        # A light's power, then its place, a material's colour and the
+        # world's strength: changed in place (phos_scene_update_light,
+        # _material, phos_scene_set_world), no export. Blender
         # 5.x tags the objects using an edited material for geometry as well,
         # which a modifier's edit also does: their meshes are replaced too.
         material_exports = 0
@@ -98,7 +99,10 @@ def test_persistent_data_reuses_the_scene(lit_scene, tmp_path):
                              ("light_moved", lambda: setattr(lamp, "location", (-2.0, -2.0, 3.0))),
                              ("material", lambda: pt.setup_node(
                                  bpy.data.materials["Box"].node_tree.nodes["Diffuse BSDF"],
-                                 inputs={"Color": (0.2, 0.8, 0.3, 1.0)}))):
+                                 inputs={"Color": (0.2, 0.8, 0.3, 1.0)})),
+                             ("world", lambda: setattr(
+                                 scene.world.node_tree.nodes["Background"].inputs["Strength"],
+                                 "default_value", 6.0))):
             before = _render(scene, tmp_path, name=name + "_before")
             count = exports.count
             change()
@@ -213,3 +217,27 @@ def test_edits_in_place_only_where_they_stand_for_an_export(lit_scene, tmp_path)
             assert exports.count == count + 1, "%s: applied in place" % name
             assert not np.array_equal(changed, before), "%s: the change did not reach the image" % name
             assert np.array_equal(changed, _fresh(scene, tmp_path, name + "_fresh")), name
+
+
+def test_environment_edits_in_place(lit_scene, tmp_path):
+    """A world lit by an HDR (a world material with a program): its
+    strength and rotation changed in place (the world material replaced,
+    not added again), and the image a fresh render gives."""
+    scene = lit_scene
+    scene.render.use_persistent_data = True
+    pt.set_world_hdr(scene, strength=0.5)
+    nodes = scene.world.node_tree.nodes
+    mapping = next(n for n in nodes if n.type == 'MAPPING')
+    with _ExportCounter() as exports:
+        _render(scene, tmp_path, name="hdr_first")
+        for name, change in (("strength", lambda: setattr(nodes["Background"].inputs["Strength"],
+                                                          "default_value", 1.5)),
+                             ("rotation", lambda: setattr(mapping.inputs["Rotation"], "default_value",
+                                                          (0.0, 0.0, 1.0)))):
+            before = _render(scene, tmp_path, name="hdr_%s_before" % name)
+            count = exports.count
+            change()
+            changed = _render(scene, tmp_path, name="hdr_" + name)
+            assert exports.count == count, "%s: exported again" % name
+            assert not np.array_equal(changed, before), "%s: the change did not reach the image" % name
+            assert np.array_equal(changed, _fresh(scene, tmp_path, "hdr_%s_fresh" % name)), name

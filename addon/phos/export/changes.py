@@ -14,7 +14,7 @@ import collections
 
 import bpy
 
-from . import instances, light, material
+from . import instances, light, material, world as world_export
 
 
 def signature(depsgraph):
@@ -27,17 +27,17 @@ def signature(depsgraph):
             frozenset(ob.original.as_pointer() for ob in depsgraph.objects))
 
 
-class Changes(collections.namedtuple("Changes", "lights materials moved reshaped")):
+class Changes(collections.namedtuple("Changes", "lights materials moved reshaped worlds")):
     """What changes_in_place found to change, evaluated datablocks each:
     light objects, materials, objects moved, objects whose geometry
-    changed."""
+    changed, and the world (at most one: the scene's)."""
 
     def __bool__(self):
         return any(len(part) for part in self)
 
     def summary(self):
         return ", ".join("%d %s" % (len(part), name) for name, part in zip(
-            ("lights", "materials", "objects moved", "meshes"), self))
+            ("lights", "materials", "objects moved", "meshes", "worlds"), self))
 
 
 def changes_in_place(depsgraph, ctx, exported_signature):
@@ -49,17 +49,18 @@ def changes_in_place(depsgraph, ctx, exported_signature):
     Cameras (the caller sets the camera again), the scene's own settings
     (render settings reach the core through the render) and collections need
     nothing; a light object or its light data, a material or its node tree,
-    an object's transform and an object's geometry (with its mesh data) are
-    changed in place where apply_changes can. Blender 4.x tags objects for
+    the world or its node tree, an object's transform and an object's
+    geometry (with its mesh data) are changed in place where apply_changes
+    can. Blender 4.x tags objects for
     shading when a material they use is edited, and every object when a
     datablock is added (a relations update): an object tagged for shading
     alone is no change while its materials and Object Info values are as
-    exported. Anything else (the world, images, other datablocks) needs an
+    exported. Anything else (images, other datablocks) needs an
     export, as do objects added, removed, hidden or shown (signature)."""
     if signature(depsgraph) != exported_signature:
         return None
     lights, light_data, materials, trees = {}, set(), {}, set()
-    moved, reshaped, mesh_data = {}, {}, set()
+    moved, reshaped, mesh_data, worlds = {}, {}, set(), {}
     for update in depsgraph.updates:
         block = update.id
         if isinstance(block, bpy.types.Object):
@@ -79,6 +80,10 @@ def changes_in_place(depsgraph, ctx, exported_signature):
         elif isinstance(block, bpy.types.Material):
             mat = block.evaluated_get(depsgraph)
             materials[mat.original.as_pointer()] = mat
+        elif isinstance(block, bpy.types.World):
+            # The scene's own (the signature holds which world is assigned).
+            w = block.evaluated_get(depsgraph)
+            worlds[w.original.as_pointer()] = w
         elif isinstance(block, bpy.types.NodeTree):
             trees.add(block.original.as_pointer())
         elif isinstance(block, bpy.types.Mesh):
@@ -99,20 +104,24 @@ def changes_in_place(depsgraph, ctx, exported_signature):
     # Lights have node trees too (used by default from Blender 5.0).
     owned |= {ob.data.node_tree.original.as_pointer() for ob in lights.values()
               if getattr(ob.data, "node_tree", None) is not None}
+    owned |= {w.node_tree.original.as_pointer() for w in worlds.values() if w.node_tree is not None}
     if trees - owned:
         return None
     return Changes(list(lights.values()), list(materials.values()), list(moved.values()),
-                   list(reshaped.values()))
+                   list(reshaped.values()), list(worlds.values()))
 
 
 def apply_changes(depsgraph, ctx, changes):
-    """Apply changes_in_place's Changes to the kept scene: lights and
-    materials replaced, objects' instances moved, their meshes replaced.
+    """Apply changes_in_place's Changes to the kept scene: the world set
+    again, lights and materials replaced, objects' instances moved, their
+    meshes replaced.
     False if one cannot be changed in place (an instanced light or object,
     a light that stops emitting or becomes a portal, a material that now
     reads other mesh attributes, a mesh shared with what did not change),
     and the caller exports afresh. No render may hold the scene."""
     ctx.scene, ctx.view_layer = depsgraph.scene, depsgraph.view_layer
+    if changes.worlds:
+        world_export.export_world(ctx)
     return all(light.update_light(ob, ctx) for ob in changes.lights) and \
         all(material.update_material(mat, ctx) for mat in changes.materials) and \
         all(instances.move_object(ob, ctx) for ob in changes.moved) and \

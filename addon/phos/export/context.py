@@ -42,6 +42,7 @@ class ExportContext:
         self.image_pixels = {}              # image pointer → (pixels, width, height) or None
         self.default_material = None        # id of the grey default, added on first use
         self.world_emits = False            # the world's colour is not black
+        self.world_material = None          # core material id of the world's node tree, once added
         self.stats = {"objects": 0, "instances": 0, "meshes": 0, "triangles": 0,
                       "lights": 0, "portals": 0, "materials": 0, "images": 0, "emissive_materials": 0}
 

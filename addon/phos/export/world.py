@@ -58,6 +58,9 @@ def world_color(world, ctx):
 
 
 def export_world(ctx):
+    """Set the core scene's world from the scene's (the first export, or an
+    edit of the world applied in place: a world material already added is
+    replaced, never added again)."""
     desc = core.new_world()
     world = ctx.scene.world
     if world is None or not uses_nodes(world):
@@ -75,9 +78,14 @@ def export_world(ctx):
                      % world.name)
             closures = []
         descs = closure_descs(closures, program)
+        program_desc = None if program.empty() else program.desc()
         try:
-            desc.material = ctx.core.add_material(descs, None if program.empty() else program.desc())
+            if ctx.world_material is None:
+                ctx.world_material = ctx.core.add_material(descs, program_desc)
+            else:
+                ctx.core.update_material(ctx.world_material, descs, program_desc)
         except core.PhosError as ex:
             raise core.PhosError("world '%s': %s" % (world.name, ex), ex.status) from None
+        desc.material = ctx.world_material
         ctx.world_emits = bool(closures)
     ctx.core.set_world(desc)
