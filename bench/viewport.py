@@ -26,8 +26,6 @@ ratios are Phos's time over Cycles'; docs/benchmarks.md keeps a run.
 
 import argparse
 import csv
-import ctypes
-import ctypes.util
 import os
 import sys
 import threading
@@ -40,8 +38,10 @@ import numpy as np
 REPO_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO_DIR, "scenes"))
 sys.path.insert(0, os.path.join(REPO_DIR, "tests", "blender"))
+sys.path.insert(0, os.path.join(REPO_DIR, "tests", "gui"))
 import cornell_box  # noqa: E402
 import phostest  # noqa: E402
+import xscreen  # noqa: E402
 
 SAMPLES = 16
 STILL_SECONDS = 2.5      # the screen unchanged this long: the image is still
@@ -93,15 +93,6 @@ def _view():
     return window, area, next(r for r in area.regions if r.type == 'WINDOW')
 
 
-class XImage(ctypes.Structure):
-    """The head of Xlib's XImage (X11/Xlib.h), up to what is read here."""
-    _fields_ = [("width", ctypes.c_int), ("height", ctypes.c_int), ("xoffset", ctypes.c_int),
-                ("format", ctypes.c_int), ("data", ctypes.POINTER(ctypes.c_uint8)),
-                ("byte_order", ctypes.c_int), ("bitmap_unit", ctypes.c_int), ("bitmap_bit_order", ctypes.c_int),
-                ("bitmap_pad", ctypes.c_int), ("depth", ctypes.c_int), ("bytes_per_line", ctypes.c_int),
-                ("bits_per_pixel", ctypes.c_int)]
-
-
 class Frames(threading.Thread):
     """What the screen shows: a thread with its own connection to the X
     server copies the middle half of the 3D view from the screen every
@@ -112,19 +103,7 @@ class Frames(threading.Thread):
 
     def __init__(self):
         super().__init__(daemon=True)
-        self.x11 = ctypes.CDLL(ctypes.util.find_library("X11"))
-        self.x11.XOpenDisplay.restype = ctypes.c_void_p
-        self.x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
-        self.x11.XDefaultRootWindow.restype = ctypes.c_ulong
-        self.x11.XDefaultRootWindow.argtypes = [ctypes.c_void_p]
-        self.x11.XGetImage.restype = ctypes.POINTER(XImage)
-        self.x11.XGetImage.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_int, ctypes.c_int, ctypes.c_uint,
-                                       ctypes.c_uint, ctypes.c_ulong, ctypes.c_int]
-        self.x11.XFree.argtypes = [ctypes.c_void_p]
-        self.display = self.x11.XOpenDisplay(None)
-        if not self.display:
-            raise RuntimeError("cannot open the X display")
-        self.root = self.x11.XDefaultRootWindow(self.display)
+        self.screen = xscreen.Screen()
         self.rect = None                    # (x, y, w, h) on the screen, top-left origin
         self.time, self.pixels = 0.0, None  # when the pixels last changed, and them
         self.lock = threading.Lock()
@@ -132,27 +111,18 @@ class Frames(threading.Thread):
     def watch(self):
         """Watch the middle half of the 3D view's drawing region."""
         window, area, region = _view()
-        x0 = window.x + region.x + region.width // 4
-        top = window.y + window.height - (region.y + region.height)  # X counts rows from the top
-        self.rect = (x0, top + region.height // 4, region.width // 2, region.height // 2)
+        x, y, w, h = xscreen.region_rect(window, region)
+        self.rect = (x + w // 4, y + h // 4, w // 2, h // 2)
 
     def run(self):
         while True:
             rect = self.rect
-            if rect is not None:
-                x, y, w, h = rect
-                img = self.x11.XGetImage(self.display, self.root, x, y, w, h, 0xFFFFFFFF, 2)  # ZPixmap
-                if img:
-                    im = img.contents
-                    row = im.bytes_per_line
-                    raw = np.ctypeslib.as_array(im.data, shape=(h * row,)).copy()
-                    self.x11.XFree(ctypes.cast(im.data, ctypes.c_void_p))
-                    self.x11.XFree(ctypes.cast(img, ctypes.c_void_p))
-                    pixels = raw.reshape(h, row)[:, :w * 4].reshape(h, w, 4)[..., :3]
-                    now = time.perf_counter()
-                    with self.lock:
-                        if self.pixels is None or not np.array_equal(pixels, self.pixels):
-                            self.pixels, self.time = pixels, now
+            pixels = self.screen.grab(*rect) if rect is not None else None
+            if pixels is not None:
+                now = time.perf_counter()
+                with self.lock:
+                    if self.pixels is None or not np.array_equal(pixels, self.pixels):
+                        self.pixels, self.time = pixels, now
             time.sleep(self.POLL_SECONDS)
 
     def latest(self):

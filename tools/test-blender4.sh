@@ -389,7 +389,7 @@ BLENDER_USER_CONFIG=/phos-build/blender-user/config \
   blender -b --factory-startup --python-exit-code 1 \
     --python /phos-src/tests/blender/run_tests.py -- "$@" || { rc=1; say "Blender tests FAILED"; }
 say "Blender tests: $(dur $t)"
-# The GUI tests (viewport, previews) in Blender 4.3's window on Xvfb, with
+# The GUI tests (viewport, previews) in the window of Blender 4.3 on Xvfb, with
 # the whole suite (not for a chosen subset of tests).
 if [[ "$*" == "-q" ]]; then
   t=$(now)

@@ -216,7 +216,11 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         if core.load() is None:
             raise core.PhosError(core.load_error())
         settings = scene.phos
-        camera_object = scene.camera
+        # The evaluated camera: an original object's matrix_world is only
+        # kept up to date by the depsgraph of the view layer in the window,
+        # not by a render's own (a material preview's camera there is the
+        # identity; an animation's camera would be one frame behind).
+        camera_object = depsgraph.scene_eval.camera
         if camera_object is None:
             raise core.PhosError("the scene has no active camera")
 

@@ -117,6 +117,7 @@ class ViewportSession:
         self.reduced_traces = 0    # and those that traced reduced ones (_start)
         self.keep_maps = True      # the running render's maps are worth keeping
         self.divider = 1           # the render running is at 1/divider of the view's resolution
+        self.shown = (None, 0)     # the render whose film the texture holds, and its samples then
         self.size = self.render_size = (1, 1)  # the view's and the render's pixels
         # Seconds from the last restart (a view or scene change) to its
         # first whole image, and to the first at the view's full resolution.
@@ -243,6 +244,11 @@ class ViewportSession:
         self._end_render()
         self.render_key = None
 
+    def shows_final(self):
+        """Whether the texture holds the running render's last samples."""
+        return self.render is not None and self.shown == (self.render, self.render.progress().samples) \
+            and self.done()
+
     def done(self):
         return self.render is None or self.render.progress().state in (
             core.PHOS_STATE_DONE, core.PHOS_STATE_CANCELLED, core.PHOS_STATE_FAILED)
@@ -253,7 +259,8 @@ class ViewportSession:
         """Upload the running render's film once it holds a whole image
         (every pixel has a sample); until then the last image stays on
         screen, so a restart or the next resolution never flashes black."""
-        if self.render is None or self.render.progress().samples_done < 1:
+        progress = self.render.progress() if self.render is not None else None
+        if progress is None or progress.samples_done < 1:
             return
         while self.render.next_tile() is not None:
             pass  # the finished tiles are in the film; it is read whole below
@@ -261,6 +268,7 @@ class ViewportSession:
         self.render.read(core.PHOS_PASS_COMBINED, 0, 0, rw, rh, out=self.pixels)
         buffer = gpu.types.Buffer('FLOAT', rw * rh * 4, self.pixels.reshape(-1))
         self.texture = gpu.types.GPUTexture((rw, rh), format='RGBA16F', data=buffer)
+        self.shown = (self.render, progress.samples_done)
         now = time.perf_counter() - self.started
         if self.first_image is None:
             self.first_image = now

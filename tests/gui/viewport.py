@@ -5,7 +5,7 @@ OpenGL (`make test-gui`; tools/test-gui.sh starts it):
     xvfb-run -a -s "-screen 0 1280x800x24" blender --factory-startup --python tests/gui/viewport.py -- RESULT.json
 
 1. A 3D view switched to Rendered with Phos shows Phos's image: the
-   viewport's pixels, captured from the screen, are the session's film
+   viewport's pixels, read from the X server's screen, are the session's film
    through the scene's display transform (Standard: the sRGB curve), mean
    within 3 %, and not black; the film equals a render of the same view
    and settings through the core, bit for bit (an F12 of that view).
@@ -22,7 +22,6 @@ passed.
 
 import os
 import sys
-import tempfile
 import time
 
 import bpy
@@ -31,10 +30,12 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import guitest  # noqa: E402
+import xscreen  # noqa: E402
 from guitest import check  # noqa: E402
 import phostest as pt  # noqa: E402 (tests/blender, put on the path by guitest)
 
 state = {}
+SCREEN = xscreen.Screen()
 
 
 def view3d():
@@ -59,18 +60,13 @@ def inner(a):
     return a[h // 4:h - h // 4, w // 4:w - w // 4]
 
 
-def screen_mean(path):
-    """Mean RGB of the middle of the 3D view's drawing region, in a
-    screenshot of its area."""
+def screen_mean():
+    """Mean RGB (0..1) of the middle of the 3D view's drawing region, as the
+    X server's screen shows it (xscreen.py)."""
     window, area, region = view3d()
-    with bpy.context.temp_override(window=window, area=area, region=region):
-        bpy.ops.screen.screenshot_area(filepath=path)
-    img = bpy.data.images.load(path)
-    w, h = img.size
-    px = np.array(img.pixels[:], dtype=np.float32).reshape(h, w, 4)
-    bpy.data.images.remove(img)
-    x0, y0 = region.x - area.x, region.y - area.y
-    crop = inner(px[y0:y0 + region.height, x0:x0 + region.width, :3])
+    x, y, w, h = xscreen.region_rect(window, region)
+    px = SCREEN.grab(x, y, w, h).astype(np.float32) / 255.0
+    crop = inner(px[::-1])  # rows bottom-up, as the film's
     return float(crop.mean()), crop.shape
 
 
@@ -99,9 +95,9 @@ def setup():
 
 def wait_done(after=0):
     """Whether a render later than the `after`-th, at the view's full
-    resolution, is done."""
+    resolution, is done and drawn with all its samples."""
     s = session()
-    return s is not None and s.render is not None and s.renders > after and s.divider == 1 and s.done()
+    return s is not None and s.render is not None and s.renders > after and s.divider == 1 and s.shows_final()
 
 
 def step(n):
@@ -112,7 +108,7 @@ def step(n):
     if n == 1 and wait_done():
         s = session()
         state["exports"] = s.ctx
-        shot, shape = screen_mean(os.path.join(tempfile.gettempdir(), "phos_gui_1.png"))
+        shot, shape = screen_mean()
         film = inner(s.pixels.reshape(s.size[1], s.size[0], 4)[..., :3])
         expect = float(srgb(film).mean())
         check("the viewport is not black", shot > 0.02, "mean %.4f" % shot)
@@ -139,7 +135,7 @@ def step(n):
         return 2
     if n == 2 and wait_done(state["renders"]):
         s = session()
-        shot, _ = screen_mean(os.path.join(tempfile.gettempdir(), "phos_gui_2.png"))
+        shot, _ = screen_mean()
         check("moving a light changes the image", abs(shot - state["first"]) > 0.005,
               "%.4f → %.4f" % (state["first"], shot))
         check("moving a light exports nothing", s.ctx is state["exports"])
