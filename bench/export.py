@@ -30,16 +30,8 @@ def build(scene, count):
     """The scatter: a line of `count` cubes as geometry-nodes instances."""
     _common.clear_factory_scene()
     base = m.plane(scene, "Base", 0.1, 0.1, m.diffuse("Grey", (0.5, 0.5, 0.5)))
-    tree = bpy.data.node_groups.new("Scatter", "GeometryNodeTree")
-    if hasattr(tree, "interface"):
-        tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
-        tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
-    else:
-        tree.inputs.new("NodeSocketGeometry", "Geometry")
-        tree.outputs.new("NodeSocketGeometry", "Geometry")
+    tree, out = _common.geometry_node_group("Scatter")
     nodes, links = tree.nodes, tree.links
-    nodes.new("NodeGroupInput")
-    out = nodes.new("NodeGroupOutput")
     line = nodes.new("GeometryNodeMeshLine")
     line.mode = "OFFSET"
     line.inputs["Count"].default_value = count

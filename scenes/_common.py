@@ -188,6 +188,22 @@ def parse_args(description, default_resolution=(512, 512), default_samples=256, 
 
 # ------------------------------------------------------------ scene setup
 
+def geometry_node_group(name):
+    """A new geometry-nodes group with one Geometry input and output, and
+    its Group Input and Group Output nodes: (tree, group output node). The
+    group's interface is tree.interface from 4.0, the tree's own sockets in
+    3.x."""
+    tree = bpy.data.node_groups.new(name, "GeometryNodeTree")
+    if hasattr(tree, "interface"):
+        tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+        tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    else:
+        tree.inputs.new("NodeSocketGeometry", "Geometry")
+        tree.outputs.new("NodeSocketGeometry", "Geometry")
+    tree.nodes.new("NodeGroupInput")
+    return tree, tree.nodes.new("NodeGroupOutput")
+
+
 def clear_factory_scene():
     """Delete the factory startup's objects and the data they used."""
     for ob in list(bpy.data.objects):

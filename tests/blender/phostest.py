@@ -26,7 +26,7 @@ if os.path.join(REPO_DIR, "scenes") not in sys.path:
 # What every Blender version needs done its own way (5.0's node trees,
 # multilayer EXR, compositor): one copy, in scenes/_common.py.
 from _common import (compositor_output, compositor_tree, denoise_in_compositor,  # noqa: E402,F401
-                     set_multilayer_exr, set_single_exr, use_nodes)
+                     geometry_node_group, set_multilayer_exr, set_single_exr, use_nodes)
 ADDON_DIR = os.path.join(REPO_DIR, "addon")
 # The add-on's module: "phos" from this source tree, or with PHOS_ADDON_MODULE
 # the module of an installed copy, e.g. "bl_ext.user_default.phos" for the

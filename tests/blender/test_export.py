@@ -158,16 +158,8 @@ def _geometry_nodes_instancer(scene, count):
     """An object whose geometry nodes put `count` cubes on a mesh line (instances, not realized)."""
     base = pt.add_plane(scene, "GN", size=0.1)
     mod = base.modifiers.new("GN", "NODES")
-    tree = bpy.data.node_groups.new("Instancer", "GeometryNodeTree")
-    if hasattr(tree, "interface"):  # 4.0+: the tree interface
-        tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
-        tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
-    else:  # 3.x: interface sockets live on the tree itself
-        tree.inputs.new("NodeSocketGeometry", "Geometry")
-        tree.outputs.new("NodeSocketGeometry", "Geometry")
+    tree, gout = pt.geometry_node_group("Instancer")
     nodes, links = tree.nodes, tree.links
-    nodes.new("NodeGroupInput")  # the input geometry is not used
-    gout = nodes.new("NodeGroupOutput")
     line = nodes.new("GeometryNodeMeshLine")
     line.mode = "OFFSET"
     line.inputs["Count"].default_value = count

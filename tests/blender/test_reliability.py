@@ -199,16 +199,8 @@ def _grid_instancer(scene, side):
     side × side grid (instances, not realised)."""
     base = pt.add_plane(scene, "Scatter", size=0.1)
     mod = base.modifiers.new("Scatter", "NODES")
-    tree = bpy.data.node_groups.new("Scatter", "GeometryNodeTree")
-    if hasattr(tree, "interface"):  # 4.0+
-        tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
-        tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
-    else:
-        tree.inputs.new("NodeSocketGeometry", "Geometry")
-        tree.outputs.new("NodeSocketGeometry", "Geometry")
+    tree, out = pt.geometry_node_group("Scatter")
     nodes, links = tree.nodes, tree.links
-    nodes.new("NodeGroupInput")
-    out = nodes.new("NodeGroupOutput")
     grid = nodes.new("GeometryNodeMeshGrid")
     grid.inputs["Size X"].default_value = grid.inputs["Size Y"].default_value = 10.0
     grid.inputs["Vertices X"].default_value = grid.inputs["Vertices Y"].default_value = side
