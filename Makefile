@@ -96,7 +96,7 @@ test: check-binding build
 	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python tests/blender/run_tests.py -- $(PYTEST_ARGS)
 
 # Blender's GUI under Xvfb with software OpenGL: a 3D view in Rendered
-# shading with Phos (tests/gui/viewport.py; skipped where Xvfb cannot run).
+# shading with Phos (tests/gui/test_viewport.py; skipped where Xvfb cannot run).
 test-gui: build
 	@tools/install-deps.sh --gui
 	$(BLENDER_ISOLATED) tools/test-gui.sh $(BLENDER) $(CURDIR)/$(BUILD_DIR)/gui

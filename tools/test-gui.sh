@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The GUI tests (tests/gui/*.py, their harness tests/gui/guitest.py):
+# The GUI tests (tests/gui/test_*.py; their harness tests/gui/guitest.py and
+# the screen reader tests/gui/xscreen.py are not tests):
 # Blender's window on a virtual X server (tools/xvfb.sh); the viewport in
 # Rendered shading with Phos, and previews. Skipped, with a message saying
 # why, where Xvfb cannot start.
@@ -13,9 +14,8 @@ results=${2:?usage: tools/test-gui.sh BLENDER RESULT_DIR}
 xvfb_usable test-gui || exit 0
 mkdir -p "$results"
 failed=0
-for script in tests/gui/*.py; do
+for script in tests/gui/test_*.py; do
   name=$(basename "$script" .py)
-  [[ $name == guitest ]] && continue
   result=$results/$name.json
   log=$results/$name.log
   rm -f "$result"

@@ -93,7 +93,7 @@ def _camera_key(desc):
             desc.clip_end)
 
 
-# The sessions alive, for the GUI test (tests/gui/viewport.py) to watch.
+# The sessions alive, for the GUI test (tests/gui/test_viewport.py) to watch.
 SESSIONS = weakref.WeakSet()
 
 

@@ -5,7 +5,7 @@ object gives both: its projection (Object.calc_matrix_camera, what a
 camera view's window matrix holds) and its world matrix, so the frame and
 transform the viewport derives must equal the ones the F12 export sets
 (export/camera.py). The drawing itself is tested under Xvfb
-(tests/gui/viewport.py)."""
+(tests/gui/test_viewport.py)."""
 
 import bpy
 import numpy as np

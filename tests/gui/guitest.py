@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""What the GUI tests share (tests/gui/*.py, run by tools/test-gui.sh under
+"""What the GUI tests share (tests/gui/test_*.py, run by tools/test-gui.sh under
 Xvfb): checks collected and written as JSON to the file named after "--",
 and steps run from a timer, since Blender's GUI must draw between them.
 

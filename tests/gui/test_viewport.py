@@ -2,7 +2,7 @@
 """Rendered viewport shading in Blender's GUI, under Xvfb with software
 OpenGL (`make test-gui`; tools/test-gui.sh starts it):
 
-    xvfb-run -a -s "-screen 0 1280x800x24" blender --factory-startup --python tests/gui/viewport.py -- RESULT.json
+    xvfb-run -a -s "-screen 0 1280x800x24" blender --factory-startup --python tests/gui/test_viewport.py -- RESULT.json
 
 1. A 3D view switched to Rendered with Phos shows Phos's image: the
    viewport's pixels, read from the X server's screen, are the session's film
