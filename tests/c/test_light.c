@@ -7,6 +7,8 @@
  * hitting the light (the pdf MIS uses), so a chi-square test checks both
  * that sampling follows its pdf and that the two agree. Each sample is also
  * traced back: the ray must hit the light with the same pdf and radiance.
+ * A uniform world is sampled apart from the picked lights (light_pick.c),
+ * so its own sample is checked on its own.
  */
 #include <stdio.h>
 #include <string.h>
@@ -26,6 +28,7 @@
 typedef struct light_query {
     const scene *s;
     light_context c;            /* the receiver: a point in space, or on a surface */
+    int world_sample;           /* 1: the uniform world's own sample; 0: the picked lights' */
 } light_query;
 
 /* pdf of the scene's light sampling toward direction w, as MIS sees it. */
@@ -35,6 +38,8 @@ static double pdf_toward(const light_query *q, vec3 w)
     ray_hit h;
     float tmax = INFINITY;
     int hit = embree_intersect(s->bvh, q->c.p, w, 1e-4f, INFINITY, 0, &h);
+    if (q->world_sample)
+        return hit ? 0.0 : light_escape_pdf(s, &q->c, (uint32_t)s->lights.world, w);
     if (hit)
         tmax = h.t;
     /* Lamps do not block rays: a ray past one goes on to what lies behind
@@ -56,6 +61,8 @@ static double pdf_toward(const light_query *q, vec3 w)
     for (uint32_t i = 0; i < s->lights.count; i++) {
         const light *l = &s->lights.lights[i];
         double pick = light_pick_pdf(&s->lights, &q->c, i);
+        if ((int32_t)i == s->lights.world && light_world_apart(&s->lights, &q->c))
+            continue; /* not among the picked lights */
         if (light_is_distant(l))
             pdf += pick * light_escape_pdf(s, &q->c, i, w);
     }
@@ -89,10 +96,10 @@ static light_context point_in_space(vec3 p)
  * direction (a lamp in front of the world), so a sample's traced-back pdf
  * is the sum of theirs, not its own; the chi-square test still holds. */
 static void check_receiver(const char *name, phos_scene *s, light_context c, vec3 axis, double z_min,
-                           int overlapping)
+                           int overlapping, int world_sample)
 {
     CHECK_MSG(phos_scene_commit(s) == PHOS_OK, "%s: %s", name, phos_scene_error(s));
-    light_query q = {s, c};
+    light_query q = {s, c, world_sample};
     frame f = frame_from_normal(v3_normalize(axis));
     static double observed[NZ * NPHI], expected[NZ * NPHI];
     memset(observed, 0, sizeof(observed));
@@ -100,7 +107,8 @@ static void check_receiver(const char *name, phos_scene *s, light_context c, vec
     for (uint32_t i = 0; i < SAMPLES; i++) {
         sampler smp = sampler_independent(1234, 0, i);
         light_sample ls;
-        if (!light_sample_pick(s, &c, sampler_1d(&smp, 0), sampler_2d(&smp, 1), &ls))
+        if (world_sample ? !light_sample_world(s, &c, sampler_2d(&smp, 1), &ls)
+                         : !light_sample_pick(s, &c, sampler_1d(&smp, 0), sampler_2d(&smp, 1), &ls))
             continue;
         produced++;
         vec3 lw = frame_to_local(&f, ls.wi);
@@ -149,7 +157,7 @@ static void check_receiver(const char *name, phos_scene *s, light_context c, vec
 
 static void check_light(const char *name, phos_scene *s, vec3 p, vec3 axis, double z_min)
 {
-    check_receiver(name, s, point_in_space(p), axis, z_min, 0);
+    check_receiver(name, s, point_in_space(p), axis, z_min, 0, 0);
 }
 
 static phos_scene *scene_with_light(const phos_light_desc *l)
@@ -165,7 +173,7 @@ static phos_scene *scene_with_light(const phos_light_desc *l)
  * an area light above, a point lamp below the floor, a spot aimed away
  * from the point, a sun below the horizon, and the world. Picking follows
  * each light's bound at the point, so the lamp below, the spot and the sun
- * get probability 0 (the world still samples the whole sphere), and the
+ * get probability 0 (the world, sampled apart, the whole sphere), and the
  * sampled directions follow the pdf that MIS reads for rays that hit the
  * lights. On a surface that transmits, the lamp below is picked again. */
 static phos_scene *mixed_lights_scene(void)
@@ -211,7 +219,7 @@ static phos_scene *mixed_lights_scene(void)
 
 /* The same lights under a sky that varies with direction (a 32 × 16 map,
  * brighter toward the zenith and toward +x), sampled from its map: unlike
- * a uniform world it keeps its share where the BSDF's rays count it. */
+ * a uniform world it is picked with the other lights. */
 static phos_scene *mixed_lights_under_sky(void)
 {
     static float px[32 * 16 * 4];
@@ -255,7 +263,7 @@ static void check_lights_picked_for_a_surface(void)
 {
     vec3 p = v3(0.3f, -0.2f, 0.0f), up = v3(0.0f, 0.0f, 1.0f);
     light_context floor = {p, up, up, 0, 0};
-    check_receiver("mixed lights, on a floor", mixed_lights_scene(), floor, up, -1.0, 1);
+    check_receiver("mixed lights, on a floor", mixed_lights_scene(), floor, up, -1.0, 1, 0);
 
     /* Shading normal tilted 30° toward the sun: it may reach the point
      * through the shading normal, so it is picked again. */
@@ -263,8 +271,8 @@ static void check_lights_picked_for_a_surface(void)
     CHECK(phos_scene_commit(s) == PHOS_OK);
     light_context tilted = {p, up, v3(-0.5f, 0.0f, 0.8660254f), 0, 0};
     light_context glass = {p, up, up, 1, 0};
-    check_receiver("mixed lights, tilted", mixed_lights_scene(), tilted, up, -1.0, 1);
-    check_receiver("mixed lights, on glass", mixed_lights_scene(), glass, up, -1.0, 1);
+    check_receiver("mixed lights, tilted", mixed_lights_scene(), tilted, up, -1.0, 1, 0);
+    check_receiver("mixed lights, on glass", mixed_lights_scene(), glass, up, -1.0, 1, 0);
     const light_table *t = &s->lights;
     uint32_t below = 1, spot = 2, sun = 3;
     CHECK_MSG(light_pick_pdf(t, &floor, below) == 0.0f && light_pick_pdf(t, &floor, spot) == 0.0f &&
@@ -274,17 +282,14 @@ static void check_lights_picked_for_a_surface(void)
               "a transmitting surface must pick the lights behind it");
     CHECK_MSG(light_pick_pdf(t, &tilted, sun) > 0.0f && light_pick_pdf(t, &tilted, below) == 0.0f,
               "the shading normal decides which lights can reach the point");
-    /* Where the BSDF's rays count the world, a uniform world is not light
-     * sampled (light_pick.c); the others keep their share. */
-    light_context sampled_floor = floor;
-    sampled_floor.rays_find_world = 1;
+    /* A uniform world is sampled apart (light_pick.c): pick probability 1,
+     * and no share of the others' pick. */
     uint32_t world = t->count - 1;
-    CHECK_MSG(t->lights[world].kind == LIGHT_WORLD && light_pick_pdf(t, &floor, world) > 0.0f &&
-                  light_pick_pdf(t, &sampled_floor, world) == 0.0f &&
-                  light_pick_pdf(t, &sampled_floor, 0) > light_pick_pdf(t, &floor, 0),
-              "a uniform world is light-sampled only where the BSDF's rays do not count it");
+    CHECK_MSG(t->lights[world].kind == LIGHT_WORLD && light_world_apart(t, &floor) &&
+                  light_pick_pdf(t, &floor, world) == 1.0f,
+              "a uniform world is sampled apart, with pick probability 1");
     double sum_floor = 0.0, sum_tilted = 0.0;
-    for (uint32_t i = 0; i < t->count; i++) {
+    for (uint32_t i = 0; i < world; i++) {
         sum_floor += light_pick_pdf(t, &floor, i);
         sum_tilted += light_pick_pdf(t, &tilted, i);
     }
@@ -292,14 +297,16 @@ static void check_lights_picked_for_a_surface(void)
               sum_floor, sum_tilted);
     phos_scene_destroy(s);
 
-    check_receiver("world through portals, floor", world_with_portals(), sampled_floor, up, -1.0, 1);
-    check_receiver("mixed lights under a sky, on a floor", mixed_lights_under_sky(), sampled_floor, up, -1.0, 1);
-    check_receiver("mixed lights under a sky, on glass", mixed_lights_under_sky(), glass, up, -1.0, 1);
+    check_receiver("world's own sample, floor", mixed_lights_scene(), floor, up, -1.0, 0, 1);
+    check_receiver("world's own sample, glass", mixed_lights_scene(), glass, up, -1.0, 0, 1);
+    check_receiver("world through portals, floor", world_with_portals(), floor, up, -1.0, 0, 1);
+    check_receiver("mixed lights under a sky, on a floor", mixed_lights_under_sky(), floor, up, -1.0, 1, 0);
+    check_receiver("mixed lights under a sky, on glass", mixed_lights_under_sky(), glass, up, -1.0, 1, 0);
     s = mixed_lights_under_sky();
     CHECK(phos_scene_commit(s) == PHOS_OK);
     world = s->lights.count - 1;
-    CHECK_MSG(s->lights.lights[world].kind == LIGHT_ENVIRONMENT && light_pick_pdf(&s->lights, &sampled_floor, world) > 0.0f,
-              "a world that varies is light-sampled even where the BSDF's rays count it");
+    CHECK_MSG(s->lights.lights[world].kind == LIGHT_ENVIRONMENT && light_pick_pdf(&s->lights, &floor, world) > 0.0f,
+              "a world that varies is picked with the other lights");
     phos_scene_destroy(s);
 }
 
@@ -355,7 +362,7 @@ int main(void)
     phos_world_desc_init(&w);
     w.color[0] = 1.0f;
     phos_scene_set_world(s, &w);
-    check_light("world", s, p, v3(0, 0, 1), -1.0);
+    check_receiver("world", s, point_in_space(p), v3(0, 0, 1), -1.0, 0, 1);
 
     check_lights_picked_for_a_surface();
 

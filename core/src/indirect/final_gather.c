@@ -68,7 +68,7 @@ static vec3 hit_direct(const indirect_query *q, const specular_chain_end *end, c
         return v3s(0.0f);
     bsdf none;
     none.count = 0;
-    light_context c = light_context_at(&end->sf, 0);
+    light_context c = light_context_at(&end->sf);
     return direct_light(q->s, &c, &end->sf, &none, &end->read, 0, end->wo, smp, GATHER_LIGHT_VERTEX);
 }
 

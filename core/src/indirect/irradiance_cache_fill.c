@@ -155,7 +155,7 @@ static void record_one(void *ctx, uint32_t item, uint32_t thread)
     if (!candidate_point(job, x, y, &end, &diffuse))
         return;
     sampler smp = candidate_sampler(job, x, y);
-    light_context light = light_context_at(&end.sf, 1);
+    light_context light = light_context_at(&end.sf);
     indirect_query q = {job->s, job->is, &end.sf, &light, &diffuse, end.wo, &smp, 0, 0, &job->scratch[thread]};
     float fp = pixel_footprint(job->s, job->fs, end.sf.p), acc = job->c->accuracy;
     job->ok[item] = (uint8_t)irradiance_record_compute(&q, job->is->cache_inner->incoming, job->fs->rays,

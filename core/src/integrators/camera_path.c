@@ -167,7 +167,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
     int prev_delta = !(start->first_pdf > 0.0f); /* the camera ray takes emission unweighted */
     int transparent_steps = 0;
     uint32_t vertex = 0;                       /* surface interactions, for sample dimensions */
-    light_context prev = {v3s(0.0f), v3s(0.0f), v3s(0.0f), 0, 1, 0}; /* the vertex the ray left */
+    light_context prev = {v3s(0.0f), v3s(0.0f), v3s(0.0f), 0, 1}; /* the vertex the ray left */
     if (start->from)
         prev = *start->from;
     int features = start->from_camera && is->denoising_features; /* record_features still pending */
@@ -259,7 +259,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
                 res.alpha = 1.0f;
             break;
         }
-        light_context here = light_context_at(&sf, 1);
+        light_context here = light_context_at(&sf);
         path_vertex v = {&sf, &b, v3_neg(d), v_index, &here};
         p.reads_caustics = 0;
         const bsdf *next = policy(&p, &v, &storage);

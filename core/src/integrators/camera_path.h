@@ -54,8 +54,7 @@ typedef struct path_vertex {
     vec3 wo;                /* toward the previous vertex */
     uint32_t index;         /* surface interactions before this one: its sample dimensions */
     light_context *light;   /* the receiver for light samples here and for the MIS weights of what
-                               the ray leaving it finds; the policy clears rays_find_world when
-                               it leaves a non-delta part to estimates that do not count the world */
+                               the ray leaving it finds */
 } path_vertex;
 
 /* What an integrator does at a vertex: adds what it estimates there through

@@ -51,8 +51,6 @@ const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bs
     bsdf_split(v->b, &diffuse, rest);
     /* The rays the gather really sends (its M×N strata), for the MIS weights. */
     uint32_t gather_rays = is->indirect->gathers_emitters ? hemisphere_ray_count(is->final_gather_rays) : 0;
-    if (diffuse.count && !gather_rays)
-        v->light->rays_find_world = 0; /* the diffuse part's estimates do not count it */
     if (bsdf_has_non_delta(v->b) && s->lights.count > 0)
         camera_path_add_direct(p, direct_light_once(p, v, rest, &diffuse, gather_rays));
     if (diffuse.count) {

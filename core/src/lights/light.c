@@ -107,6 +107,10 @@ static phos_status build_picking(light_table *t)
         power[i] = light_power(&t->lights[i], t->radius);
     phos_status st = distribution_build(&t->pick, power, t->count) ? light_groups_build(t, power)
                                                                    : PHOS_ERROR_OUT_OF_MEMORY;
+    if (st == PHOS_OK && t->world >= 0 && t->lights[t->world].kind == LIGHT_WORLD)
+        power[t->world] = 0.0f; /* sampled apart (light_pick.c) */
+    if (st == PHOS_OK && !distribution_build(&t->pick_nee, power, t->count))
+        st = PHOS_ERROR_OUT_OF_MEMORY;
     free(power);
     return st;
 }
@@ -159,6 +163,13 @@ int light_sample_pick(const scene *s, const light_context *c, float u_pick, floa
         return 0;
     out->pdf *= pick_pdf;
     return 1;
+}
+
+int light_sample_world(const scene *s, const light_context *c, float2 u, light_sample *out)
+{
+    const light *l = &s->lights.lights[s->lights.world];
+    int ok = light_ops(l)->sample(s, l, c, u, out);
+    return ok && out->pdf > 0.0f && isfinite(out->pdf);
 }
 
 /* ------------------------------------------------------------- emission */

@@ -26,21 +26,18 @@
 #define LIGHT_PICK_MAX_GROUPS 64
 
 /* The receiver a light is picked for: a surface point with its normals,
- * whether its material scatters light to the other side, and whether the
- * rays that leave it find the world. A path vertex builds one and uses it
- * both for its light sample and for the MIS weights of what its rays find,
- * so the two always agree. */
+ * and whether its material scatters light to the other side. A path vertex
+ * builds one and uses it both for its light sample and for the MIS weights
+ * of what its rays find, so the two always agree. */
 typedef struct light_context {
     vec3 p, ng, ns;
     int two_sided;
     int no_normal;              /* no orientation to test (a point in space) */
-    int rays_find_world;        /* every non-delta closure is sampled by rays that count the world
-                                   (MIS-weighted): a uniform world then needs no light sample */
 } light_context;
 
-static inline light_context light_context_at(const surface *sf, int rays_find_world)
+static inline light_context light_context_at(const surface *sf)
 {
-    light_context c = {sf->p, sf->ng, sf->ns, sf->mat->transmits, 0, rays_find_world};
+    light_context c = {sf->p, sf->ng, sf->ns, sf->mat->transmits, 0};
     return c;
 }
 
@@ -71,7 +68,15 @@ phos_status light_groups_build(light_table *t, const float *power);
  * *pdf (0: nothing can light c). c NULL: by power. */
 uint32_t light_pick(const light_table *t, const light_context *c, float u, float *pdf);
 
-/* The probability with which light_pick chooses `light` at c. */
+/* Whether the uniform world is sampled apart at c (one sample of its own
+ * besides the picked light's, light_sample_world) rather than picked. */
+int light_world_apart(const light_table *t, const light_context *c);
+
+/* A sample of the world alone (pick pdf 1), for a world sampled apart. */
+int light_sample_world(const scene *s, const light_context *c, float2 u, light_sample *out);
+
+/* The probability with which light_pick chooses `light` at c (1 for a
+ * world sampled apart). */
 float light_pick_pdf(const light_table *t, const light_context *c, uint32_t light);
 
 /* Picks a light for the receiver c and samples a direction toward it from

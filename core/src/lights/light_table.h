@@ -58,8 +58,10 @@ typedef struct light_group {
 typedef struct light_table {
     light *lights;
     uint32_t count;
-    distribution pick;          /* by power: photon emission, and next-event estimation in scenes
-                                   with more than LIGHT_PICK_MAX_GROUPS groups */
+    distribution pick;          /* by power: photon emission */
+    distribution pick_nee;      /* by power without the uniform world, which is sampled apart
+                                   (light_pick.c): next-event estimation in scenes with more than
+                                   LIGHT_PICK_MAX_GROUPS groups */
     light_group *groups;
     uint32_t group_count;
     int32_t world;              /* index of the world light (uniform or environment), −1 if black */
@@ -89,6 +91,7 @@ static inline void light_table_free(light_table *t)
     free(t->lights);
     free(t->shapes);
     distribution_free(&t->pick);
+    distribution_free(&t->pick_nee);
     for (uint32_t g = 0; g < t->group_count; g++)
         distribution_free(&t->groups[g].within);
     free(t->groups);

@@ -40,32 +40,45 @@ float gather_rays_pdf(const surface *sf, vec3 wi, uint32_t gather_rays)
     return (float)gather_rays * c * PHOS_INV_PI;
 }
 
-vec3 direct_light(const scene *s, const light_context *c, const surface *sf, const bsdf *sampled,
-                  const bsdf *unsampled, uint32_t gather_rays, vec3 wo, const sampler *smp, uint32_t vertex)
+/* One light sample's estimate (see direct_light). */
+static vec3 light_sample_estimate(const scene *s, const light_sample *ls, const surface *sf, const bsdf *sampled,
+                                  const bsdf *unsampled, uint32_t gather_rays, vec3 wo)
 {
-    light_sample ls;
-    float2 u = sampler_2d(smp, dim_bounce(vertex, DIM_LIGHT_POINT));
-    if (!light_sample_pick(s, c, sampler_1d(smp, dim_bounce(vertex, DIM_LIGHT_PICK)), u, &ls))
-        return v3s(0.0f);
     float pdf_sampled = 0.0f;
-    vec3 f_sampled = sampled->count ? bsdf_eval(sampled, wo, ls.wi, &pdf_sampled) : v3s(0.0f);
-    float w = ls.delta ? 1.0f : mis_power_heuristic(ls.pdf, pdf_sampled);
+    vec3 f_sampled = sampled->count ? bsdf_eval(sampled, wo, ls->wi, &pdf_sampled) : v3s(0.0f);
+    float w = ls->delta ? 1.0f : mis_power_heuristic(ls->pdf, pdf_sampled);
     if (!unsampled) {
         /* f·L·T·w/pdf */
         if (v3_is_zero(f_sampled))
             return f_sampled;
-        vec3 T = shadow_transmittance(s, sf, ls.wi, ls.distance);
+        vec3 T = shadow_transmittance(s, sf, ls->wi, ls->distance);
         if (v3_is_zero(T))
             return T;
-        return v3_scale(v3_mul(v3_mul(f_sampled, ls.radiance), T), w / ls.pdf);
+        return v3_scale(v3_mul(v3_mul(f_sampled, ls->radiance), T), w / ls->pdf);
     }
     /* (w_u·f_u + w·f_s)·L·T/pdf */
-    vec3 f_unsampled = unsampled->count ? bsdf_eval(unsampled, wo, ls.wi, NULL) : v3s(0.0f);
-    if (gather_rays && !ls.delta)
-        f_unsampled = v3_scale(f_unsampled, mis_power_heuristic(ls.pdf, gather_rays_pdf(sf, ls.wi, gather_rays)));
+    vec3 f_unsampled = unsampled->count ? bsdf_eval(unsampled, wo, ls->wi, NULL) : v3s(0.0f);
+    if (gather_rays && !ls->delta)
+        f_unsampled = v3_scale(f_unsampled, mis_power_heuristic(ls->pdf, gather_rays_pdf(sf, ls->wi, gather_rays)));
     vec3 f = v3_madd(f_unsampled, f_sampled, w);
     if (v3_is_zero(f))
         return f;
-    vec3 T = shadow_transmittance(s, sf, ls.wi, ls.distance);
-    return v3_scale(v3_mul(v3_mul(f, ls.radiance), T), 1.0f / ls.pdf);
+    vec3 T = shadow_transmittance(s, sf, ls->wi, ls->distance);
+    return v3_scale(v3_mul(v3_mul(f, ls->radiance), T), 1.0f / ls->pdf);
+}
+
+vec3 direct_light(const scene *s, const light_context *c, const surface *sf, const bsdf *sampled,
+                  const bsdf *unsampled, uint32_t gather_rays, vec3 wo, const sampler *smp, uint32_t vertex)
+{
+    vec3 sum = v3s(0.0f);
+    light_sample ls;
+    float2 u = sampler_2d(smp, dim_bounce(vertex, DIM_LIGHT_POINT));
+    if (light_sample_pick(s, c, sampler_1d(smp, dim_bounce(vertex, DIM_LIGHT_PICK)), u, &ls))
+        sum = light_sample_estimate(s, &ls, sf, sampled, unsampled, gather_rays, wo);
+    if (light_world_apart(&s->lights, c)) {
+        sampler world = sampler_split(smp, 0x77u);
+        if (light_sample_world(s, c, sampler_2d(&world, dim_bounce(vertex, DIM_LIGHT_POINT)), &ls))
+            sum = v3_add(sum, light_sample_estimate(s, &ls, sf, sampled, unsampled, gather_rays, wo));
+    }
+    return sum;
 }
