@@ -8,6 +8,10 @@
 #include "scene/ray.h"
 
 #define SHADOW_MAX_TRANSPARENT_STEPS 64
+/* The uniform world's own light sample (light_pick.c) draws from a sampler
+ * split off the path's, at the light-point dimensions of its vertex, so it
+ * is stratified over the pixel's samples apart from the picked light's. */
+#define WORLD_SAMPLE_STREAM 0x3f1d0000u
 
 vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist)
 {
@@ -76,7 +80,7 @@ vec3 direct_light(const scene *s, const light_context *c, const surface *sf, con
     if (light_sample_pick(s, c, sampler_1d(smp, dim_bounce(vertex, DIM_LIGHT_PICK)), u, &ls))
         sum = light_sample_estimate(s, &ls, sf, sampled, unsampled, gather_rays, wo);
     if (light_world_apart(&s->lights, c)) {
-        sampler world = sampler_split(smp, 0x77u);
+        sampler world = sampler_split(smp, WORLD_SAMPLE_STREAM);
         if (light_sample_world(s, c, sampler_2d(&world, dim_bounce(vertex, DIM_LIGHT_POINT)), &ls))
             sum = v3_add(sum, light_sample_estimate(s, &ls, sf, sampled, unsampled, gather_rays, wo));
     }

@@ -18,7 +18,8 @@
 vec3 shadow_transmittance(const scene *s, const surface *sf, vec3 wi, float dist);
 
 /* Reflected radiance toward wo (W/(m²·sr)) from one light sample at vertex
- * `vertex` of a path, picked for the receiver c (light.h).
+ * `vertex` of a path, picked for the receiver c (light.h), plus one of the
+ * uniform world, which is sampled apart (light_pick.c).
  *
  * `sampled` is the part of the BSDF the path continues through: its light
  * is MIS-weighted, since the ray that leaves through it can also find the
