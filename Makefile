@@ -213,7 +213,7 @@ BENCH_DUMPS := 200000
 BENCH_OUT := out/bench-quick
 else
 BENCH_SCENES_ALL ?= cornell_box sunlit_room glass_sphere_caustic metal_ring procedural_materials hdr_product \
-                    default_scene \
+                    default_scene lamp_kinds \
                     cognac_glass
 BENCH_BUDGETS    ?= 4 16 64
 BENCH_TRIANGLES  ?= 10000 100000 1000000 5000000
