@@ -132,8 +132,8 @@ static double group_importances(const light_table *t, const light_context *c, fl
     double total = 0.0;
     int apart = light_world_apart(t, c);
     for (uint32_t g = 0; g < t->group_count; g++) {
-        w[g] = group_importance(t, &t->groups[g], c);
-        if (!(w[g] > 0.0f) || !isfinite(w[g]) || (apart && (int32_t)t->groups[g].first == t->world))
+        w[g] = apart && (int32_t)t->groups[g].first == t->world ? 0.0f : group_importance(t, &t->groups[g], c);
+        if (!(w[g] > 0.0f) || !isfinite(w[g]))
             w[g] = 0.0f;
         total += w[g];
     }
