@@ -37,7 +37,7 @@ CTYPES = {
 }
 
 # What a USER row's kind may be besides `enum <name>`.
-SETTING_KINDS = ("NUMBER", "PIXELS", "LENGTH", "FACTOR", "BOOLEAN")
+SETTING_KINDS = ("NUMBER", "PIXELS", "LENGTH", "FACTOR", "SECONDS", "BOOLEAN")
 SETTING_FIELDS = ("name", "ctype", "default", "min", "max", "user", "prop", "kind", "enum",
                   "soft_max", "label", "description")
 PASS_FIELDS = ("id", "ident", "name", "channels", "group", "kind", "description")

@@ -73,7 +73,8 @@ PASS_IDS = {"Combined": core.PHOS_PASS_COMBINED}
 PASS_IDS.update((p.name, p.pass_id) for p in PASSES)
 
 # How Blender is told what a pass holds (channel names, type), by kind.
-PASS_REGISTRATION = {core.PHOS_PASS_KIND_COLOR: ("RGB", 'COLOR'), core.PHOS_PASS_KIND_VECTOR: ("XYZ", 'VECTOR')}
+PASS_REGISTRATION = {core.PHOS_PASS_KIND_COLOR: ("RGB", 'COLOR'), core.PHOS_PASS_KIND_VECTOR: ("XYZ", 'VECTOR'),
+                     core.PHOS_PASS_KIND_VALUE: ("X", 'VALUE')}
 
 
 # Wall time (s) of the last final render: "export" (export and BVH build)
@@ -118,6 +119,7 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", 'COLOR')
         for p in enabled_passes(renderlayer):
             chan_id, kind = PASS_REGISTRATION[p.kind]
+            chan_id = "RGBA" if p.channels == 4 else chan_id  # the Noisy Image keeps Combined's alpha
             self.register_pass(scene, renderlayer, p.name, p.channels, chan_id, kind)
 
     # ------------------------------------------------------------- geometry
@@ -232,6 +234,7 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             rs = render_settings(scene, width, height)
             if self.is_preview:
                 rs.samples, rs.progressive = PREVIEW_SAMPLES, 1
+                rs.time_limit, rs.noise_filter = 0.0, core.PHOS_NOISE_FILTER_NONE
                 if _final_renders:
                     rs.threads = 1
             rs.region_x, rs.region_y, rs.region_width, rs.region_height = region

@@ -396,6 +396,25 @@ PHOS_CHANGE_CAMERA = 8
 PHOS_INTEGRATOR_PATH = 0
 PHOS_INTEGRATOR_PHOTON = 1
 
+# enum phos_sampler
+PHOS_SAMPLER_SOBOL = 0
+PHOS_SAMPLER_RANDOM = 1
+PHOS_SAMPLER_STRATIFIED = 2
+PHOS_SAMPLER_HALTON = 3
+
+# enum phos_noise_filter
+PHOS_NOISE_FILTER_NONE = 0
+PHOS_NOISE_FILTER_LOWPASS = 1
+PHOS_NOISE_FILTER_MEDIAN = 2
+PHOS_NOISE_FILTER_ADAPTIVE_WIDTH = 3
+PHOS_NOISE_FILTER_DIFFUSION = 4
+PHOS_NOISE_FILTER_SPLATTING = 5
+
+# enum phos_filter_target
+PHOS_FILTER_TARGET_INDIRECT_IRRADIANCE = 0
+PHOS_FILTER_TARGET_INDIRECT = 1
+PHOS_FILTER_TARGET_ALL = 2
+
 # enum phos_irradiance_cache
 PHOS_IRRADIANCE_CACHE_OFF = 0
 PHOS_IRRADIANCE_CACHE_PHOTON = 1
@@ -412,10 +431,12 @@ PHOS_PASS_GROUP_LIGHT = 1
 PHOS_PASS_GROUP_DENOISING = 2
 PHOS_PASS_GROUP_PHOTONS = 3
 PHOS_PASS_GROUP_CACHE = 4
+PHOS_PASS_GROUP_NOISE = 5
 
 # enum phos_pass_kind
 PHOS_PASS_KIND_COLOR = 0
 PHOS_PASS_KIND_VECTOR = 1
+PHOS_PASS_KIND_VALUE = 2
 
 # enum phos_pass
 PHOS_PASS_COMBINED = 0
@@ -430,7 +451,9 @@ PHOS_PASS_PHOTONS = 8
 PHOS_PASS_IRRADIANCE_CACHE = 9
 PHOS_PASS_DENOISING_ALBEDO = 10
 PHOS_PASS_DENOISING_NORMAL = 11
-PHOS_PASS_COUNT = 12
+PHOS_PASS_SAMPLE_COUNT = 12
+PHOS_PASS_NOISY_IMAGE = 13
+PHOS_PASS_COUNT = 14
 
 # enum phos_cache_kind
 PHOS_CACHE_IRRADIANCE = 0
@@ -456,8 +479,9 @@ PHOS_STAGE_BUILDING_KDTREES = 2
 PHOS_STAGE_PRECOMPUTING_RADIANCE = 3
 PHOS_STAGE_FILLING_IRRADIANCE_CACHE = 4
 PHOS_STAGE_RENDERING = 5
-PHOS_STAGE_FINISHED = 6
-PHOS_STAGE_COUNT = 7
+PHOS_STAGE_FILTERING = 6
+PHOS_STAGE_FINISHED = 7
+PHOS_STAGE_COUNT = 8
 
 # enum phos_photon_map
 PHOS_MAP_GLOBAL = 0
@@ -499,15 +523,18 @@ ENUMS = {
     'phos_camera_type': {'PHOS_CAMERA_PERSPECTIVE': 0, 'PHOS_CAMERA_ORTHOGRAPHIC': 1},
     'phos_scene_change': {'PHOS_CHANGE_GEOMETRY': 1, 'PHOS_CHANGE_MATERIALS': 2, 'PHOS_CHANGE_LIGHTS': 4, 'PHOS_CHANGE_CAMERA': 8},
     'phos_integrator': {'PHOS_INTEGRATOR_PATH': 0, 'PHOS_INTEGRATOR_PHOTON': 1},
+    'phos_sampler': {'PHOS_SAMPLER_SOBOL': 0, 'PHOS_SAMPLER_RANDOM': 1, 'PHOS_SAMPLER_STRATIFIED': 2, 'PHOS_SAMPLER_HALTON': 3},
+    'phos_noise_filter': {'PHOS_NOISE_FILTER_NONE': 0, 'PHOS_NOISE_FILTER_LOWPASS': 1, 'PHOS_NOISE_FILTER_MEDIAN': 2, 'PHOS_NOISE_FILTER_ADAPTIVE_WIDTH': 3, 'PHOS_NOISE_FILTER_DIFFUSION': 4, 'PHOS_NOISE_FILTER_SPLATTING': 5},
+    'phos_filter_target': {'PHOS_FILTER_TARGET_INDIRECT_IRRADIANCE': 0, 'PHOS_FILTER_TARGET_INDIRECT': 1, 'PHOS_FILTER_TARGET_ALL': 2},
     'phos_irradiance_cache': {'PHOS_IRRADIANCE_CACHE_OFF': 0, 'PHOS_IRRADIANCE_CACHE_PHOTON': 1, 'PHOS_IRRADIANCE_CACHE_ALWAYS': 2},
     'phos_photon_view': {'PHOS_PHOTON_VIEW_FINAL_GATHER': 0, 'PHOS_PHOTON_VIEW_FAST': 1, 'PHOS_PHOTON_VIEW_PATH_TRACED': 2},
-    'phos_pass_group': {'PHOS_PASS_GROUP_COMBINED': 0, 'PHOS_PASS_GROUP_LIGHT': 1, 'PHOS_PASS_GROUP_DENOISING': 2, 'PHOS_PASS_GROUP_PHOTONS': 3, 'PHOS_PASS_GROUP_CACHE': 4},
-    'phos_pass_kind': {'PHOS_PASS_KIND_COLOR': 0, 'PHOS_PASS_KIND_VECTOR': 1},
-    'phos_pass': {'PHOS_PASS_COMBINED': 0, 'PHOS_PASS_EMISSION': 1, 'PHOS_PASS_DIRECT': 2, 'PHOS_PASS_SPECULAR': 3, 'PHOS_PASS_CAUSTICS': 4, 'PHOS_PASS_INDIRECT': 5, 'PHOS_PASS_PHOTON_MAP': 6, 'PHOS_PASS_CAUSTIC_MAP': 7, 'PHOS_PASS_PHOTONS': 8, 'PHOS_PASS_IRRADIANCE_CACHE': 9, 'PHOS_PASS_DENOISING_ALBEDO': 10, 'PHOS_PASS_DENOISING_NORMAL': 11, 'PHOS_PASS_COUNT': 12},
+    'phos_pass_group': {'PHOS_PASS_GROUP_COMBINED': 0, 'PHOS_PASS_GROUP_LIGHT': 1, 'PHOS_PASS_GROUP_DENOISING': 2, 'PHOS_PASS_GROUP_PHOTONS': 3, 'PHOS_PASS_GROUP_CACHE': 4, 'PHOS_PASS_GROUP_NOISE': 5},
+    'phos_pass_kind': {'PHOS_PASS_KIND_COLOR': 0, 'PHOS_PASS_KIND_VECTOR': 1, 'PHOS_PASS_KIND_VALUE': 2},
+    'phos_pass': {'PHOS_PASS_COMBINED': 0, 'PHOS_PASS_EMISSION': 1, 'PHOS_PASS_DIRECT': 2, 'PHOS_PASS_SPECULAR': 3, 'PHOS_PASS_CAUSTICS': 4, 'PHOS_PASS_INDIRECT': 5, 'PHOS_PASS_PHOTON_MAP': 6, 'PHOS_PASS_CAUSTIC_MAP': 7, 'PHOS_PASS_PHOTONS': 8, 'PHOS_PASS_IRRADIANCE_CACHE': 9, 'PHOS_PASS_DENOISING_ALBEDO': 10, 'PHOS_PASS_DENOISING_NORMAL': 11, 'PHOS_PASS_SAMPLE_COUNT': 12, 'PHOS_PASS_NOISY_IMAGE': 13, 'PHOS_PASS_COUNT': 14},
     'phos_cache_kind': {'PHOS_CACHE_IRRADIANCE': 0, 'PHOS_CACHE_PHOTON_MAPS': 1, 'PHOS_CACHE_KIND_COUNT': 2},
     'phos_cache_file_mode': {'PHOS_CACHE_FILE_NONE': 0, 'PHOS_CACHE_FILE_SAVE': 1, 'PHOS_CACHE_FILE_LOAD': 2},
     'phos_render_state': {'PHOS_STATE_IDLE': 0, 'PHOS_STATE_RUNNING': 1, 'PHOS_STATE_DONE': 2, 'PHOS_STATE_CANCELLED': 3, 'PHOS_STATE_FAILED': 4},
-    'phos_stage': {'PHOS_STAGE_WAITING': 0, 'PHOS_STAGE_TRACING_PHOTONS': 1, 'PHOS_STAGE_BUILDING_KDTREES': 2, 'PHOS_STAGE_PRECOMPUTING_RADIANCE': 3, 'PHOS_STAGE_FILLING_IRRADIANCE_CACHE': 4, 'PHOS_STAGE_RENDERING': 5, 'PHOS_STAGE_FINISHED': 6, 'PHOS_STAGE_COUNT': 7},
+    'phos_stage': {'PHOS_STAGE_WAITING': 0, 'PHOS_STAGE_TRACING_PHOTONS': 1, 'PHOS_STAGE_BUILDING_KDTREES': 2, 'PHOS_STAGE_PRECOMPUTING_RADIANCE': 3, 'PHOS_STAGE_FILLING_IRRADIANCE_CACHE': 4, 'PHOS_STAGE_RENDERING': 5, 'PHOS_STAGE_FILTERING': 6, 'PHOS_STAGE_FINISHED': 7, 'PHOS_STAGE_COUNT': 8},
     'phos_photon_map': {'PHOS_MAP_GLOBAL': 0, 'PHOS_MAP_CAUSTIC': 1},
 }
 
@@ -688,10 +715,17 @@ class phos_render_settings(ctypes.Structure):
         ("region_height", ctypes.c_uint32),
         ("samples", ctypes.c_uint32),
         ("seed", ctypes.c_uint32),
+        ("sampler", ctypes.c_uint32),
         ("max_bounces", ctypes.c_uint32),
         ("threads", ctypes.c_uint32),
         ("tile_size", ctypes.c_uint32),
         ("progressive", ctypes.c_uint32),
+        ("adaptive_sampling", ctypes.c_uint32),
+        ("adaptive_threshold", ctypes.c_float),
+        ("adaptive_min_samples", ctypes.c_uint32),
+        ("time_limit", ctypes.c_float),
+        ("noise_filter", ctypes.c_uint32),
+        ("filter_target", ctypes.c_uint32),
         ("filter_width", ctypes.c_float),
         ("transparent_background", ctypes.c_uint32),
         ("pass_mask", ctypes.c_uint32),
@@ -735,7 +769,7 @@ class phos_progress(ctypes.Structure):
         ("global_photons", ctypes.c_uint32),
         ("caustic_photons", ctypes.c_uint32),
         ("photon_map", ctypes.c_uint32),
-        ("stage_seconds", ctypes.c_double * 7),
+        ("stage_seconds", ctypes.c_double * 8),
         ("rays_traced", ctypes.c_uint64),
         ("cache_records", ctypes.c_uint32),
         ("cache_rays_traced", ctypes.c_uint64),
@@ -874,6 +908,11 @@ RENDER_SETTINGS = (
         label='Seed',
         description='Seed of the random numbers: the same seed renders the same image, whatever the thread count, tile order or border'),
     RenderSetting(
+        name='sampler', ctype='uint32_t', default=0, min=0, max=3,
+        user=True, prop='sampler', kind='ENUM', enum='phos_sampler', soft_max=0,
+        label='Sampler',
+        description='How the random numbers of paths, photons and gathers are drawn'),
+    RenderSetting(
         name='max_bounces', ctype='uint32_t', default=12, min=0, max=1024,
         user=True, prop='max_bounces', kind='NUMBER', enum=None, soft_max=0,
         label='Max Bounces',
@@ -894,6 +933,36 @@ RENDER_SETTINGS = (
         label='Progressive Refine',
         description='Show the whole frame after one sample a pixel, then refine it in passes of doubling sample counts; the final image is the same (costs 8 bytes a pixel per channel of the enabled passes)'),
     RenderSetting(
+        name='adaptive_sampling', ctype='uint32_t', default=0, min=0, max=1,
+        user=True, prop='use_adaptive_sampling', kind='BOOLEAN', enum=None, soft_max=0,
+        label='Adaptive Sampling',
+        description='Stop sampling each pixel once its estimated noise is below the threshold (its count of samples depends only on its own samples)'),
+    RenderSetting(
+        name='adaptive_threshold', ctype='float', default=0.01, min=0.0001, max=1.0,
+        user=True, prop='adaptive_threshold', kind='NUMBER', enum=None, soft_max=0.1,
+        label='Noise Threshold',
+        description='Error at which a pixel stops: the standard error of its mean over the square root of its value (over its value above 1)'),
+    RenderSetting(
+        name='adaptive_min_samples', ctype='uint32_t', default=16, min=2, max=16777216,
+        user=True, prop='adaptive_min_samples', kind='NUMBER', enum=None, soft_max=4096,
+        label='Min Samples',
+        description='Samples every pixel takes before its noise is first estimated'),
+    RenderSetting(
+        name='time_limit', ctype='float', default=0.0, min=0.0, max=10000000.0,
+        user=True, prop='time_limit', kind='SECONDS', enum=None, soft_max=3600.0,
+        label='Time Limit',
+        description="Stop sampling after this many seconds of rendering (after the photon and cache stages; 0: none); every pixel gets at least one sample, and the image then depends on the machine's speed"),
+    RenderSetting(
+        name='noise_filter', ctype='uint32_t', default=0, min=0, max=5,
+        user=True, prop='filter', kind='ENUM', enum='phos_noise_filter', soft_max=0,
+        label='Noise Filter',
+        description='Filter run over the rendered image'),
+    RenderSetting(
+        name='filter_target', ctype='uint32_t', default=0, min=0, max=2,
+        user=True, prop='filter_target', kind='ENUM', enum='phos_filter_target', soft_max=0,
+        label='Filter',
+        description='What the noise filter is applied to; the rest is added back unfiltered'),
+    RenderSetting(
         name='filter_width', ctype='float', default=1.5, min=0.0, max=10.0,
         user=True, prop='filter_width', kind='PIXELS', enum=None, soft_max=0.0,
         label='Filter Width',
@@ -904,7 +973,7 @@ RENDER_SETTINGS = (
         label=None,
         description='1: the world is not seen by camera rays, alpha = coverage'),
     RenderSetting(
-        name='pass_mask', ctype='uint32_t', default=1, min=0, max=4095,
+        name='pass_mask', ctype='uint32_t', default=1, min=0, max=16383,
         user=False, prop=None, kind=None, enum=None, soft_max=None,
         label=None,
         description='Bit (1 << pass) per enabled pass; COMBINED is always on'),
@@ -1007,6 +1076,10 @@ PASSES = (
          description='Albedo of the first surface that is not mostly specular, for the Denoise node'),
     Pass(id=11, ident='DENOISING_NORMAL', name='Denoising Normal', channels=3, group=2, kind=1,
          description='Normal (camera space) of the first surface that is not mostly specular, for the Denoise node'),
+    Pass(id=12, ident='SAMPLE_COUNT', name='Sample Count', channels=1, group=5, kind=2,
+         description='Samples each pixel received, as a share of the Samples setting (adaptive sampling and the time limit make them differ)'),
+    Pass(id=13, ident='NOISY_IMAGE', name='Noisy Image', channels=4, group=5, kind=0,
+         description='The image before the noise filter (the Combined pass holds it filtered)'),
 )
 
 __all__ = (
@@ -1326,6 +1399,19 @@ __all__ = (
     'PHOS_CHANGE_CAMERA',
     'PHOS_INTEGRATOR_PATH',
     'PHOS_INTEGRATOR_PHOTON',
+    'PHOS_SAMPLER_SOBOL',
+    'PHOS_SAMPLER_RANDOM',
+    'PHOS_SAMPLER_STRATIFIED',
+    'PHOS_SAMPLER_HALTON',
+    'PHOS_NOISE_FILTER_NONE',
+    'PHOS_NOISE_FILTER_LOWPASS',
+    'PHOS_NOISE_FILTER_MEDIAN',
+    'PHOS_NOISE_FILTER_ADAPTIVE_WIDTH',
+    'PHOS_NOISE_FILTER_DIFFUSION',
+    'PHOS_NOISE_FILTER_SPLATTING',
+    'PHOS_FILTER_TARGET_INDIRECT_IRRADIANCE',
+    'PHOS_FILTER_TARGET_INDIRECT',
+    'PHOS_FILTER_TARGET_ALL',
     'PHOS_IRRADIANCE_CACHE_OFF',
     'PHOS_IRRADIANCE_CACHE_PHOTON',
     'PHOS_IRRADIANCE_CACHE_ALWAYS',
@@ -1337,8 +1423,10 @@ __all__ = (
     'PHOS_PASS_GROUP_DENOISING',
     'PHOS_PASS_GROUP_PHOTONS',
     'PHOS_PASS_GROUP_CACHE',
+    'PHOS_PASS_GROUP_NOISE',
     'PHOS_PASS_KIND_COLOR',
     'PHOS_PASS_KIND_VECTOR',
+    'PHOS_PASS_KIND_VALUE',
     'PHOS_PASS_COMBINED',
     'PHOS_PASS_EMISSION',
     'PHOS_PASS_DIRECT',
@@ -1351,6 +1439,8 @@ __all__ = (
     'PHOS_PASS_IRRADIANCE_CACHE',
     'PHOS_PASS_DENOISING_ALBEDO',
     'PHOS_PASS_DENOISING_NORMAL',
+    'PHOS_PASS_SAMPLE_COUNT',
+    'PHOS_PASS_NOISY_IMAGE',
     'PHOS_PASS_COUNT',
     'PHOS_CACHE_IRRADIANCE',
     'PHOS_CACHE_PHOTON_MAPS',
@@ -1369,6 +1459,7 @@ __all__ = (
     'PHOS_STAGE_PRECOMPUTING_RADIANCE',
     'PHOS_STAGE_FILLING_IRRADIANCE_CACHE',
     'PHOS_STAGE_RENDERING',
+    'PHOS_STAGE_FILTERING',
     'PHOS_STAGE_FINISHED',
     'PHOS_STAGE_COUNT',
     'PHOS_MAP_GLOBAL',

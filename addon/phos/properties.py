@@ -60,8 +60,49 @@ IRRADIANCE_CACHE_ITEMS = (
      "but converging as the records grow)", core.PHOS_IRRADIANCE_CACHE_ALWAYS),
 )
 
+SAMPLER_ITEMS = (
+    ('RANDOM', "Random", "Independent random numbers for every sample (the course's fixed random sequence)",
+     core.PHOS_SAMPLER_RANDOM),
+    ('STRATIFIED', "Stratified",
+     "Jittered strata over each pixel's samples, multi-jittered in pairs of dimensions "
+     "(a Latin hypercube as well)", core.PHOS_SAMPLER_STRATIFIED),
+    ('HALTON', "Halton", "Scrambled Halton points in bases 2 and 3, each pixel from its own offset",
+     core.PHOS_SAMPLER_HALTON),
+    ('SOBOL', "Sobol", "Owen-scrambled Sobol points: the lowest error per sample on the bench scenes",
+     core.PHOS_SAMPLER_SOBOL),
+)
+
+NOISE_FILTER_ITEMS = (
+    ('NONE', "None", "No filter", core.PHOS_NOISE_FILTER_NONE),
+    ('LOWPASS', "3×3 Lowpass", "The mean of each pixel's 3×3 block: blurs noise and detail alike",
+     core.PHOS_NOISE_FILTER_LOWPASS),
+    ('MEDIAN', "3×3 Median",
+     "The colour of the median pixel of each 3×3 block: removes isolated fireflies, and their light",
+     core.PHOS_NOISE_FILTER_MEDIAN),
+    ('ADAPTIVE_WIDTH', "Adaptive Width",
+     "Energy preserving (Rushmeier & Ward 1994): a pixel brighter than its neighbourhood allows "
+     "spreads its excess over a disc that grows with the excess", core.PHOS_NOISE_FILTER_ADAPTIVE_WIDTH),
+    ('DIFFUSION', "Diffusion",
+     "Energy preserving (McCool 1999): anisotropic diffusion that stops at significant steps in colour, "
+     "and at normal and albedo edges", core.PHOS_NOISE_FILTER_DIFFUSION),
+    ('SPLATTING', "Splatting",
+     "Energy preserving (Suykens & Willems 2000): every pixel is spread by a kernel that narrows as its "
+     "samples grow", core.PHOS_NOISE_FILTER_SPLATTING),
+)
+
+FILTER_TARGET_ITEMS = (
+    ('INDIRECT_IRRADIANCE', "Indirect Irradiance",
+     "The indirect light over the surface's albedo, filtered, times the albedo: textures, highlights and "
+     "caustics stay sharp", core.PHOS_FILTER_TARGET_INDIRECT_IRRADIANCE),
+    ('INDIRECT', "Indirect", "The Indirect component as it is", core.PHOS_FILTER_TARGET_INDIRECT),
+    ('ALL', "Everything", "The whole image, as the course's slides filter it", core.PHOS_FILTER_TARGET_ALL),
+)
+
 ENUM_ITEMS = {
+    "phos_noise_filter": NOISE_FILTER_ITEMS,
+    "phos_filter_target": FILTER_TARGET_ITEMS,
     "phos_integrator": INTEGRATOR_ITEMS,
+    "phos_sampler": SAMPLER_ITEMS,
     "phos_photon_view": PHOTON_VIEW_ITEMS,
     "phos_irradiance_cache": IRRADIANCE_CACHE_ITEMS,
 }
@@ -79,6 +120,7 @@ _KIND_OPTIONS = {
     "PIXELS": {"subtype": 'PIXEL'},
     "LENGTH": {"subtype": 'DISTANCE', "unit": 'LENGTH'},
     "FACTOR": {"subtype": 'FACTOR'},
+    "SECONDS": {"subtype": 'TIME_ABSOLUTE'},
 }
 
 
@@ -206,6 +248,7 @@ LIGHT_PASSES = passes_of_group(core.PHOS_PASS_GROUP_LIGHT)
 DENOISING_PASSES = passes_of_group(core.PHOS_PASS_GROUP_DENOISING)
 DEBUG_PASSES = passes_of_group(core.PHOS_PASS_GROUP_PHOTONS)   # they build the photon maps, whatever the integrator
 CACHE_PASSES = passes_of_group(core.PHOS_PASS_GROUP_CACHE)
+NOISE_PASSES = passes_of_group(core.PHOS_PASS_GROUP_NOISE)
 
 
 class PhosSceneSettings(bpy.types.PropertyGroup):

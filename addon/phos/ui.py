@@ -14,7 +14,7 @@ import bpy
 
 from . import core
 from .export.material import uses_nodes
-from .properties import CACHE_PASSES, DEBUG_PASSES, DENOISING_PASSES, LIGHT_PASSES
+from .properties import CACHE_PASSES, DEBUG_PASSES, DENOISING_PASSES, LIGHT_PASSES, NOISE_PASSES
 
 ENGINE = 'PHOS'
 
@@ -56,7 +56,48 @@ class PHOS_RENDER_PT_sampling(PhosButtonsPanel, bpy.types.Panel):
         col = layout.column(align=True)
         col.prop(phos, "samples", text="Render")
         col.prop(phos, "preview_samples", text="Viewport")
+        layout.prop(phos, "sampler")
         layout.prop(phos, "seed")
+        layout.prop(phos, "time_limit")
+
+
+class PHOS_RENDER_PT_sampling_adaptive(PhosButtonsPanel, bpy.types.Panel):
+    """Adaptive sampling, as Cycles lays it out: the toggle in the header."""
+
+    bl_label = "Adaptive Sampling"
+    bl_context = "render"
+    bl_parent_id = "PHOS_RENDER_PT_sampling"
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.phos, "use_adaptive_sampling", text="")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        phos = context.scene.phos
+        layout.active = phos.use_adaptive_sampling
+        col = layout.column(align=True)
+        col.prop(phos, "adaptive_threshold", text="Noise Threshold")
+        col.prop(phos, "adaptive_min_samples", text="Min Samples")
+
+
+class PHOS_RENDER_PT_sampling_filter(PhosButtonsPanel, bpy.types.Panel):
+    """The course's noise filters, run over the image after rendering."""
+
+    bl_label = "Noise Filter"
+    bl_context = "render"
+    bl_parent_id = "PHOS_RENDER_PT_sampling"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        phos = context.scene.phos
+        layout.prop(phos, "filter")
+        sub = layout.column()
+        sub.active = phos.filter != 'NONE'
+        sub.prop(phos, "filter_target", text="Apply To")
 
 
 def uses_photon_maps(context):
@@ -314,6 +355,14 @@ class PHOS_VIEW_LAYER_PT_passes_denoising(PhosPassGroupPanel, bpy.types.Panel):
     passes = DENOISING_PASSES
 
 
+class PHOS_VIEW_LAYER_PT_passes_noise(PhosPassGroupPanel, bpy.types.Panel):
+    """Where adaptive sampling and the time limit put the samples, and the
+    image before the noise filter."""
+
+    bl_label = "Noise Reduction"
+    passes = NOISE_PASSES
+
+
 class PHOS_VIEW_LAYER_PT_passes_photon_debug(PhosPassGroupPanel, bpy.types.Panel):
     """The photon maps seen directly; they build the maps for either integrator."""
 
@@ -548,6 +597,8 @@ class PHOS_WORLD_PT_surface(PhosButtonsPanel, bpy.types.Panel):
 
 classes = (
     PHOS_RENDER_PT_sampling,
+    PHOS_RENDER_PT_sampling_adaptive,
+    PHOS_RENDER_PT_sampling_filter,
     PHOS_RENDER_PT_photon_mapping,
     PHOS_RENDER_PT_photon_mapping_global,
     PHOS_RENDER_PT_photon_mapping_caustic,
@@ -562,6 +613,7 @@ classes = (
     PHOS_VIEW_LAYER_PT_passes,
     PHOS_VIEW_LAYER_PT_passes_light,
     PHOS_VIEW_LAYER_PT_passes_denoising,
+    PHOS_VIEW_LAYER_PT_passes_noise,
     PHOS_VIEW_LAYER_PT_passes_photon_debug,
     PHOS_VIEW_LAYER_PT_passes_cache_debug,
     PHOS_MATERIAL_PT_preview,

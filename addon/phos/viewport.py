@@ -157,6 +157,9 @@ class ViewportSession:
         rs = render_settings(scene, width, height)
         rs.samples = max(1, scene.phos.preview_samples)
         rs.progressive = 1
+        # The time limit and the noise filter are a final render's: the
+        # viewport refines until its samples are in, then shows them as they are.
+        rs.time_limit, rs.noise_filter = 0.0, core.PHOS_NOISE_FILTER_NONE
         return rs
 
     def restart_if_needed(self, context, depsgraph):

@@ -673,6 +673,40 @@ enum phos_integrator {
     PHOS_INTEGRATOR_PHOTON = 1  /* photon mapping with final gathering (Jensen) */
 };
 
+/* How the random numbers of every path, photon and gather are drawn
+ * (docs/algorithms.md §6): each is a pure function of (seed, pixel, sample,
+ * dimension), so any of them renders the same image for any thread count.
+ * The default is 0, so that settings zeroed rather than initialised still
+ * get it. */
+enum phos_sampler {
+    PHOS_SAMPLER_SOBOL = 0,       /* Owen-scrambled Sobol points */
+    PHOS_SAMPLER_RANDOM = 1,      /* independent numbers */
+    PHOS_SAMPLER_STRATIFIED = 2,  /* jittered strata over a pixel's samples, multi-jittered in 2-D */
+    PHOS_SAMPLER_HALTON = 3       /* scrambled Halton points, bases 2 and 3, per-pixel offsets */
+};
+
+/* The noise filters run over the image after rendering (the course's
+ * "Filtering" slides; docs/algorithms.md §7): the slides' two examples,
+ * then the three energy-preserving filters, which move a pixel's light to
+ * its neighbours but never change the image's total. */
+enum phos_noise_filter {
+    PHOS_NOISE_FILTER_NONE = 0,
+    PHOS_NOISE_FILTER_LOWPASS = 1,        /* 3×3 box */
+    PHOS_NOISE_FILTER_MEDIAN = 2,         /* 3×3 median */
+    PHOS_NOISE_FILTER_ADAPTIVE_WIDTH = 3, /* Rushmeier & Ward 1994 */
+    PHOS_NOISE_FILTER_DIFFUSION = 4,      /* McCool 1999 */
+    PHOS_NOISE_FILTER_SPLATTING = 5       /* Suykens & Willems 2000 */
+};
+
+/* What the noise filter is applied to; the rest of the image is added back
+ * unfiltered, so what is not filtered stays sharp. */
+enum phos_filter_target {
+    PHOS_FILTER_TARGET_INDIRECT_IRRADIANCE = 0, /* the Indirect component over the surface's albedo, filtered,
+                                                   times the albedo: textures stay sharp */
+    PHOS_FILTER_TARGET_INDIRECT = 1,            /* the Indirect component as it is */
+    PHOS_FILTER_TARGET_ALL = 2                  /* the whole image (the slides' "everything is filtered") */
+};
+
 /* Where the indirect light of diffuse surfaces is cached (Ward et al.
  * 1988): PHOTON's final gather (or path-traced gather), and with ALWAYS
  * also PATH's hemisphere of paths, which makes PATH biased (consistent). */
@@ -713,13 +747,15 @@ enum phos_pass_group {
     PHOS_PASS_GROUP_LIGHT = 1,     /* the light components, whose sum is Combined */
     PHOS_PASS_GROUP_DENOISING = 2, /* features for a denoiser */
     PHOS_PASS_GROUP_PHOTONS = 3,   /* debug: the photon maps (built for either integrator) */
-    PHOS_PASS_GROUP_CACHE = 4      /* debug: the irradiance cache's records (needs the cache on) */
+    PHOS_PASS_GROUP_CACHE = 4,     /* debug: the irradiance cache's records (needs the cache on) */
+    PHOS_PASS_GROUP_NOISE = 5      /* noise reduction: where the samples went, the image before filtering */
 };
 
 /* What a pass's values are. */
 enum phos_pass_kind {
     PHOS_PASS_KIND_COLOR = 0,      /* RGB(A): radiance, or an albedo */
-    PHOS_PASS_KIND_VECTOR = 1      /* XYZ: a direction in camera space (x right, y up, z along the view, as Cycles) */
+    PHOS_PASS_KIND_VECTOR = 1,     /* XYZ: a direction in camera space (x right, y up, z along the view, as Cycles) */
+    PHOS_PASS_KIND_VALUE = 2       /* one number */
 };
 
 /* The passes: one table, from which enum phos_pass, phos_pass_channels
@@ -753,7 +789,12 @@ enum phos_pass_kind {
          "Albedo of the first surface that is not mostly specular, for the Denoise node")      \
     PASS(DENOISING_NORMAL, "Denoising Normal", 3, PHOS_PASS_GROUP_DENOISING, PHOS_PASS_KIND_VECTOR, \
          "Normal (camera space) of the first surface that is not mostly specular, for the "     \
-         "Denoise node")
+         "Denoise node")                                                                        \
+    PASS(SAMPLE_COUNT, "Sample Count", 1, PHOS_PASS_GROUP_NOISE, PHOS_PASS_KIND_VALUE,            \
+         "Samples each pixel received, as a share of the Samples setting (adaptive sampling "   \
+         "and the time limit make them differ)")                                                \
+    PASS(NOISY_IMAGE, "Noisy Image", 4, PHOS_PASS_GROUP_NOISE, PHOS_PASS_KIND_COLOR,               \
+         "The image before the noise filter (the Combined pass holds it filtered)")
 
 #define PHOS_PASS_ENUM_(id, ...) PHOS_PASS_##id,
 enum phos_pass { PHOS_PASSES(PHOS_PASS_ENUM_) PHOS_PASS_COUNT };
@@ -796,6 +837,8 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
     USER(uint32_t, seed, 0, 0, UINT32_MAX, seed, NUMBER, 0, "Seed",                               \
          "Seed of the random numbers: the same seed renders the same image, "                     \
          "whatever the thread count, tile order or border")                                       \
+    USER(uint32_t, sampler, PHOS_SAMPLER_SOBOL, 0, PHOS_SAMPLER_HALTON, sampler, enum phos_sampler, 0, \
+         "Sampler", "How the random numbers of paths, photons and gathers are drawn")           \
     USER(uint32_t, max_bounces, 12, 0, 1024, max_bounces, NUMBER, 0, "Max Bounces",               \
          "Scattering events a path may have after the camera ray")                                \
     HOST(uint32_t, threads, 0, 0, 1024, "Render threads, 0: one per core")                        \
@@ -809,6 +852,26 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
          "Show the whole frame after one sample a pixel, then refine it in passes of doubling "   \
          "sample counts; the final image is the same (costs 8 bytes a pixel per channel "          \
          "of the enabled passes)")                                                                \
+    /* Adaptive sampling (docs/algorithms.md §6): a pixel stops once its                      \
+     * error, from its samples' variance, is below the threshold. */                          \
+    USER(uint32_t, adaptive_sampling, 0, 0, 1, use_adaptive_sampling, BOOLEAN, 0,                \
+         "Adaptive Sampling", "Stop sampling each pixel once its estimated noise is below the "    \
+         "threshold (its count of samples depends only on its own samples)")                      \
+    USER(float, adaptive_threshold, 0.01f, 0.0001f, 1.0f, adaptive_threshold, NUMBER, 0.1f,      \
+         "Noise Threshold", "Error at which a pixel stops: the standard error of its mean over "    \
+         "the square root of its value (over its value above 1)")                                 \
+    USER(uint32_t, adaptive_min_samples, 16, 2, 1u << 24, adaptive_min_samples, NUMBER, 4096,     \
+         "Min Samples", "Samples every pixel takes before its noise is first estimated")          \
+    USER(float, time_limit, 0.0f, 0.0f, 1.0e7f, time_limit, SECONDS, 3600.0f, "Time Limit",       \
+         "Stop sampling after this many seconds of rendering (after the photon and cache stages; "   \
+         "0: none); every pixel gets at least one sample, and the image then depends on the "     \
+         "machine's speed")                                                                       \
+    /* The noise filter, after rendering (docs/algorithms.md §7). */                             \
+    USER(uint32_t, noise_filter, PHOS_NOISE_FILTER_NONE, 0, PHOS_NOISE_FILTER_SPLATTING, filter,     \
+         enum phos_noise_filter, 0, "Noise Filter", "Filter run over the rendered image")            \
+    USER(uint32_t, filter_target, PHOS_FILTER_TARGET_INDIRECT_IRRADIANCE, 0,                       \
+         PHOS_FILTER_TARGET_ALL, filter_target, enum phos_filter_target, 0, "Filter",              \
+         "What the noise filter is applied to; the rest is added back unfiltered")                \
     /* Blackman-Harris, as Cycles' default filter (width 1.5). */                                 \
     USER(float, filter_width, 1.5f, 0.0f, 10.0f, filter_width, PIXELS, 0, "Filter Width",         \
          "Width of the Blackman-Harris pixel filter (0 is a box of one pixel)")                   \
@@ -953,7 +1016,8 @@ enum phos_render_state {
  * for a render given maps by phos_render_use_photon_maps): WAITING, then the
  * photon stages if it uses photon maps (the PHOTON integrator or a photon
  * debug pass; PRECOMPUTING_RADIANCE for final gathering only), the
- * irradiance cache's pre-pass if the cache is on, RENDERING, FINISHED. */
+ * irradiance cache's pre-pass if the cache is on, RENDERING, FILTERING if
+ * a noise filter is on, FINISHED. */
 enum phos_stage {
     PHOS_STAGE_WAITING = 0,
     PHOS_STAGE_TRACING_PHOTONS = 1,
@@ -961,8 +1025,9 @@ enum phos_stage {
     PHOS_STAGE_PRECOMPUTING_RADIANCE = 3,
     PHOS_STAGE_FILLING_IRRADIANCE_CACHE = 4,
     PHOS_STAGE_RENDERING = 5,
-    PHOS_STAGE_FINISHED = 6,
-    PHOS_STAGE_COUNT = 7
+    PHOS_STAGE_FILTERING = 6,
+    PHOS_STAGE_FINISHED = 7,
+    PHOS_STAGE_COUNT = 8
 };
 
 typedef struct phos_stage_info {

@@ -685,16 +685,21 @@ static void test_memory_estimate(void)
     phos_render_settings_init(&rs);
     memory_estimate e;
     render_memory_estimate(&rs, &e);
-    /* PATH at 640×480: the Combined pass only, 4 floats a pixel, and its
-     * sums between the passes of progressive refinement, 4 doubles. */
-    CHECK(e.film == 640u * 480u * 48u && e.photon_maps == 0 && e.irradiance_cache == 0 && e.total == e.film);
+    /* PATH at 640×480: the Combined pass only, 4 floats a pixel, its
+     * sums between the passes of progressive refinement, 4 doubles, and
+     * the pixel's sample count, 4 bytes. */
+    CHECK(e.film == 640u * 480u * 52u && e.photon_maps == 0 && e.irradiance_cache == 0 && e.total == e.film);
     rs.progressive = 0;
     render_memory_estimate(&rs, &e);
-    CHECK(e.film == 640u * 480u * 16u);
+    CHECK(e.film == 640u * 480u * 20u);
     rs.progressive = 1;
     rs.samples = 1; /* one pass: nothing kept */
     render_memory_estimate(&rs, &e);
-    CHECK(e.film == 640u * 480u * 16u);
+    CHECK(e.film == 640u * 480u * 20u);
+    rs.adaptive_sampling = 1; /* and each pixel's Σ Y, Σ Y² */
+    render_memory_estimate(&rs, &e);
+    CHECK(e.film == 640u * 480u * 36u);
+    rs.adaptive_sampling = 0;
     rs.samples = 128;
     char msg[512];
     CHECK(render_memory_fits(&e, 1u << 30, msg, sizeof(msg)));
@@ -717,7 +722,9 @@ static void test_memory_estimate(void)
     rs.pass_mask = (1u << PHOS_PASS_COUNT) - 1u;
     rs.progressive = 0;
     render_memory_estimate(&rs, &e);
-    CHECK(e.film == (uint64_t)65536 * 65536 * 4 * (4 + 3 * (PHOS_PASS_COUNT - 1)));
+    /* Combined and Noisy Image 4 channels, Sample Count 1, the others 3;
+     * and the sample count, 4 bytes. */
+    CHECK(e.film == (uint64_t)65536 * 65536 * (4 * (4 + 4 + 1 + 3 * (PHOS_PASS_COUNT - 3)) + 4));
     /* A border renders only its pixels; the cache's pre-pass covers the
      * whole frame, so a zero minimum spacing on a big frame is refused. */
     rs.region_width = rs.region_height = 64;
@@ -725,7 +732,7 @@ static void test_memory_estimate(void)
     rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_ALWAYS;
     rs.ic_min_spacing = 0.0f;
     render_memory_estimate(&rs, &e);
-    CHECK(e.film == 64u * 64u * 16u && e.irradiance_cache > 100.0 * GiB);
+    CHECK(e.film == 64u * 64u * 20u && e.irradiance_cache > 100.0 * GiB);
     /* Through the API: refused before anything is allocated, with the
      * message on the scene (this machine has less than 500 GiB). */
     phos_scene *s = small_scene();

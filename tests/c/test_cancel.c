@@ -42,7 +42,7 @@ static const char *stage_label(uint32_t stage)
 {
     static const char *names[PHOS_STAGE_COUNT] = {"waiting", "tracing photons", "building kd-trees",
                                                    "precomputing radiance", "filling the irradiance cache",
-                                                   "rendering tiles", "finished"};
+                                                   "rendering tiles", "filtering", "finished"};
     return stage < PHOS_STAGE_COUNT ? names[stage] : "?";
 }
 
@@ -142,6 +142,16 @@ static void test_render_stages(void)
     rs.integrator = PHOS_INTEGRATOR_PATH;
     rs.max_bounces = 1024;
     cancel_in_stage(box, &rs, PHOS_STAGE_RENDERING, NULL, 0);
+    /* The noise filter over a large film: McCool's diffusion, the slowest
+     * (about 0.6 s a million pixels), over 2048² pixels of direct light. */
+    rs = photon_settings(0, 0);
+    rs.integrator = PHOS_INTEGRATOR_PATH;
+    rs.width = rs.height = 2048;
+    rs.samples = 1;
+    rs.max_bounces = 0;
+    rs.noise_filter = PHOS_NOISE_FILTER_DIFFUSION;
+    rs.filter_target = PHOS_FILTER_TARGET_ALL;
+    cancel_in_stage(box, &rs, PHOS_STAGE_FILTERING, NULL, 0);
     phos_scene_destroy(box);
 }
 

@@ -2,7 +2,9 @@
  * test_determinism.c — the same scene and seed give the same image, bit
  * for bit, whatever the thread count, tile size or render region; another
  * seed gives another image. For PATH (without and with the irradiance
- * cache) and for PHOTON with each photon view (the photon maps are traced
+ * cache; with each sampler; with adaptive sampling, whose per-pixel sample
+ * counts must not depend on threads or tiles either; with each noise
+ * filter) and for PHOTON with each photon view (the photon maps are traced
  * in batches on any number of threads). A frame split into four regions
  * and stitched equals the whole frame (a render farm's split); the photon
  * maps and the irradiance cache, as their files store them, are the same
@@ -55,6 +57,7 @@ static phos_scene *box_with_spheres(void)
 
 /* The integrator, photon view and cache setting of the renders below. */
 static uint32_t g_integrator, g_view, g_cache = PHOS_IRRADIANCE_CACHE_PHOTON, g_progressive = 1;
+static uint32_t g_sampler = PHOS_SAMPLER_SOBOL, g_adaptive, g_filter;
 
 static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32_t seed, uint32_t rx, uint32_t ry,
                           uint32_t rw, uint32_t rh)
@@ -79,6 +82,11 @@ static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32
     rs.region_width = rw;
     rs.region_height = rh;
     rs.progressive = g_progressive;
+    rs.sampler = g_sampler;
+    rs.adaptive_sampling = g_adaptive;
+    rs.adaptive_min_samples = 4;
+    rs.adaptive_threshold = 0.05f;
+    rs.noise_filter = g_filter;
     return test_render(s, &rs);
 }
 
@@ -108,6 +116,12 @@ static void check_deterministic(phos_scene *s, const char *name)
         for (size_t i = 0; i < n; i++)
             sum += a[i];
         CHECK_MSG(sum > 0.0, "%s: the image is black", name);
+    }
+    if (g_filter != PHOS_NOISE_FILTER_NONE) {
+        /* A filter reads the neighbours a region cuts off: its region's
+         * pixels near the edge differ from the full frame's (README). */
+        free(a), free(b), free(c), free(d);
+        return;
     }
     /* A border region reproduces the same pixels of the full frame. */
     const uint32_t rx = 13, ry = 7, rw = 20, rh = 17;
@@ -321,6 +335,27 @@ int main(void)
         g_cache = configs[i].cache;
         check_deterministic(s, configs[i].name);
     }
+    static const char *sampler_names[] = {"", "PATH, RANDOM", "PATH, STRATIFIED", "PATH, HALTON"};
+    g_integrator = PHOS_INTEGRATOR_PATH;
+    g_cache = PHOS_IRRADIANCE_CACHE_OFF;
+    for (uint32_t k = PHOS_SAMPLER_RANDOM; k <= PHOS_SAMPLER_HALTON; k++) {
+        g_sampler = k;
+        check_deterministic(s, sampler_names[k]);
+    }
+    g_sampler = PHOS_SAMPLER_SOBOL;
+    g_adaptive = 1;
+    check_deterministic(s, "PATH, adaptive sampling");
+    g_integrator = PHOS_INTEGRATOR_PHOTON;
+    g_cache = PHOS_IRRADIANCE_CACHE_PHOTON;
+    check_deterministic(s, "PHOTON, adaptive sampling");
+    g_adaptive = 0;
+    static const char *filter_names[] = {"", "PHOTON, lowpass", "PHOTON, median", "PHOTON, adaptive width",
+                                         "PHOTON, diffusion", "PHOTON, splatting"};
+    for (uint32_t f = PHOS_NOISE_FILTER_LOWPASS; f <= PHOS_NOISE_FILTER_SPLATTING; f++) {
+        g_filter = f;
+        check_deterministic(s, filter_names[f]);
+    }
+    g_filter = PHOS_NOISE_FILTER_NONE;
     check_progressive_passes(s);
     check_caches_identical(s);
     phos_scene_destroy(s);

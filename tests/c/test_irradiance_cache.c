@@ -143,7 +143,7 @@ static int floor_record(phos_scene *s, float x, float y, uint32_t seed, uint32_t
     bsdf b;
     material_bsdf(s, &sf, &b);
     light_context light = light_context_at(&sf);
-    sampler smp = sampler_for_pixel(seed, 0, 0, 0);
+    sampler smp = sampler_for_pixel(SAMPLER_SOBOL, seed, 0, 0, 0, 1);
     indirect_query q = {s, &is, &sf, &light, &b, sf.wo, &smp, 0, 0, &scratch};
     return irradiance_record_compute(&q, is.cache_inner->incoming, rays, 0.0f, INFINITY, out);
 }

@@ -10,7 +10,7 @@
 #include "cache/file_io.h"
 
 #define IC_FILE_MAGIC "PHOSIRC\n"
-#define IC_FILE_VERSION 2u /* 2: caustic_roughness */
+#define IC_FILE_VERSION 3u /* 2: caustic_roughness; 3: sampler */
 #define WHAT "irradiance cache"
 #define RECORD_WORDS 37u /* p, n, E, E_caustic, w_mean (3 each), grad_r, grad_t (9 each), R, R_free, R_lo, R_hi */
 
@@ -18,7 +18,7 @@
  * the image size are not among them: records are world-space, and another
  * view reads them (where it sees what no record covers, it gathers). */
 #define CACHE_SETTINGS(U, F)                                                                      \
-    U(integrator) U(photon_view) U(seed) U(max_bounces) U(ic_rays) U(global_photons)              \
+    U(integrator) U(photon_view) U(seed) U(sampler) U(max_bounces) U(ic_rays) U(global_photons)              \
     U(caustic_photons) U(global_estimate_photons) U(max_photons_emitted_millions)                 \
     F(ic_accuracy) F(ic_min_spacing) F(ic_max_spacing) F(max_radius) F(caustic_roughness)
 #define COUNT_SETTING(name) +1

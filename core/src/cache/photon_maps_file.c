@@ -13,7 +13,7 @@
 #include "cache/file_io.h"
 
 #define PM_FILE_MAGIC "PHOSPMF\n"
-#define PM_FILE_VERSION 2u /* 2: caustic_roughness */
+#define PM_FILE_VERSION 3u /* 2: caustic_roughness; 3: sampler */
 #define WHAT "photon map"
 #define SITE_WORDS 9u   /* a radiance photon's site: position, normal, reflectance */
 

@@ -89,7 +89,7 @@ static void candidate_pixel(const fill_job *job, uint32_t i, uint32_t *x, uint32
  * goes, and its record's rays. */
 static sampler candidate_sampler(const fill_job *job, uint32_t x, uint32_t y)
 {
-    sampler pixel = sampler_for_pixel(job->fs->seed, x, y, 0);
+    sampler pixel = sampler_for_pixel(job->fs->sampler, job->fs->seed, x, y, 0, 1);
     return sampler_split(&pixel, FILL_RECORD_STREAM);
 }
 

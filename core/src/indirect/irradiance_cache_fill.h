@@ -13,6 +13,7 @@
 typedef struct irradiance_cache_fill_settings {
     uint32_t width, height;     /* the full frame, pixels (not the border: see the .c) */
     uint32_t seed;
+    uint32_t sampler;   /* enum sampler_kind */
     uint32_t rays;              /* gather rays per record */
     float min_spacing, max_spacing; /* a record's reach R/q, pixels of the image where it lies */
     uint32_t threads;

@@ -95,7 +95,7 @@ static void trace_from(const scene *s, const photon_trace_settings *ps, uint32_t
 static void trace_path(const scene *s, const photon_trace_settings *ps, uint32_t map, const projection_map *aim,
                        uint64_t path, batch *out)
 {
-    sampler smp = sampler_for_index(ps->seed, map, path);
+    sampler smp = sampler_for_index(ps->sampler, ps->seed, map, path);
     float u[5];
     for (int k = 0; k < 5; k++)
         u[k] = sampler_1d(&smp, DIM_EMIT + (uint32_t)k);
@@ -413,6 +413,7 @@ void photon_trace_settings_words(const photon_trace_settings *ps, uint32_t w[PHO
     w[n++] = (uint32_t)(ps->max_emitted >> 32);
     w[n++] = ps->max_bounces;
     w[n++] = ps->seed;
+    w[n++] = ps->sampler;
     w[n++] = ps->radiance_k;
     w[n++] = float_bits(ps->max_radius);
     w[n++] = float_bits(ps->caustic_roughness);
@@ -420,7 +421,7 @@ void photon_trace_settings_words(const photon_trace_settings *ps, uint32_t w[PHO
 
 const char *const photon_trace_setting_names[PHOTON_TRACE_SETTING_WORDS] = {
     "global_photons", "caustic_photons", "max_photons_emitted_millions", "max_photons_emitted_millions",
-    "max_bounces", "seed", "global_estimate_photons", "max_radius", "caustic_roughness"};
+    "max_bounces", "seed", "sampler", "global_estimate_photons", "max_radius", "caustic_roughness"};
 
 void photon_maps_free(photon_maps *m)
 {
@@ -492,7 +493,7 @@ static void pilot_cell(void *ctx, uint32_t item, uint32_t thread)
     uint32_t useful = 0, pilots = p->cell_pilots[g];
     for (uint32_t i = 0; i < pilots; i++) {
         uint64_t path = (uint64_t)item * PILOT_PHOTONS + i;
-        sampler smp = sampler_for_index(p->ps->seed, MAP_PILOT, path);
+        sampler smp = sampler_for_index(p->ps->sampler, p->ps->seed, MAP_PILOT, path);
         vec3 o, d;
         projection_map_cell_ray(p->s, p->pm, g, k, sampler_2d(&smp, DIM_EMIT + 1), sampler_2d(&smp, DIM_EMIT + 3), &o,
                                 &d);

@@ -39,6 +39,7 @@ typedef struct photon_trace_settings {
     uint64_t max_emitted;      /* give up on a map after this many paths */
     uint32_t max_bounces;      /* scattering events per photon path */
     uint32_t seed;
+    uint32_t sampler;          /* enum sampler_kind */
     uint32_t threads;
     uint32_t radiance_k;       /* photons in the estimate behind each radiance photon */
     float max_radius;          /* search radius cap, scene units */
@@ -50,7 +51,7 @@ typedef struct photon_trace_settings {
  * their bits), for saved maps and maps kept between renders to be refused
  * when made otherwise. The camera is not among them: photons aimed at one
  * view are an unbiased map for any other, if a less dense one. */
-#define PHOTON_TRACE_SETTING_WORDS 9u
+#define PHOTON_TRACE_SETTING_WORDS 10u
 void photon_trace_settings_words(const photon_trace_settings *ps, uint32_t w[PHOTON_TRACE_SETTING_WORDS]);
 /* The user's name of the setting behind each word. */
 extern const char *const photon_trace_setting_names[PHOTON_TRACE_SETTING_WORDS];

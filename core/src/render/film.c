@@ -20,9 +20,10 @@ uint32_t phos_pass_channels(uint32_t pass)
     return pass < PHOS_PASS_COUNT ? pass_channels[pass] : 0;
 }
 
-uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask, int keep_sums)
+uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask, uint32_t extras)
 {
-    uint64_t bytes = 0;
+    int keep_sums = (extras & FILM_KEEP_SUMS) != 0;
+    uint64_t bytes = sizeof(uint32_t) + ((extras & FILM_MOMENTS) ? 2 * sizeof(double) : 0);
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++)
         if ((pass_mask | (1u << PHOS_PASS_COMBINED)) & (1u << p)) {
             bytes += phos_pass_channels(p) * sizeof(float);
@@ -33,8 +34,9 @@ uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask, 
 }
 
 int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t height, uint32_t pass_mask,
-                int keep_sums)
+                uint32_t extras)
 {
+    int keep_sums = (extras & FILM_KEEP_SUMS) != 0;
     memset(f, 0, sizeof(*f));
     f->x0 = x0;
     f->y0 = y0;
@@ -53,6 +55,14 @@ int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t heig
             return 0;
         }
     }
+    size_t pixels = (size_t)width * height;
+    f->sample_counts = calloc(pixels, sizeof(uint32_t));
+    if (extras & FILM_MOMENTS)
+        f->moments = calloc(2 * pixels, sizeof(double));
+    if (!f->sample_counts || ((extras & FILM_MOMENTS) && !f->moments)) {
+        film_free(f);
+        return 0;
+    }
     return 1;
 }
 
@@ -64,6 +74,10 @@ void film_free(film *f)
         f->planes[p] = NULL;
         f->sums[p] = NULL;
     }
+    free(f->sample_counts);
+    free(f->moments);
+    f->sample_counts = NULL;
+    f->moments = NULL;
 }
 
 /* Blackman-Harris window over [−w, w] (Harris 1978, 4-term). */

@@ -22,7 +22,7 @@ void render_memory_estimate(const phos_render_settings *rs, memory_estimate *out
     memset(out, 0, sizeof(*out));
     uint32_t w = rs->region_width ? rs->region_width : rs->width;
     uint32_t h = rs->region_height ? rs->region_height : rs->height;
-    out->film = film_memory_bytes(w, h, rs->pass_mask, render_keeps_sums(rs));
+    out->film = film_memory_bytes(w, h, render_film_passes(rs), render_film_extras(rs));
     stage_plan plan;
     stage_plan_make(rs, &plan);
     if (stage_plan_has(&plan, PHOS_STAGE_TRACING_PHOTONS))

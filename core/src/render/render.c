@@ -14,6 +14,7 @@
 
 #include "indirect/indirect_diffuse.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +22,7 @@
 
 #include "cache/irradiance_cache_file.h"
 #include "cache/photon_maps_file.h"
+#include "render/noise_filter.h"
 #include "scene/embree.h"
 #include "util/parallel.h"
 
@@ -69,7 +71,8 @@ static int make_tiles(render *r)
     uint32_t nx = (f->width + ts - 1) / ts, ny = (f->height + ts - 1) / ts;
     r->tile_count = nx * ny;
     r->tiles = malloc(sizeof(phos_tile) * r->tile_count);
-    r->finished = malloc(sizeof(uint32_t) * r->tile_count * r->pass_count);
+    /* A tile finishes once per pass, and once more after the noise filter. */
+    r->finished = malloc(sizeof(uint32_t) * r->tile_count * (r->pass_count + 1));
     tile_key *keys = malloc(sizeof(tile_key) * r->tile_count);
     if (!r->tiles || !r->finished || !keys) {
         free(keys);
@@ -107,6 +110,7 @@ typedef struct pixel_sums {
     double component[COMPONENT_COUNT][3];
     double debug[2][3];          /* the photon map's and the caustic map's estimates */
     double features[2][3];       /* denoising albedo and normal */
+    double moments[2];           /* Σ Y and Σ Y² of the samples' luminance (film.moments) */
 } pixel_sums;
 
 /* Where each sum lives in pixel_sums, by pass (NULL: not a mean). */
@@ -139,6 +143,10 @@ static void exchange_sums(const render *r, uint32_t x, uint32_t y, pixel_sums *a
         size_t bytes = sizeof(double) * phos_pass_channels(p);
         memcpy(store ? kept : mine, store ? mine : kept, bytes);
     }
+    if (r->film.moments) {
+        double *kept = r->film.moments + 2 * film_index(&r->film, x, y);
+        memcpy(store ? kept : a->moments, store ? a->moments : kept, sizeof(a->moments));
+    }
 }
 
 /* The film's pixel of every enabled mean pass: its sum over `samples`. */
@@ -153,6 +161,41 @@ static void write_means(render *r, uint32_t x, uint32_t y, pixel_sums *a, uint32
         for (uint32_t ch = 0; ch < phos_pass_channels(p); ch++)
             px[ch] = (float)(sum[ch] * inv);
     }
+    if (pass_on(r, PHOS_PASS_SAMPLE_COUNT))
+        film_pixel(&r->film, PHOS_PASS_SAMPLE_COUNT, x, y)[0] = (float)samples / (float)r->settings.samples;
+}
+
+/* Luminance of linear Rec. 709 RGB (ITU-R BT.709). */
+static double luminance(const double rgb[3]) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
+/* Adaptive sampling checks a pixel after its first adaptive_min_samples
+ * samples and every ADAPTIVE_CHECK_STEP after: checking after every sample
+ * would stop more pixels on a lucky run of low values. */
+#define ADAPTIVE_CHECK_STEP 8u
+
+/* Whether a pixel of n samples has converged: its mean's standard error,
+ * from the samples' variance (Σ Y, Σ Y² in m), over the threshold times
+ * √μ, or μ above 1. An error δ moves a pixel's displayed value, about
+ * μ^(1/2.2), by δ/(2.2·μ^0.55), close to δ/√μ in the range most pixels
+ * show; above 1 the view transform compresses, and the relative error
+ * δ/μ is what shows (Cycles normalises its error the same way). With the
+ * stratified samplers the sample variance overestimates the error of the
+ * mean, so pixels stop later than they could, never earlier. */
+static int pixel_converged(const phos_render_settings *rs, const double m[2], uint32_t n)
+{
+    if (n < rs->adaptive_min_samples || n < 2 || (n - rs->adaptive_min_samples) % ADAPTIVE_CHECK_STEP)
+        return 0;
+    double mean = m[0] / n;
+    double variance = fmax((m[1] - m[0] * mean) / (n - 1), 0.0);
+    double scale = mean < 1.0 ? sqrt(fmax(mean, 0.0)) : mean;
+    return sqrt(variance / n) <= rs->adaptive_threshold * scale;
+}
+
+/* The time limit has struck: never in the first pass, so that every
+ * pixel has a sample. */
+static int out_of_time(const render *r)
+{
+    return r->settings.time_limit > 0.0f && r->pass_first > 0 && monotonic_seconds() >= r->time_limit_end;
 }
 
 static void add3(double sum[3], vec3 v)
@@ -162,25 +205,38 @@ static void add3(double sum[3], vec3 v)
     sum[2] += v.z;
 }
 
+/* What became of a pixel's samples. */
+enum pixel_outcome {
+    PIXEL_RENDERED,     /* its samples are in the film */
+    PIXEL_CANCELLED,    /* cancelled part-way: it keeps what the passes before gave it */
+    PIXEL_OUT_OF_TIME   /* the time limit struck part-way: likewise */
+};
+
 /* Renders samples [first, end) of one pixel, on top of the sums of those
- * before (progressive refinement), and writes the mean of all so far;
- * returns 0 if cancelled part-way (checked before every sample, and inside
- * its gathers, so even pixels of millions of samples stop at once): the
- * pixel then keeps what the passes before gave it. */
-static int render_pixel(render *r, uint32_t x, uint32_t y, uint32_t first, uint32_t end,
-                        integrator_scratch *scratch)
+ * before (progressive refinement), and writes the mean of all so far. A
+ * cancel is checked before every sample, and inside its gathers, so even
+ * pixels of millions of samples stop at once; so is the time limit.
+ * Adaptive sampling may stop the pixel before `end`, for good. */
+static enum pixel_outcome render_pixel(render *r, uint32_t x, uint32_t y, uint32_t first, uint32_t end,
+                                       integrator_scratch *scratch)
 {
     const phos_render_settings *rs = &r->settings;
     const scene *s = r->scene;
+    uint32_t *count = &r->film.sample_counts[film_index(&r->film, x, y)];
+    if (*count & PIXEL_CONVERGED)
+        return PIXEL_RENDERED; /* stopped by adaptive sampling in an earlier pass */
     int debug = pass_on(r, PHOS_PASS_PHOTON_MAP) || pass_on(r, PHOS_PASS_CAUSTIC_MAP);
     pixel_sums a;
     memset(&a, 0, sizeof(a));
     if (first > 0)
         exchange_sums(r, x, y, &a, 0);
-    for (uint32_t i = first; i < end; i++) {
+    uint32_t n = first, converged = 0;
+    for (uint32_t i = first; i < end && !converged; i++) {
         if (atomic_load_explicit(&r->cancel, memory_order_relaxed))
-            return 0;
-        sampler smp = sampler_for_pixel(rs->seed, x, y, i);
+            return PIXEL_CANCELLED;
+        if (out_of_time(r))
+            return PIXEL_OUT_OF_TIME;
+        sampler smp = sampler_for_pixel(rs->sampler, rs->seed, x, y, i, rs->samples);
         float2 uf = sampler_2d(&smp, DIM_FILM);
         float fx = ((float)x + 0.5f + pixel_filter_sample(&r->filter, uf.x)) / (float)rs->width;
         float fy = ((float)y + 0.5f + pixel_filter_sample(&r->filter, uf.y)) / (float)rs->height;
@@ -206,6 +262,9 @@ static int render_pixel(render *r, uint32_t x, uint32_t y, uint32_t first, uint3
         for (int ch = 0; ch < 3; ch++)
             a.combined[ch] += total[ch];
         a.combined[3] += sr.alpha;
+        double y_lum = luminance(total);
+        a.moments[0] += y_lum;
+        a.moments[1] += y_lum * y_lum;
         if (v3_is_finite(sr.photon_map) && v3_is_finite(sr.caustic_map)) {
             add3(a.debug[0], sr.photon_map);
             add3(a.debug[1], sr.caustic_map);
@@ -217,11 +276,14 @@ static int render_pixel(render *r, uint32_t x, uint32_t y, uint32_t first, uint3
             add3(a.features[0], sr.denoising_albedo);
             add3(a.features[1], sr.denoising_normal);
         }
+        n = i + 1;
+        converged = rs->adaptive_sampling && pixel_converged(rs, a.moments, n);
     }
-    if (end < rs->samples)
+    if (end < rs->samples || r->film.moments)
         exchange_sums(r, x, y, &a, 1);
-    write_means(r, x, y, &a, end);
-    return 1;
+    write_means(r, x, y, &a, n);
+    *count = n | (converged ? PIXEL_CONVERGED : 0u);
+    return PIXEL_RENDERED;
 }
 
 static void render_tile(void *ctx, uint32_t item, uint32_t thread)
@@ -231,11 +293,15 @@ static void render_tile(void *ctx, uint32_t item, uint32_t thread)
     integrator_scratch *sc = &r->scratch[thread];
     uint64_t rays_before = embree_thread_rays(), lookups_before = sc->cache_lookups, hits_before = sc->cache_hits;
     uint64_t gathers_before = sc->gather_rays;
-    int whole = 1;
-    for (uint32_t y = t->y; y < t->y + t->height && whole; y++)
-        for (uint32_t x = t->x; x < t->x + t->width && whole; x++)
-            whole = !atomic_load_explicit(&r->cancel, memory_order_relaxed) &&
-                    render_pixel(r, x, y, r->pass_first, r->pass_end, sc);
+    /* A tile the time limit cut short is still delivered: each of its
+     * pixels holds this pass's samples or the passes' before. */
+    enum pixel_outcome outcome = PIXEL_RENDERED;
+    for (uint32_t y = t->y; y < t->y + t->height && outcome == PIXEL_RENDERED; y++)
+        for (uint32_t x = t->x; x < t->x + t->width && outcome == PIXEL_RENDERED; x++)
+            outcome = atomic_load_explicit(&r->cancel, memory_order_relaxed)
+                          ? PIXEL_CANCELLED
+                          : render_pixel(r, x, y, r->pass_first, r->pass_end, sc);
+    int whole = outcome != PIXEL_CANCELLED;
     atomic_fetch_add(&r->rays_traced, embree_thread_rays() - rays_before);
     atomic_fetch_add(&r->cache_lookups, sc->cache_lookups - lookups_before);
     atomic_fetch_add(&r->cache_hits, sc->cache_hits - hits_before);
@@ -408,14 +474,19 @@ static phos_status run_stage(render *r, uint32_t stage)
         /* Pass after pass over the whole frame (progressive refinement);
          * the end of each parallel_for is the barrier that keeps a tile's
          * next pass from starting before its last one ended. */
+        r->time_limit_end = monotonic_seconds() + (double)r->settings.time_limit;
         for (uint32_t p = 0; p < r->pass_count; p++) {
             r->pass_first = p ? r->pass_ends[p - 1] : 0;
             r->pass_end = r->pass_ends[p];
             if (!parallel_for(r->tile_count, r->threads, render_tile, r, &r->cancel))
                 return atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_INTERNAL;
+            if (out_of_time(r))
+                break; /* pixels hold different sample counts: the Sample Count pass shows them */
             atomic_store(&r->samples_done, r->pass_end);
         }
         return PHOS_OK;
+    case PHOS_STAGE_FILTERING:
+        return render_filter(r);
     default: /* WAITING and FINISHED only mark the ends of the plan */
         return PHOS_OK;
     }
@@ -485,8 +556,8 @@ int render_prepare(render *r)
     r->threads = parallel_thread_count(rs->threads);
     pixel_filter_init(&r->filter, rs->filter_width);
     r->pass_count = render_sample_passes(rs, r->pass_ends);
-    if (!film_create(&r->film, rs->region_x, rs->region_y, rs->region_width, rs->region_height, rs->pass_mask,
-                     r->pass_count > 1) ||
+    if (!film_create(&r->film, rs->region_x, rs->region_y, rs->region_width, rs->region_height,
+                     render_film_passes(rs), render_film_extras(rs)) ||
         !make_tiles(r))
         return 0;
     stage_plan_make(rs, &r->plan);
@@ -515,13 +586,14 @@ int render_prepare(render *r)
     is->cache = NULL;
     is->gathers_find_caustics = !photon;
     is->caustic_roughness = photon ? rs->caustic_roughness : 0.0f;
-    is->denoising_features = (rs->pass_mask & ((1u << PHOS_PASS_DENOISING_ALBEDO) |
+    is->denoising_features = (r->film.pass_mask & ((1u << PHOS_PASS_DENOISING_ALBEDO) |
                                                (1u << PHOS_PASS_DENOISING_NORMAL))) != 0;
     is->camera = &r->scene->camera;
     irradiance_cache_fill_settings *fs = &r->cache_fill;
     fs->width = rs->width;
     fs->height = rs->height;
     fs->seed = rs->seed;
+    fs->sampler = rs->sampler;
     fs->rays = rs->ic_rays;
     fs->min_spacing = rs->ic_min_spacing;
     fs->max_spacing = rs->ic_max_spacing;
@@ -538,6 +610,7 @@ int render_prepare(render *r)
     ps->max_emitted = (uint64_t)rs->max_photons_emitted_millions * 1000000u;
     ps->max_bounces = rs->max_bounces;
     ps->seed = rs->seed;
+    ps->sampler = rs->sampler;
     ps->threads = r->threads;
     ps->radiance_k = rs->global_estimate_photons;
     ps->max_radius = radius;

@@ -56,6 +56,7 @@ struct phos_render {
     uint32_t pass_count, pass_ends[RENDER_MAX_SAMPLE_PASSES];
     uint32_t pass_first, pass_end;
     atomic_uint samples_done;
+    double time_limit_end;         /* monotonic seconds at which the time limit strikes */
     atomic_uint_fast64_t work_done; /* pixel samples of finished tiles, for the progress bar */
     atomic_uint_fast64_t rays_traced; /* by the tiles (render_tile) */
     stage_plan plan;               /* the stages it runs, fixed at create */

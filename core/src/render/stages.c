@@ -3,6 +3,8 @@
  */
 #include "render/stages.h"
 
+#include "render/film.h"
+
 /* The passes that need the photon maps whatever the integrator. */
 #define PHOTON_DEBUG_PASSES ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_CAUSTIC_MAP) | (1u << PHOS_PASS_PHOTONS))
 
@@ -32,6 +34,8 @@ void stage_plan_make(const phos_render_settings *rs, stage_plan *plan)
     if (stage_plan_uses_cache(rs))
         plan->stages[n++] = PHOS_STAGE_FILLING_IRRADIANCE_CACHE;
     plan->stages[n++] = PHOS_STAGE_RENDERING;
+    if (rs->noise_filter != PHOS_NOISE_FILTER_NONE)
+        plan->stages[n++] = PHOS_STAGE_FILTERING;
     plan->stages[n++] = PHOS_STAGE_FINISHED;
     plan->count = n;
 }
@@ -69,6 +73,7 @@ const char *stage_name(uint32_t stage, uint32_t integrator)
     case PHOS_STAGE_FILLING_IRRADIANCE_CACHE: return "Filling irradiance cache";
     case PHOS_STAGE_RENDERING:
         return integrator == PHOS_INTEGRATOR_PHOTON ? "Rendering with photon maps" : "Path tracing";
+    case PHOS_STAGE_FILTERING: return "Filtering";
     case PHOS_STAGE_FINISHED: return "Finished";
     }
     return "Unknown stage";
@@ -77,7 +82,9 @@ const char *stage_name(uint32_t stage, uint32_t integrator)
 uint32_t render_sample_passes(const phos_render_settings *rs, uint32_t ends[RENDER_MAX_SAMPLE_PASSES])
 {
     uint32_t count = 0;
-    if (rs->progressive)
+    /* A time limit needs passes: when it strikes, every pixel keeps what
+     * the passes before gave it. */
+    if (rs->progressive || rs->time_limit > 0.0f)
         for (uint32_t end = 1; end < rs->samples && count + 1 < RENDER_MAX_SAMPLE_PASSES; end *= 2)
             ends[count++] = end;
     ends[count++] = rs->samples;
@@ -88,4 +95,31 @@ int render_keeps_sums(const phos_render_settings *rs)
 {
     uint32_t ends[RENDER_MAX_SAMPLE_PASSES];
     return render_sample_passes(rs, ends) > 1;
+}
+
+/* What the noise filter reads besides the user's passes: the Indirect
+ * component, and the albedo its irradiance is taken over. */
+static uint32_t filter_input_passes(const phos_render_settings *rs)
+{
+    if (rs->noise_filter == PHOS_NOISE_FILTER_NONE)
+        return 0;
+    switch (rs->filter_target) {
+    case PHOS_FILTER_TARGET_INDIRECT_IRRADIANCE:
+        return (1u << PHOS_PASS_INDIRECT) | (1u << PHOS_PASS_DENOISING_ALBEDO);
+    case PHOS_FILTER_TARGET_INDIRECT: return 1u << PHOS_PASS_INDIRECT;
+    default: return 0;
+    }
+}
+
+uint32_t render_film_passes(const phos_render_settings *rs)
+{
+    return rs->pass_mask | (1u << PHOS_PASS_COMBINED) | filter_input_passes(rs);
+}
+
+uint32_t render_film_extras(const phos_render_settings *rs)
+{
+    uint32_t extras = render_keeps_sums(rs) ? FILM_KEEP_SUMS : 0u;
+    if (rs->adaptive_sampling || rs->noise_filter != PHOS_NOISE_FILTER_NONE)
+        extras |= FILM_MOMENTS;
+    return extras;
 }

@@ -38,12 +38,19 @@ void stage_plan_drop_photon_stages(stage_plan *plan);
  * refinement and more than one sample, pass k ends at sample 2^k (1, 2,
  * 4 …) and the last at `samples`, so the first look at the whole frame
  * costs one sample a pixel; else one pass of every sample. Writes the
- * passes' ends (at most RENDER_MAX_SAMPLE_PASSES) and returns their count. */
+ * passes' ends (at most RENDER_MAX_SAMPLE_PASSES) and returns their count.
+ * A time limit makes passes as progressive refinement does. */
 #define RENDER_MAX_SAMPLE_PASSES 32
 uint32_t render_sample_passes(const phos_render_settings *rs, uint32_t ends[RENDER_MAX_SAMPLE_PASSES]);
 
 /* Whether a render keeps its pixels' sums between passes (film.h). */
 int render_keeps_sums(const phos_render_settings *rs);
+
+/* The passes a render's film holds: the user's (pass_mask), Combined, and
+ * those the noise filter reads. */
+uint32_t render_film_passes(const phos_render_settings *rs);
+/* What else it keeps (enum film_extras). */
+uint32_t render_film_extras(const phos_render_settings *rs);
 
 /* The name of a stage as a status line shows it ("Tracing photons"); the
  * rendering stage is named after the integrator. Never NULL. */

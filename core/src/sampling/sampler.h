@@ -14,6 +14,8 @@
 
 #include <stdint.h>
 
+#include "phos.h"
+
 /* "lowbias32" integer finaliser (C. Wellons, 2020): full avalanche, cheap.
  * Used for hashing small keys; random numbers come from mix64 below. */
 static inline uint32_t hash_u32(uint32_t x)
@@ -48,82 +50,64 @@ static inline uint64_t mix64(uint64_t z)
 static inline float u32_to_unit_float(uint32_t x) { return (float)(x >> 8) * (1.0f / 16777216.0f); }
 static inline float u64_to_unit_float(uint64_t x) { return (float)(x >> 40) * (1.0f / 16777216.0f); }
 
-/*
- * Owen-scrambled Sobol points with per-dimension padding (Burley 2020,
- * "Practical Hash-based Owen Scrambling", JCGT 9(4); docs/algorithms.md §6):
- * every 1-D or 2-D request ("dimension set") shuffles the sample index and
- * scrambles the first two Sobol dimensions with seeds hashed from the
- * pixel and the dimension, so each set is stratified over a pixel's
- * samples (a (0,2)-sequence for power-of-two counts) while different sets
- * stay decorrelated. Everything is still a pure function of (seed, pixel,
- * sample, dimension).
- */
-static inline uint32_t reverse_bits32(uint32_t x)
-{
-    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-    x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-    return (x >> 16) | (x << 16);
-}
+#include "sampling/sobol.h"
 
-/* Nested uniform (Owen) scramble of a 32-bit fixed-point value, as a hash
- * on the reversed bits (Vegdahl's constants for Laine–Karras, as in Cycles
- * and pbrt-v4). */
-static inline uint32_t owen_scramble(uint32_t x, uint32_t seed)
-{
-    x = reverse_bits32(x);
-    x ^= x * 0x3d20adeaU;
-    x += seed;
-    x *= (seed >> 16) | 1U;
-    x ^= x * 0x05526c56U;
-    x ^= x * 0x53a22864U;
-    return reverse_bits32(x);
-}
+/* What a sampler's numbers are (enum phos_sampler's values; docs/algorithms.md §6):
+ *   RANDOM      independent numbers for every (pixel, sample, dimension);
+ *   STRATIFIED  over a pixel's N samples, each 1-D set in N strata and each
+ *               2-D set multi-jittered (Chiu, Shirley & Wang 1994): one
+ *               point per cell of an m×n grid, m·n = N, and one per row and
+ *               column of the N×N fine grid, so a Latin hypercube as well;
+ *   HALTON      the Halton points of bases 2 and 3 (1-D: 2), digits scrambled
+ *               by random permutations, each pixel starting its run at its
+ *               own offset into the sequence;
+ *   SOBOL       Owen-scrambled Sobol (sobol.h). */
+enum sampler_kind {
+    SAMPLER_RANDOM = PHOS_SAMPLER_RANDOM,
+    SAMPLER_STRATIFIED = PHOS_SAMPLER_STRATIFIED,
+    SAMPLER_HALTON = PHOS_SAMPLER_HALTON,
+    SAMPLER_SOBOL = PHOS_SAMPLER_SOBOL
+};
 
-/* Sobol dimension 1 (dimension 0 is the bit reversal): its direction
- * numbers are the rows of Pascal's triangle mod 2, v_{k+1} = v_k ^ (v_k >> 1),
- * so bit m (from the top) of v_k is C(k, m) mod 2, which by Lucas' theorem
- * is 1 exactly when m's bits are a subset of k's. The product with index i
- * is then, before the bit reversal, bit m = XOR of i's bits k ⊇ m: a
- * superset transform over the five bits of the position, done for all 32
- * positions at once in five shift-and-mask steps instead of a loop over
- * i's bits, whose branches the owen-scrambled indices make unpredictable. */
-static inline uint32_t sobol_dim1(uint32_t i)
-{
-    i ^= (i >> 1) & 0x55555555u;
-    i ^= (i >> 2) & 0x33333333u;
-    i ^= (i >> 4) & 0x0f0f0f0fu;
-    i ^= (i >> 8) & 0x00ff00ffu;
-    i ^= (i >> 16) & 0x0000ffffu;
-    return reverse_bits32(i);
-}
-
+/* Every kind pads: each 1-D or 2-D request ("dimension set") draws from its
+ * own scramble of the sequence, seeded by hashing the key with the
+ * dimension, so the sets are decorrelated and each is as well distributed
+ * over a pixel's samples as the kind makes it (Cycles and pbrt-v4 pad the
+ * same way; docs/algorithms.md §6). */
 typedef struct sampler {
     uint64_t key;    /* mix of (seed, pixel) or (seed, stream) */
     uint32_t index;  /* sample index within the pixel, or photon path index */
-    uint32_t qmc;    /* 1: scrambled Sobol; 0: independent numbers (statistical tests) */
+    uint32_t kind;   /* enum sampler_kind */
+    uint32_t count;  /* STRATIFIED: the samples the strata are made for (a pixel's samples) */
 } sampler;
 
-static inline sampler sampler_for_pixel(uint32_t seed, uint32_t x, uint32_t y, uint32_t sample)
+/* Sample `sample` of `count` of pixel (x, y). */
+static inline sampler sampler_for_pixel(uint32_t kind, uint32_t seed, uint32_t x, uint32_t y, uint32_t sample,
+                                        uint32_t count)
 {
     sampler s;
     uint64_t k = mix64((uint64_t)seed * SAMPLER_GAMMA + 0x5eedULL);
     s.key = mix64(k ^ (((uint64_t)y << 32) | x));
     s.index = sample;
-    s.qmc = 1;
+    s.kind = kind;
+    s.count = count ? count : 1;
     return s;
 }
 
-/* Photon path `index` of a stream: low-discrepancy over the paths. Indices
- * beyond 2^32 start a fresh sequence. */
-static inline sampler sampler_for_index(uint32_t seed, uint32_t stream, uint64_t index)
+/* Photon paths of a STRATIFIED stream are stratified in blocks of this
+ * many: the count of paths a map takes is not known before it is full. */
+#define SAMPLER_PATH_STRATA 4096u
+
+/* Photon path `index` of a stream: well distributed over the paths.
+ * Indices beyond 2^32 start a fresh sequence. */
+static inline sampler sampler_for_index(uint32_t kind, uint32_t seed, uint32_t stream, uint64_t index)
 {
     sampler s;
     uint64_t k = mix64((uint64_t)seed * SAMPLER_GAMMA + 0x9407ULL);
     s.key = mix64(k ^ ((uint64_t)stream << 48) ^ (index >> 32));
     s.index = (uint32_t)index;
-    s.qmc = 1;
+    s.kind = kind;
+    s.count = SAMPLER_PATH_STRATA;
     return s;
 }
 
@@ -136,12 +120,13 @@ static inline sampler sampler_independent(uint32_t seed, uint32_t stream, uint64
     k = mix64(k ^ ((uint64_t)stream << 48));
     s.key = mix64(k + index * SAMPLER_GAMMA);
     s.index = 0;
-    s.qmc = 0;
+    s.kind = SAMPLER_RANDOM;
+    s.count = 1;
     return s;
 }
 
 /* Derives an independent set of dimensions (e.g. for the rays of a final
- * gather): same sample index, other scrambles. */
+ * gather): same sample index and kind, other scrambles. */
 static inline sampler sampler_split(const sampler *s, uint32_t stream)
 {
     sampler r = *s;
@@ -154,32 +139,52 @@ static inline uint32_t sampler_dimension_seed(const sampler *s, uint32_t dim)
     return (uint32_t)(mix64(s->key + (uint64_t)(dim + 1) * SAMPLER_GAMMA) >> 32);
 }
 
-static inline float sampler_1d(const sampler *s, uint32_t dim)
+/* RANDOM: SplitMix64 at the counter key + index·C + (dimension + 1)·γ, C an
+ * odd constant unrelated to γ so that no two (index, dimension) of a pixel
+ * share a counter. */
+static inline uint64_t sampler_random_bits(const sampler *s, uint32_t dim)
 {
-    if (!s->qmc)
-        return u64_to_unit_float(mix64(s->key + (uint64_t)(dim + 1) * SAMPLER_GAMMA));
-    uint32_t seed = sampler_dimension_seed(s, dim);
-    uint32_t i = owen_scramble(s->index, seed ^ 0xa511e9b3U);
-    return u32_to_unit_float(owen_scramble(reverse_bits32(i), seed ^ 0x63d83595U));
+    return mix64(s->key + (uint64_t)s->index * 0xd6e8feb86659fd93ULL + (uint64_t)(dim + 1) * SAMPLER_GAMMA);
 }
 
 typedef struct float2 {
     float x, y;
 } float2;
 
+/* STRATIFIED and HALTON (stratified.c, halton.c). */
+float stratified_1d(const sampler *s, uint32_t dim);
+float2 stratified_2d(const sampler *s, uint32_t dim);
+float halton_1d(const sampler *s, uint32_t dim);
+float2 halton_2d(const sampler *s, uint32_t dim);
+
+static inline float sampler_1d(const sampler *s, uint32_t dim)
+{
+    switch (s->kind) {
+    case SAMPLER_SOBOL: return u32_to_unit_float(sobol_owen_1d(s->index, sampler_dimension_seed(s, dim)));
+    case SAMPLER_STRATIFIED: return stratified_1d(s, dim);
+    case SAMPLER_HALTON: return halton_1d(s, dim);
+    default: return u64_to_unit_float(sampler_random_bits(s, dim));
+    }
+}
+
 static inline float2 sampler_2d(const sampler *s, uint32_t dim)
 {
     float2 r;
-    if (!s->qmc) {
-        r.x = sampler_1d(s, dim);
-        r.y = sampler_1d(s, dim + 1);
+    switch (s->kind) {
+    case SAMPLER_SOBOL: {
+        uint32_t x, y;
+        sobol_owen_2d(s->index, sampler_dimension_seed(s, dim), &x, &y);
+        r.x = u32_to_unit_float(x);
+        r.y = u32_to_unit_float(y);
         return r;
     }
-    uint32_t seed = sampler_dimension_seed(s, dim);
-    uint32_t i = owen_scramble(s->index, seed ^ 0xa511e9b3U);
-    r.x = u32_to_unit_float(owen_scramble(reverse_bits32(i), seed ^ 0x63d83595U));
-    r.y = u32_to_unit_float(owen_scramble(sobol_dim1(i), seed ^ 0x2d358dccU));
-    return r;
+    case SAMPLER_STRATIFIED: return stratified_2d(s, dim);
+    case SAMPLER_HALTON: return halton_2d(s, dim);
+    default:
+        r.x = u64_to_unit_float(sampler_random_bits(s, dim));
+        r.y = u64_to_unit_float(sampler_random_bits(s, dim + 1));
+        return r;
+    }
 }
 
 enum {
