@@ -78,7 +78,7 @@ class PHOS_RENDER_PT_sampling_adaptive(PhosButtonsPanel, bpy.types.Panel):
         phos = context.scene.phos
         layout.active = phos.use_adaptive_sampling
         col = layout.column(align=True)
-        col.prop(phos, "adaptive_threshold", text="Noise Threshold")
+        col.prop(phos, "adaptive_threshold", text="Threshold")
         col.prop(phos, "adaptive_min_samples", text="Min Samples")
 
 

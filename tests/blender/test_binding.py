@@ -131,7 +131,8 @@ def test_scene_properties_are_the_settings_table(scene):
         assert p.hard_min == pytest.approx(s.min), s.prop
         assert p.hard_max == pytest.approx(min(s.max, INT_MAX) if s.ctype != "float" else s.max), s.prop
         assert p.soft_max == pytest.approx(s.soft_max or p.hard_max), s.prop
-        subtype = {"PIXELS": "PIXEL", "LENGTH": "DISTANCE", "FACTOR": "FACTOR"}.get(s.kind, "NONE")
+        subtype = {"PIXELS": "PIXEL", "LENGTH": "DISTANCE", "FACTOR": "FACTOR",
+                   "SECONDS": "TIME_ABSOLUTE"}.get(s.kind, "NONE")
         assert p.subtype == subtype, s.prop
     # Host rows are Blender's own settings, not scene.phos properties.
     for s in core.RENDER_SETTINGS:
