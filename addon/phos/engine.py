@@ -397,14 +397,18 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         # final here, so this wait only joins workers that are done; the loop
         # above ends because the core reaches a final state, and after a
         # cancel it does so within 0.5 s (tests/blender/test_cancel.py).
-        status = render.wait(-1.0)
+        outcome = render.wait(-1.0)
         while True:
             tile = render.next_tile()
             if tile is None:
                 break
             buffers = self._deliver_tile(render, tile, buffers)
-        self._show_progress(render.progress(), rs, final=True)
-        if status == core.PHOS_OK:
+        final = render.progress()
+        self._show_progress(final, rs, final=True)
+        if not self.is_preview:
+            for message in status.short_map_warnings(final, rs):
+                self.report({'WARNING'}, message)
+        if outcome == core.PHOS_OK:
             self.update_progress(1.0)
 
     def _show_progress(self, progress, rs, final=False):

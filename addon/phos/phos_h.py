@@ -769,6 +769,7 @@ class phos_progress(ctypes.Structure):
         ("global_photons", ctypes.c_uint32),
         ("caustic_photons", ctypes.c_uint32),
         ("photon_map", ctypes.c_uint32),
+        ("photon_maps_short", ctypes.c_uint32),
         ("stage_seconds", ctypes.c_double * 8),
         ("rays_traced", ctypes.c_uint64),
         ("cache_records", ctypes.c_uint32),

@@ -43,3 +43,17 @@ def cache_text(progress):
     if progress.cache_lookups:
         text += ", %.1f %% interpolated" % (100.0 * progress.cache_interpolated / progress.cache_lookups)
     return text
+
+
+def short_map_warnings(progress, rs):
+    """A warning per photon map that ended short of its count (the core
+    stopped it: its lights' photons mostly leave the scene or are
+    absorbed), saying what to do about it."""
+    out = []
+    for bit, name, got, want in ((core.PHOS_MAP_GLOBAL, "global", progress.global_photons, rs.global_photons),
+                                 (core.PHOS_MAP_CAUSTIC, "caustic", progress.caustic_photons, rs.caustic_photons)):
+        if progress.photon_maps_short & (1 << bit):
+            out.append("Phos: the %s photon map holds %s of %s photons: its lights' photons mostly leave the "
+                       "scene or are absorbed, so tracing stopped early (the map is right, only sparser)"
+                       % (name, "{:,}".format(got), "{:,}".format(want)))
+    return out

@@ -1056,6 +1056,11 @@ typedef struct phos_progress {
     uint64_t photons_emitted;  /* photon paths so far */
     uint32_t global_photons, caustic_photons; /* in the maps, once built */
     uint32_t photon_map;       /* TRACING_PHOTONS: the map being traced (enum phos_photon_map) */
+    /* Once the maps are built: bit (1 << enum phos_photon_map) of each map
+     * that ended short of its photon count, because its lights' photons
+     * mostly leave the scene or are absorbed (the emission limit, or a
+     * yield too low ever to fill it: the pass stops early). */
+    uint32_t photon_maps_short;
     /* Wall time (s) each stage has run, by enum phos_stage: the whole of a
      * finished stage, the running one so far, 0 for one not reached or not
      * in the plan. What a photon render spends on its maps, and the part of

@@ -477,6 +477,34 @@ def test_background_render_prints_stages(tmp_path):
     assert 20000 <= stored[1] <= 20000 + max_bounces + 1, finished
 
 
+SHORT_MAP_SCRIPT = r"""
+import bpy
+import phostest as pt
+sc = pt.reset_file()
+pt.add_cube(sc, "Cube", size=1.0, material=pt.diffuse("Grey", (0.6, 0.6, 0.6)))
+pt.add_light(sc, 'SPOT', 500.0, location=(2, -1, 3), target=(4, -2, 6), spot_size=0.8)
+pt.set_world(sc, (0, 0, 0), 0.0)
+pt.add_camera(sc)
+pt.configure_output(sc, 32, 24)
+pt.configure_phos(sc, 1)
+sc.phos.integrator = 'PHOTON'
+sc.render.engine = 'PHOS'
+bpy.ops.render.render()
+print("SHORT-MAP-SCRIPT-DONE")
+"""
+
+
+def test_short_map_is_reported(tmp_path):
+    """A spot turned away from the only object lights nothing: the global
+    pass stops at its probe of 1 M paths instead of emitting the 50 M the
+    cap allows, and the render says so in a warning naming the map."""
+    rc, out = pt.run_script(SHORT_MAP_SCRIPT, tmp_path, timeout=120)
+    assert rc == 0 and "SHORT-MAP-SCRIPT-DONE" in out, out[-3000:]
+    assert re.search(r"the global photon map holds 0 of 200,000 photons", out), out[-3000:]
+    emitted = re.findall(r"([\d,]+) emitted", out)
+    assert emitted and int(emitted[-1].replace(",", "")) <= 2000000, emitted[-3:]
+
+
 # ------------------------------------------------------------ determinism
 
 def test_photon_render_thread_count_bit_identical(scene, tmp_path):

@@ -69,8 +69,10 @@ static void test_point_light_irradiance(void)
     atomic_int cancel = 0;
     CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
     CHECK(photon_maps_build(&maps, NULL) == PHOS_OK);
-    /* Half the photons go up and escape: about 2 emitted per stored. */
-    CHECK_MSG(maps.global.count >= 1000000 && maps.global_emitted > 1900000 && maps.global_emitted < 2100000,
+    /* Half the lamp's directions go up and escape; aimed at the plane
+     * (test_photon_aiming.c), the paths are emitted downward alone: about
+     * one emitted per stored. */
+    CHECK_MSG(maps.global.count >= 1000000 && maps.global_emitted > 950000 && maps.global_emitted < 1050000,
               "stored %u, emitted %llu", maps.global.count, (unsigned long long)maps.global_emitted);
     const uint32_t k = 2000;
     kdtree_query q;

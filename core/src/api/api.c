@@ -1135,6 +1135,7 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     if (out->stage_id >= PHOS_STAGE_FILLING_IRRADIANCE_CACHE) {
         out->global_photons = r->maps->global.count;
         out->caustic_photons = r->maps->caustic.count;
+        out->photon_maps_short = r->maps->short_maps;
     }
     if (out->stage_id >= PHOS_STAGE_RENDERING)
         out->cache_records = r->cache.count;

@@ -113,5 +113,6 @@ phos_status photon_maps_load(photon_maps *maps, const scene *s, const photon_tra
     /* Whether they were aimed at a view is not saved: assume so, so that
      * maps kept from this render are not taken as view-independent. */
     maps->aimed_at_view = 1;
+    photon_maps_note_short(maps, s, ps);
     return file_finish_read(f, why, path, WHAT, msg, msg_size);
 }

@@ -199,12 +199,14 @@ static void trace_batch(void *ctx, uint32_t item, uint32_t thread)
         atomic_fetch_add(&w->progress->emitted, end - begin);
 }
 
-/* The caustic pass gives up once it has emitted CAUSTIC_PROBE_PATHS paths
- * and its yield so far would not store a tenth of its target even at the
- * cap on emitted paths: a small glass object far from the light, say. The
- * photons it has stay (they carry 1/emitted each, so the map is as right
- * as any, only sparse), and the tens of millions of paths the cap would
- * allow, which would store almost nothing, are not traced. */
+/* A pass gives up once it has emitted CAUSTIC_PROBE_PATHS paths and its
+ * yield so far would not store a tenth of its target even at the cap on
+ * emitted paths: a small glass object far from the light, a spot that
+ * lights nothing. The photons it has stay (they carry 1/emitted each, so
+ * the map is as right as any, only sparse), and the tens of millions of
+ * paths the cap would allow, which would store almost nothing, are not
+ * traced. The map is then short (photon_maps.short_maps), which the host
+ * tells the user. */
 #define CAUSTIC_PROBE_PATHS 1000000u
 #define CAUSTIC_HOPELESS_FRACTION 10u
 
@@ -300,7 +302,7 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
                 done = 1; /* photons escape or are absorbed: keep what there is */
             /* The yield is judged at fixed path counts (1 M, 2 M, 4 M, ...),
              * not at wave ends, which depend on the thread count. */
-            while (map == MAP_CAUSTIC && !done && next >= checkpoint) {
+            while (map != MAP_RADIANCE_SITES && !done && next >= checkpoint) {
                 uint32_t before = kept->count;
                 while (before > 0 && kept->items[before - 1].path >= checkpoint)
                     before--;
@@ -509,20 +511,34 @@ static void pilot_cell(void *ctx, uint32_t item, uint32_t thread)
     p->weights[item] = fmaxf((float)useful / (float)pilots, PILOT_FLOOR);
 }
 
-/* Global photons from suns and the world aimed at what the camera reads;
- * NULL (*aim untouched) where there is neither or no camera. */
+/* Global photons aimed (docs/algorithms.md §3.1): lamps and emissive
+ * meshes at the objects their photons can land on, suns and the world at
+ * what the camera reads (pilot photons weigh their cells). *aimed: the map
+ * is to be used; *at_view: the camera weighed it. Nothing is aimed (*aimed
+ * 0, the map freed) where no light gains by it: every lamp among the
+ * objects, as in a closed room, and no distant light with a camera. */
 static phos_status aim_global(const scene *s, const photon_trace_settings *ps, projection_map *aim, int *aimed,
-                              atomic_int *cancel)
+                              int *at_view, atomic_int *cancel)
 {
-    *aimed = 0;
-    int has_distant = 0;
-    for (uint32_t i = 0; i < s->lights.count; i++)
-        has_distant |= light_is_distant(&s->lights.lights[i]);
-    if (!has_distant || !s->has_camera)
+    *aimed = *at_view = 0;
+    if (!projection_map_build_global(aim, s))
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    int has_distant = 0, has_cones = 0;
+    for (uint32_t g = 0; g < aim->group_count; g++) {
+        has_distant |= aim->groups[g].distant;
+        has_cones |= !aim->groups[g].all && !aim->groups[g].distant;
+    }
+    if (!has_distant || !s->has_camera) {
+        if (has_cones)
+            *aimed = 1;
+        else
+            projection_map_free(aim);
         return PHOS_OK;
+    }
     photon_importance imp;
-    if (!photon_importance_build(&imp, s) || !projection_map_build_distant(aim, s)) {
+    if (!photon_importance_build(&imp, s)) {
         photon_importance_free(&imp);
+        projection_map_free(aim);
         return PHOS_ERROR_OUT_OF_MEMORY;
     }
     uint32_t cells = 0;
@@ -552,7 +568,7 @@ static phos_status aim_global(const scene *s, const photon_trace_settings *ps, p
     if (st != PHOS_OK)
         projection_map_free(aim);
     else
-        *aimed = 1;
+        *aimed = *at_view = 1;
     return st;
 }
 
@@ -595,8 +611,9 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     if (progress)
         atomic_store(&progress->map, PHOS_MAP_GLOBAL);
     projection_map global_aim;
-    int aimed = 0;
-    phos_status st = ps->global_photons ? aim_global(s, ps, &global_aim, &aimed, cancel) : PHOS_OK;
+    int aimed = 0, at_view = 0;
+    phos_status st =
+        ps->global_photons && !ps->unaimed ? aim_global(s, ps, &global_aim, &aimed, &at_view, cancel) : PHOS_OK;
     if (st != PHOS_OK)
         return st;
     const projection_map *ga = aimed ? &global_aim : NULL;
@@ -607,13 +624,22 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     if (st == PHOS_OK && global_count > 0)
         st = trace_radiance_sites(s, ps, ga, out, (global_count + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE,
                                   cancel, progress);
-    out->aimed_at_view = aimed;
+    out->aimed_at_view = at_view;
     if (aimed)
         projection_map_free(&global_aim);
     if (st == PHOS_OK)
         st = trace_caustic_map(s, ps, out, &kept, cancel, progress);
     free(kept.items);
+    if (st == PHOS_OK)
+        photon_maps_note_short(out, s, ps);
     return st;
+}
+
+void photon_maps_note_short(photon_maps *m, const scene *s, const photon_trace_settings *ps)
+{
+    int caustic_traced = ps->caustic_photons > 0 && scene_can_scatter_caustic(s, ps->caustic_roughness);
+    m->short_maps = (ps->global_photons && m->global.count < ps->global_photons ? 1u << PHOS_MAP_GLOBAL : 0u) |
+                    (caustic_traced && m->caustic.count < ps->caustic_photons ? 1u << PHOS_MAP_CAUSTIC : 0u);
 }
 
 phos_status photon_maps_build(photon_maps *m, atomic_int *cancel)

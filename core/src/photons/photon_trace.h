@@ -31,6 +31,10 @@ typedef struct photon_maps {
      * camera reads (photon_importance.h): an unbiased map for any view, but
      * densest where that camera looked. */
     int aimed_at_view;
+    /* Bit (1 << enum phos_photon_map) of each map traced that ended short
+     * of its count: the emission cap, or a yield too low ever to fill it
+     * (its lights' photons mostly leave the scene or are absorbed). */
+    uint32_t short_maps;
 } photon_maps;
 
 typedef struct photon_trace_settings {
@@ -45,6 +49,8 @@ typedef struct photon_trace_settings {
     float max_radius;          /* search radius cap, scene units */
     float caustic_roughness;   /* glossy closures smoother than this carry caustic paths and store no
                                   photons (bsdf.h, closure_scatters_caustic) */
+    uint32_t unaimed;          /* 1: the global map's lights emit over their whole distribution (the
+                                  tests' reference for aimed maps); 0 in every render */
 } photon_trace_settings;
 
 /* What the maps depend on besides the scene, as 32-bit words (floats by
@@ -77,6 +83,10 @@ void photon_maps_free(photon_maps *m);
  * set, PHOS_ERROR_OUT_OF_MEMORY, or PHOS_OK. */
 phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, photon_maps *out,
                               atomic_int *cancel, photon_trace_progress *progress);
+
+/* Sets m->short_maps from its maps' counts against the settings (traced
+ * or read from a file alike). */
+void photon_maps_note_short(photon_maps *m, const scene *s, const photon_trace_settings *ps);
 
 /* Balances the kd-trees of the global and caustic maps; PHOS_ERROR_CANCELLED
  * soon after *cancel is set (cancel may be NULL). */

@@ -16,6 +16,12 @@
  * directions: each of its WORLD_BINS² bins of equal solid angle has a
  * plane of its own, and a photon from it takes a uniform direction in the
  * bin (distant_plane below).
+ *
+ * For the global map every visible instance is a target, as its
+ * axis-aligned bounding box rather than its sphere: a lamp over a floor
+ * lies inside the floor's sphere but outside its box, and the box's cone
+ * (box_cone) is about a hemisphere, half the directions a point lamp
+ * sends photons into.
  */
 #include "photons/projection_map.h"
 
@@ -50,17 +56,65 @@ static int instance_scatters_caustic(const scene *s, const instance *inst, float
     return 0;
 }
 
-static sphere instance_sphere(const scene *s, const instance *inst)
+typedef struct box {
+    vec3 lo, hi;
+} box;
+
+/* World-space bounds of an instance's vertices. */
+static box instance_box(const scene *s, const instance *inst)
 {
     const mesh *m = &s->meshes[inst->mesh_id];
-    vec3 lo = v3s(INFINITY), hi = v3s(-INFINITY);
+    box b = {v3s(INFINITY), v3s(-INFINITY)};
     for (uint32_t v = 0; v < m->vertex_count; v++) {
         vec3 p = xform_point(inst->transform, v3_load(m->positions + 3 * (size_t)v));
-        lo = v3_min(lo, p);
-        hi = v3_max(hi, p);
+        b.lo = v3_min(b.lo, p);
+        b.hi = v3_max(b.hi, p);
     }
-    sphere sp = {v3_scale(v3_add(lo, hi), 0.5f), 0.5f * v3_length(v3_sub(hi, lo))};
+    return b;
+}
+
+static sphere instance_sphere(const scene *s, const instance *inst)
+{
+    box b = instance_box(s, inst);
+    sphere sp = {v3_scale(v3_add(b.lo, b.hi), 0.5f), 0.5f * v3_length(v3_sub(b.hi, b.lo))};
     return sp;
+}
+
+static int instance_receives(const scene *s, const instance *inst)
+{
+    return s->meshes[inst->mesh_id].triangle_count > 0 && !inst->hidden;
+}
+
+/* The bounding boxes of the instances a photon can land on; one box
+ * around all of them past MAX_CONES. Returns the count (−1: out of
+ * memory). */
+static int collect_boxes(const scene *s, box **out)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->instance_count; i++)
+        n += instance_receives(s, &s->instances[i]);
+    *out = NULL;
+    if (n == 0)
+        return 0;
+    box *t = malloc(sizeof(box) * (n > MAX_CONES ? 1 : n));
+    if (!t)
+        return -1;
+    uint32_t k = 0;
+    for (uint32_t i = 0; i < s->instance_count; i++) {
+        if (!instance_receives(s, &s->instances[i]))
+            continue;
+        box b = instance_box(s, &s->instances[i]);
+        if (n <= MAX_CONES) {
+            t[k++] = b;
+        } else if (k == 0) {
+            t[k++] = b;
+        } else {
+            t[0].lo = v3_min(t[0].lo, b.lo);
+            t[0].hi = v3_max(t[0].hi, b.hi);
+        }
+    }
+    *out = t;
+    return (int)k;
 }
 
 /* The bounding spheres of the instances that can scatter delta; one
@@ -117,6 +171,76 @@ static float cone_share(const light *l, vec3 axis, float omega)
         spread = 2.0f * PHOS_PI;
     }
     return omega / spread;
+}
+
+/* Steps of the search for a box's narrowest cone (box_cone). */
+#define CONE_AXIS_STEPS 24
+
+/* The cosine of the widest angle between axis and the unit directions d[8]. */
+static float widest_cos(vec3 axis, const vec3 d[8], int *widest)
+{
+    float lowest = 2.0f;
+    for (int k = 0; k < 8; k++) {
+        float c = v3_dot(axis, d[k]);
+        if (c < lowest) {
+            lowest = c;
+            *widest = k;
+        }
+    }
+    return lowest;
+}
+
+/* The cone of every direction from a point of the sphere (c, r) (a light
+ * group's bounds) to a point of box b, into *out; 0 when there is none
+ * narrower than the whole sphere of directions worth having (the light
+ * touches or sits in the box, or the box spans more than a hemisphere
+ * around it). The directions from c to the box form the convex cone over
+ * its corners; a cone of half angle θ ≤ 90° is convex too, so holding
+ * every corner it holds the whole box. Its axis starts at the corners'
+ * mean direction and steps toward the widest corner by shrinking amounts
+ * (Bădoiu & Clarkson's iteration for the smallest enclosing ball), which
+ * for a floor under a lamp turns it from the floor's centre to straight
+ * down. Another point of the light, within r of c, sees any point of the
+ * box at most asin(r/near) away, near the box's distance from c. */
+static int box_cone(vec3 c, float r, const box *b, projection_cone *out)
+{
+    vec3 nearest = v3_min(v3_max(c, b->lo), b->hi);
+    float near = v3_length(v3_sub(nearest, c)), reach = r * (1.0f + MARGIN) + MARGIN * near;
+    if (!(near > reach))
+        return 0;
+    vec3 d[8], axis = v3s(0.0f);
+    for (int k = 0; k < 8; k++) {
+        vec3 corner = v3((k & 1) ? b->hi.x : b->lo.x, (k & 2) ? b->hi.y : b->lo.y, (k & 4) ? b->hi.z : b->lo.z);
+        d[k] = v3_normalize(v3_sub(corner, c)); /* corners are at least `near` > 0 away */
+        axis = v3_add(axis, d[k]);
+    }
+    if (!(v3_length(axis) > 0.0f))
+        return 0;
+    axis = v3_normalize(axis);
+    int widest = 0;
+    float cos_corner = widest_cos(axis, d, &widest);
+    for (int step = 0; step < CONE_AXIS_STEPS; step++) {
+        vec3 next = v3_add(axis, v3_scale(d[widest], 1.0f / (float)(step + 2)));
+        if (!(v3_length(next) > 0.0f))
+            break;
+        next = v3_normalize(next);
+        int w = 0;
+        float cw = widest_cos(next, d, &w);
+        if (cw > cos_corner) { /* else the next, shorter step from the same axis */
+            axis = next;
+            cos_corner = cw;
+            widest = w;
+        }
+    }
+    if (!(cos_corner >= 0.0f))
+        return 0;
+    float half = acosf(clampf(cos_corner, -1.0f, 1.0f)) + asinf(clampf(reach / near, 0.0f, 1.0f)) + MARGIN;
+    if (!(half < PHOS_PI))
+        return 0;
+    out->axis = axis;
+    out->cos_max = cosf(half);
+    out->omega = cone_solid_angle(out->cos_max);
+    return out->omega > 0.0f;
 }
 
 /* ---------------------------------------------------------- plane cells */
@@ -349,6 +473,54 @@ static float mark_cones(projection_map *pm, uint32_t *capacity, const light_tabl
     return g->power * clampf(share, 1e-4f, 1.0f);
 }
 
+/* sr a local light emits into: a spot its cone, an area lamp its
+ * hemisphere, a point lamp the sphere. */
+static float emission_solid_angle(const light *l)
+{
+    if (l->kind == LIGHT_SPOT)
+        return cone_solid_angle(l->spot_cos_half);
+    return l->kind == LIGHT_AREA ? 2.0f * PHOS_PI : 4.0f * PHOS_PI;
+}
+
+/* A local light group's cones toward the global map's boxes (box_cone),
+ * leaving out those the light sends nothing into (a spot's back); every
+ * direction when one box has no cone, or when the cones span as much as
+ * the light emits into: photons drawn uniformly in them would then be
+ * spread thinner than the light's own sampling spreads them (a spot
+ * under a ceiling: its cone lies inside the ceiling's). Returns the power
+ * sent into them (W), roughly (cone_share). */
+static float mark_box_cones(projection_map *pm, uint32_t *capacity, const light_table *tab, const light_group *g,
+                            const box *t, int nt, int *ok)
+{
+    const light *l = &tab->lights[g->first];
+    projection_group *pg = &pm->groups[pm->group_count];
+    float share = 0.0f, total_omega = 0.0f, emitted_into = g->count == 1 ? emission_solid_angle(l) : 4.0f * PHOS_PI;
+    for (int k = 0; k < nt; k++) {
+        projection_cone c;
+        int has_cone = box_cone(g->center, g->radius, &t[k], &c);
+        float cone_power = has_cone ? cone_share(l, c.axis, c.omega) : 0.0f;
+        if (has_cone && g->count == 1 && !(cone_power > 0.0f))
+            continue;
+        if (!has_cone || total_omega + c.omega >= emitted_into) {
+            pg->all = 1;
+            pg->count = 0;
+            return g->power;
+        }
+        total_omega += c.omega;
+        c.cdf_end = total_omega;
+        share += cone_power;
+        if (!(*ok = append_cone(pm, capacity, &c)))
+            return 0.0f;
+    }
+    if (pg->count == 0) { /* nothing it can land on: no photon is ever stored */
+        pg->all = 1;
+        return g->power;
+    }
+    for (uint32_t k = 0; k < pg->count; k++)
+        pm->cones[pg->first + k].cdf_end /= total_omega;
+    return g->power * clampf(share, 1e-4f, 1.0f);
+}
+
 /* ------------------------------------------------------- world discs */
 
 /* The world's caustic photons (Jensen's projection maps for a light at
@@ -550,7 +722,9 @@ static int rebuild_pick(projection_map *pm, const scene *s)
         return 0;
     for (uint32_t g = 0; g < tab->group_count; g++) {
         const projection_group *pg = &pm->groups[g];
-        weight[g] = pg->all || !pg->distant ? tab->groups[g].power : (pg->count ? distant_weight(tab, pm, g) : 0.0f);
+        weight[g] = pg->all ? tab->groups[g].power
+                    : pg->distant ? (pg->count ? distant_weight(tab, pm, g) : 0.0f)
+                                  : pg->power;
     }
     distribution_free(&pm->pick);
     int ok = distribution_build(&pm->pick, weight, tab->group_count);
@@ -558,38 +732,64 @@ static int rebuild_pick(projection_map *pm, const scene *s)
     return ok;
 }
 
-int projection_map_build_distant(projection_map *pm, const scene *s)
+int projection_map_build_global(projection_map *pm, const scene *s)
 {
     memset(pm, 0, sizeof(*pm));
     const light_table *tab = &s->lights;
     if (tab->group_count == 0)
         return 1;
+    box *boxes;
+    int nb = collect_boxes(s, &boxes);
     pm->groups = calloc(tab->group_count, sizeof(projection_group));
-    if (!pm->groups)
+    if (nb < 0 || !pm->groups) {
+        free(boxes);
+        free(pm->groups);
+        pm->groups = NULL;
         return 0;
-    /* One target, the scene's bounding sphere: every cell a photon can
-     * reach the scene from. */
+    }
+    /* One target for the distant lights, the scene's bounding sphere:
+     * every cell a photon can reach the scene from. */
     sphere scene_sphere = {tab->center, tab->radius};
-    uint32_t capacity = 0, first = 0;
+    uint32_t cells_capacity = 0, cones_capacity = 0, first_cell = 0, first_cone = 0;
     int ok = 1;
     for (uint32_t g = 0; ok && g < tab->group_count; g++) {
         const light *l = &tab->lights[tab->groups[g].first];
         projection_group *pg = &pm->groups[g];
-        pg->first = first;
-        if (!light_is_distant(l)) {
-            pg->all = 1;
-        } else {
+        if (light_is_distant(l)) {
+            pg->first = first_cell;
             pg->distant = 1;
-            mark_distant(pm, &capacity, tab, l, &scene_sphere, 1, &ok);
-            first += pg->count;
+            mark_distant(pm, &cells_capacity, tab, l, &scene_sphere, 1, &ok);
+            first_cell += pg->count;
+        } else {
+            pg->first = first_cone;
+            pg->power = mark_box_cones(pm, &cones_capacity, tab, &tab->groups[g], boxes, nb, &ok);
+            first_cone += pg->count;
         }
         pm->group_count++;
     }
+    free(boxes);
     if (ok)
         ok = rebuild_pick(pm, s);
     if (!ok)
         projection_map_free(pm);
     return ok;
+}
+
+float projection_map_aimed_share(const projection_map *pm, const scene *s)
+{
+    double aimed = 0.0, total = 0.0;
+    for (uint32_t g = 0; g < pm->group_count; g++) {
+        const projection_group *pg = &pm->groups[g];
+        const light_group *lg = &s->lights.groups[g];
+        total += lg->power;
+        if (pg->all)
+            aimed += lg->power;
+        else if (!pg->distant)
+            aimed += pg->power;
+        else
+            aimed += lg->power; /* cells: weighed by pilots, not cut */
+    }
+    return total > 0.0 ? (float)(aimed / total) : 1.0f;
 }
 
 /* Each cell takes the largest weight of its 3 × 3 neighbourhood in its

@@ -14,8 +14,10 @@
  * every direction that can start a caustic path is still sampled.
  *
  * The global map uses the same cells for the distant lights (suns and the
- * world), weighted by pilot photons toward what the camera reads
- * (projection_map_build_distant, projection_map_set_weights).
+ * world), weighted by pilot photons toward what the camera reads, and
+ * cones for the local lights toward every object that can receive a
+ * photon, so that no photon is emitted into empty space
+ * (projection_map_build_global, projection_map_set_weights).
  */
 #ifndef PHOS_PROJECTION_MAP_H
 #define PHOS_PROJECTION_MAP_H
@@ -41,6 +43,7 @@ typedef struct projection_group {
                                    the disc of a target sphere across it (projection_map.c) */
     uint32_t all;               /* 1: no projection (the light sits among the specular objects,
                                    or covering every direction), emitted as for the global map */
+    float power;                /* W a local group sends into its cones, roughly: its pick weight */
 } projection_group;
 
 typedef struct projection_map {
@@ -66,9 +69,16 @@ int projection_map_build(projection_map *pm, const scene *s, float max_roughness
 void projection_map_free(projection_map *pm);
 
 /* For the global map: every distant light's cells over the scene's
- * bounds, each of weight 1 until projection_map_set_weights; the other
- * lights emit as usual. Returns 0 when memory is exhausted. */
-int projection_map_build_distant(projection_map *pm, const scene *s);
+ * bounds, each of weight 1 until projection_map_set_weights; every local
+ * light's cones toward the bounding boxes of the visible instances (those
+ * with triangles), none where the light sits among them or they surround
+ * it. Returns 0 when memory is exhausted. */
+int projection_map_build_global(projection_map *pm, const scene *s);
+
+/* The share of all light power that the map's groups send into their
+ * cells or cones (1 when every group emits everywhere): how much of the
+ * emission aiming keeps. */
+float projection_map_aimed_share(const projection_map *pm, const scene *s);
 
 /* A photon's origin and direction through cell k of distant group g (u:
  * the point in the cell, ud: the direction in the sun's cone or the
