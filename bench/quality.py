@@ -313,6 +313,11 @@ def phos_measurement(scene, module, args, ref, settings, integrator):
     rel, own = ref.relative_mse(image)
     row = {"scene": args.scene, "engine": "PHOS", "integrator": integrator, "samples": samples}
     row.update(settings)
+    tracing = phos_stage_seconds("PHOS_STAGE_TRACING_PHOTONS")
+    kept = getattr(sys.modules.get(_common.ADDON_NAME + ".engine"), "last_render_seconds", {})
+    emitted = kept.get("photons_emitted", 0)
+    row.update(tracing_seconds=tracing, tracing_share=tracing / seconds if seconds > 0 else 0.0,
+               photon_yield=kept.get("photons_stored", 0) / emitted if emitted else "")
     row.update(seconds=seconds, fixed_seconds=fixed,
                full_hd_seconds=fixed + tiles * FULL_HD_PIXELS / (args.resolution[0] * args.resolution[1]),
                relative_mse=rel, reference_share=own, mean_ratio=float(image.mean() / ref.mean.mean()))

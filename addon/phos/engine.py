@@ -98,6 +98,10 @@ def _timing(plan, progress, export_seconds):
     seconds["cache_records"] = progress.cache_records
     seconds["cache_interpolated"] = (progress.cache_interpolated / progress.cache_lookups
                                      if progress.cache_lookups else 0.0)
+    # Photon paths emitted and photons kept (both maps): their ratio is the
+    # yield, the share of tracing work that is stored (docs/benchmarks.md).
+    seconds["photons_emitted"] = progress.photons_emitted
+    seconds["photons_stored"] = progress.photons_stored
     if progress.rays_traced and tiles > 0.0:
         text += "; %.1f M rays, %.2f M rays/s" % (progress.rays_traced * 1e-6, progress.rays_traced * 1e-6 / tiles)
     text += status.cache_text(progress).replace(" | ", "; ", 1)
