@@ -9,9 +9,9 @@
  *  - everything is a pure function of (seed, pixel, sample, dimension);
  *  - the other samplers: STRATIFIED's 1-D sets one point per stratum of N
  *    and its 2-D sets multi-jittered (one per cell of the m×n grid and one
- *    per fine row and column) for any N; HALTON's consecutive runs one per
- *    stratum of 2^j (1-D) and per box 2^−j × 3^−k (2-D); RANDOM uniform and
- *    uncorrelated; all four unbiased, and the three stratified ones
+ *    per fine row and column) for any N; HALTON's first 2^m samples one
+ *    per stratum of 2^m (1-D) and evenly over the boxes 2^−a × 3^−b (2-D),
+ *    its sets uncorrelated; RANDOM uniform and uncorrelated; all four unbiased, and the three stratified ones
  *    integrating a smooth 2-D function with less error than RANDOM.
  */
 #include <stdio.h>
@@ -89,29 +89,61 @@ static int stratified_is_multi_jittered(uint32_t n, uint32_t px, uint32_t dim)
     return 1;
 }
 
-/* HALTON, 2^a·3^b samples of one pixel: one per box 2^−a × 3^−b in 2-D,
- * and (1-D, base 2) one per stratum of 2^a among the first 2^a. */
-static int halton_is_stratified(uint32_t a, uint32_t b, uint32_t px, uint32_t dim)
+/* HALTON, the first 2^m samples of one pixel: (Φ₂, Φ₃) of a run of 2^m
+ * consecutive indices (the per-set shuffle maps the first 2^m onto
+ * themselves), so every box 2^−a × 3^−b with 2^a·3^b ≤ 2^m holds
+ * ⌊2^m/(2^a·3^b)⌋ or ⌈…⌉ points, and the 1-D sets one per stratum of 2^m. */
+static int halton_is_stratified(uint32_t m, uint32_t px, uint32_t dim)
 {
-    uint32_t nx = 1u << a, ny = 1, n;
-    for (uint32_t k = 0; k < b; k++)
-        ny *= 3;
-    n = nx * ny;
+    uint32_t n = 1u << m;
+    static float x[4096], y[4096];
     static int box[4096], strata[4096];
-    memset(box, 0, sizeof(int) * n), memset(strata, 0, sizeof(int) * n);
+    memset(strata, 0, sizeof(int) * n);
     for (uint32_t i = 0; i < n; i++) {
         sampler s = sampler_for_pixel(SAMPLER_HALTON, 6, px, 2, i, n);
         float2 u = sampler_2d(&s, dim);
-        if (!(u.x >= 0.0f && u.x < 1.0f && u.y >= 0.0f && u.y < 1.0f))
+        float v = sampler_1d(&s, dim + 2);
+        if (!(u.x >= 0.0f && u.x < 1.0f && u.y >= 0.0f && u.y < 1.0f && v >= 0.0f && v < 1.0f))
             return 0;
-        box[(uint32_t)(u.y * (float)ny) * nx + (uint32_t)(u.x * (float)nx)]++;
-        if (i < nx)
-            strata[(uint32_t)(sampler_1d(&s, dim + 2) * (float)nx)]++;
+        x[i] = u.x, y[i] = u.y;
+        strata[(uint32_t)(v * (float)n)]++;
     }
     for (uint32_t k = 0; k < n; k++)
-        if (box[k] != 1 || (k < nx && strata[k] != 1))
+        if (strata[k] != 1)
             return 0;
+    for (uint32_t nx = 1; nx <= n; nx *= 2)
+        for (uint32_t ny = 1; nx * ny <= n; ny *= 3) {
+            uint32_t cells = nx * ny, lo = n / cells, hi = (n + cells - 1) / cells;
+            memset(box, 0, sizeof(int) * cells);
+            for (uint32_t i = 0; i < n; i++)
+                box[(uint32_t)(y[i] * (float)ny) * nx + (uint32_t)(x[i] * (float)nx)]++;
+            for (uint32_t k = 0; k < cells; k++)
+                if (box[k] < (int)lo || box[k] > (int)hi)
+                    return 0;
+        }
     return 1;
+}
+
+/* HALTON's sets are decorrelated: within a pixel, the x of one 2-D set
+ * against the x of another is as uncorrelated as independent numbers
+ * (they were not when the sets differed by an index offset alone). */
+static double halton_set_correlation(void)
+{
+    double sa = 0.0, sb = 0.0, sab = 0.0, sa2 = 0.0, sb2 = 0.0;
+    const int N = 256, P = 400;
+    double worst = 0.0;
+    for (int p = 0; p < P; p++) {
+        sa = sb = sab = sa2 = sb2 = 0.0;
+        for (int i = 0; i < N; i++) {
+            sampler s = sampler_for_pixel(SAMPLER_HALTON, 1, (uint32_t)p, 0, (uint32_t)i, (uint32_t)N);
+            double a = sampler_2d(&s, 5).x, b = sampler_2d(&s, 13).x;
+            sa += a, sb += b, sab += a * b, sa2 += a * a, sb2 += b * b;
+        }
+        double ma = sa / N, mb = sb / N;
+        double corr = (sab / N - ma * mb) / sqrt((sa2 / N - ma * ma) * (sb2 / N - mb * mb));
+        worst += corr * corr;
+    }
+    return sqrt(worst / P); /* RMS over pixels: 1/√N ≈ 0.0625 for independent sets */
 }
 
 /* ∫∫ f over the unit square with N samples per pixel, the RMS error over
@@ -153,9 +185,12 @@ static void check_other_samplers(void)
             CHECK_MSG(stratified_is_multi_jittered(counts[c], px, 4 + 8 * px), "STRATIFIED N=%u pixel %u",
                       counts[c], px);
     for (uint32_t px = 0; px < 8; px++) {
-        CHECK_MSG(halton_is_stratified(4, 2, px, 4 + 8 * px), "HALTON 16x9 pixel %u", px);
-        CHECK_MSG(halton_is_stratified(6, 3, px, 20 + px), "HALTON 64x27 pixel %u", px);
+        CHECK_MSG(halton_is_stratified(6, px, 4 + 8 * px), "HALTON 64 samples, pixel %u", px);
+        CHECK_MSG(halton_is_stratified(10, px, 20 + px), "HALTON 1024 samples, pixel %u", px);
     }
+    double rms_corr = halton_set_correlation();
+    printf("HALTON: RMS correlation between two sets of a pixel %.4f (independent: %.4f)\n", rms_corr, 1.0 / 16.0);
+    CHECK_MSG(rms_corr < 0.1, "HALTON's sets are correlated: RMS %.3f", rms_corr);
     /* Samples past N start fresh strata: still in [0, 1). */
     sampler late = sampler_for_pixel(SAMPLER_STRATIFIED, 1, 0, 0, 1000, 16);
     float2 lu = sampler_2d(&late, 0);

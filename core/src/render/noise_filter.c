@@ -23,6 +23,12 @@
  * irradiance is read as 0/ε = 0 and multiplied back exactly). */
 #define ALBEDO_FLOOR 1e-3f
 
+/* The albedo the indirect light is divided by and multiplied back with:
+ * the Denoising Albedo pass, floored, and at most 1, since that pass also
+ * holds the emitters seen (as Cycles' does), whose "albedo" of 3–12 at a
+ * lamp's edge made the filtered irradiance come back brighter there. */
+static float divisor_albedo(float albedo) { return fminf(fmaxf(albedo, ALBEDO_FLOOR), 1.0f); }
+
 /* The variance of each pixel's mean luminance, from its samples' moments
  * (film.moments): s²/n with s² the samples' variance; 0 with one sample. */
 static void mean_variances(const film *f, float *variance)
@@ -53,7 +59,7 @@ static void filter_source(const render *r, float *rgb)
             switch (r->settings.filter_target) {
             case PHOS_FILTER_TARGET_ALL: rgb[3 * i + c] = combined[4 * i + c]; break;
             case PHOS_FILTER_TARGET_INDIRECT: rgb[3 * i + c] = indirect[3 * i + c]; break;
-            default: rgb[3 * i + c] = indirect[3 * i + c] / fmaxf(albedo[3 * i + c], ALBEDO_FLOOR); break;
+            default: rgb[3 * i + c] = indirect[3 * i + c] / divisor_albedo(albedo[3 * i + c]); break;
             }
         }
 }
@@ -72,7 +78,7 @@ static void compose(render *r, const float *filtered)
             switch (r->settings.filter_target) {
             case PHOS_FILTER_TARGET_ALL: *out = v; break;
             case PHOS_FILTER_TARGET_INDIRECT: *out += v - indirect[3 * i + c]; break;
-            default: *out += v * fmaxf(albedo[3 * i + c], ALBEDO_FLOOR) - indirect[3 * i + c]; break;
+            default: *out += v * divisor_albedo(albedo[3 * i + c]) - indirect[3 * i + c]; break;
             }
             *out = fmaxf(*out, 0.0f); /* rounding of the difference, never light taken away */
         }
@@ -92,8 +98,6 @@ phos_status render_filter(render *r)
 {
     film *f = &r->film;
     size_t pixels = (size_t)f->width * f->height;
-    if (f->planes[PHOS_PASS_NOISY_IMAGE])
-        memcpy(f->planes[PHOS_PASS_NOISY_IMAGE], f->planes[PHOS_PASS_COMBINED], sizeof(float) * 4 * pixels);
     int whole_image = r->settings.filter_target == PHOS_FILTER_TARGET_ALL;
     float *source = malloc(sizeof(float) * 3 * pixels), *filtered = malloc(sizeof(float) * 3 * pixels);
     float *variance = whole_image ? malloc(sizeof(float) * pixels) : NULL;

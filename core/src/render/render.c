@@ -163,6 +163,11 @@ static void write_means(render *r, uint32_t x, uint32_t y, pixel_sums *a, uint32
     }
     if (pass_on(r, PHOS_PASS_SAMPLE_COUNT))
         film_pixel(&r->film, PHOS_PASS_SAMPLE_COUNT, x, y)[0] = (float)samples / (float)r->settings.samples;
+    /* The image before the noise filter: Combined as rendered, which the
+     * FILTERING stage then replaces (and Combined itself without a filter). */
+    if (pass_on(r, PHOS_PASS_NOISY_IMAGE))
+        memcpy(film_pixel(&r->film, PHOS_PASS_NOISY_IMAGE, x, y), film_pixel(&r->film, PHOS_PASS_COMBINED, x, y),
+               4 * sizeof(float));
 }
 
 /* Luminance of linear Rec. 709 RGB (ITU-R BT.709). */

@@ -26,12 +26,12 @@
  * xor-shifts alone) left some outputs twice as likely as others for a
  * given input over the keys, which biased the strata; so do four rounds
  * on the smallest domains (12 % on 8 elements), where each round mixes
- * only two bits. */
-#define FEISTEL_ROUNDS 8u
+ * only two bits: those take eight. */
+static uint32_t feistel_rounds(uint32_t half) { return half < 3 ? 8u : 4u; }
 static uint32_t feistel(uint32_t x, uint32_t half, uint32_t key)
 {
-    uint32_t mask = (1u << half) - 1u, left = x >> half, right = x & mask;
-    for (uint32_t round = 0; round < FEISTEL_ROUNDS; round++) {
+    uint32_t mask = (1u << half) - 1u, left = x >> half, right = x & mask, rounds = feistel_rounds(half);
+    for (uint32_t round = 0; round < rounds; round++) {
         uint32_t next = left ^ (hash_combine(key + round, right) & mask);
         left = right;
         right = next;
@@ -53,13 +53,20 @@ static uint32_t permutation_element(uint32_t i, uint32_t n, uint32_t key)
     return i;
 }
 
-/* The largest divisor of n not above √n. */
+/* The largest divisor of n not above √n; the search (√n steps) is kept
+ * per thread for the n last asked, since every 2-D request of a render
+ * asks for the same n. */
 static uint32_t grid_columns(uint32_t n)
 {
+    static _Thread_local uint32_t last_n, last_m;
+    if (n == last_n)
+        return last_m;
     uint32_t m = 1;
     for (uint32_t d = 1; (uint64_t)d * d <= n; d++)
         if (n % d == 0)
             m = d;
+    last_n = n;
+    last_m = m;
     return m;
 }
 
