@@ -16,6 +16,8 @@
 #                                         references (docs/benchmarks.md; 36 min from a
 #                                         fresh clone, QUICK=1 a few minutes)
 #   make bench-official                   the part against official Cycles (guiding, OIDN) alone
+#   make bench-convergence [QUICK=1]      samplers, adaptive sampling and filters against
+#                                         cached references alone (bench/convergence.py)
 #   make bench-kdtree [BENCH_ARGS=...]    the kd-tree benchmark alone
 #   make bench-defaults                   PHOTON settings swept against cached Cycles
 #               [BENCH_SCENES=...]        references, ranked by error per second, and
@@ -61,10 +63,10 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
 .PHONY: test-asan test-tsan valgrind fuzz
-.PHONY: deps build binding check-binding test test-gui test-blender4 test-blender-latest bench bench-official bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
+.PHONY: deps build binding check-binding test test-gui test-blender4 test-blender-latest bench bench-official bench-convergence bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
 
 help:
-	@sed -n '3,33p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,35p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -211,6 +213,9 @@ BENCH_REF_CHUNKS := 4
 BENCH_MAX_PHOTONS := 1000000
 BENCH_DUMPS := 200000
 BENCH_OUT := out/bench-quick
+BENCH_CONVERGENCE_ARGS ?= --spp 1 4 16 --seeds 1 --thresholds 0.02 --adaptive-samples 128 --ladder 16 64 \
+                          --filters NONE LOWPASS MEDIAN DIFFUSION --targets ALL INDIRECT_IRRADIANCE \
+                          --filter-scenes cornell_box
 else
 BENCH_SCENES_ALL ?= cornell_box sunlit_room glass_sphere_caustic metal_ring procedural_materials hdr_product \
                     default_scene lamp_kinds \
@@ -220,7 +225,13 @@ BENCH_TRIANGLES  ?= 10000 100000 1000000 5000000
 BENCH_MAX_PHOTONS := 10000000
 BENCH_DUMPS := 200000 2000000
 BENCH_OUT := out/bench
+BENCH_CONVERGENCE_ARGS ?= --seeds 8 --adaptive-samples 1024 --filter-scenes cornell_box procedural_materials
 endif
+# Noise reduction as the course's slides list it: samplers, adaptive
+# sampling, filters (bench/convergence.py; its references are cached too).
+BENCH_CONVERGENCE := $(BLENDER_ISOLATED) $(BLENDER_RUN) --python bench/convergence.py -- --out $(BENCH_OUT) \
+                     --reference-dir $(BENCH_REF_DIR) --resolution $(BENCH_RESOLUTION) \
+                     --ref-chunks $(BENCH_REF_CHUNKS) $(BENCH_CONVERGENCE_ARGS)
 bench: bench-programs build
 	mkdir -p $(BENCH_OUT)
 	$(BENCH_DIR)/bench/bench_core rays threads photons --max-photons $(BENCH_MAX_PHOTONS) --csv $(BENCH_OUT)
@@ -237,9 +248,16 @@ bench: bench-programs build
 	  $(BENCH_QUALITY) bench --scene $$s --resolution $(BENCH_RESOLUTION) --reference-dir $(BENCH_REF_DIR) \
 	    --budgets $(BENCH_BUDGETS) --csv $(BENCH_OUT)/bench_$$s.csv | $(BENCH_QUIET); \
 	done
+	$(BENCH_CONVERGENCE) | $(BENCH_QUIET)
 	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python bench/scaling.py -- --triangles $(BENCH_TRIANGLES) \
 	  --csv $(BENCH_OUT)/scaling.csv | $(BENCH_QUIET)
 	$(MAKE) bench-official BENCH_OUT=$(BENCH_OUT)
+	/usr/bin/python3 bench/plots.py $(BENCH_OUT)
+
+bench-convergence: build
+	@tools/install-deps.sh --bench
+	mkdir -p $(BENCH_OUT)
+	$(BENCH_CONVERGENCE) | $(BENCH_QUIET)
 	/usr/bin/python3 bench/plots.py $(BENCH_OUT)
 
 # Cycles as artists run it: the newest official build of tools/bpy-versions.txt

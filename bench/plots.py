@@ -10,10 +10,14 @@ Reads   bench_<scene>.csv and bench_<scene>.npz (bench/quality.py bench;
         rays.csv, threads.csv, photons.csv (bench_core), kdtree.csv
         (bench_kdtree), scaling.csv (bench/scaling.py), viewport.csv
         (bench/viewport.py), official_<scene>.csv
-        (quality.py bench --parts official, under an official Blender), when present.
+        (quality.py bench --parts official, under an official Blender),
+        convergence_*.csv and convergence_strip_<scene>.npz
+        (bench/convergence.py), when present.
 Writes  quality_vs_time.png (relative MSE against render time, log-log,
         a panel per scene), strip_<scene>.png (reference, Phos, Cycles and
-        each one's error), scaling.png, and summary.md.
+        each one's error), scaling.png, convergence_samplers.png,
+        convergence_adaptive.png, convergence_strip_<scene>.png (the
+        filters side by side), and summary.md.
 """
 
 import csv
@@ -29,6 +33,7 @@ import numpy as np  # noqa: E402
 
 RELATIVE_EPSILON = 0.01  # as in bench/quality.py
 COLOURS = {"PHOTON": "tab:orange", "PATH": "tab:blue", "CYCLES": "tab:gray"}
+SAMPLER_COLOURS = {"RANDOM": "tab:gray", "STRATIFIED": "tab:green", "HALTON": "tab:purple", "SOBOL": "tab:blue"}
 
 
 def read_csv(path):
@@ -148,6 +153,140 @@ def plot_scaling(rows, photon_rows, out_dir):
     return path
 
 
+def srgb(img):
+    """Linear RGB clamped to [0, 1], through the sRGB transfer function."""
+    x = np.clip(img, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1.0 / 2.4) - 0.055)
+
+
+def plot_samplers(rows, out_dir):
+    """Relative MSE against samples per pixel per sampler, log-log: a column
+    per variant (direct only, full), the error over the whole image and
+    over the pixels away from lamps and their reflections."""
+    variants = [v for v in ("direct", "full") if any(r["variant"] == v for r in rows)]
+    metrics = (("relative_mse", "relative MSE"), ("surface_mse", "relative MSE away from lamps"))
+    fig, axes = plt.subplots(2, len(variants), figsize=(4.4 * len(variants), 7.2), squeeze=False)
+    for col, variant in enumerate(variants):
+        for line, (metric, label) in enumerate(metrics):
+            ax = axes[line][col]
+            for sampler, colour in SAMPLER_COLOURS.items():
+                pts = sorted((num(r, "samples"), num(r, metric)) for r in rows
+                             if r["variant"] == variant and r["sampler"] == sampler)
+                if pts:
+                    spp, e = zip(*pts)
+                    ax.loglog(spp, np.maximum(e, 1e-9), "o-", color=colour, label=sampler.title(), ms=3)
+                    if sampler == "RANDOM":   # 1 / spp through Random's last (least noisy) point
+                        ax.loglog(spp, e[-1] * spp[-1] / np.array(spp), "k:", lw=0.8, label="1 / spp")
+            ax.set_title("%s: %s" % ({"direct": "direct light only"}.get(variant, variant), label), fontsize=9)
+            ax.set_xlabel("samples per pixel")
+            ax.grid(True, which="both", alpha=0.3)
+    axes[0][0].legend(fontsize=8)
+    fig.tight_layout()
+    path = os.path.join(out_dir, "convergence_samplers.png")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_adaptive(rows, out_dir):
+    """Relative MSE against render time: the plain renders' ladder and the
+    adaptive renders, each labelled with its threshold and mean samples."""
+    fig, ax = plt.subplots(figsize=(5.2, 3.8))
+    plain = sorted((num(r, "seconds"), num(r, "relative_mse")) for r in rows if r["adaptive"] == "0")
+    if plain:
+        ax.loglog(*zip(*plain), "o-", color=COLOURS["CYCLES"], label="adaptive off", ms=4)
+    on = sorted(((num(r, "seconds"), num(r, "relative_mse"), r) for r in rows if r["adaptive"] == "1"),
+                key=lambda p: p[0])
+    if on:
+        ax.loglog([t for t, _, _ in on], [e for _, e, _ in on], "s--", color=COLOURS["PATH"], label="adaptive on", ms=5)
+        for i, (t, e, r) in enumerate(on):   # labels staggered upwards: the points lie close
+            ax.annotate("%s: %.0f spp" % (r["threshold"], num(r, "mean_spp")), (t, e), fontsize=7,
+                        textcoords="offset points", xytext=(-30, 10 + 11 * i),
+                        arrowprops={"arrowstyle": "-", "lw": 0.5, "color": "0.5"})
+    ax.set_xlabel("render time (s)")
+    ax.set_ylabel("relative MSE")
+    ax.set_title("PATH, Cornell box", fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    path = os.path.join(out_dir, "convergence_adaptive.png")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_filter_strip(npz_path, out_dir):
+    """The filters side by side at the same samples, as the course's slides
+    show them, then the reference (sRGB, clamped, no exposure)."""
+    data = np.load(npz_path)
+    labels = [str(x) for x in data["labels"]]
+    panels = [("%s\nrelative MSE %.3g" % (lb, e), data["panel%d" % i]) for i, (lb, e)
+              in enumerate(zip(labels, data["errors"]))] + [("reference", data["reference"])]
+    fig, axes = plt.subplots(1, len(panels), figsize=(2.3 * len(panels), 2.8), squeeze=False)
+    for ax, (title, img) in zip(axes[0], panels):
+        ax.imshow(srgb(img.astype(np.float64)), origin="lower")   # rows go up, as Blender's
+        ax.set_title(title, fontsize=8)
+        ax.set_xticks([])
+        ax.set_yticks([])
+    fig.suptitle("%s, %s spp" % (data["integrator"], int(data["samples"])), fontsize=9)
+    fig.tight_layout()
+    name = os.path.basename(npz_path)[:-len(".npz")]
+    path = os.path.join(out_dir, name + ".png")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def convergence_section(out_dir):
+    """The summary's part for bench/convergence.py, its plots drawn; [] if
+    it did not run."""
+    md = []
+    samplers = read_csv(os.path.join(out_dir, "convergence_samplers.csv"))
+    slopes = read_csv(os.path.join(out_dir, "convergence_slopes.csv"))
+    if samplers:
+        top = max(num(r, "samples") for r in samplers)
+
+        def mse_at(r, spp, metric="relative_mse"):
+            return g(next((num(x, metric) for x in samplers if x["variant"] == r["variant"]
+                           and x["sampler"] == r["sampler"] and num(x, "samples") == spp), float("nan")))
+        md += ["## Samplers (PATH, Cornell box)", "",
+               "Relative MSE averaged over seeds; rate: −d log(MSE) / d log(spp), least squares over all "
+               "sample counts (1 for plain Monte Carlo).", "",
+               table(slopes, ["variant", "sampler", lambda r: mse_at(r, 10), lambda r: mse_at(r, top),
+                              lambda r: g(num(r, "relative_mse_rate"), "%.2f"),
+                              lambda r: mse_at(r, 10, "surface_mse"), lambda r: mse_at(r, top, "surface_mse"),
+                              lambda r: g(num(r, "surface_mse_rate"), "%.2f")],
+                     ["variant", "sampler", "10 spp", "%d spp" % top, "rate", "away from lamps: 10 spp",
+                      "%d spp" % top, "rate"]), "",
+               "![samplers](%s)" % os.path.basename(plot_samplers(samplers, out_dir)), ""]
+    adaptive = read_csv(os.path.join(out_dir, "convergence_adaptive.csv"))
+    if adaptive:
+        md += ["## Adaptive sampling at equal time (PATH, Cornell box)", "",
+               table([r for r in adaptive if r["adaptive"] == "1"],
+                     ["threshold", "samples", lambda r: g(num(r, "mean_spp"), "%.0f"),
+                      lambda r: g(num(r, "seconds"), "%.1f"), lambda r: g(num(r, "relative_mse")),
+                      lambda r: g(num(r, "plain_mse_equal_time")), lambda r: g(num(r, "vs_plain_equal_time")),
+                      lambda r: g(num(r, "vs_plain_equal_spp"))],
+                     ["threshold", "samples", "mean spp", "seconds", "relative MSE", "plain, same time",
+                      "adaptive / plain, same time", "same mean spp"]), "",
+               "![adaptive](%s)" % os.path.basename(plot_adaptive(adaptive, out_dir)), ""]
+    filters = read_csv(os.path.join(out_dir, "convergence_filters.csv"))
+    if filters:
+        md += ["## Filters (%s spp)" % filters[0]["samples"], "",
+               "Energy balance: the Combined pass's RGB sum over the Noisy Image pass's, minus 1.", "",
+               table(filters, ["scene", "integrator", "filter", "target", lambda r: g(num(r, "relative_mse")),
+                               lambda r: g(num(r, "vs_unfiltered")), lambda r: g(num(r, "surface_mse")),
+                               lambda r: g(num(r, "energy_balance"), "%.2e"),
+                               lambda r: g(1e3 * num(r, "filter_seconds"), "%.1f"),
+                               lambda r: g(num(r, "seconds"), "%.1f")],
+                     ["scene", "integrator", "filter", "target", "relative MSE", "/ unfiltered", "away from lamps",
+                      "energy balance", "filter (ms)", "render (s)"]), ""]
+    for npz in sorted(glob.glob(os.path.join(out_dir, "convergence_strip_*.npz"))):
+        path = plot_filter_strip(npz, out_dir)
+        md += ["![%s](%s)" % (os.path.basename(path)[:-4], os.path.basename(path)), ""]
+    return md
+
+
 def table(rows, cols, heads):
     lines = ["| " + " | ".join(heads) + " |", "|" + "---|" * len(heads)]
     for r in rows:
@@ -246,6 +385,7 @@ def main():
     path = plot_scaling(scaling, photons, out_dir)
     if path:
         md += ["![scaling](%s)" % os.path.basename(path), ""]
+    md += convergence_section(out_dir)
     with open(os.path.join(out_dir, "summary.md"), "w") as f:
         f.write("\n".join(md))
     print("wrote %s" % os.path.join(out_dir, "summary.md"))
