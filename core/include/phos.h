@@ -991,8 +991,9 @@ PHOS_API phos_status phos_render_set_cache_file(phos_render *render, uint32_t ki
  * why when they were made for another scene, for this scene before a
  * change other than the camera, with other settings that shape them
  * (photon counts, bounces, seed, radii, caustic roughness), or without the
- * radiance photons final gathering reads. A scene with a sun or a world
- * aims those photons at what its camera sees: such maps are refused after
+ * radiance photons final gathering reads. A scene with a sun, a world or a
+ * lamp that reaches several objects aims those photons at what its camera
+ * sees: such maps are refused after
  * a camera change unless any_view is 1 (they stay an unbiased map for any
  * view, if a less dense one where the first camera did not look; the
  * viewport takes them, a final render should not, so that its image does

@@ -2,8 +2,8 @@
  * test_photon_aiming.c — global photons from lamps aimed at what they can
  * land on (projection_map_build_global; docs/algorithms.md §3.1), shown
  * unbiased and worth it:
- *  - on an open scene (a cube on nothing) lit by a point lamp, a spot and
- *    an area lamp in turn, and with the cube on a floor, the power the
+ *  - on an open scene (a cube on nothing) lit by a point lamp, a spot, an
+ *    area lamp and an emissive plane in turn, and with the cube on a floor, the power the
  *    global map stores equals the unaimed map's within 4 standard errors,
  *    direct and all bounces, while far more of the emitted paths store a
  *    photon (the yield);
@@ -12,7 +12,11 @@
  *    more directions than the spot does: 5 times the paths), nothing is
  *    aimed, and the map is the unaimed one bit for bit;
  *  - a spot that lights nothing ends its map early, short, and says so
- *    (photon_maps.short_maps).
+ *    (photon_maps.short_maps);
+ *  - with a camera, a lamp's cones are weighed by pilot photons toward
+ *    what the camera reads: between a cube in view and one out of it, the
+ *    cube in view gets a larger share of the photons than
+ *    without a camera, and each cube's power is unchanged within noise.
  */
 #include <stdio.h>
 #include <string.h>
@@ -52,10 +56,26 @@ static uint32_t add_cube(phos_scene *s)
     return test_add_quads(s, (const float(*)[4][3])q, 6);
 }
 
-enum lamp { LAMP_POINT, LAMP_SPOT, LAMP_AREA, LAMP_SPOT_AWAY };
+enum lamp { LAMP_POINT, LAMP_SPOT, LAMP_AREA, LAMP_SPOT_AWAY, LAMP_MESH };
+
+/* A 0.4 m square emissive mesh (both faces) at height 3, tilted toward the cube. */
+static void add_mesh_lamp(phos_scene *s)
+{
+    phos_closure_desc c;
+    phos_closure_desc_init(&c);
+    c.type = PHOS_CLOSURE_EMISSION;
+    c.weight[0] = c.weight[1] = c.weight[2] = 50.0f;
+    uint32_t glow = test_add_closure_material(s, &c);
+    float q[1][4][3] = {{{1.8f, -1.2f, 3.0f}, {2.2f, -1.2f, 3.1f}, {2.2f, -0.8f, 3.1f}, {1.8f, -0.8f, 3.0f}}};
+    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])q, 1), glow, 0, 0, 0);
+}
 
 static void add_lamp(phos_scene *s, enum lamp kind)
 {
+    if (kind == LAMP_MESH) {
+        add_mesh_lamp(s);
+        return;
+    }
     phos_light_desc l;
     phos_light_desc_init(&l);
     l.color[0] = l.color[1] = l.color[2] = 50.0f;
@@ -68,6 +88,7 @@ static void add_lamp(phos_scene *s, enum lamp kind)
     case LAMP_POINT: l.type = PHOS_LIGHT_POINT, l.radius = 0.1f; break;
     case LAMP_SPOT:
     case LAMP_SPOT_AWAY: l.type = PHOS_LIGHT_SPOT, l.radius = 0.1f, l.spot_angle = 1.2f, l.spot_blend = 0.2f; break;
+    case LAMP_MESH: break;
     case LAMP_AREA:
         l.type = PHOS_LIGHT_AREA;
         l.position[0] = 0.0f, l.position[1] = 0.0f, l.position[2] = 3.0f;
@@ -198,14 +219,70 @@ static void check_hopeless_map_stops(void)
     phos_scene_destroy(s);
 }
 
+/* Power (RGB mean) and count of the global map's photons with x below
+ * (side 0) or above (side 1) a plane x = split. */
+static void side_power(const photon_map *m, float split, double sum[2], double se[2], uint32_t n[2])
+{
+    double sum2[2] = {0.0, 0.0};
+    sum[0] = sum[1] = 0.0;
+    n[0] = n[1] = 0;
+    for (uint32_t k = 0; k < m->count; k++) {
+        int side = photon_position(&m->photons[k]).x > split;
+        double w = v3_average(photon_power(&m->photons[k]));
+        sum[side] += w, sum2[side] += w * w, n[side]++;
+    }
+    se[0] = sqrt(sum2[0]), se[1] = sqrt(sum2[1]);
+}
+
+static void check_cones_weighed_by_the_camera(void)
+{
+    double sum[2][2], se[2][2];
+    uint32_t n[2][2];
+    for (int camera = 0; camera < 2; camera++) {
+        phos_scene *s = phos_scene_create();
+        uint32_t grey = test_add_diffuse(s, 0.6f, 0.6f, 0.6f), cube = add_cube(s);
+        test_add_instance(s, cube, grey, 0.0f, 0.0f, 0.0f); /* in view */
+        test_add_instance(s, cube, grey, 5.0f, 0.0f, 0.0f); /* out of view, behind a wall */
+        float wall[1][4][3] = {{{2.5f, -2.0f, 0.0f}, {2.5f, 2.0f, 0.0f}, {2.5f, 2.0f, 1.5f}, {2.5f, -2.0f, 1.5f}}};
+        test_add_instance(s, test_add_quads(s, (const float(*)[4][3])wall, 1), grey, 0, 0, 0);
+        phos_light_desc l;
+        phos_light_desc_init(&l);
+        l.color[0] = l.color[1] = l.color[2] = 50.0f;
+        l.position[0] = 2.5f;
+        l.position[2] = 3.0f;
+        phos_scene_add_light(s, &l, NULL);
+        if (camera) /* looking at the first cube; the wall hides the second from it and from its gathers */
+            test_set_camera_pitched(s, 0.0f, -4.0f, 1.5f, 1.33f, 0.3f);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        photon_maps m;
+        CHECK(trace(s, 100000, 0, &m));
+        side_power(&m.global, 2.5f, sum[camera], se[camera], n[camera]);
+        photon_maps_free(&m);
+        phos_scene_destroy(s);
+    }
+    double share[2] = {(double)n[0][0] / (n[0][0] + n[0][1]), (double)n[1][0] / (n[1][0] + n[1][1])};
+    printf("two cubes: the one in view holds %.1f %% of the photons without a camera, %.1f %% with; its power "
+           "%.4f W (± %.4f) and %.4f W (± %.4f)\n", 100.0 * share[0], 100.0 * share[1], sum[0][0], se[0][0], sum[1][0],
+           se[1][0]);
+    CHECK_MSG(share[1] > 1.3 * share[0], "the camera's cube holds %.1f %% of the photons with a camera, %.1f %% without",
+              100.0 * share[1], 100.0 * share[0]);
+    for (int side = 0; side < 2; side++) {
+        double tol = 4.0 * sqrt(se[0][side] * se[0][side] + se[1][side] * se[1][side]);
+        CHECK_MSG(fabs(sum[1][side] - sum[0][side]) < tol, "cube %d: %.4f W with a camera, %.4f W without (± %.4f)",
+                  side, sum[1][side], sum[0][side], tol);
+    }
+}
+
 int main(void)
 {
     check_unbiased_and_worth_it(LAMP_POINT, 0, "point lamp, cube on nothing", 5.0);
     check_unbiased_and_worth_it(LAMP_SPOT, 0, "spot, cube on nothing", 1.5);
     check_unbiased_and_worth_it(LAMP_AREA, 0, "area lamp, cube on nothing", 1.5);
     check_unbiased_and_worth_it(LAMP_POINT, 1, "point lamp, cube on a floor", 1.5);
+    check_unbiased_and_worth_it(LAMP_MESH, 0, "emissive plane, cube on nothing", 3.0);
     check_unaimed_where_nothing_gains(0);
     check_unaimed_where_nothing_gains(1);
     check_hopeless_map_stops();
+    check_cones_weighed_by_the_camera();
     return test_summary("test_photon_aiming");
 }

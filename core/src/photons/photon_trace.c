@@ -42,6 +42,7 @@ enum { MAP_GLOBAL = 0, MAP_CAUSTIC = 1, MAP_RADIANCE_SITES = 2, MAP_PILOT = 3 };
 #define PILOT_PHOTONS 8        /* pilot paths per cell of a sun's plane */
 #define WORLD_PILOT_PHOTONS 4  /* per cell of the world's planes, which have 16 times as many */
 #define PILOT_FLOOR 0.005f     /* weight of a cell no pilot path of which reached what the camera reads */
+#define CONE_PILOT_PHOTONS 64  /* per cone of a lamp that has several (one per object it can reach) */
 
 typedef struct traced_photon {
     vec3 position, power, direction; /* power: W for a single emitted photon */
@@ -470,35 +471,48 @@ static phos_status trace_radiance_sites(const scene *s, const photon_trace_setti
     return st;
 }
 
-/* Pilot photons through each distant light's cell (docs/algorithms.md §3.1): a cell's
- * weight is the share of its pilot paths that store a photon where the
- * camera reads photons (photon_importance.h), never below PILOT_FLOOR, so
- * that every cell keeps a chance and the map stays unbiased. */
+/* Pilot photons through each distant light's cell and each lamp's cone
+ * (docs/algorithms.md §3.1): the weight of a cell or cone is the share of
+ * its pilot paths that store a photon where the camera reads photons
+ * (photon_importance.h), never below PILOT_FLOOR, so that every one keeps
+ * a chance and the map stays unbiased. Items are the cells, then the
+ * cones, each list in its groups' order. */
 typedef struct pilot {
     const scene *s;
     const photon_trace_settings *ps;
     const projection_map *pm;
     const photon_importance *imp;
-    const uint32_t *cell_group;  /* the group of each listed cell */
-    const uint32_t *cell_pilots; /* pilot paths through each group's cells */
+    uint32_t cells;              /* items below this are cells */
+    const uint32_t *item_group;  /* the group of each item */
+    const uint32_t *group_pilots;/* pilot paths through each group's cells or cones */
     float *weights;
 } pilot;
 
-static void pilot_cell(void *ctx, uint32_t item, uint32_t thread)
+/* Pilot path indices: the cells' from 0, the cones' from here. */
+#define CONE_PILOT_BASE (1ull << 40)
+
+static void pilot_item(void *ctx, uint32_t item, uint32_t thread)
 {
     (void)thread;
     pilot *p = ctx;
-    uint32_t g = p->cell_group[item];
-    uint32_t k = item - p->pm->groups[g].first;
+    uint32_t g = p->item_group[item], is_cone = item >= p->cells;
+    uint32_t k = (is_cone ? item - p->cells : item) - p->pm->groups[g].first;
     batch b;
     memset(&b, 0, sizeof(b));
-    uint32_t useful = 0, pilots = p->cell_pilots[g];
+    uint32_t useful = 0, pilots = p->group_pilots[g];
     for (uint32_t i = 0; i < pilots; i++) {
-        uint64_t path = (uint64_t)item * PILOT_PHOTONS + i;
+        uint64_t path = is_cone ? CONE_PILOT_BASE + (uint64_t)(item - p->cells) * CONE_PILOT_PHOTONS + i
+                                : (uint64_t)item * PILOT_PHOTONS + i;
         sampler smp = sampler_for_index(p->ps->sampler, p->ps->seed, MAP_PILOT, path);
         vec3 o, d;
-        projection_map_cell_ray(p->s, p->pm, g, k, sampler_2d(&smp, DIM_EMIT + 1), sampler_2d(&smp, DIM_EMIT + 3), &o,
-                                &d);
+        if (is_cone) {
+            if (!projection_map_cone_ray(p->s, p->pm, g, k, sampler_1d(&smp, DIM_EMIT), sampler_2d(&smp, DIM_EMIT + 1),
+                                         sampler_2d(&smp, DIM_EMIT + 3), &o, &d))
+                continue;
+        } else {
+            projection_map_cell_ray(p->s, p->pm, g, k, sampler_2d(&smp, DIM_EMIT + 1), sampler_2d(&smp, DIM_EMIT + 3),
+                                    &o, &d);
+        }
         b.count = 0;
         trace_from(p->s, p->ps, MAP_GLOBAL, &smp, o, d, v3s(1.0f), path, &b);
         for (uint32_t j = 0; j < b.count; j++)
@@ -511,64 +525,83 @@ static void pilot_cell(void *ctx, uint32_t item, uint32_t thread)
     p->weights[item] = fmaxf((float)useful / (float)pilots, PILOT_FLOOR);
 }
 
+/* Weighs the map's cells and (where a lamp has more than one) cones by
+ * pilots; *weighed: any were. */
+static phos_status weigh_by_pilots(const scene *s, const photon_trace_settings *ps, projection_map *aim,
+                                   atomic_int *cancel, int *weighed)
+{
+    uint32_t cells = 0, cones = 0;
+    for (uint32_t g = 0; g < aim->group_count; g++) {
+        const projection_group *pg = &aim->groups[g];
+        cells += pg->distant ? pg->count : 0;
+        cones += !pg->distant && !pg->all ? pg->count : 0;
+    }
+    uint32_t items = cells + cones;
+    photon_importance imp;
+    if (!photon_importance_build(&imp, s)) {
+        photon_importance_free(&imp);
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    }
+    float *weights = malloc(sizeof(float) * items);
+    uint32_t *item_group = malloc(sizeof(uint32_t) * items);
+    uint32_t *group_pilots = calloc(aim->group_count, sizeof(uint32_t));
+    phos_status st = weights && item_group && group_pilots ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
+    if (st == PHOS_OK) {
+        for (uint32_t g = 0; g < aim->group_count; g++) {
+            const projection_group *pg = &aim->groups[g];
+            int world = light_is_world(&s->lights.lights[s->lights.groups[g].first]);
+            group_pilots[g] = pg->distant ? (world ? WORLD_PILOT_PHOTONS : PILOT_PHOTONS) : CONE_PILOT_PHOTONS;
+            uint32_t base = pg->distant ? 0 : cells;
+            for (uint32_t k = 0; !pg->all && k < pg->count; k++)
+                item_group[base + pg->first + k] = g;
+        }
+        pilot p = {s, ps, aim, &imp, cells, item_group, group_pilots, weights};
+        if (!parallel_for(items, parallel_thread_count(ps->threads), pilot_item, &p, cancel))
+            st = PHOS_ERROR_CANCELLED;
+        else if (!projection_map_set_weights(aim, s, weights) || !projection_map_set_cone_weights(aim, weights + cells))
+            st = PHOS_ERROR_OUT_OF_MEMORY;
+    }
+    free(weights);
+    free(item_group);
+    free(group_pilots);
+    photon_importance_free(&imp);
+    *weighed = st == PHOS_OK;
+    return st;
+}
+
 /* Global photons aimed (docs/algorithms.md §3.1): lamps and emissive
  * meshes at the objects their photons can land on, suns and the world at
- * what the camera reads (pilot photons weigh their cells). *aimed: the map
- * is to be used; *at_view: the camera weighed it. Nothing is aimed (*aimed
- * 0, the map freed) where no light gains by it: every lamp among the
- * objects, as in a closed room, and no distant light with a camera. */
+ * what the camera reads; with a camera, pilot photons weigh the distant
+ * lights' cells and the cones of lamps that have several, so that what
+ * the camera reads gets the photons. *aimed: the map is to be used;
+ * *at_view: the camera weighed it. Nothing is aimed (*aimed 0, the map
+ * freed) where no light gains by it: every lamp among the objects, as in
+ * a closed room, and no distant light with a camera. */
 static phos_status aim_global(const scene *s, const photon_trace_settings *ps, projection_map *aim, int *aimed,
                               int *at_view, atomic_int *cancel)
 {
     *aimed = *at_view = 0;
     if (!projection_map_build_global(aim, s))
         return PHOS_ERROR_OUT_OF_MEMORY;
-    int has_distant = 0, has_cones = 0;
+    int has_distant = 0, has_cones = 0, several_cones = 0;
     for (uint32_t g = 0; g < aim->group_count; g++) {
-        has_distant |= aim->groups[g].distant;
-        has_cones |= !aim->groups[g].all && !aim->groups[g].distant;
+        const projection_group *pg = &aim->groups[g];
+        has_distant |= pg->distant;
+        has_cones |= !pg->all && !pg->distant;
+        several_cones |= !pg->all && !pg->distant && pg->count > 1;
     }
-    if (!has_distant || !s->has_camera) {
+    if (!s->has_camera || !(has_distant || several_cones)) {
         if (has_cones)
             *aimed = 1;
         else
             projection_map_free(aim);
         return PHOS_OK;
     }
-    photon_importance imp;
-    if (!photon_importance_build(&imp, s)) {
-        photon_importance_free(&imp);
-        projection_map_free(aim);
-        return PHOS_ERROR_OUT_OF_MEMORY;
-    }
-    uint32_t cells = 0;
-    for (uint32_t g = 0; g < aim->group_count; g++)
-        cells += aim->groups[g].distant ? aim->groups[g].count : 0;
-    float *weights = malloc(sizeof(float) * (cells ? cells : 1));
-    uint32_t *cell_group = malloc(sizeof(uint32_t) * (cells ? cells : 1));
-    uint32_t *cell_pilots = malloc(sizeof(uint32_t) * aim->group_count);
-    phos_status st = weights && cell_group && cell_pilots ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
-    if (st == PHOS_OK) {
-        for (uint32_t g = 0; g < aim->group_count; g++) {
-            int world = light_is_world(&s->lights.lights[s->lights.groups[g].first]);
-            cell_pilots[g] = world ? WORLD_PILOT_PHOTONS : PILOT_PHOTONS;
-            for (uint32_t k = 0; aim->groups[g].distant && k < aim->groups[g].count; k++)
-                cell_group[aim->groups[g].first + k] = g;
-        }
-        pilot p = {s, ps, aim, &imp, cell_group, cell_pilots, weights};
-        if (!parallel_for(cells, parallel_thread_count(ps->threads), pilot_cell, &p, cancel))
-            st = PHOS_ERROR_CANCELLED;
-        else if (!projection_map_set_weights(aim, s, weights))
-            st = PHOS_ERROR_OUT_OF_MEMORY;
-    }
-    free(weights);
-    free(cell_group);
-    free(cell_pilots);
-    photon_importance_free(&imp);
+    phos_status st = weigh_by_pilots(s, ps, aim, cancel, at_view);
     if (st != PHOS_OK)
         projection_map_free(aim);
     else
-        *aimed = *at_view = 1;
+        *aimed = 1;
     return st;
 }
 

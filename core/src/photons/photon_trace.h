@@ -27,9 +27,10 @@ typedef struct photon_maps {
      * Freed by photon_maps_precompute_radiance. */
     float *radiance_sites;
     uint32_t radiance_site_count;
-    /* The global map's sun and world photons were aimed at what the scene's
-     * camera reads (photon_importance.h): an unbiased map for any view, but
-     * densest where that camera looked. */
+    /* The global map's photons from suns, the world or lamps reaching
+     * several objects were aimed at what the scene's camera reads
+     * (photon_importance.h): an unbiased map for any view, but densest
+     * where that camera looked. */
     int aimed_at_view;
     /* Bit (1 << enum phos_photon_map) of each map traced that ended short
      * of its count: the emission cap, or a yield too low ever to fill it

@@ -58,13 +58,15 @@ static int instance_scatters_caustic(const scene *s, const instance *inst, float
 
 typedef struct box {
     vec3 lo, hi;
+    uint32_t instance;   /* the instance bounded (UINT32_MAX: several) */
+    int planar;          /* all its triangles in one plane: its own emission never lands on it */
 } box;
 
 /* World-space bounds of an instance's vertices. */
 static box instance_box(const scene *s, const instance *inst)
 {
     const mesh *m = &s->meshes[inst->mesh_id];
-    box b = {v3s(INFINITY), v3s(-INFINITY)};
+    box b = {v3s(INFINITY), v3s(-INFINITY), UINT32_MAX, 0};
     for (uint32_t v = 0; v < m->vertex_count; v++) {
         vec3 p = xform_point(inst->transform, v3_load(m->positions + 3 * (size_t)v));
         b.lo = v3_min(b.lo, p);
@@ -83,6 +85,27 @@ static sphere instance_sphere(const scene *s, const instance *inst)
 static int instance_receives(const scene *s, const instance *inst)
 {
     return s->meshes[inst->mesh_id].triangle_count > 0 && !inst->hidden;
+}
+
+/* Whether every vertex of the instance lies in the plane of its first
+ * triangle (within a millionth of its size): an emissive plane's photons
+ * leave that plane and can never come back to it. */
+static int instance_is_planar(const scene *s, const instance *inst, const box *b)
+{
+    const mesh *m = &s->meshes[inst->mesh_id];
+    vec3 v[3];
+    scene_triangle_vertices(s, inst, 0, v);
+    vec3 n = v3_cross(v3_sub(v[1], v[0]), v3_sub(v[2], v[0]));
+    float len = v3_length(n), size = v3_length(v3_sub(b->hi, b->lo));
+    if (!(len > 0.0f))
+        return 0;
+    n = v3_scale(n, 1.0f / len);
+    for (uint32_t k = 0; k < m->vertex_count; k++) {
+        vec3 p = xform_point(inst->transform, v3_load(m->positions + 3 * (size_t)k));
+        if (!(fabsf(v3_dot(v3_sub(p, v[0]), n)) <= 1e-6f * size + 1e-7f))
+            return 0;
+    }
+    return 1;
 }
 
 /* The bounding boxes of the instances a photon can land on; one box
@@ -104,10 +127,13 @@ static int collect_boxes(const scene *s, box **out)
         if (!instance_receives(s, &s->instances[i]))
             continue;
         box b = instance_box(s, &s->instances[i]);
+        b.instance = i;
+        b.planar = n <= MAX_CONES && instance_is_planar(s, &s->instances[i], &b);
         if (n <= MAX_CONES) {
             t[k++] = b;
         } else if (k == 0) {
             t[k++] = b;
+            t[0].instance = UINT32_MAX;
         } else {
             t[0].lo = v3_min(t[0].lo, b.lo);
             t[0].hi = v3_max(t[0].hi, b.hi);
@@ -496,6 +522,9 @@ static float mark_box_cones(projection_map *pm, uint32_t *capacity, const light_
     projection_group *pg = &pm->groups[pm->group_count];
     float share = 0.0f, total_omega = 0.0f, emitted_into = g->count == 1 ? emission_solid_angle(l) : 4.0f * PHOS_PI;
     for (int k = 0; k < nt; k++) {
+        /* An emissive plane's own instance: its photons never land on it. */
+        if (l->kind == LIGHT_TRIANGLE && t[k].planar && t[k].instance == l->instance)
+            continue;
         projection_cone c;
         int has_cone = box_cone(g->center, g->radius, &t[k], &c);
         float cone_power = has_cone ? cone_share(l, c.axis, c.omega) : 0.0f;
@@ -888,6 +917,39 @@ void projection_map_cell_ray(const scene *s, const projection_map *pm, uint32_t 
     const light *l = &s->lights.lights[s->lights.groups[g].first];
     float solid_angle;
     distant_cell_ray(&s->lights, l, pm->cells[pm->groups[g].first + k], u, ud, origin, direction, &solid_angle);
+}
+
+int projection_map_cone_ray(const scene *s, const projection_map *pm, uint32_t g, uint32_t k, float u_light,
+                            float2 uo, float2 ud, vec3 *origin, vec3 *direction)
+{
+    const light_group *lg = &s->lights.groups[g];
+    const projection_cone *c = &pm->cones[pm->groups[g].first + k];
+    float p_light = 1.0f;
+    uint32_t li = lg->first + (lg->count > 1 ? distribution_sample(&lg->within, u_light, &p_light, NULL) : 0);
+    vec3 intensity;
+    *direction = warp_cone(c->axis, c->cos_max, ud);
+    return light_emit_toward(s, li, *direction, uo, origin, &intensity) && !v3_is_zero(intensity);
+}
+
+int projection_map_set_cone_weights(projection_map *pm, const float *weights)
+{
+    for (uint32_t g = 0; g < pm->group_count; g++) {
+        projection_group *pg = &pm->groups[g];
+        if (pg->all || pg->distant || pg->count == 0)
+            continue;
+        double total = 0.0;
+        for (uint32_t k = 0; k < pg->count; k++)
+            total += (double)weights[pg->first + k] * pm->cones[pg->first + k].omega;
+        if (!(total > 0.0))
+            return 0;
+        double cum = 0.0;
+        for (uint32_t k = 0; k < pg->count; k++) {
+            cum += (double)weights[pg->first + k] * pm->cones[pg->first + k].omega;
+            pm->cones[pg->first + k].cdf_end = (float)(cum / total);
+        }
+        pm->cones[pg->first + pg->count - 1].cdf_end = 1.0f;
+    }
+    return 1;
 }
 
 int projection_map_emit(const scene *s, const projection_map *pm, const float u[5], vec3 *origin, vec3 *direction,

@@ -86,6 +86,18 @@ float projection_map_aimed_share(const projection_map *pm, const scene *s);
 void projection_map_cell_ray(const scene *s, const projection_map *pm, uint32_t g, uint32_t k, float2 u, float2 ud,
                              vec3 *origin, vec3 *direction);
 
+/* A pilot photon's origin and direction through cone k of local group g:
+ * a light of the group by power (u_light), a uniform direction in the
+ * cone (ud), its origin on the light (uo); 0 if the light sends nothing
+ * that way (a spot's back). */
+int projection_map_cone_ray(const scene *s, const projection_map *pm, uint32_t g, uint32_t k, float u_light,
+                            float2 uo, float2 ud, vec3 *origin, vec3 *direction);
+
+/* Weighs the cones of every local group (weights[first + k] as listed,
+ * each > 0): a cone is picked in proportion to weight × solid angle, and
+ * the mixture density of projection_map_emit follows. 0 on a zero total. */
+int projection_map_set_cone_weights(projection_map *pm, const float *weights);
+
 /* Sets the weights of the cells of every distant group (weights[first + k] as
  * listed, each > 0) and the groups' pick weights to match. */
 int projection_map_set_weights(projection_map *pm, const scene *s, const float *weights);
