@@ -218,7 +218,7 @@ BENCH_CONVERGENCE_ARGS ?= --spp 1 4 16 --seeds 1 --thresholds 0.02 --adaptive-sa
                           --filter-scenes cornell_box
 else
 BENCH_SCENES_ALL ?= cornell_box sunlit_room glass_sphere_caustic metal_ring procedural_materials hdr_product \
-                    default_scene lamp_kinds \
+                    default_scene lamp_kinds spot_on_floor \
                     cognac_glass
 BENCH_BUDGETS    ?= 4 16 64
 BENCH_TRIANGLES  ?= 10000 100000 1000000 5000000
