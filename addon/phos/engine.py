@@ -177,8 +177,21 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             return
         session.draw(self, depsgraph.scene)
         self.update_stats("", session.status_text(max(1, depsgraph.scene.phos.preview_samples)))
-        if not session.done() or session.divider > 1:
+        if not session.paused and (not session.done() or session.divider > 1):
             self.tag_redraw()  # the render goes on, or the next resolution: draw again soon
+
+    def view_pause(self, context):
+        """The viewport header's Pause (Blender 5.x calls it; older
+        versions have no such button)."""
+        session = getattr(self, "_viewport", None)
+        if session is not None:
+            session.pause()
+
+    def view_resume(self, context):
+        session = getattr(self, "_viewport", None)
+        if session is not None:
+            session.resume()
+            self.tag_redraw()
 
     def __del__(self):
         # Blender frees a viewport's engine when the view leaves Rendered

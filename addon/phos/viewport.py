@@ -122,6 +122,7 @@ class ViewportSession:
         # Seconds from the last restart (a view or scene change) to its
         # first whole image, and to the first at the view's full resolution.
         self.first_image = self.full_image = None
+        self.paused = False        # the viewport's Pause (Blender 5.x): no render runs or starts
 
     # ---------------------------------------------------------- the scene
 
@@ -167,7 +168,7 @@ class ViewportSession:
         scene changed since the one running, at the start resolution; when
         a reduced-resolution render is done, start the next one at twice
         its resolution. Returns whether a render runs."""
-        if self.scene is None:
+        if self.scene is None or self.paused:
             return False
         region, scene = context.region, depsgraph.scene
         width, height = max(region.width, 1), max(region.height, 1)
@@ -247,6 +248,26 @@ class ViewportSession:
         self._end_render()
         self.render_key = None
 
+    def pause(self):
+        """The viewport's Pause (RenderEngine.view_pause, Blender 5.x): the
+        render stops and frees the CPU; its last whole image stays on
+        screen, and edits wait until resume."""
+        self.paused = True
+        if self.render is not None and not self.done():
+            self._take_image_if_gpu()
+            self.stop()
+
+    def resume(self):
+        """Resume: the next draw renders again (afresh if the pause cut a
+        render short, reading the photon maps kept from it)."""
+        self.paused = False
+
+    def _take_image_if_gpu(self):
+        try:
+            self._take_image()
+        except Exception:  # no GPU context (a background caller): the texture stays as it was
+            pass
+
     def shows_final(self):
         """Whether the texture holds the running render's last samples."""
         return self.render is not None and self.shown == (self.render, self.render.progress().samples) \
@@ -294,6 +315,8 @@ class ViewportSession:
     def status_text(self, samples):
         """What the view's corner shows: the stage, the resolution while
         reduced, then the samples so far."""
+        if self.paused:
+            return "Paused"
         if self.render is None:
             return ""
         progress = self.render.progress()

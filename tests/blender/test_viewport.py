@@ -74,3 +74,25 @@ def test_start_resolution_steps():
     while divider > 1:
         divider, steps = viewport.next_divider(divider, slow, 1057, 667), steps + 1
     assert steps == 5
+
+
+def test_pause_and_resume_reach_the_session():
+    """Blender 5.x calls RenderEngine.view_pause and view_resume from the
+    viewport header's Pause; they pause and resume the view's session (the
+    GUI test pauses a live one: tests/gui/test_viewport.py)."""
+    from phos import engine, viewport
+
+    class _Engine:
+        redraws = 0
+
+        def tag_redraw(self):
+            self.redraws += 1
+
+    fake = _Engine()
+    fake._viewport = viewport.ViewportSession()
+    engine.PhosRenderEngine.view_pause(fake, None)
+    assert fake._viewport.paused and fake._viewport.status_text(16) == "Paused"
+    assert fake._viewport.restart_if_needed(None, None) is False
+    engine.PhosRenderEngine.view_resume(fake, None)
+    assert not fake._viewport.paused and fake.redraws == 1
+    fake._viewport.close()

@@ -13,7 +13,11 @@ OpenGL (`make test-gui`; tools/test-gui.sh starts it):
 3. With PHOTON, a view move renders from the photon maps already built
    (no photon stage in the new render's plan); an object moved (in place,
    no export) traces them again.
-4. Leaving Rendered shading frees the session.
+4. Pause (what Blender 5.x's viewport header calls, RenderEngine.view_pause;
+   called here directly, as 3.4 and 4.x have no such button): no render
+   runs or starts, even when the view moves, and the image stays on
+   screen; resume renders the moved view.
+5. Leaving Rendered shading frees the session.
 
 The steps run from a timer and the outcome is written as JSON to
 RESULT.json (tests/gui/guitest.py); the exit code is 0 only if every check
@@ -167,11 +171,28 @@ def step(n):
         check("moving an object traces the photon maps again", s.photon_traces == state["traces"] + 1,
               "%d traces" % (s.photon_traces - state["traces"]))
         check("moving an object exports nothing", s.ctx is state["exports"])
+        s.pause()
         window, area, region = view3d()
+        area.spaces.active.region_3d.view_rotation.rotate(mathutils.Euler((0.0, 0.0, -0.2)))
+        region.tag_redraw()
+        state["renders"], state["paused_at"] = s.renders, time.monotonic()
+        return 6
+    if n == 6 and time.monotonic() - state["paused_at"] > 1.5:
+        s = session()
+        shot, _ = screen_mean()
+        check("a paused viewport starts no render when the view moves", s.renders == state["renders"] and
+              s.done(), "%d renders started, one running: %s" % (s.renders - state["renders"], not s.done()))
+        check("a paused viewport keeps its image on screen", shot > 0.02, "mean %.4f" % shot)
+        s.resume()
+        view3d()[2].tag_redraw()
+        return 7
+    if n == 7 and wait_done(state["renders"]):
+        window, area, region = view3d()
+        check("resuming renders the moved view", session().renders > state["renders"])
         area.spaces.active.shading.type = 'SOLID'
         state["left"] = time.monotonic()
-        return 6
-    if n == 6:
+        return 8
+    if n == 8:
         import gc
         gc.collect()
         if session() is None:
