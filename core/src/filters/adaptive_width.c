@@ -22,7 +22,6 @@
 #include "filters/image_filter.h"
 
 #include <math.h>
-#include <stdlib.h>
 
 /* A spread spike reaches at least the 3×3 block around it: a kernel
  * narrower than about 0.64 pixels would keep its excess in the pixel. */
@@ -61,37 +60,7 @@ static void place_pixel(double *accum, const image_filter_input *in, uint32_t x,
     image_filter_splat(accum, in->width, in->height, x, y, spread_radius(v, tol), spread, kernel);
 }
 
-/* Places every pixel into accum (zeroed), row by row. */
-static phos_status spread_spikes(const image_filter_input *in, const float *luminance, float *tol, double *accum,
-                                 const atomic_int *cancel)
-{
-    image_filter_kernel kernel;
-    image_filter_kernel_init(&kernel);
-    phos_status status = image_filter_tolerance(in, luminance, tol, cancel);
-    for (uint32_t y = 0; y < in->height && status == PHOS_OK; y++) {
-        if (image_filter_cancelled(cancel))
-            return PHOS_ERROR_CANCELLED;
-        for (uint32_t x = 0; x < in->width; x++) {
-            size_t p = (size_t)y * in->width + x;
-            place_pixel(accum, in, x, y, luminance[p], tol[p], &kernel);
-        }
-    }
-    return status;
-}
-
 phos_status image_filter_adaptive_width(const image_filter_input *in, float *out, const atomic_int *cancel)
 {
-    size_t count = image_filter_pixel_count(in);
-    float *luminance = image_filter_luminance_plane(in);
-    float *tol = malloc(count * sizeof(float));
-    double *accum = calloc(count * 3, sizeof(double));
-    phos_status status = PHOS_ERROR_OUT_OF_MEMORY;
-    if (luminance && tol && accum)
-        status = spread_spikes(in, luminance, tol, accum, cancel);
-    if (status == PHOS_OK)
-        image_filter_store(accum, count * 3, out);
-    free(luminance);
-    free(tol);
-    free(accum);
-    return status;
+    return image_filter_spread_pixels(in, out, cancel, place_pixel);
 }

@@ -247,3 +247,33 @@ void image_filter_store(const double *accum, size_t count, float *out)
     for (size_t i = 0; i < count; i++)
         out[i] = (float)accum[i];
 }
+
+phos_status image_filter_spread_pixels(const image_filter_input *in, float *out, const atomic_int *cancel,
+                                       image_filter_place_fn place)
+{
+    size_t count = image_filter_pixel_count(in);
+    float *luminance = image_filter_luminance_plane(in);
+    float *tol = malloc(count * sizeof(float));
+    double *accum = calloc(count * 3, sizeof(double));
+    phos_status status = PHOS_ERROR_OUT_OF_MEMORY;
+    if (luminance && tol && accum)
+        status = image_filter_tolerance(in, luminance, tol, cancel);
+    image_filter_kernel kernel;
+    image_filter_kernel_init(&kernel);
+    for (uint32_t y = 0; y < in->height && status == PHOS_OK; y++) {
+        if (image_filter_cancelled(cancel)) {
+            status = PHOS_ERROR_CANCELLED;
+            break;
+        }
+        for (uint32_t x = 0; x < in->width; x++) {
+            size_t p = (size_t)y * in->width + x;
+            place(accum, in, x, y, luminance[p], tol[p], &kernel);
+        }
+    }
+    if (status == PHOS_OK)
+        image_filter_store(accum, count * 3, out);
+    free(luminance);
+    free(tol);
+    free(accum);
+    return status;
+}

@@ -168,4 +168,15 @@ void image_filter_splat(double *accum, uint32_t width, uint32_t height, uint32_t
 /* out[i] = (float)accum[i] for count values. */
 void image_filter_store(const double *accum, size_t count, float *out);
 
+/* How one energy-preserving filter places pixel (x, y), of luminance v and
+ * spike tolerance tol, into accum (with image_filter_splat). */
+typedef void (*image_filter_place_fn)(double *accum, const image_filter_input *in, uint32_t x, uint32_t y, double v,
+                                      double tol, image_filter_kernel *kernel);
+
+/* The spreading filters' shared frame (adaptive width, splatting): the
+ * luminance and tolerance planes, every pixel placed row by row (a cancel
+ * seen between rows), out written from the sums; frees what it allocates. */
+phos_status image_filter_spread_pixels(const image_filter_input *in, float *out, const atomic_int *cancel,
+                                       image_filter_place_fn place);
+
 #endif /* PHOS_IMAGE_FILTER_H */

@@ -27,7 +27,6 @@
 #include "filters/image_filter.h"
 
 #include <math.h>
-#include <stdlib.h>
 
 /* h0, the kernel radius of a one-sample pixel (pixels): 21 pixels of the
  * 5×5 block (image_filter_splat), narrowing to the 3×3 block at 64 samples
@@ -45,40 +44,18 @@ static double splat_radius(uint32_t samples, double v, double tol)
     return h < IMAGE_FILTER_MAX_SPLAT_RADIUS ? h : IMAGE_FILTER_MAX_SPLAT_RADIUS;
 }
 
-/* Splats every pixel into accum (zeroed), row by row. */
-static phos_status splat_pixels(const image_filter_input *in, const float *luminance, float *tol, double *accum,
-                                const atomic_int *cancel)
+/* Splats pixel (x, y) whole with its radius h_p. */
+static void splat_pixel(double *accum, const image_filter_input *in, uint32_t x, uint32_t y, double v, double tol,
+                        image_filter_kernel *kernel)
 {
-    image_filter_kernel kernel;
-    image_filter_kernel_init(&kernel);
-    phos_status status = image_filter_tolerance(in, luminance, tol, cancel);
-    for (uint32_t y = 0; y < in->height && status == PHOS_OK; y++) {
-        if (image_filter_cancelled(cancel))
-            return PHOS_ERROR_CANCELLED;
-        for (uint32_t x = 0; x < in->width; x++) {
-            size_t p = (size_t)y * in->width + x;
-            const float *c = in->rgb + 3 * p;
-            double rgb[3] = {c[0], c[1], c[2]};
-            double h = splat_radius(in->samples ? in->samples[p] : 1, luminance[p], tol[p]);
-            image_filter_splat(accum, in->width, in->height, x, y, h, rgb, &kernel);
-        }
-    }
-    return status;
+    size_t p = (size_t)y * in->width + x;
+    const float *c = in->rgb + 3 * p;
+    double rgb[3] = {c[0], c[1], c[2]};
+    double h = splat_radius(in->samples ? in->samples[p] : 1, v, tol);
+    image_filter_splat(accum, in->width, in->height, x, y, h, rgb, kernel);
 }
 
 phos_status image_filter_splatting(const image_filter_input *in, float *out, const atomic_int *cancel)
 {
-    size_t count = image_filter_pixel_count(in);
-    float *luminance = image_filter_luminance_plane(in);
-    float *tol = malloc(count * sizeof(float));
-    double *accum = calloc(count * 3, sizeof(double));
-    phos_status status = PHOS_ERROR_OUT_OF_MEMORY;
-    if (luminance && tol && accum)
-        status = splat_pixels(in, luminance, tol, accum, cancel);
-    if (status == PHOS_OK)
-        image_filter_store(accum, count * 3, out);
-    free(luminance);
-    free(tol);
-    free(accum);
-    return status;
+    return image_filter_spread_pixels(in, out, cancel, splat_pixel);
 }
