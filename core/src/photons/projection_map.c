@@ -804,23 +804,6 @@ int projection_map_build_global(projection_map *pm, const scene *s)
     return ok;
 }
 
-float projection_map_aimed_share(const projection_map *pm, const scene *s)
-{
-    double aimed = 0.0, total = 0.0;
-    for (uint32_t g = 0; g < pm->group_count; g++) {
-        const projection_group *pg = &pm->groups[g];
-        const light_group *lg = &s->lights.groups[g];
-        total += lg->power;
-        if (pg->all)
-            aimed += lg->power;
-        else if (!pg->distant)
-            aimed += pg->power;
-        else
-            aimed += lg->power; /* cells: weighed by pilots, not cut */
-    }
-    return total > 0.0 ? (float)(aimed / total) : 1.0f;
-}
-
 /* Each cell takes the largest weight of its 3 × 3 neighbourhood in its
  * plane: a cell only partly over an opening, which the pilots may all have
  * missed, lies beside one they found, and keeps its full share. Otherwise

@@ -75,11 +75,6 @@ void projection_map_free(projection_map *pm);
  * it. Returns 0 when memory is exhausted. */
 int projection_map_build_global(projection_map *pm, const scene *s);
 
-/* The share of all light power that the map's groups send into their
- * cells or cones (1 when every group emits everywhere): how much of the
- * emission aiming keeps. */
-float projection_map_aimed_share(const projection_map *pm, const scene *s);
-
 /* A photon's origin and direction through cell k of distant group g (u:
  * the point in the cell, ud: the direction in the sun's cone or the
  * world's bin), for pilots. */
