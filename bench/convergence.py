@@ -418,14 +418,4 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except SystemExit as ex:
-        if ex.code not in (None, 0):
-            print("[bench] %s" % ex.code if isinstance(ex.code, str) else "[bench] failed", flush=True)
-            sys.exit(1)
-        raise
-    except Exception:
-        import traceback
-        traceback.print_exc()
-        sys.exit(1)
+    quality.run_main(main)

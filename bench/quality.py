@@ -607,7 +607,10 @@ def main():
      "bench": command_bench}[args.command](args)
 
 
-if __name__ == "__main__":
+def run_main(main):
+    """Run a bench script's main inside Blender so that any failure (an
+    argument error, an exception) exits non-zero: Blender itself would
+    print the traceback and exit 0, and make would go on."""
     try:
         main()
     except SystemExit as ex:
@@ -619,3 +622,7 @@ if __name__ == "__main__":
         import traceback
         traceback.print_exc()
         sys.exit(1)
+
+
+if __name__ == "__main__":
+    run_main(main)

@@ -58,6 +58,19 @@ def link(scene, ob):
     return ob
 
 
+def lamp(scene, kind, name, energy, location, target, **props):
+    """A lamp of Blender's `kind` ('POINT', 'SPOT', 'AREA', 'SUN') at
+    `location`, aimed at `target`, with its light's other settings."""
+    light = bpy.data.lights.new(name, kind)
+    light.energy = energy
+    for key, value in props.items():
+        setattr(light, key, value)
+    ob = bpy.data.objects.new(name, light)
+    ob.location = location
+    ob.rotation_euler = _common.look_at_rotation(location, target)
+    return link(scene, ob)
+
+
 def mesh_object(scene, name, bm, material, smooth=False, location=(0.0, 0.0, 0.0),
                 rotation=(0.0, 0.0, 0.0)):
     """An object from a bmesh (which is freed)."""

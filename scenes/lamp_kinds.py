@@ -19,7 +19,6 @@ import os
 import sys
 
 import bmesh
-import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import _common  # noqa: E402
@@ -28,18 +27,6 @@ import _materials as m  # noqa: E402
 MAX_BOUNCES = 12
 DEFAULT_SAMPLES = 64
 PHOTON_SETTINGS = {}
-
-
-def lamp(scene, kind, name, energy, location, target, **props):
-    light = bpy.data.lights.new(name, kind)
-    light.energy = energy
-    for key, value in props.items():
-        setattr(light, key, value)
-    ob = bpy.data.objects.new(name, light)
-    ob.location = location
-    ob.rotation_euler = _common.look_at_rotation(location, target)
-    m.link(scene, ob)
-    return ob
 
 
 def build(scene):
@@ -57,11 +44,11 @@ def build(scene):
     bmesh.ops.create_cone(bm, cap_ends=True, cap_tris=False, segments=48, radius1=0.25, radius2=0.25, depth=0.9)
     m.mesh_object(scene, "Can", bm, m.glossy("Can", (0.85, 0.8, 0.7), 0.35), smooth=True,
                   location=(0.3, 0.8, 0.45))
-    lamp(scene, "POINT", "Point", 120.0, (-2.0, -1.5, 2.5), (0, 0, 0), shadow_soft_size=0.1)
-    lamp(scene, "SPOT", "Spot", 300.0, (2.5, 1.0, 3.0), (0.3, 0.5, 0.3), shadow_soft_size=0.1,
+    m.lamp(scene, "POINT", "Point", 120.0, (-2.0, -1.5, 2.5), (0, 0, 0), shadow_soft_size=0.1)
+    m.lamp(scene, "SPOT", "Spot", 300.0, (2.5, 1.0, 3.0), (0.3, 0.5, 0.3), shadow_soft_size=0.1,
          spot_size=math.radians(45.0), spot_blend=0.15)
-    lamp(scene, "AREA", "Area", 60.0, (0.0, -2.5, 2.0), (0, 0, 0.4), shape='RECTANGLE', size=1.0, size_y=0.5)
-    lamp(scene, "SUN", "Sun", 1.0, (0, 0, 5), (1.0, 2.0, 0.0), angle=math.radians(2.0))
+    m.lamp(scene, "AREA", "Area", 60.0, (0.0, -2.5, 2.0), (0, 0, 0.4), shape='RECTANGLE', size=1.0, size_y=0.5)
+    m.lamp(scene, "SUN", "Sun", 1.0, (0, 0, 5), (1.0, 2.0, 0.0), angle=math.radians(2.0))
     m.camera(scene, (0.3, -4.2, 2.2), (0.0, 0.2, 0.35), lens=40.0)
     m.world(scene, (0.05, 0.05, 0.05))
     return scene

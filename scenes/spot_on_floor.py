@@ -17,7 +17,6 @@ import os
 import sys
 
 import bmesh
-import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import _common  # noqa: E402
@@ -39,15 +38,8 @@ def build(scene):
     bmesh.ops.create_uvsphere(bm, u_segments=48, v_segments=24, radius=0.35)
     m.mesh_object(scene, "Ball", bm, m.polished("Ball", (0.7, 0.25, 0.2), 0.3), smooth=True,
                   location=(-0.5, 0.3, 0.35))
-    light = bpy.data.lights.new("Spot", 'SPOT')
-    light.energy = 400.0
-    light.shadow_soft_size = 0.1
-    light.spot_size = math.radians(45.0)
-    light.spot_blend = 0.15
-    ob = bpy.data.objects.new("Spot", light)
-    ob.location = (1.5, -1.0, 3.0)
-    ob.rotation_euler = _common.look_at_rotation(ob.location, (0.0, 0.0, 0.3))
-    m.link(scene, ob)
+    m.lamp(scene, 'SPOT', "Spot", 400.0, (1.5, -1.0, 3.0), (0.0, 0.0, 0.3), shadow_soft_size=0.1,
+           spot_size=math.radians(45.0), spot_blend=0.15)
     m.camera(scene, (0.3, -4.2, 2.2), (0.0, 0.1, 0.3), lens=40.0)
     m.world(scene, (0.0, 0.0, 0.0))
     return scene

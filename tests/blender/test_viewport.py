@@ -89,10 +89,14 @@ def test_pause_and_resume_reach_the_session():
             self.redraws += 1
 
     fake = _Engine()
-    fake._viewport = viewport.ViewportSession()
+    session = fake._viewport = viewport.ViewportSession()
+    session.scene = object()  # a scene to render: only the pause can hold the restart back
     engine.PhosRenderEngine.view_pause(fake, None)
-    assert fake._viewport.paused and fake._viewport.status_text(16) == "Paused"
-    assert fake._viewport.restart_if_needed(None, None) is False
+    assert session.paused and session.status_text(16) == "Paused"
+    assert session.restart_if_needed(None, None) is False  # never reads the (missing) view
     engine.PhosRenderEngine.view_resume(fake, None)
-    assert not fake._viewport.paused and fake.redraws == 1
-    fake._viewport.close()
+    assert not session.paused and fake.redraws == 1
+    with pytest.raises(AttributeError):
+        session.restart_if_needed(None, None)  # resumed, it reads the view to render it
+    session.scene = None
+    session.close()
