@@ -1,17 +1,18 @@
 /*
- * test_kdtree.c — the left-balanced kd-tree against brute force
+ * test_kdtree.c — the photon map's kd-tree against brute force
  * (docs/algorithms.md §2 and §9, check 3).
  *
  * Point sets of every size 1…300 and 10k/100k, in shapes that break naive
  * trees: duplicates, all points equal, coplanar, collinear, sorted input,
  * integer grids (many exactly equal distances) and box faces (photons on
- * walls). For each: the heap holds the same photons, satisfies the kd
- * ordering on every node's axis, splits along the longest axis of each
- * node's cell, is byte-identical when rebuilt, finds every heap slot
- * (including the last ones, which Jensen's n/2 − 1 test never visits), and
- * its k-nearest results equal brute force for several k and radii, in the
- * Euclidean and the disc metric. Queries from several threads at once
- * agree with single-threaded ones.
+ * walls), their photons of every class (facing and flags). For each map:
+ * it holds the same photons, each class's photons in its own range and
+ * bounding box, every split plane separates its two subtrees, lies along
+ * the longest axis of its cell and leaves buckets of at most
+ * KDTREE_BUCKET, a rebuild is byte-identical, every photon is found, and
+ * the k-nearest results equal brute force for several k and radii, in the
+ * Euclidean and the disc metric, with and without a surface filter.
+ * Queries from several threads at once agree with single-threaded ones.
  */
 #include <pthread.h>
 #include <string.h>
@@ -93,16 +94,12 @@ static photon *make_set(int kind, uint32_t n, uint32_t seed)
 
 static int compare_bytes(const void *a, const void *b) { return memcmp(a, b, sizeof(photon)); }
 
-/* The heap holds the same photons (the axis bits aside). */
+/* The map holds the same photons. */
 static int same_multiset(const photon *in, const photon *tree, uint32_t n)
 {
     photon *a = malloc(sizeof(photon) * n), *b = malloc(sizeof(photon) * n);
-    for (uint32_t i = 0; i < n; i++) {
-        a[i] = in[i];
-        b[i] = tree[i];
-        a[i].flags &= (uint16_t)~PHOTON_AXIS_MASK;
-        b[i].flags &= (uint16_t)~PHOTON_AXIS_MASK;
-    }
+    memcpy(a, in, sizeof(photon) * n);
+    memcpy(b, tree, sizeof(photon) * n);
     qsort(a, n, sizeof(photon), compare_bytes);
     qsort(b, n, sizeof(photon), compare_bytes);
     int same = memcmp(a, b, sizeof(photon) * n) == 0;
@@ -111,66 +108,64 @@ static int same_multiset(const photon *in, const photon *tree, uint32_t n)
     return same;
 }
 
-/* Every node of the subtree rooted at c lies on the `side` of split on axis
- * (≤ for the left subtree, ≥ for the right): walk the subtree level by
- * level, where its nodes are the ranges [c·2^d, c·2^d + 2^d − 1]. */
-static int subtree_on_side(const photon *tree, uint32_t n, uint32_t c, int axis, float split, int right)
+static uint32_t bucket_first(const photon_class_tree *t, uint32_t j)
 {
-    for (uint64_t first = c, width = 1; first <= n; first *= 2, width *= 2)
-        for (uint64_t j = first; j < first + width && j <= n; j++) {
-            float v = tree[j - 1].position[axis];
-            if (right ? v < split : v > split)
+    return t->start + (uint32_t)(((uint64_t)j * t->count) >> t->depth);
+}
+
+/* The photons of node h (buckets [j0, j1)) lie within [lo, hi] on every
+ * axis of the cell; each split plane separates its children, with lo ≤ hi,
+ * along the cell's longest axis (ties to the lower axis); the cell is
+ * then narrowed to each child. */
+static int node_ok(const photon_map *m, const photon_class_tree *t, uint32_t h, uint32_t j0, uint32_t j1,
+                   float lo[3], float hi[3], int *bad_axes)
+{
+    for (uint32_t i = bucket_first(t, j0); i < bucket_first(t, j1); i++)
+        for (int a = 0; a < 3; a++)
+            if (m->photons[i].position[a] < lo[a] || m->photons[i].position[a] > hi[a])
                 return 0;
-        }
-    return 1;
-}
-
-static int heap_ordered(const photon *tree, uint32_t n)
-{
-    for (uint32_t i = 1; 2 * (uint64_t)i <= n; i++) {
-        int axis = photon_axis(&tree[i - 1]);
-        float split = tree[i - 1].position[axis];
-        if (axis > 2 || !subtree_on_side(tree, n, 2 * i, axis, split, 0) ||
-            (2 * i + 1 <= n && !subtree_on_side(tree, n, 2 * i + 1, axis, split, 1)))
-            return 0;
-    }
-    return 1;
-}
-
-/* Each node splits on the longest axis of its cell: the bounding box of all
- * photons narrowed by the ancestors' planes (ties to the lower axis). */
-static int cell_axes_ok(const photon *tree, uint32_t n, uint32_t i, float lo[3], float hi[3])
-{
-    if (i > n || 2 * i > n)
-        return 1;
-    const photon *p = &tree[i - 1];
+    if (j1 - j0 == 1)
+        return bucket_first(t, j1) - bucket_first(t, j0) <= KDTREE_BUCKET;
+    const kdtree_split *sp = &m->splits[t->first_split + h - 1];
     float e[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
-    int want = (e[0] >= e[1] && e[0] >= e[2]) ? 0 : (e[1] >= e[2] ? 1 : 2);
-    int axis = photon_axis(p);
-    if (axis != want)
+    uint32_t want = (e[0] >= e[1] && e[0] >= e[2]) ? 0 : (e[1] >= e[2] ? 1 : 2);
+    *bad_axes += sp->axis != want;
+    if (sp->axis > 2 || !(sp->lo <= sp->hi))
         return 0;
-    float split = p->position[axis], keep = hi[axis];
-    hi[axis] = split;
-    int ok = cell_axes_ok(tree, n, 2 * i, lo, hi);
-    hi[axis] = keep;
-    keep = lo[axis];
-    lo[axis] = split;
-    ok = ok && cell_axes_ok(tree, n, 2 * i + 1, lo, hi);
-    lo[axis] = keep;
+    uint32_t a = sp->axis, jm = j0 + (j1 - j0) / 2;
+    float keep = hi[a];
+    hi[a] = sp->lo;
+    int ok = node_ok(m, t, 2 * h, j0, jm, lo, hi, bad_axes);
+    hi[a] = keep;
+    keep = lo[a];
+    lo[a] = sp->hi;
+    ok = ok && node_ok(m, t, 2 * h + 1, jm, j1, lo, hi, bad_axes);
+    lo[a] = keep;
     return ok;
 }
 
-static int cell_axes_ok_root(const photon *tree, uint32_t n)
+/* Every class: its photons, contiguous and in order of class, inside its
+ * bounding box, and its subtree well formed at the least depth. */
+static int map_ordered(const photon_map *m, int *bad_axes)
 {
-    float lo[3], hi[3];
-    for (int a = 0; a < 3; a++) {
-        lo[a] = hi[a] = tree[0].position[a];
-        for (uint32_t i = 1; i < n; i++) {
-            lo[a] = fminf(lo[a], tree[i].position[a]);
-            hi[a] = fmaxf(hi[a], tree[i].position[a]);
-        }
+    uint32_t next = 0;
+    for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
+        const photon_class_tree *t = &m->classes[c];
+        if (t->start != next || t->depth != kdtree_depth(t->count))
+            return 0;
+        next += t->count;
+        if (t->count == 0)
+            continue;
+        for (uint32_t i = t->start; i < t->start + t->count; i++)
+            if (photon_class(&m->photons[i]) != c)
+                return 0;
+        float lo[3], hi[3];
+        memcpy(lo, t->lo, sizeof lo);
+        memcpy(hi, t->hi, sizeof hi);
+        if (!node_ok(m, t, 1, 0, 1u << t->depth, lo, hi, bad_axes))
+            return 0;
     }
-    return cell_axes_ok(tree, n, 1, lo, hi);
+    return next == m->count;
 }
 
 /* ---- brute force --------------------------------------------------------- */
@@ -179,7 +174,7 @@ typedef struct metric {
     int disc;
     vec3 normal;
     float flatten;
-    const kdtree_filter *filter; /* disc only: kdtree_knn_surface */
+    const kdtree_filter *filter; /* disc only: photon_map_knn_surface */
 } metric;
 
 /* The metric's distance, infinite for photons the filter rejects (they are
@@ -194,11 +189,11 @@ static float metric_dist2(const metric *m, const photon *p, vec3 x)
     return kdtree_disc_dist2(p, x, m->normal, c * c - 1.0f);
 }
 
-static uint32_t metric_knn(const metric *m, const photon *tree, uint32_t n, vec3 x, float r2, kdtree_query *q)
+static uint32_t metric_knn(const metric *m, const photon_map *map, vec3 x, float r2, kdtree_query *q)
 {
     if (m->filter)
-        return kdtree_knn_surface(tree, n, x, m->flatten, m->filter, r2, q);
-    return m->disc ? kdtree_knn_disc(tree, n, x, m->normal, m->flatten, r2, q) : kdtree_knn(tree, n, x, r2, q);
+        return photon_map_knn_surface(map, x, m->flatten, m->filter, r2, q);
+    return m->disc ? photon_map_knn_disc(map, x, m->normal, m->flatten, r2, q) : photon_map_knn(map, x, r2, q);
 }
 
 static int compare_float(const void *a, const void *b)
@@ -257,15 +252,14 @@ typedef struct set_stats {
     int builds, queries, bad_multiset, bad_order, bad_axes, bad_determinism, bad_slots, bad_knn;
 } set_stats;
 
-/* A query at each heap slot's own position (k = 1, tiny radius) finds a
- * photon at distance 0: a slot the traversal never visits fails. Jensen's
- * `index < n/2 − 1` test skips the children of nodes n/2 − 1 and n/2, i.e.
- * some of the slots n−3 … n. `first` limits the check to the slots first…n. */
-static int slots_found(const photon *tree, uint32_t n, uint32_t first, kdtree_query *q1)
+/* A query at each photon's own position (k = 1, tiny radius) finds a
+ * photon at distance 0: a bucket the traversal never visits fails.
+ * `first` limits the check to the photons first…n − 1. */
+static int slots_found(const photon_map *m, uint32_t first, kdtree_query *q1)
 {
-    for (uint32_t i = first < 1 ? 1 : first; i <= n; i++) {
-        vec3 x = photon_position(&tree[i - 1]);
-        if (kdtree_knn(tree, n, x, 1e-12f, q1) != 1 || q1->dist2[0] != 0.0f)
+    for (uint32_t i = first; i < m->count; i++) {
+        vec3 x = photon_position(&m->photons[i]);
+        if (photon_map_knn(m, x, 1e-12f, q1) != 1 || q1->dist2[0] != 0.0f)
             return 0;
     }
     return 1;
@@ -286,10 +280,11 @@ static const float radii2[] = {0.003f * 0.003f, 0.05f * 0.05f, 0.3f * 0.3f, INFI
 
 /* k-NN against brute force at `queries` points, every metric (Euclidean,
  * disc, disc with a surface filter), all k and radii. */
-static void check_queries(const photon *tree, uint32_t n, int queries, uint32_t seed, kdtree_query qk[3],
-                          brute *b, set_stats *st)
+static void check_queries(const photon_map *map, int queries, uint32_t seed, kdtree_query qk[3], brute *b,
+                          set_stats *st)
 {
-    uint32_t s = seed;
+    const photon *tree = map->photons;
+    uint32_t n = map->count, s = seed;
     for (int j = 0; j < queries; j++) {
         vec3 x = query_point(tree, n, (uint32_t)j, &s);
         int mode = (j >> 1) % 3;
@@ -300,7 +295,7 @@ static void check_queries(const photon *tree, uint32_t n, int queries, uint32_t 
         brute_compute(b, &m, tree, n, x);
         for (int ki = 0; ki < 3; ki++)
             for (int ri = 0; ri < 4; ri++) {
-                metric_knn(&m, tree, n, x, radii2[ri], &qk[ki]);
+                metric_knn(&m, map, x, radii2[ri], &qk[ki]);
                 st->queries++;
                 if (!knn_matches(b, &qk[ki], ks[ki], radii2[ri])) {
                     st->bad_knn++;
@@ -312,41 +307,45 @@ static void check_queries(const photon *tree, uint32_t n, int queries, uint32_t 
     }
 }
 
-/* Builds one set and runs every check; `all_slots` checks every heap slot,
- * otherwise only the last half (n/2 … n), where Jensen's bug lives. */
+static int build_map(photon_map *m, const photon *in, uint32_t n)
+{
+    photon_map_init(m);
+    return photon_map_append(m, in, n) && photon_map_build(m, NULL);
+}
+
+/* Builds one set and runs every check; `all_slots` looks for every
+ * photon, otherwise for the last half. */
 static void check_set(int kind, uint32_t n, int queries, int all_slots, kdtree_query qk[3], brute *b,
                       set_stats *st)
 {
     uint32_t seed = hash_combine((uint32_t)kind, n);
     photon *in = make_set(kind, n, seed);
-    photon *tree = malloc(sizeof(photon) * n), *again = malloc(sizeof(photon) * n);
-    memcpy(tree, in, sizeof(photon) * n);
-    memcpy(again, in, sizeof(photon) * n);
+    photon_map m, again;
     st->builds++;
-    if (!kdtree_build(tree, n, NULL) || !kdtree_build(again, n, NULL)) {
+    if (!build_map(&m, in, n) || !build_map(&again, in, n)) {
         st->bad_multiset++;
         goto done;
     }
-    st->bad_determinism += memcmp(tree, again, sizeof(photon) * n) != 0;
-    st->bad_multiset += !same_multiset(in, tree, n);
-    st->bad_order += !heap_ordered(tree, n);
-    st->bad_axes += !cell_axes_ok_root(tree, n);
-    st->bad_slots += !slots_found(tree, n, all_slots ? 1 : n / 2, &qk[0]);
-    check_queries(tree, n, queries, seed, qk, b, st);
+    st->bad_determinism += memcmp(m.photons, again.photons, sizeof(photon) * n) != 0 ||
+                           m.split_count != again.split_count ||
+                           memcmp(m.splits, again.splits, sizeof(kdtree_split) * m.split_count) != 0;
+    st->bad_multiset += !same_multiset(in, m.photons, n);
+    st->bad_order += !map_ordered(&m, &st->bad_axes);
+    st->bad_slots += !slots_found(&m, all_slots ? 0 : n / 2, &qk[0]);
+    check_queries(&m, queries, seed, qk, b, st);
 done:
+    photon_map_free(&m);
+    photon_map_free(&again);
     free(in);
-    free(tree);
-    free(again);
 }
 
 static void report(const char *what, const set_stats *st)
 {
     CHECK_MSG(st->bad_multiset == 0, "%s: %d trees lost or duplicated photons", what, st->bad_multiset);
-    CHECK_MSG(st->bad_order == 0, "%s: %d trees violate the kd ordering", what, st->bad_order);
+    CHECK_MSG(st->bad_order == 0, "%s: %d trees violate the kd ordering or the classes", what, st->bad_order);
     CHECK_MSG(st->bad_axes == 0, "%s: %d trees split off the cell's longest axis", what, st->bad_axes);
     CHECK_MSG(st->bad_determinism == 0, "%s: %d rebuilds differ", what, st->bad_determinism);
-    CHECK_MSG(st->bad_slots == 0, "%s: %d trees have heap slots the search never reaches", what,
-              st->bad_slots);
+    CHECK_MSG(st->bad_slots == 0, "%s: %d trees have photons the search never reaches", what, st->bad_slots);
     CHECK_MSG(st->bad_knn == 0, "%s: %d of %d k-NN queries differ from brute force", what, st->bad_knn,
               st->queries);
 }
@@ -367,31 +366,18 @@ static void brute_free(brute *b)
 
 /* ---- the tests ----------------------------------------------------------- */
 
-static void test_left_size(void)
+/* The least depth whose buckets hold at most KDTREE_BUCKET photons. */
+static void test_depth(void)
 {
-    CHECK(kdtree_left_size(1) == 0);
-    CHECK(kdtree_left_size(2) == 1);
-    CHECK(kdtree_left_size(3) == 1);
-    CHECK(kdtree_left_size(7) == 3);
-    CHECK(kdtree_left_size(10) == 6);
-    CHECK(kdtree_left_size(14) == 7);
-    /* Mitsuba's leftSubtreeSize, and the left subtree's size counted in a
-     * heap of n nodes, for many n. */
     int bad = 0;
-    for (uint32_t n = 2; n < 200000; n += n < 5000 ? 1 : 997) {
-        uint32_t p = 1;
-        while (2 * p <= n)
-            p *= 2;
-        uint32_t rem = n - p + 1;
-        if (2 * rem < p)
-            p = p / 2 + rem;
-        uint32_t mts = p - 1, counted = 0;
-        for (uint64_t first = 2, width = 1; first <= n; first *= 2, width *= 2)
-            counted += (uint32_t)((first + width - 1 <= n ? first + width - 1 : n) - first + 1);
-        bad += kdtree_left_size(n) != mts || kdtree_left_size(n) != counted;
+    for (uint32_t n = 0; n < 200000; n += n < 5000 ? 1 : 997) {
+        uint32_t d = kdtree_depth(n);
+        uint64_t leaves = (uint64_t)1 << d;
+        bad += (n + leaves - 1) / leaves > KDTREE_BUCKET || (d > 0 && (n + leaves / 2 - 1) / (leaves / 2) <= KDTREE_BUCKET);
     }
-    CHECK_MSG(bad == 0, "%d sizes where L(n) is not the left subtree's size", bad);
-    CHECK(kdtree_left_size(0x7fffffffu) == 0x3fffffffu);
+    CHECK_MSG(bad == 0, "%d photon counts with a depth that is not the least", bad);
+    CHECK(kdtree_depth(0) == 0 && kdtree_depth(KDTREE_BUCKET) == 0 && kdtree_depth(KDTREE_BUCKET + 1) == 1);
+    CHECK(kdtree_depth(0x7fffffffu) == 28);
 }
 
 static void test_small_sets(kdtree_query qk[3])
@@ -428,28 +414,19 @@ static void test_large_sets(kdtree_query qk[3])
     brute_free(&b);
 }
 
-/* A map keeps its photons in classes (facing, flags), each a tree of its own; its
- * searches must find what one search over all the photons finds, and the
- * surface search may skip only classes none of whose photons pass the
+/* The searches must find what one search over all the photons finds, and
+ * the surface search may skip only classes none of whose photons pass the
  * filter. Brute force over the map's photons, for every metric, random
  * query normals (axis-aligned ones too, whose 45° cones touch the class
- * boundaries) and normal thresholds down to −1. */
+ * boundaries), normal thresholds down to −1 and every excluded flag. */
 static void test_map_classes(kdtree_query qk[3])
 {
     const uint32_t n = 20000;
     photon *in = make_set(SET_UNIFORM, n, 11);
     photon_map m;
-    photon_map_init(&m);
-    CHECK(photon_map_append(&m, in, n) && photon_map_build(&m, NULL));
-    int ordered = 1, classed = 1;
-    for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
-        uint32_t start = m.class_start[c], count = m.class_start[c + 1] - start;
-        ordered &= heap_ordered(m.photons + start, count);
-        for (uint32_t i = start; i < start + count; i++)
-            classed &= photon_class(&m.photons[i]) == c;
-    }
-    CHECK_MSG(ordered && classed, "classes: kd order %d, class membership %d", ordered, classed);
-    CHECK(m.class_start[PHOTON_CLASSES] == n);
+    CHECK(build_map(&m, in, n));
+    int bad_axes = 0;
+    CHECK_MSG(map_ordered(&m, &bad_axes) && bad_axes == 0, "classes: tree or class membership broken");
     brute b;
     brute_init(&b, n);
     uint32_t s = 99, bad = 0, queries = 0;
@@ -465,12 +442,7 @@ static void test_map_classes(kdtree_query qk[3])
         brute_compute(&b, &mt, m.photons, n, x);
         for (int ki = 0; ki < 3; ki++)
             for (int ri = 0; ri < 4; ri++) {
-                if (mode == 0)
-                    photon_map_knn(&m, x, radii2[ri], &qk[ki]);
-                else if (mode == 1)
-                    photon_map_knn_disc(&m, x, nrm, 4.0f, radii2[ri], &qk[ki]);
-                else
-                    photon_map_knn_surface(&m, x, 4.0f, &f, radii2[ri], &qk[ki]);
+                metric_knn(&mt, &m, x, radii2[ri], &qk[ki]);
                 queries++;
                 bad += !knn_matches(&b, &qk[ki], ks[ki], radii2[ri]);
             }
@@ -481,23 +453,29 @@ static void test_map_classes(kdtree_query qk[3])
     free(in);
 }
 
-/* The map's photon order is irrelevant to the search results' distances,
- * and k = 0 or an empty tree find nothing. */
+/* k = 0, an empty or unbuilt map, and a zero radius find nothing. */
 static void test_edge_cases(void)
 {
     kdtree_query q0, q;
     CHECK(kdtree_query_init(&q0, 0) && kdtree_query_init(&q, 4));
     photon *p = make_set(SET_UNIFORM, 16, 5);
-    CHECK(kdtree_build(p, 16, NULL));
-    CHECK(kdtree_knn(p, 16, v3s(0.5f), 1.0f, &q0) == 0 && q0.radius2 == 1.0f);
-    CHECK(kdtree_knn(p, 0, v3s(0.5f), 1.0f, &q) == 0 && q.radius2 == 1.0f);
-    CHECK(kdtree_knn(p, 16, v3s(0.5f), 0.0f, &q) == 0);
-    CHECK(kdtree_build(p, 0, NULL));
+    photon_map m, empty, unbuilt;
+    CHECK(build_map(&m, p, 16) && build_map(&empty, p, 0));
+    photon_map_init(&unbuilt);
+    CHECK(photon_map_append(&unbuilt, p, 16));
+    CHECK(photon_map_knn(&m, v3s(0.5f), 1.0f, &q0) == 0 && q0.radius2 == 1.0f);
+    CHECK(photon_map_knn(&empty, v3s(0.5f), 1.0f, &q) == 0 && q.radius2 == 1.0f);
+    CHECK(photon_map_knn(&unbuilt, v3s(0.5f), 1.0f, &q) == 0);
+    CHECK(photon_map_knn(&m, v3s(0.5f), 0.0f, &q) == 0);
+    CHECK(empty.split_count == 0 && photon_map_memory(&empty) == sizeof(photon_map));
     /* A flatten below 1 is plain Euclidean. */
-    kdtree_knn_disc(p, 16, v3s(0.5f), v3(0, 0, 1), 0.5f, 1.0f, &q);
+    photon_map_knn_disc(&m, v3s(0.5f), v3(0, 0, 1), 0.5f, 1.0f, &q);
     float disc_r2 = q.radius2;
-    kdtree_knn(p, 16, v3s(0.5f), 1.0f, &q);
+    photon_map_knn(&m, v3s(0.5f), 1.0f, &q);
     CHECK(disc_r2 == q.radius2);
+    photon_map_free(&m);
+    photon_map_free(&empty);
+    photon_map_free(&unbuilt);
     free(p);
     kdtree_query_free(&q0);
     kdtree_query_free(&q);
@@ -510,8 +488,7 @@ static void test_edge_cases(void)
 #define THREAD_QUERIES 2000
 
 typedef struct thread_job {
-    const photon *tree;
-    uint32_t n;
+    const photon_map *map;
     const vec3 *points;
     float *radius2; /* out: one per query */
     uint32_t *found;
@@ -524,7 +501,7 @@ static void *thread_main(void *arg)
     if (!kdtree_query_init(&q, 50))
         return NULL;
     for (int i = 0; i < THREAD_QUERIES; i++) {
-        job->found[i] = kdtree_knn(job->tree, job->n, job->points[i], 0.01f, &q);
+        job->found[i] = photon_map_knn(job->map, job->points[i], 0.01f, &q);
         job->radius2[i] = q.radius2;
     }
     kdtree_query_free(&q);
@@ -534,22 +511,23 @@ static void *thread_main(void *arg)
 static void test_threads(void)
 {
     const uint32_t n = 50000;
-    photon *tree = make_set(SET_BOX, n, 99);
-    CHECK(kdtree_build(tree, n, NULL));
+    photon *in = make_set(SET_BOX, n, 99);
+    photon_map m;
+    CHECK(build_map(&m, in, n));
     vec3 *points = malloc(sizeof(vec3) * THREAD_QUERIES);
     uint32_t s = 1;
     for (int i = 0; i < THREAD_QUERIES; i++)
-        points[i] = query_point(tree, n, (uint32_t)i, &s);
+        points[i] = query_point(m.photons, n, (uint32_t)i, &s);
 
     float want_r2[THREAD_QUERIES], r2[THREADS][THREAD_QUERIES];
     uint32_t want_found[THREAD_QUERIES], found[THREADS][THREAD_QUERIES];
-    thread_job single = {tree, n, points, want_r2, want_found};
+    thread_job single = {&m, points, want_r2, want_found};
     thread_main(&single);
 
     pthread_t th[THREADS];
     thread_job jobs[THREADS];
     for (int t = 0; t < THREADS; t++) {
-        jobs[t] = (thread_job){tree, n, points, r2[t], found[t]};
+        jobs[t] = (thread_job){&m, points, r2[t], found[t]};
         CHECK(pthread_create(&th[t], NULL, thread_main, &jobs[t]) == 0);
     }
     int bad = 0;
@@ -559,7 +537,8 @@ static void test_threads(void)
     }
     CHECK_MSG(bad == 0, "%d threads got results different from a single thread", bad);
     free(points);
-    free(tree);
+    photon_map_free(&m);
+    free(in);
 }
 
 int main(void)
@@ -567,7 +546,7 @@ int main(void)
     kdtree_query qk[3];
     for (int i = 0; i < 3; i++)
         CHECK(kdtree_query_init(&qk[i], ks[i]));
-    test_left_size();
+    test_depth();
     test_small_sets(qk);
     test_large_sets(qk);
     test_map_classes(qk);

@@ -1,41 +1,44 @@
 /*
- * kdtree.c — building the left-balanced kd-tree and searching it.
+ * kdtree.c — building the photon map's kd-tree and searching it.
  *
- * Build (docs/algorithms.md §2.3; Jensen 2001 §6.3 balance_segment): the
- * photons are copied to a work array; each segment is split at its
- * left-balanced median by selection along the longest axis of its cell, the
- * median photon is written to its heap slot in the caller's array, and both
- * halves recurse.
- * Writing straight into the heap slots needs no index arrays and no
- * permutation pass, at the price of one 20·n-byte copy during the build.
+ * Build (docs/algorithms.md §2.3; Jensen 2001 §6.3 balance_segment, with
+ * buckets): within each class, a node's photons are partitioned in place
+ * at the boundary between its two halves of buckets, by selection along
+ * the longest axis of its cell; the halves recurse until a node is one
+ * bucket. The cell starts as the class's bounding box and is narrowed by
+ * each split's planes. No copy of the photons is made.
  *
- * Search (docs/algorithms.md §2.4; Jensen's locate_photons, made iterative
- * as Mitsuba's nnSearch): descend to the near child, push the far child
- * with its squared plane distance, and re-test that distance against the
- * radius at pop time, when the radius may have shrunk. Found photons go into a max-heap of k
- * entries once k are held, so the radius shrinks to the k-th distance.
+ * Search (docs/algorithms.md §2.4): the classes' subtrees are entered
+ * nearest box first; within one, descend to the near child and push the
+ * far child with the squared distance from x to its cell, kept
+ * incrementally per axis (Arya & Mount 1993, "Algorithms for fast vector
+ * quantization", as nanoflann does), and re-test it at pop time, when the
+ * radius may have shrunk. Found photons go into a max-heap of k entries
+ * once k are held, so the radius shrinks to the k-th distance.
  */
 #include "photons/kdtree.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-/* Tree height is at most 31 for n ≤ 2^31 − 1, and each level pushes at most
- * one far child. */
-#define KDTREE_STACK_SIZE 64
+/* A subtree is at most 31 levels deep (n ≤ 2^31 − 1 in buckets of ≥ 1),
+ * each level pushes at most one far child, and the class roots are pushed
+ * first. */
+#define KDTREE_STACK_SIZE (PHOTON_CLASSES + 40)
 
-uint32_t kdtree_left_size(uint32_t n)
+uint32_t kdtree_depth(uint32_t n)
 {
-    if (n <= 1)
-        return 0;
-    /* p = 2^floor(log2 n): the full levels above the last hold p − 1 nodes,
-     * the last level holds r = n − p + 1, filled from the left; the left
-     * subtree gets p/2 − 1 of the full levels and up to p/2 of the last. */
-    uint32_t p = 1;
-    while (p <= n / 2)
-        p *= 2;
-    uint32_t r = n - p + 1;
-    return (p / 2 - 1) + (r < p / 2 ? r : p / 2);
+    uint32_t d = 0;
+    while (((uint64_t)n + ((uint64_t)1 << d) - 1) >> d > KDTREE_BUCKET)
+        d++;
+    return d;
+}
+
+/* The first photon of bucket j (0 ≤ j ≤ 2^depth) of a class of n photons,
+ * relative to the class's start. */
+static inline uint32_t bucket_start(uint32_t n, uint32_t depth, uint32_t j)
+{
+    return (uint32_t)(((uint64_t)j * n) >> depth);
 }
 
 /* ---- build --------------------------------------------------------------- */
@@ -53,12 +56,11 @@ static cell_box bounds_of(const photon *p, uint32_t n)
     }
     for (uint32_t i = 1; i < n; i++)
         for (int a = 0; a < 3; a++) {
-            b.lo[a] = fminf(b.lo[a], p[i].position[a]);
-            b.hi[a] = fmaxf(b.hi[a], p[i].position[a]);
+            b.lo[a] = p[i].position[a] < b.lo[a] ? p[i].position[a] : b.lo[a];
+            b.hi[a] = p[i].position[a] > b.hi[a] ? p[i].position[a] : b.hi[a];
         }
     return b;
 }
-
 /* Ties go to the lower axis, so the choice is deterministic. */
 static int longest_axis(const cell_box *b)
 {
@@ -77,14 +79,14 @@ static inline void swap_photons(photon *a, photon *b)
 
 static inline float median_of_3(float a, float b, float c)
 {
-    return fmaxf(fminf(a, b), fminf(fmaxf(a, b), c));
+    float lo = a < b ? a : b, hi = a < b ? b : a;
+    lo = hi < c ? hi : c > lo ? c : lo; /* median: max(min(a, b), min(max(a, b), c)) */
+    return lo;
 }
 
 /* Ranges of at least this many photons look at the cancel flag first:
  * well under a millisecond of work between two looks. */
 #define KDTREE_CANCEL_GRAIN 16384u
-/* Photons copied between two looks at it (5 MB, a few milliseconds). */
-#define KDTREE_COPY_SLICE (1u << 18)
 
 /* Hoare's FIND (CACM 1961) in Wirth's form: afterwards a[m] holds the key
  * of rank m, everything before it ≤ a[m] ≤ everything after it. The scans
@@ -124,56 +126,71 @@ static int select_median(photon *a, uint32_t n, uint32_t m, int axis, atomic_int
     return 1;
 }
 
-/* Balances work[0..n) into the subtree rooted at heap node `node` of `out`;
- * 0 if cancelled. */
-static int balance(photon *work, uint32_t n, photon *out, uint32_t node, cell_box box, atomic_int *cancel)
+/* Builds the subtree of node h (1-based heap index) of a class whose
+ * photons are p[0..n) in buckets of `depth` levels: the node covers
+ * buckets [j0, j1) and so photons [s, e). 0 if cancelled. */
+typedef struct class_build {
+    photon *p;
+    uint32_t n, depth;
+    kdtree_split *splits; /* the class's, in heap order: node h at splits[h − 1] */
+    atomic_int *cancel;
+} class_build;
+
+static int build_node(const class_build *cb, uint32_t h, uint32_t j0, uint32_t j1, cell_box cell)
 {
-    int axis = longest_axis(&box);
-    uint32_t m = kdtree_left_size(n);
-    if (!select_median(work, n, m, axis, cancel))
+    if (j1 - j0 == 1)
+        return 1; /* a bucket */
+    uint32_t jm = j0 + (j1 - j0) / 2;
+    uint32_t s = bucket_start(cb->n, cb->depth, j0), e = bucket_start(cb->n, cb->depth, j1);
+    uint32_t m = bucket_start(cb->n, cb->depth, jm);
+    int axis = longest_axis(&cell);
+    if (!select_median(cb->p + s, e - s, m - s, axis, cb->cancel))
         return 0;
+    /* After the selection p[m] is the least of the right half along the
+     * axis; the left half's greatest takes one pass. */
+    float lo = cb->p[s].position[axis];
+    for (uint32_t i = s + 1; i < m; i++)
+        lo = cb->p[i].position[axis] > lo ? cb->p[i].position[axis] : lo;
+    float hi = cb->p[m].position[axis];
+    cb->splits[h - 1] = (kdtree_split){lo, hi, (uint32_t)axis};
+    cell_box left = cell, right = cell;
+    left.hi[axis] = lo;
+    right.lo[axis] = hi;
+    return build_node(cb, 2 * h, j0, jm, left) && build_node(cb, 2 * h + 1, jm, j1, right);
+}
 
-    photon p = work[m];
-    p.flags = (uint16_t)((p.flags & ~PHOTON_AXIS_MASK) | axis);
-    out[node - 1] = p;
-
-    float split = p.position[axis];
-    if (m > 0) {
-        cell_box left = box;
-        left.hi[axis] = split;
-        if (!balance(work, m, out, 2 * node, left, cancel))
-            return 0;
+int kdtree_build(photon_map *m, atomic_int *cancel)
+{
+    uint64_t total = 0;
+    for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
+        photon_class_tree *t = &m->classes[c];
+        t->depth = kdtree_depth(t->count);
+        t->first_split = (uint32_t)total;
+        total += ((uint64_t)1 << t->depth) - 1;
     }
-    if (n - m - 1 > 0) {
-        cell_box right = box;
-        right.lo[axis] = split;
-        if (!balance(work + m + 1, n - m - 1, out, 2 * node + 1, right, cancel))
+    free(m->splits);
+    m->splits = NULL;
+    m->split_count = 0;
+    if (total > 0) {
+        m->splits = malloc(sizeof(kdtree_split) * (size_t)total);
+        if (!m->splits)
+            return 0;
+        m->split_count = (uint32_t)total;
+    }
+    for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
+        photon_class_tree *t = &m->classes[c];
+        if (t->count == 0)
+            continue;
+        if (cancel && atomic_load_explicit(cancel, memory_order_relaxed))
+            return 0;
+        cell_box box = bounds_of(m->photons + t->start, t->count);
+        memcpy(t->lo, box.lo, sizeof(t->lo));
+        memcpy(t->hi, box.hi, sizeof(t->hi));
+        class_build cb = {m->photons + t->start, t->count, t->depth, m->splits + t->first_split, cancel};
+        if (!build_node(&cb, 1, 0, 1u << t->depth, box))
             return 0;
     }
     return 1;
-}
-
-int kdtree_build(photon *photons, uint32_t n, atomic_int *cancel)
-{
-    if (n == 0)
-        return 1;
-    if (n > PHOTON_MAP_MAX_PHOTONS)
-        return 0;
-    photon *work = malloc(sizeof(photon) * (size_t)n);
-    if (!work)
-        return 0;
-    /* The copy into fresh pages takes tens of milliseconds for millions
-     * of photons: it is made in slices, with a look at the cancel flag
-     * between them. */
-    int done = 1;
-    for (uint32_t i = 0; i < n && done; i += KDTREE_COPY_SLICE) {
-        uint32_t m = n - i < KDTREE_COPY_SLICE ? n - i : KDTREE_COPY_SLICE;
-        memcpy(work + i, photons + i, sizeof(photon) * (size_t)m);
-        done = !(cancel && atomic_load_explicit(cancel, memory_order_relaxed));
-    }
-    done = done && balance(work, n, photons, 1, bounds_of(work, n), cancel);
-    free(work);
-    return done;
 }
 
 /* ---- search -------------------------------------------------------------- */
@@ -248,90 +265,7 @@ static inline float knn_add(kdtree_query *q, float d2, uint32_t i, float r2)
     return q->dist2[0];
 }
 
-/* One search for every metric and filter; `disc` and whether `filter` is
- * NULL are constants at each call site, so the compiler specialises the
- * inlined copy. */
-static inline __attribute__((always_inline)) uint32_t knn_search(const photon *tree, uint32_t n, uint32_t base,
-                                                                 vec3 x, int disc, vec3 normal, float c2m1,
-                                                                 const kdtree_filter *filter,
-                                                                 float max_radius2, kdtree_query *q)
-{
-    /* base > 0 or q->found > 0: a further tree of the same search (a map's
-     * facing classes): the results so far stay, and so does their radius. */
-    if (n == 0 || q->k == 0 || !(max_radius2 > 0.0f))
-        return q->found;
-
-    const float xq[3] = {x.x, x.y, x.z};
-    uint32_t stack_node[KDTREE_STACK_SIZE];
-    float stack_plane2[KDTREE_STACK_SIZE];
-    int top = 0;
-    float r2 = q->found == q->k ? q->dist2[0] : max_radius2; /* dist2[0]: the heap's farthest */
-    uint32_t i = 1;
-    for (;;) {
-        /* Descend toward x, leaving the far children on the stack. */
-        for (;;) {
-            const photon *p = &tree[i - 1];
-            float d2 = disc ? kdtree_disc_dist2(p, x, normal, c2m1) : kdtree_dist2(p, x);
-            if (d2 < r2 && (!filter || kdtree_filter_accepts(filter, p)))
-                r2 = knn_add(q, d2, base + i - 1, r2);
-            if (2 * i > n) /* a leaf: 2i ≤ n is the internal test (not Jensen's n/2 − 1) */
-                break;
-            int axis = p->flags & PHOTON_AXIS_MASK;
-            float delta = xq[axis] - p->position[axis];
-            uint32_t near = 2 * i + (delta > 0.0f), far = 2 * i + (delta <= 0.0f);
-            float plane2 = delta * delta;
-            if (far <= n && plane2 < r2) {
-                stack_node[top] = far;
-                stack_plane2[top] = plane2;
-                top++;
-            }
-            if (near > n) /* only the left child exists and it was the far one */
-                break;
-            i = near;
-        }
-        /* Resume at the deepest far child still within the (shrunk) radius. */
-        do {
-            if (top == 0) {
-                q->radius2 = r2; /* still max_radius2 unless k were found */
-                return q->found;
-            }
-            top--;
-        } while (!(stack_plane2[top] < r2));
-        i = stack_node[top];
-    }
-}
-
-static void query_start(kdtree_query *q, float max_radius2)
-{
-    q->found = 0;
-    q->radius2 = max_radius2;
-}
-
-uint32_t kdtree_knn(const photon *tree, uint32_t n, vec3 x, float max_radius2, kdtree_query *q)
-{
-    query_start(q, max_radius2);
-    return knn_search(tree, n, 0, x, 0, v3s(0.0f), 0.0f, NULL, max_radius2, q);
-}
-
-uint32_t kdtree_knn_disc(const photon *tree, uint32_t n, vec3 x, vec3 normal, float flatten,
-                         float max_radius2, kdtree_query *q)
-{
-    float c = flatten > 1.0f ? flatten : 1.0f;
-    query_start(q, max_radius2);
-    return knn_search(tree, n, 0, x, 1, normal, c * c - 1.0f, NULL, max_radius2, q);
-}
-
-uint32_t kdtree_knn_surface(const photon *tree, uint32_t n, vec3 x, float flatten, const kdtree_filter *f,
-                            float max_radius2, kdtree_query *q)
-{
-    float c = flatten > 1.0f ? flatten : 1.0f;
-    query_start(q, max_radius2);
-    return knn_search(tree, n, 0, x, 1, f->normal, c * c - 1.0f, f, max_radius2, q);
-}
-
-/* ---- maps: one search over the classes ---------------------------------- */
-
-/* The largest n·m over the unit normals m of facing class c (dominant axis
+/* The largest n·m over the unit normals m of facing c (dominant axis
  * a, sign s: s·m_a ≥ |m_b| for both other axes b). Inside the class it is
  * 1; otherwise the maximum lies on one of the four great-circle arcs that
  * bound it (s·m_a = ±m_b) or at one of its four corners. */
@@ -370,43 +304,85 @@ static float facing_class_max_dot(unsigned c, vec3 n)
     return best;
 }
 
-/* Searches the classes of m in order, skipping those no photon of which a
- * surface filter f (NULL: none) can accept. */
-static uint32_t map_search(const photon_map *m, vec3 x, int disc, vec3 normal, float c2m1, const kdtree_filter *f,
-                           float max_radius2, kdtree_query *q)
+/* One search for every metric and filter; `disc` and whether `filter` is
+ * NULL are constants at each call site, so the compiler specialises the
+ * inlined copy. */
+typedef struct search_entry {
+    uint32_t cls, node; /* node: heap index within the class's subtree */
+    float d2;           /* squared distance from x to the node's cell */
+    float off[3];       /* its per-axis parts: d2 = Σ off² */
+} search_entry;
+
+static inline __attribute__((always_inline)) uint32_t map_search(const photon_map *m, vec3 x, int disc,
+                                                                 vec3 normal, float c2m1,
+                                                                 const kdtree_filter *f, float max_radius2,
+                                                                 kdtree_query *q)
 {
-    query_start(q, max_radius2);
-    if (!m->built)
+    q->found = 0;
+    q->radius2 = max_radius2;
+    if (!m->built || q->k == 0 || !(max_radius2 > 0.0f))
         return 0;
-    /* A surface search visits the facings its normal can accept, nearest
-     * first: the class it faces usually holds the nearest photons, and the
-     * radius they set prunes the other trees early. */
-    unsigned order[PHOTON_FACINGS], facings = 0;
-    float best[PHOTON_FACINGS];
-    for (unsigned c = 0; c < PHOTON_FACINGS; c++) {
-        float d = f ? facing_class_max_dot(c, f->normal) : 1.0f;
-        if (f && d < f->min_normal_cos)
+    const float xq[3] = {x.x, x.y, x.z};
+    float r2 = max_radius2;
+    search_entry stack[KDTREE_STACK_SIZE];
+    int top = 0;
+    /* The facings whose photons the filter can accept. */
+    int facing_ok[PHOTON_FACINGS];
+    for (unsigned c = 0; c < PHOTON_FACINGS; c++)
+        facing_ok[c] = !f || !(facing_class_max_dot(c, f->normal) < f->min_normal_cos);
+    /* The classes' roots, farthest first on the stack so that the
+     * nearest is searched first and sets the radius for the rest. */
+    for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
+        const photon_class_tree *t = &m->classes[c];
+        if (t->count == 0 || !facing_ok[c / 4u] || (f && (photon_class_flags(c) & f->exclude_flags)))
             continue;
-        unsigned j = facings++;
-        for (; j > 0 && best[j - 1] < d; j--) { /* insertion, stable: the same order every time */
-            best[j] = best[j - 1];
-            order[j] = order[j - 1];
+        search_entry e = {c, 1, 0.0f, {0.0f, 0.0f, 0.0f}};
+        for (int a = 0; a < 3; a++) {
+            float below = t->lo[a] - xq[a], above = xq[a] - t->hi[a];
+            e.off[a] = below > 0.0f ? below : above > 0.0f ? above : 0.0f;
+            e.d2 += e.off[a] * e.off[a];
         }
-        best[j] = d;
-        order[j] = c;
+        if (!(e.d2 < r2))
+            continue;
+        int j = top++;
+        for (; j > 0 && stack[j - 1].d2 < e.d2; j--) /* stable: equal distances keep class order */
+            stack[j] = stack[j - 1];
+        stack[j] = e;
     }
-    for (unsigned i = 0; i < facings; i++)
-        for (unsigned flags = 0; flags < 4; flags++) {
-            unsigned c = order[i] * 4u + flags;
-            uint32_t start = m->class_start[c], n = m->class_start[c + 1] - start;
-            if (n == 0 || (f && (photon_class_flags(c) & f->exclude_flags)))
-                continue;
-            if (disc)
-                knn_search(m->photons + start, n, start, x, 1, normal, c2m1, f, max_radius2, q);
-            else
-                knn_search(m->photons + start, n, start, x, 0, normal, 0.0f, NULL, max_radius2, q);
+    while (top > 0) {
+        search_entry e = stack[--top];
+        if (!(e.d2 < r2))
+            continue;
+        const photon_class_tree *t = &m->classes[e.cls];
+        const kdtree_split *splits = m->splits + t->first_split;
+        uint32_t leaves = 1u << t->depth, h = e.node;
+        /* Descend toward x, leaving the far children on the stack. */
+        while (h < leaves) {
+            const kdtree_split *sp = &splits[h - 1];
+            uint32_t a = sp->axis;
+            float to_lo = xq[a] - sp->lo, to_hi = xq[a] - sp->hi;
+            int right = to_lo + to_hi > 0.0f; /* nearer the right child's side of the gap */
+            float cut = right ? to_lo : to_hi; /* to the far child's plane */
+            float far_d2 = e.d2 - e.off[a] * e.off[a] + cut * cut;
+            if (far_d2 < r2) {
+                search_entry far = e;
+                far.node = 2 * h + !right;
+                far.d2 = far_d2;
+                far.off[a] = cut;
+                stack[top++] = far;
+            }
+            h = 2 * h + right;
         }
-    q->radius2 = q->found == q->k ? q->dist2[0] : max_radius2;
+        uint32_t j = h - leaves, s = t->start + bucket_start(t->count, t->depth, j),
+                 end = t->start + bucket_start(t->count, t->depth, j + 1);
+        for (uint32_t i = s; i < end; i++) {
+            const photon *p = &m->photons[i];
+            float d2 = disc ? kdtree_disc_dist2(p, x, normal, c2m1) : kdtree_dist2(p, x);
+            if (d2 < r2 && (!f || kdtree_filter_accepts(f, p)))
+                r2 = knn_add(q, d2, i, r2);
+        }
+    }
+    q->radius2 = r2; /* still max_radius2 unless k were found */
     return q->found;
 }
 

@@ -1,13 +1,19 @@
 /*
- * kdtree.h — the left-balanced kd-tree over photons (Bentley 1975,
- * "Multidimensional binary search trees used for associative searching";
- * Jensen 2001, "Realistic Image Synthesis Using Photon Mapping", §6.3, and
- * Jensen's course notes 2002) and its k-nearest-neighbour search.
+ * kdtree.h — the photon map's kd-tree (Bentley 1975, "Multidimensional
+ * binary search trees used for associative searching"; Jensen 2001,
+ * "Realistic Image Synthesis Using Photon Mapping", §6.3, and Jensen's
+ * course notes 2002) and its k-nearest-neighbour searches.
  *
- * The tree is the photon array itself, reordered as a 1-based heap: node i
- * is photons[i-1], its children are nodes 2i and 2i+1, node i is internal
- * iff 2i ≤ n, and its split axis lives in the photon's flag bits. No
- * pointers, child indices or bounds are stored (docs/algorithms.md §2.1).
+ * One tree per map (docs/algorithms.md §2). Its root splits the photons
+ * by class (photon.h): each class's subtree is entered only if the search
+ * accepts the class and the class's bounding box lies within the radius.
+ * Below, each subtree is balanced as Jensen's is — every node splits its
+ * photons at their median, along the longest axis of its cell — but ends
+ * in buckets of at most KDTREE_BUCKET photons instead of single photons,
+ * as nanoflann's and Mitsuba's trees do. The photon array itself is the
+ * leaves, in bucket order; the split planes are a small side array, and
+ * the tree's shape follows from the class's photon count alone, so it
+ * needs no pointers (docs/algorithms.md §2.1).
  *
  * After the build the tree is read-only, so any number of threads may query
  * it at once; each brings its own kdtree_query (results and heap).
@@ -24,23 +30,25 @@
 extern "C" {
 #endif
 
-/* Number of nodes in the left subtree of a left-balanced (complete, last
- * level filled from the left) binary tree of n ≥ 1 nodes: the median index
- * of a segment of n photons, 0-based (docs/algorithms.md §2.2). L(1) = 0. */
-uint32_t kdtree_left_size(uint32_t n);
+/* The most photons a bucket holds. A search scans a bucket's photons in
+ * order, from contiguous memory; smaller buckets prune more finely but
+ * cost a split plane (12 bytes) and a node visit each. Measured in
+ * docs/benchmarks.md ("The kd-tree against nanoflann"). */
+#define KDTREE_BUCKET 8
 
-/* Reorders photons[0..n) into the left-balanced heap and writes each node's
- * split axis into its flags (the other flag bits are kept). O(n log n): a
- * linear-time selection per level. Splits at the median (kdtree_left_size)
- * along the longest axis of the node's cell: the bounding box of all photons
- * narrowed by the ancestors' split planes, as Jensen's balance_segment does.
- * Temporary memory: one copy of the photons (20·n bytes) for the duration of
- * the call. The result depends only on the input array. Returns 0 if that
- * copy cannot be allocated (the photons are then unchanged), 1 otherwise;
- * n ≤ PHOTON_MAP_MAX_PHOTONS. cancel may be NULL; when *cancel becomes
- * nonzero the build stops within a few milliseconds and returns 0, the
- * array then holding no usable tree. */
-int kdtree_build(photon *photons, uint32_t n, atomic_int *cancel);
+/* Builds m's tree over its photons, which photon_map_build has sorted
+ * into classes (m->classes' start and count): reorders each class's
+ * photons into bucket order and fills the split planes and the classes'
+ * depths and bounding boxes. O(n log n): a linear-time selection per
+ * level. The result depends only on the photon array. Returns 0 when the
+ * planes cannot be allocated, or when *cancel (NULL: never) becomes
+ * nonzero, which it looks at every few milliseconds; the map then holds
+ * no usable tree. */
+int kdtree_build(photon_map *m, atomic_int *cancel);
+
+/* The depth of a class's subtree of n photons: the least d with
+ * ⌈n/2^d⌉ ≤ KDTREE_BUCKET (0 for n ≤ KDTREE_BUCKET). */
+uint32_t kdtree_depth(uint32_t n);
 
 /* Per-query scratch and results, one per thread, sized for k at init and
  * reused for every query. Results are unordered: index[j] and dist2[j] for
@@ -59,21 +67,14 @@ int kdtree_query_init(kdtree_query *q, uint32_t k);
 /* NULL is a no-op. */
 void kdtree_query_free(kdtree_query *q);
 
-/* The k photons nearest to x with squared distance < max_radius2 (strictly),
- * in the tree of n photons. Fills q and returns q->found. Ties at the k-th
- * distance are broken arbitrarily (but deterministically). */
-uint32_t kdtree_knn(const photon *tree, uint32_t n, vec3 x, float max_radius2, kdtree_query *q);
-
-/* As kdtree_knn with the "disc" metric of docs/algorithms.md §4.3: the
+/* The metrics (docs/algorithms.md §4.3). Euclidean, or the "disc": the
  * sphere squashed along the unit normal by `flatten` (c ≥ 1; the radiance
  * estimates use ESTIMATE_DISC_FLATTEN = 4),
  *     d_eff² = |v|² + (c² − 1)·(n·v)²,   v = photon − x,
  * so that photons off the surface's plane (other side of a thin wall, the
  * adjacent wall in a corner) rank as far away. d_eff ≥ |v|, so pruning with
- * the Euclidean plane distance stays conservative. dist2 and radius2 are in
- * d_eff². A flatten below 1 is taken as 1 (plain Euclidean). */
-uint32_t kdtree_knn_disc(const photon *tree, uint32_t n, vec3 x, vec3 normal, float flatten,
-                         float max_radius2, kdtree_query *q);
+ * the Euclidean distance to a cell stays conservative. dist2 and radius2
+ * are in d_eff². A flatten below 1 is taken as 1 (plain Euclidean). */
 
 /* The photons a surface search takes (docs/algorithms.md §4.3): only they
  * are ranked, so the k found are k the estimate can use. Filtering after
@@ -93,10 +94,6 @@ static inline int kdtree_filter_accepts(const kdtree_filter *f, const photon *p)
            v3_dot(photon_normal(p), f->normal) >= f->min_normal_cos;
 }
 
-/* kdtree_knn_disc about f->normal, among the photons f accepts. */
-uint32_t kdtree_knn_surface(const photon *tree, uint32_t n, vec3 x, float flatten, const kdtree_filter *f,
-                            float max_radius2, kdtree_query *q);
-
 /* The metrics, exactly as the searches compute them (tests compare against
  * brute force with these, so ties agree bit for bit). */
 static inline float kdtree_dist2(const photon *p, vec3 x)
@@ -112,12 +109,13 @@ static inline float kdtree_disc_dist2(const photon *p, vec3 x, vec3 normal, floa
     return dx * dx + dy * dy + dz * dz + c2m1 * (dn * dn);
 }
 
-/* The same searches on a photon map, over its classes (photon.h):
- * one search whose radius carries from each class's tree to the next, so
- * the result is that of one tree over all the photons. The surface search
- * skips the classes whose photons the filter cannot accept (excluded flags,
- * or normals that cannot pass its normal test). A
- * map not yet built finds nothing. Indices are into m->photons. */
+/* The k photons of m nearest to x with squared distance < max_radius2
+ * (strictly): fills q and returns q->found. Ties at the k-th distance are
+ * broken arbitrarily (but deterministically). _disc ranks by the disc
+ * metric; _surface by the disc about f->normal, among the photons f
+ * accepts, and skips the classes none of whose photons it can accept
+ * (excluded flags, or normals that cannot pass its normal test). A map
+ * not yet built finds nothing. Indices are into m->photons. */
 uint32_t photon_map_knn(const photon_map *m, vec3 x, float max_radius2, kdtree_query *q);
 uint32_t photon_map_knn_disc(const photon_map *m, vec3 x, vec3 normal, float flatten, float max_radius2,
                              kdtree_query *q);

@@ -4,7 +4,7 @@
  * RGBE follows Ward 1991 ("Real Pixels", Graphics Gems II) as Radiance's
  * setcolr/colr_color implement it; the direction bytes follow Jensen 2001
  * §6 with bin-centre tables (docs/algorithms.md §1.3). The map is a flat
- * array balanced into a left-balanced kd-tree by kdtree.c.
+ * array, sorted into classes and bucketed into its kd-tree by kdtree.c.
  */
 #include "photons/photon.h"
 
@@ -324,6 +324,16 @@ vec3 normal_decode(uint16_t code)
     return v3_normalize(v3(u, v, z));
 }
 
+vec3 photon_normal_table[4096];
+
+/* Runs when the library (or a test) is loaded, before any thread can read
+ * the table; 4096 decodes take microseconds. */
+__attribute__((constructor)) static void photon_normal_table_fill(void)
+{
+    for (uint32_t code = 0; code < 4096; code++)
+        photon_normal_table[code] = normal_decode((uint16_t)code);
+}
+
 photon photon_make(vec3 position, vec3 power, vec3 direction, vec3 normal, unsigned flags)
 {
     photon p;
@@ -344,7 +354,9 @@ void photon_map_init(photon_map *m)
     m->count = 0;
     m->capacity = 0;
     m->built = 0;
-    memset(m->class_start, 0, sizeof(m->class_start));
+    memset(m->classes, 0, sizeof(m->classes));
+    m->splits = NULL;
+    m->split_count = 0;
 }
 
 void photon_map_free(photon_map *m)
@@ -352,6 +364,7 @@ void photon_map_free(photon_map *m)
     if (!m)
         return;
     free(m->photons);
+    free(m->splits);
     photon_map_init(m);
 }
 
@@ -452,16 +465,16 @@ static int sort_by_class(photon_map *m, atomic_int *cancel)
         cls[i] = (uint8_t)photon_class(&m->photons[i]);
         count[cls[i]]++;
     }
-    m->class_start[0] = 0;
-    for (unsigned c = 0; c < PHOTON_CLASSES; c++)
-        m->class_start[c + 1] = m->class_start[c] + count[c];
+    uint32_t next[PHOTON_CLASSES];
+    for (unsigned c = 0, start = 0; c < PHOTON_CLASSES; start += count[c], c++) {
+        m->classes[c].start = next[c] = start;
+        m->classes[c].count = count[c];
+    }
     photon *sorted = m->count ? malloc(sizeof(photon) * (size_t)m->count) : NULL;
     if (m->count && !sorted) {
         free(cls);
         return 0;
     }
-    uint32_t next[PHOTON_CLASSES];
-    memcpy(next, m->class_start, sizeof(next));
     for (uint32_t i = 0; i < m->count; i++) {
         if ((i & (SORT_CANCEL_SLICE - 1)) == 0 && cancelled(cancel)) {
             free(cls);
@@ -485,14 +498,8 @@ int photon_map_build(photon_map *m, atomic_int *cancel)
         return 1;
     if (!sort_by_class(m, cancel))
         return 0;
-    /* The sort and each class's tree take tens of milliseconds for
-     * millions of photons: a cancel is looked at between them too. */
-    for (unsigned c = 0; c < PHOTON_CLASSES && m->count; c++) { /* an empty map may have no array */
-        if (cancelled(cancel))
-            return 0;
-        if (!kdtree_build(m->photons + m->class_start[c], m->class_start[c + 1] - m->class_start[c], cancel))
-            return 0;
-    }
+    if (cancelled(cancel) || !kdtree_build(m, cancel))
+        return 0;
     /* Give back the growth slack: a shrinking realloc keeps the data even if
      * it fails, so failure here only means the slack stays. */
     photon_map_resize(m, m->count);
@@ -502,5 +509,5 @@ int photon_map_build(photon_map *m, atomic_int *cancel)
 
 size_t photon_map_memory(const photon_map *m)
 {
-    return sizeof(photon_map) + sizeof(photon) * (size_t)m->capacity;
+    return sizeof(photon_map) + sizeof(photon) * (size_t)m->capacity + sizeof(kdtree_split) * (size_t)m->split_count;
 }

@@ -6,12 +6,13 @@
  * photon map datastructure"): position as three floats, power as Ward's
  * shared-exponent RGBE (Ward 1991, "Real Pixels", Graphics Gems II), the
  * incoming direction as two bytes decoded through lookup tables, and a
- * 16-bit flag word that carries the kd-tree split axis and, in 12 bits,
- * the normal of the surface the photon landed on.
+ * 16-bit flag word that carries the photon's kind and, in 12 bits, the
+ * normal of the surface the photon landed on.
  *
  * A photon map has an explicit lifecycle (as Mitsuba's): reserve → append →
  * build → read-only queries (kdtree.h). After the build it holds exactly
- * 20·N bytes of photons plus sizeof(photon_map); nothing else.
+ * 20·N bytes of photons, its kd-tree's split planes (12 bytes per bucket
+ * of 5 to 8 photons) and sizeof(photon_map); nothing else.
  */
 #ifndef PHOS_PHOTON_H
 #define PHOS_PHOTON_H
@@ -37,7 +38,7 @@ typedef struct photon {
     float position[3];  /* world space, scene units */
     uint8_t power[4];   /* RGBE (rgbe_encode), W; already divided by the photons emitted */
     uint8_t theta, phi; /* travel direction (direction_encode), world space */
-    uint16_t flags;     /* PHOTON_AXIS_MASK | PHOTON_CAUSTIC | PHOTON_DIRECT | normal << 4 */
+    uint16_t flags;     /* PHOTON_CAUSTIC | PHOTON_DIRECT | normal << 4; bits 0-1 zero */
 } photon;
 
 /* 12 + 4 + 2 + 2 bytes, alignment 4: no padding (docs/algorithms.md §1.1). */
@@ -50,7 +51,7 @@ _Static_assert(sizeof(photon) == 20, "the photon record is 20 bytes");
 /* The flag word. The slides declare it `short`; it is unsigned here, as
  * the normal fills its top bits. */
 enum {
-    PHOTON_AXIS_MASK = 0x3,   /* kd-tree split axis 0/1/2, written by kdtree_build */
+    PHOTON_SPARE_MASK = 0x3,  /* unused, always zero (Jensen's split axis; the tree keeps its own) */
     PHOTON_CAUSTIC = 1 << 2,  /* path L S+ D: also stored in the caustic map */
     PHOTON_DIRECT = 1 << 3,   /* first hit after leaving the light */
     PHOTON_NORMAL_SHIFT = 4,  /* bits 4-15: the surface normal (normal_encode) */
@@ -101,27 +102,31 @@ photon photon_make(vec3 position, vec3 power, vec3 direction, vec3 normal, unsig
 static inline vec3 photon_position(const photon *p) { return v3_load(p->position); }
 static inline vec3 photon_power(const photon *p) { return rgbe_decode(p->power); }
 static inline vec3 photon_direction(const photon *p) { return direction_decode(p->theta, p->phi); }
-static inline int photon_axis(const photon *p) { return p->flags & PHOTON_AXIS_MASK; }
-static inline vec3 photon_normal(const photon *p) { return normal_decode((uint16_t)(p->flags >> PHOTON_NORMAL_SHIFT)); }
+/* normal_decode of every 12-bit code, filled when the library loads: the
+ * searches test the normal of every photon they meet (48 KB, which stays
+ * in cache, against a square root and a division per photon). */
+extern vec3 photon_normal_table[4096];
+static inline vec3 photon_normal(const photon *p) { return photon_normal_table[p->flags >> PHOTON_NORMAL_SHIFT]; }
 static inline int photon_is_caustic(const photon *p) { return (p->flags & PHOTON_CAUSTIC) != 0; }
 static inline int photon_is_direct(const photon *p) { return (p->flags & PHOTON_DIRECT) != 0; }
 
 /* ---- photon map ---------------------------------------------------------
  * Lifecycle: photon_map_init → photon_map_reserve (optional) → append ... →
  * photon_map_build → read-only queries from any number of threads
- * (kdtree_knn with map->photons, map->count) → photon_map_free.
+ * (photon_map_knn and the others in kdtree.h) → photon_map_free.
  * Appending is single-threaded: a parallel tracer collects per-thread
  * batches and appends them in photon-index order, and the built map then
  * depends only on that sequence of photons (not on the reserve size, the
  * growth pattern or the thread count). */
-/* Photons are kept in classes, each its own kd-tree: by the dominant axis
- * of their normal (+x, −x, +y, −y, +z, −z: photon_facing) and by their
- * direct and caustic flags (photon_class). A surface search (kdtree.h)
- * then never walks photons it would reject: those of a surface facing
- * away (the sunlit outside of a thin wall, many times denser than the
- * inside), or the direct photons an estimate leaves out (a sunlit patch's
- * thousands, around every site of a radiance photon there). Filtering
- * them one by one made a radiance precomputation 20 times slower. */
+/* Photons are kept in classes: by the dominant axis of their normal (+x,
+ * −x, +y, −y, +z, −z: photon_facing) and by their direct and caustic flags
+ * (photon_class). The map's one kd-tree splits them by class at its root
+ * (kdtree.h), so a surface search never walks photons it would reject:
+ * those of a surface facing away (the sunlit outside of a thin wall, many
+ * times denser than the inside), or the direct photons an estimate leaves
+ * out (a sunlit patch's thousands, around every site of a radiance photon
+ * there). Filtering them one by one made a radiance precomputation 20
+ * times slower. */
 #define PHOTON_FACINGS 6
 #define PHOTON_CLASSES (PHOTON_FACINGS * 4)
 unsigned photon_facing(vec3 n);
@@ -133,13 +138,34 @@ static inline uint16_t photon_class_flags(unsigned c)
     return (uint16_t)(((c & 1u) ? PHOTON_DIRECT : 0) | ((c & 2u) ? PHOTON_CAUSTIC : 0));
 }
 
+/* A split plane of the kd-tree (kdtree.h): along `axis`, the left
+ * subtree's photons lie at or below lo, the right subtree's at or above
+ * hi (lo ≤ hi; the gap between them is empty space the search can skip,
+ * as nanoflann's divlow/divhigh). */
+typedef struct kdtree_split {
+    float lo, hi;  /* scene units */
+    uint32_t axis; /* 0, 1, 2 */
+} kdtree_split;
+
+/* One class's subtree: a perfect binary tree of 2^depth buckets over
+ * photons[start .. start + count), bucket j holding the photons from
+ * start + ⌊j·count/2^depth⌋ on; its 2^depth − 1 split planes in heap
+ * order (node h's children are 2h and 2h + 1) from splits[first_split]. */
+typedef struct photon_class_tree {
+    uint32_t start, count;
+    uint32_t depth;
+    uint32_t first_split;
+    float lo[3], hi[3]; /* bounding box of its photons; empty class: unused */
+} photon_class_tree;
+
 typedef struct photon_map {
-    photon *photons;   /* count photons; after the build the classes in order, each a kd-tree
-                          heap (class c: photons[class_start[c] .. class_start[c+1])) */
+    photon *photons;   /* count photons; after the build by class, each class in bucket order */
     uint32_t count;    /* photons stored */
     uint32_t capacity; /* photons allocated; equal to count after the build */
     int built;         /* 1 after photon_map_build: read-only from then on */
-    uint32_t class_start[PHOTON_CLASSES + 1];
+    photon_class_tree classes[PHOTON_CLASSES];
+    kdtree_split *splits;
+    uint32_t split_count;
 } photon_map;
 
 #define PHOTON_MAP_MAX_PHOTONS 0x7fffffffu
@@ -155,12 +181,14 @@ int photon_map_reserve(photon_map *m, uint32_t capacity);
  * Returns 0 on rejection, exhausted memory or an already built map. */
 int photon_map_append(photon_map *m, const photon *photons, uint32_t count);
 /* Sorts the photons into their classes (stably: the result depends
- * only on the appended sequence), balances each class's kd-tree
- * (kdtree_build) and shrinks the storage to exactly 20·count bytes. Returns 0 when memory is exhausted, in which case the map
- * keeps its photons unbuilt. Building twice is a no-op. cancel may be
- * NULL: when *cancel becomes nonzero it returns 0 soon, the map unusable. */
+ * only on the appended sequence), builds the kd-tree (kdtree_build) and
+ * shrinks the storage to exactly 20·count bytes. Returns 0 when memory is
+ * exhausted, in which case the map keeps its photons unbuilt. Building
+ * twice is a no-op. cancel may be NULL: when *cancel becomes nonzero it
+ * returns 0 soon, the map unusable. */
 int photon_map_build(photon_map *m, atomic_int *cancel);
-/* Bytes the map occupies: sizeof(photon_map) + 20·capacity (= 20·count once built). */
+/* Bytes the map occupies: sizeof(photon_map) + 20·capacity (= 20·count
+ * once built) + 12 per split plane. */
 size_t photon_map_memory(const photon_map *m);
 
 #ifdef __cplusplus
