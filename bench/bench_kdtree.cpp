@@ -1,4 +1,4 @@
-// bench_kdtree — Phos's left-balanced photon kd-tree (core/src/kdtree.c)
+// bench_kdtree — Phos's photon-map kd-tree (core/src/photons/kdtree.c)
 // against nanoflann's KDTreeSingleIndexAdaptor on the same photons, in the
 // same run, on one thread.
 //
@@ -212,8 +212,10 @@ void time_queries(const std::vector<vec3> &queries, uint32_t k, Result &res, Sea
     kdtree_query_free(&q);
 }
 
-void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
-              Result &res)
+// A photon map over `photons` (its build timed, best of 3) and its
+// unfiltered k-nearest search.
+void run_map(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
+             Result &res)
 {
     photon_map map;
     photon_map_init(&map);
@@ -239,27 +241,24 @@ void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queri
     photon_map_free(&map);
 }
 
-// The kd-tree alone, one tree over all photons (kdtree_build, kdtree_knn):
-// the structure nanoflann is compared with. A photon map splits its photons
-// into a tree per facing and flag class (photon.h), and photon_map_knn
-// without a surface filter searches every class's tree in turn.
+// The photons as they are: a map sorts them into its classes (facing and
+// flags, photon.h), and its root splits by class.
+void run_phos(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
+              Result &res)
+{
+    run_map(photons, queries, k, r2, res);
+}
+
+// The same positions as photons of one class (normal +z, no flags), so the
+// map is one spatial tree: the structure nanoflann is compared with.
 void run_tree(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
               Result &res)
 {
-    std::vector<photon> tree;
-    res.build_s = best_of(3, [&] {
-        tree = photons;
-        auto t0 = Clock::now();
-        kdtree_build(tree.data(), (uint32_t)tree.size(), NULL);
-        return seconds_since(t0);
-    });
-    res.bytes = tree.size() * sizeof(photon);
-    res.peak = peak_bytes([&] {
-        std::vector<photon> t2 = photons;
-        kdtree_build(t2.data(), (uint32_t)t2.size(), NULL);
-    });
-    time_queries(queries, k, res,
-                 [&](vec3 x, kdtree_query *q) { return kdtree_knn(tree.data(), (uint32_t)tree.size(), x, r2, q); });
+    std::vector<photon> one_class = photons;
+    uint16_t up = (uint16_t)(normal_encode(v3(0.0f, 0.0f, 1.0f)) << PHOTON_NORMAL_SHIFT);
+    for (photon &p : one_class)
+        p.flags = up;
+    run_map(one_class, queries, k, r2, res);
 }
 
 void run_nanoflann(const std::vector<photon> &photons, const std::vector<vec3> &queries, uint32_t k, float r2,
@@ -391,9 +390,11 @@ int main(int argc, char **argv)
                                       "phos_bytes_per_photon,nano_bytes_per_photon,phos_build_peak_bytes,"
                                       "nano_build_peak_bytes,qps_ratio,identical,map_build_s,map_qps,map_qps_ratio\n");
         }
-    std::printf("kd-tree benchmark: Phos (left-balanced heap, 20-byte photons) vs nanoflann %d.%d.%d "
+    std::printf("kd-tree benchmark: Phos (median splits into buckets of %d, 20-byte photons) vs nanoflann %d.%d.%d "
                 "(KDTreeSingleIndexAdaptor, leaf size 10, positions as float[3])\n",
-                NANOFLANN_VERSION >> 8, (NANOFLANN_VERSION >> 4) & 0xf, NANOFLANN_VERSION & 0xf);
+                KDTREE_BUCKET, NANOFLANN_VERSION >> 8, (NANOFLANN_VERSION >> 4) & 0xf, NANOFLANN_VERSION & 0xf);
+    std::printf("Phos tree = the photons as one class (one spatial tree); Phos map = the photons in their\n"
+                "classes (facing and flags), the map's tree split by class at its root.\n");
     std::printf("bytes per photon: Phos = the whole photon map (position, power, direction, flags, tree);\n"
                 "nanoflann = its index + 12 B of positions; a photon map on it needs 8 B more per photon.\n"
                 "Phos/nano is the ratio of the two columns: below 1 is better for build time and bytes,\n"

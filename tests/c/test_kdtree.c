@@ -230,6 +230,8 @@ static int knn_matches(const brute *b, const kdtree_query *q, uint32_t k, float 
     float want_r2 = (k > 0 && inside >= k) ? b->sorted[k - 1] : r2;
     if (q->found != want || q->radius2 != want_r2)
         return 0;
+    if (k > 0 && q->found == k && q->dist2[0] != want_r2) /* the k-th nearest comes first */
+        return 0;
     memset(b->seen, 0, b->n);
     uint32_t nearer = 0;
     for (uint32_t j = 0; j < q->found; j++) {

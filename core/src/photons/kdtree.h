@@ -51,8 +51,9 @@ int kdtree_build(photon_map *m, atomic_int *cancel);
 uint32_t kdtree_depth(uint32_t n);
 
 /* Per-query scratch and results, one per thread, sized for k at init and
- * reused for every query. Results are unordered: index[j] and dist2[j] for
- * j < found (the arrays are the search's max-heap). */
+ * reused for every query. Results: index[j] and dist2[j] for j < found,
+ * unordered, except that when k were found the k-th nearest is the first,
+ * j = 0 (the arrays are the search's max-heap). */
 typedef struct kdtree_query {
     uint32_t k;        /* at most k photons are returned */
     uint32_t found;    /* photons found, ≤ k */
@@ -62,7 +63,9 @@ typedef struct kdtree_query {
     float *dist2;      /* k entries: squared distances (in the query's metric) */
 } kdtree_query;
 
-/* Allocates room for k results (8·k bytes). Returns 0 when memory is exhausted. */
+/* Allocates room for k results (8·k bytes). Returns 0 when memory is
+ * exhausted. q->k may be lowered later (a nearest photon search with
+ * k = 1 on a query made for more), not raised. */
 int kdtree_query_init(kdtree_query *q, uint32_t k);
 /* NULL is a no-op. */
 void kdtree_query_free(kdtree_query *q);

@@ -383,10 +383,12 @@ uint64_t photon_maps_memory_estimate(uint32_t global, uint32_t caustic)
 {
     /* A map's traced records, at most twice their count in capacity while
      * batches double, live until the map is filled; the photons (20 bytes)
-     * stay, and the kd-tree build copies them once. */
+     * stay, sorting them into classes copies them once, and the kd-tree
+     * adds fewer than 2n/KDTREE_BUCKET split planes (kdtree.h). */
     uint64_t largest = global > caustic ? global : caustic;
     uint64_t tracing = 2 * largest * sizeof(traced_photon);
-    uint64_t maps = 2 * ((uint64_t)global + caustic) * sizeof(photon);
+    uint64_t stored = (uint64_t)global + caustic;
+    uint64_t maps = 2 * stored * sizeof(photon) + 2 * stored / KDTREE_BUCKET * sizeof(kdtree_split);
     uint64_t sites = ((uint64_t)global + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE;
     uint64_t site_bytes = sites * (9 * sizeof(float) + 2 * sizeof(photon) + 2 * sizeof(traced_photon));
     return tracing + maps + site_bytes;

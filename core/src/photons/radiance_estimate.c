@@ -39,12 +39,7 @@ static uint32_t gather(const photon_map *m, vec3 x, vec3 n, const estimate_param
     w->r2 = max_r2;
     if (q->found == q->k && q->k > 1) {
         w->r2 = q->radius2;
-        float far = -1.0f;
-        for (uint32_t j = 0; j < q->found; j++)
-            if (q->dist2[j] > far) {
-                far = q->dist2[j];
-                far_index = j;
-            }
+        far_index = 0; /* the k-th nearest (kdtree_query) */
     }
     w->norm = ep->filter == ESTIMATE_CONE ? 1.0f / 3.0f : 1.0f;
     return far_index;
@@ -58,13 +53,19 @@ static float kernel_weight(const estimate_params *ep, float d2, float r2)
 }
 
 /* Σ w_j f_j ΔΦ_j / (π r² · norm) over the photons found, with f_j the BSDF
- * toward wo (b NULL: f = 1, the irradiance). One loop for both estimates. */
+ * toward wo (b NULL: f = 1, the irradiance). One loop for both estimates.
+ * A Lambertian b (bsdf_lambertian_about) has the same f = ρ/π for every
+ * photon the search keeps, except those below the geometric surface
+ * (wi·ng ≤ 0, where a smooth shading normal leans past it), which it
+ * reflects none of: the powers are summed and multiplied by ρ/π once. */
 static vec3 estimate(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, const estimate_params *ep,
                      kdtree_query *q)
 {
     vec3 sum = v3s(0.0f);
     if (m->count == 0 || !(ep->max_radius > 0.0f) || (b && b->count == 0))
         return sum;
+    vec3 rho;
+    int lambertian = b && bsdf_lambertian_about(b, n, &rho);
     weighted_photon_sum w;
     uint32_t far_index = gather(m, x, n, ep, q, &w);
     for (uint32_t j = 0; j < q->found; j++) {
@@ -72,7 +73,10 @@ static vec3 estimate(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
             continue;
         const photon *p = kdtree_result(m->photons, q, j);
         vec3 power = photon_power(p);
-        if (b) {
+        if (lambertian) {
+            if (!(v3_dot(photon_direction(p), b->ng) < 0.0f))
+                continue;
+        } else if (b) {
             vec3 wi = v3_neg(photon_direction(p)); /* toward where the photon came from */
             /* bsdf_eval includes |cos θi|; the estimate wants f alone. The
              * search kept only photons with cos θi = wi·n > 0. */
@@ -80,6 +84,8 @@ static vec3 estimate(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
         }
         sum = v3_madd(sum, power, kernel_weight(ep, q->dist2[j], w.r2));
     }
+    if (lambertian)
+        sum = v3_mul(sum, v3_scale(rho, PHOS_INV_PI));
     return v3_scale(sum, 1.0f / (PHOS_PI * w.r2 * w.norm));
 }
 

@@ -31,12 +31,15 @@ typedef struct estimate_params {
 #define ESTIMATE_DISC_FLATTEN 4.0f
 
 /* A photon counts in an estimate only if the normal of the surface it
- * landed on is within about 45° of the normal where the estimate is read
+ * landed on is within 44.8° of the normal where the estimate is read
  * (photon_normal): a corner's other wall (90°) and the far side of a thin
  * wall (180°) are left out, while the facets of a smoothly curved mesh,
  * which the flattened disc already limits to a few tens of degrees across
- * a search, still count. */
-#define ESTIMATE_NORMAL_MIN_COS 0.7f
+ * a search, still count. Just above cos 45° = 0.7071, so that an
+ * axis-aligned wall's search enters its own facing class only: at 0.7 the
+ * four classes beside it (whose normals reach 45° from it) were searched
+ * too, for photons they almost never hold. */
+#define ESTIMATE_NORMAL_MIN_COS 0.71f
 
 /* Irradiance E (W/m²) at x on the side of unit normal n, from the photons
  * that arrived on that side onto a surface facing about the same way

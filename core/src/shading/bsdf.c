@@ -874,6 +874,21 @@ static vec3 eval_mixture(const bsdf *b, vec3 wo, vec3 wi, float *pdf)
     return eval_mixture_parts(b, wo, wi, pdf, 0.0f, NULL);
 }
 
+int bsdf_lambertian_about(const bsdf *b, vec3 n, vec3 *rho)
+{
+    vec3 sum = v3s(0.0f);
+    if (b->count == 0 || b->frames[0].n.x != n.x || b->frames[0].n.y != n.y || b->frames[0].n.z != n.z)
+        return 0;
+    for (uint32_t k = 0; k < b->count; k++) {
+        const closure *c = &b->closures[k];
+        if (c->type != PHOS_CLOSURE_DIFFUSE || c->frame != 0 || c->under_layers)
+            return 0;
+        sum = v3_add(sum, c->weight);
+    }
+    *rho = sum;
+    return 1;
+}
+
 void bsdf_init(bsdf *b, vec3 n_shading, vec3 n_geometric)
 {
     b->frames[0] = frame_from_normal(n_shading);

@@ -192,6 +192,16 @@ void bsdf_split(const bsdf *b, bsdf *diffuse, bsdf *other);
 /* Whether a closure is one of bsdf_split's diffuse ones. */
 int closure_is_diffuse(const closure *c);
 
+/* Whether b is Lambertian reflection about the unit normal n alone: only
+ * PHOS_CLOSURE_DIFFUSE closures, in the surface's own shading frame,
+ * whose normal is n, under no layer. Then, for every wi with wi·n > 0,
+ *     bsdf_eval(b, wo, wi) = (wi·ng > 0 ? ρ/π : 0) · (wi·n),
+ * with ρ = the closures' summed weight, written to *rho. A density
+ * estimate then sums photon powers and multiplies by ρ/π once (as
+ * Mitsuba's photon mapper reads irradiance × diffuse reflectance / π),
+ * instead of evaluating the BSDF per photon. */
+int bsdf_lambertian_about(const bsdf *b, vec3 n, vec3 *rho);
+
 /* What a denoiser is told about a surface (Cycles' denoising features,
  * Blender 4.5 and 5.0): each closure's albedo toward wo — its weight times
  * the share of light it returns, under its layers — summed apart for the
