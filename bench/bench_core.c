@@ -309,7 +309,7 @@ static map_timing time_maps(phos_scene *s, uint32_t global, uint32_t threads, ph
     }
     t.trace = now_seconds() - t0;
     t0 = now_seconds();
-    if (photon_maps_build(&m, NULL) != PHOS_OK) {
+    if (photon_maps_build(&m, threads, NULL) != PHOS_OK) {
         fprintf(stderr, "bench_core: kd-tree build failed\n");
         exit(1);
     }

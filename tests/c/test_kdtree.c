@@ -484,6 +484,46 @@ static void test_edge_cases(void)
     kdtree_query_free(NULL);
 }
 
+/* Built on 1, 2 and 3 threads, several maps at once or one by one, large
+ * classes (whose top levels are built first and their subtrees shared
+ * out) and small ones: the same photons in the same order, the same
+ * planes, byte for byte. */
+static void test_parallel_build(void)
+{
+    const uint32_t n = 400000;
+    photon *in = make_set(SET_BOX, n, 3);
+    /* Most photons in one class, so that it is split between threads. */
+    for (uint32_t i = 0; i < n; i += 4)
+        in[i] = photon_make(photon_position(&in[i]), v3s(1.0f), v3(0, 0, -1), v3(0, 0, 1), 0);
+    photon_map one, many[3][2];
+    CHECK(build_map(&one, in, n));
+    int differ = 0;
+    for (uint32_t threads = 1; threads <= 3; threads++) {
+        photon_map *maps[2] = {&many[threads - 1][0], &many[threads - 1][1]};
+        for (int j = 0; j < 2; j++) {
+            photon_map_init(maps[j]);
+            CHECK(photon_map_append(maps[j], in, j ? n / 3 : n));
+        }
+        CHECK(photon_map_build_many(maps, 2, threads, NULL));
+        differ += memcmp(one.photons, maps[0]->photons, sizeof(photon) * n) != 0 ||
+                  one.split_count != maps[0]->split_count ||
+                  memcmp(one.splits, maps[0]->splits, sizeof(kdtree_split) * one.split_count) != 0;
+        photon_map third;
+        CHECK(build_map(&third, in, n / 3));
+        differ += memcmp(third.photons, maps[1]->photons, sizeof(photon) * (n / 3)) != 0 ||
+                  memcmp(third.splits, maps[1]->splits, sizeof(kdtree_split) * third.split_count) != 0;
+        photon_map_free(&third);
+    }
+    CHECK_MSG(differ == 0, "%d maps built on several threads differ from one built alone", differ);
+    int bad_axes = 0;
+    CHECK(map_ordered(&many[2][0], &bad_axes) && bad_axes == 0);
+    for (int t = 0; t < 3; t++)
+        for (int j = 0; j < 2; j++)
+            photon_map_free(&many[t][j]);
+    photon_map_free(&one);
+    free(in);
+}
+
 /* ---- concurrent queries -------------------------------------------------- */
 
 #define THREADS 4
@@ -553,6 +593,7 @@ int main(void)
     test_large_sets(qk);
     test_map_classes(qk);
     test_edge_cases();
+    test_parallel_build();
     test_threads();
     for (int i = 0; i < 3; i++)
         kdtree_query_free(&qk[i]);

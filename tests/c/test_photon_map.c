@@ -68,7 +68,7 @@ static void test_point_light_irradiance(void)
     photon_maps_init(&maps);
     atomic_int cancel = 0;
     CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
-    CHECK(photon_maps_build(&maps, NULL) == PHOS_OK);
+    CHECK(photon_maps_build(&maps, 0, NULL) == PHOS_OK);
     /* Half the lamp's directions go up and escape; aimed at the plane
      * (test_photon_aiming.c), the paths are emitted downward alone: about
      * one emitted per stored. */
@@ -179,7 +179,7 @@ static void test_radiance_photons_unbiased(void)
     photon_maps_init(&maps);
     atomic_int cancel = 0;
     CHECK(photon_maps_trace(s, &ps, &maps, &cancel, NULL) == PHOS_OK);
-    CHECK(photon_maps_build(&maps, NULL) == PHOS_OK);
+    CHECK(photon_maps_build(&maps, 0, NULL) == PHOS_OK);
     CHECK(photon_maps_precompute_radiance(s, &ps, &maps, &cancel) == PHOS_OK);
     double expected = rho / M_PI * rho / (1.0 - rho) * 4.0 * M_PI * I / sphere_mesh_area(1.0, segments, rings);
     double sum = 0.0, block_sum = 0.0, sum_blocks2 = 0.0;
@@ -237,7 +237,7 @@ static void bead_maps(int blocked, photon_maps *a, photon_maps *b)
         photon_maps_init(m);
         atomic_int cancel = 0;
         CHECK(photon_maps_trace(s, &ps, m, &cancel, NULL) == PHOS_OK);
-        CHECK(photon_maps_build(m, NULL) == PHOS_OK);
+        CHECK(photon_maps_build(m, 0, NULL) == PHOS_OK);
     }
     CHECK(a->caustic_emitted == b->caustic_emitted && a->caustic.count == b->caustic.count);
     CHECK(a->caustic.count == 0 ||
@@ -680,8 +680,8 @@ static void test_maps_deterministic(void)
     photon_maps_init(&b);
     atomic_int cancel = 0;
     photon_trace_settings p1 = trace_settings(30000, 10000, 1), p3 = trace_settings(30000, 10000, 3);
-    CHECK(photon_maps_trace(s, &p1, &a, &cancel, NULL) == PHOS_OK && photon_maps_build(&a, NULL) == PHOS_OK);
-    CHECK(photon_maps_trace(s, &p3, &b, &cancel, NULL) == PHOS_OK && photon_maps_build(&b, NULL) == PHOS_OK);
+    CHECK(photon_maps_trace(s, &p1, &a, &cancel, NULL) == PHOS_OK && photon_maps_build(&a, p1.threads, NULL) == PHOS_OK);
+    CHECK(photon_maps_trace(s, &p3, &b, &cancel, NULL) == PHOS_OK && photon_maps_build(&b, p3.threads, NULL) == PHOS_OK);
     CHECK(a.global.count == b.global.count && a.caustic.count == b.caustic.count);
     CHECK(a.global_emitted == b.global_emitted && a.caustic_emitted == b.caustic_emitted);
     CHECK(a.global.count && memcmp(a.global.photons, b.global.photons, sizeof(photon) * a.global.count) == 0);

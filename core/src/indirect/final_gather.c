@@ -16,7 +16,12 @@
  * from where it left goes on by one BSDF sample instead of reading the
  * maps there, up to GATHER_NEAR_STEPS times: near a corner the estimate is
  * blurred over a disc as wide as the distance to the wall, and the gather
- * would copy its dark edge (Jensen 2001 §9.3.2, "secondary gathering"). */
+ * would copy its dark edge (Jensen 2001 §9.3.2, "secondary gathering").
+ * The radius is the estimate's own where a radiance photon answers (its
+ * k-th photon's distance, radiance_photon_radius), and otherwise the
+ * largest an estimate may have: with the largest everywhere, gather rays
+ * in a well-lit room bounced again where the estimate they landed on
+ * was a fraction of that wide. */
 #define GATHER_NEAR_RADII 2.0f
 #define GATHER_NEAR_STEPS 2u
 
@@ -36,7 +41,35 @@ enum {
  * glossy BSDFs too). Direct photons are left out: the light sample at the
  * hit counts direct light exactly, where the map would blur the sharp edge
  * of a sunlit patch over a disc and brighten the shade around it. */
-static vec3 hit_radiance_from_maps(const indirect_query *q, const specular_chain_end *end)
+/* The radiance photon at a gather ray's hit, looked up once: the near rule
+ * (gather_ray) reads its radius, and hit_radiance_from_maps its radiance. */
+typedef struct radiance_at_hit {
+    int looked_up, found;
+    vec3 L;       /* W/(m²·sr) */
+    float radius; /* of the estimate behind it, scene units */
+} radiance_at_hit;
+
+/* Whether b has a part bsdf_split calls diffuse: the part a radiance
+ * photon answers for. */
+static int has_diffuse_part(const bsdf *b)
+{
+    for (uint32_t k = 0; k < b->count; k++)
+        if (closure_is_diffuse(&b->closures[k]))
+            return 1;
+    return 0;
+}
+
+static radiance_at_hit look_up_radiance(const indirect_query *q, const specular_chain_end *end)
+{
+    const integrator_settings *is = q->is;
+    radiance_at_hit r = {1, 0, v3s(0.0f), 0.0f};
+    if (is->maps->radiance.count)
+        r.found = radiance_photon_lookup_radius(&is->maps->radiance, end->sf.p, end->sf.ns,
+                                                is->radiance_lookup_radius, &q->scratch->radiance, &r.L, &r.radius);
+    return r;
+}
+
+static vec3 hit_radiance_from_maps(const indirect_query *q, const specular_chain_end *end, radiance_at_hit *at)
 {
     const integrator_settings *is = q->is;
     estimate_params ep = is->global_estimate;
@@ -44,10 +77,13 @@ static vec3 hit_radiance_from_maps(const indirect_query *q, const specular_chain
     bsdf diffuse, rest;
     bsdf_split(&end->read, &diffuse, &rest);
     vec3 L = v3s(0.0f);
-    if (diffuse.count &&
-        !(is->maps->radiance.count && radiance_photon_lookup(&is->maps->radiance, end->sf.p, end->sf.ns,
-                                                             is->radiance_lookup_radius, &q->scratch->radiance, &L)))
-        L = photon_radiance(&is->maps->global, &diffuse, end->wo, end->sf.p, end->sf.ns, &ep, &q->scratch->global);
+    if (diffuse.count) {
+        if (!at->looked_up)
+            *at = look_up_radiance(q, end);
+        L = at->found ? at->L
+                      : photon_radiance(&is->maps->global, &diffuse, end->wo, end->sf.p, end->sf.ns, &ep,
+                                        &q->scratch->global);
+    }
     if (bsdf_has_non_delta(&rest)) {
         L = v3_add(L, photon_radiance(&is->maps->global, &rest, end->wo, end->sf.p, end->sf.ns, &ep,
                                       &q->scratch->global));
@@ -101,12 +137,21 @@ static gather_estimate gather_ray(const indirect_query *q, vec3 o, vec3 d, const
             break;
         beta = v3_mul(beta, end.beta);
         L = v3_add(L, v3_mul(beta, hit_direct(q, &end, &smp)));
-        int near = v3_length2(v3_sub(end.sf.p, o)) < near2;
+        float hit2 = v3_length2(v3_sub(end.sf.p, o));
+        int near = hit2 < near2;
+        radiance_at_hit at = {0, 0, v3s(0.0f), 0.0f};
+        if (near && step + 1 <= GATHER_NEAR_STEPS && has_diffuse_part(&end.read)) {
+            /* Near by the largest radius an estimate can have; the
+             * radiance photon there says how wide its own was. */
+            at = look_up_radiance(q, &end);
+            if (at.found)
+                near = hit2 < GATHER_NEAR_RADII * GATHER_NEAR_RADII * at.radius * at.radius;
+        }
         bsdf_sample bs;
         if (!near || step + 1 > GATHER_NEAR_STEPS ||
             !bsdf_sample_direction(&end.read, end.wo, sampler_1d(&smp, GATHER_DIM_CONTINUE),
                                    sampler_2d(&smp, GATHER_DIM_CONTINUE + 1), &bs)) {
-            L = v3_add(L, v3_mul(beta, hit_radiance_from_maps(q, &end)));
+            L = v3_add(L, v3_mul(beta, hit_radiance_from_maps(q, &end, &at)));
             break;
         }
         /* Near: the caustics arriving at the hit from the caustic map, and

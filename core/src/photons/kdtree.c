@@ -21,6 +21,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/parallel.h"
+
+/* Classes of fewer photons are built whole by one thread. */
+#define KDTREE_PARALLEL_MIN 65536u
+/* Subtrees per thread the top levels are cut into (below the top, each is
+ * built by one thread). */
+#define KDTREE_PARALLEL_ITEMS_PER_THREAD 4u
+
 /* A subtree is at most 31 levels deep (n ≤ 2^31 − 1 in buckets of ≥ 1),
  * each level pushes at most one far child, and the class roots are pushed
  * first. */
@@ -159,7 +167,86 @@ static int build_node(const class_build *cb, uint32_t h, uint32_t j0, uint32_t j
     return build_node(cb, 2 * h, j0, jm, left) && build_node(cb, 2 * h + 1, jm, j1, right);
 }
 
-int kdtree_build(photon_map *m, atomic_int *cancel)
+/* A subtree left for the parallel part of the build. */
+typedef struct pending_subtree {
+    class_build cb;
+    uint32_t node, j0, j1;
+    cell_box cell;
+} pending_subtree;
+
+typedef struct build_plan {
+    pending_subtree *items;
+    uint32_t count, capacity;
+    atomic_int failed; /* a subtree was cancelled */
+} build_plan;
+
+static int plan_add(build_plan *p, const class_build *cb, uint32_t node, uint32_t j0, uint32_t j1, cell_box cell)
+{
+    if (p->count == p->capacity) {
+        uint32_t grown = p->capacity ? 2 * p->capacity : 64;
+        pending_subtree *items = realloc(p->items, sizeof(pending_subtree) * grown);
+        if (!items)
+            return 0;
+        p->items = items;
+        p->capacity = grown;
+    }
+    p->items[p->count++] = (pending_subtree){*cb, node, j0, j1, cell};
+    return 1;
+}
+
+/* build_node for the top `levels` levels only; the subtrees below are
+ * added to the plan. */
+static int build_top(const class_build *cb, uint32_t h, uint32_t j0, uint32_t j1, cell_box cell, uint32_t levels,
+                     build_plan *plan)
+{
+    if (levels == 0 || j1 - j0 == 1)
+        return plan_add(plan, cb, h, j0, j1, cell);
+    uint32_t jm = j0 + (j1 - j0) / 2;
+    uint32_t s = bucket_start(cb->n, cb->depth, j0), e = bucket_start(cb->n, cb->depth, j1);
+    uint32_t m = bucket_start(cb->n, cb->depth, jm);
+    int axis = longest_axis(&cell);
+    if (!select_median(cb->p + s, e - s, m - s, axis, cb->cancel))
+        return 0;
+    float lo = cb->p[s].position[axis];
+    for (uint32_t i = s + 1; i < m; i++)
+        lo = cb->p[i].position[axis] > lo ? cb->p[i].position[axis] : lo;
+    float hi = cb->p[m].position[axis];
+    cb->splits[h - 1] = (kdtree_split){lo, hi, (uint32_t)axis};
+    cell_box left = cell, right = cell;
+    left.hi[axis] = lo;
+    right.lo[axis] = hi;
+    return build_top(cb, 2 * h, j0, jm, left, levels - 1, plan) &&
+           build_top(cb, 2 * h + 1, jm, j1, right, levels - 1, plan);
+}
+
+static uint32_t subtree_photons(const pending_subtree *t)
+{
+    return bucket_start(t->cb.n, t->cb.depth, t->j1) - bucket_start(t->cb.n, t->cb.depth, t->j0);
+}
+
+/* Largest first, so that no thread is left with a big one at the end;
+ * ties by position in the plan, so the order is the same every time (the
+ * tree does not depend on it: subtrees own disjoint photons and planes). */
+static int compare_subtrees(const void *a, const void *b)
+{
+    const pending_subtree *x = a, *y = b;
+    uint32_t nx = subtree_photons(x), ny = subtree_photons(y);
+    if (nx != ny)
+        return nx < ny ? 1 : -1;
+    return x < y ? -1 : (x > y);
+}
+
+static void build_pending(void *ctx, uint32_t item, uint32_t thread)
+{
+    (void)thread;
+    build_plan *plan = ctx;
+    const pending_subtree *t = &plan->items[item];
+    if (!build_node(&t->cb, t->node, t->j0, t->j1, t->cell))
+        atomic_store(&plan->failed, 1);
+}
+
+/* The split planes and class boxes of one map; its classes' roots. */
+static int prepare_map(photon_map *m, uint32_t top_levels, build_plan *plan, atomic_int *cancel)
 {
     uint64_t total = 0;
     for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
@@ -187,10 +274,33 @@ int kdtree_build(photon_map *m, atomic_int *cancel)
         memcpy(t->lo, box.lo, sizeof(t->lo));
         memcpy(t->hi, box.hi, sizeof(t->hi));
         class_build cb = {m->photons + t->start, t->count, t->depth, m->splits + t->first_split, cancel};
-        if (!build_node(&cb, 1, 0, 1u << t->depth, box))
+        /* Only classes worth splitting between threads get top levels. */
+        uint32_t levels = t->count >= KDTREE_PARALLEL_MIN ? top_levels : 0;
+        if (!build_top(&cb, 1, 0, 1u << t->depth, box, levels, plan))
             return 0;
     }
     return 1;
+}
+
+int kdtree_build(photon_map *const *maps, unsigned count, uint32_t threads, atomic_int *cancel)
+{
+    threads = parallel_thread_count(threads);
+    /* The top levels are built on one thread, and the subtrees below them
+     * on all: 2^levels subtrees per class give each thread several. Each
+     * level on one thread costs about 1/depth of the build. */
+    uint32_t top_levels = 0;
+    while (threads > 1 && (1u << top_levels) < KDTREE_PARALLEL_ITEMS_PER_THREAD * threads)
+        top_levels++;
+    build_plan plan = {NULL, 0, 0, 0};
+    int ok = 1;
+    for (unsigned i = 0; ok && i < count; i++)
+        ok = prepare_map(maps[i], top_levels, &plan, cancel);
+    if (ok && plan.count) {
+        qsort(plan.items, plan.count, sizeof(pending_subtree), compare_subtrees);
+        ok = parallel_for(plan.count, threads, build_pending, &plan, cancel) && !atomic_load(&plan.failed);
+    }
+    free(plan.items);
+    return ok;
 }
 
 /* ---- search -------------------------------------------------------------- */

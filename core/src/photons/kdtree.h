@@ -36,15 +36,17 @@ extern "C" {
  * docs/benchmarks.md ("The kd-tree against nanoflann"). */
 #define KDTREE_BUCKET 8
 
-/* Builds m's tree over its photons, which photon_map_build has sorted
- * into classes (m->classes' start and count): reorders each class's
- * photons into bucket order and fills the split planes and the classes'
- * depths and bounding boxes. O(n log n): a linear-time selection per
- * level. The result depends only on the photon array. Returns 0 when the
- * planes cannot be allocated, or when *cancel (NULL: never) becomes
- * nonzero, which it looks at every few milliseconds; the map then holds
- * no usable tree. */
-int kdtree_build(photon_map *m, atomic_int *cancel);
+/* Builds the trees of `count` maps over their photons, which
+ * photon_map_build has sorted into classes (m->classes' start and count):
+ * reorders each class's photons into bucket order and fills the split
+ * planes and the classes' depths and bounding boxes. O(n log n): a
+ * linear-time selection per level. The top levels of each large class are
+ * built on one thread, the subtrees below them on `threads` threads (0:
+ * one per core), largest first; each tree depends only on its map's
+ * photon array, never on the thread count. Returns 0 when memory runs
+ * out, or when *cancel (NULL: never) becomes nonzero, which it looks at
+ * every few milliseconds; the maps then hold no usable tree. */
+int kdtree_build(photon_map *const *maps, unsigned count, uint32_t threads, atomic_int *cancel);
 
 /* The depth of a class's subtree of n photons: the least d with
  * ⌈n/2^d⌉ ≤ KDTREE_BUCKET (0 for n ≤ KDTREE_BUCKET). */

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "photons/kdtree.h"
+#include "util/parallel.h"
 
 /* ---- RGBE ---------------------------------------------------------------- */
 
@@ -492,20 +493,47 @@ static int sort_by_class(photon_map *m, atomic_int *cancel)
     return 1;
 }
 
-int photon_map_build(photon_map *m, atomic_int *cancel)
+typedef struct sort_job {
+    photon_map *const *maps;
+    atomic_int *cancel;
+    atomic_int failed;
+} sort_job;
+
+static void sort_one(void *ctx, uint32_t item, uint32_t thread)
 {
-    if (m->built)
+    (void)thread;
+    sort_job *job = ctx;
+    if (!job->maps[item]->built && !sort_by_class(job->maps[item], job->cancel))
+        atomic_store(&job->failed, 1);
+}
+
+int photon_map_build_many(photon_map *const *maps, unsigned count, uint32_t threads, atomic_int *cancel)
+{
+    photon_map *todo[8];
+    unsigned n = 0;
+    for (unsigned i = 0; i < count; i++)
+        if (!maps[i]->built) {
+            if (n == sizeof(todo) / sizeof(todo[0]))
+                return 0;
+            todo[n++] = maps[i];
+        }
+    if (n == 0)
         return 1;
-    if (!sort_by_class(m, cancel))
+    sort_job job = {todo, cancel, 0};
+    if (!parallel_for(n, parallel_thread_count(threads) < n ? parallel_thread_count(threads) : n, sort_one, &job,
+                      cancel) ||
+        atomic_load(&job.failed) || cancelled(cancel) || !kdtree_build(todo, n, threads, cancel))
         return 0;
-    if (cancelled(cancel) || !kdtree_build(m, cancel))
-        return 0;
-    /* Give back the growth slack: a shrinking realloc keeps the data even if
-     * it fails, so failure here only means the slack stays. */
-    photon_map_resize(m, m->count);
-    m->built = 1;
+    for (unsigned i = 0; i < n; i++) {
+        /* Give back the growth slack: a shrinking realloc keeps the data
+         * even if it fails, so failure here only means the slack stays. */
+        photon_map_resize(todo[i], todo[i]->count);
+        todo[i]->built = 1;
+    }
     return 1;
 }
+
+int photon_map_build(photon_map *m, atomic_int *cancel) { return photon_map_build_many(&m, 1, 1, cancel); }
 
 size_t photon_map_memory(const photon_map *m)
 {

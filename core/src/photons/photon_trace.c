@@ -677,9 +677,10 @@ void photon_maps_note_short(photon_maps *m, const scene *s, const photon_trace_s
                     (caustic_traced && m->caustic.count < ps->caustic_photons ? 1u << PHOS_MAP_CAUSTIC : 0u);
 }
 
-phos_status photon_maps_build(photon_maps *m, atomic_int *cancel)
+phos_status photon_maps_build(photon_maps *m, uint32_t threads, atomic_int *cancel)
 {
-    if (!photon_map_build(&m->global, cancel) || !photon_map_build(&m->caustic, cancel))
+    photon_map *const maps[2] = {&m->global, &m->caustic};
+    if (!photon_map_build_many(maps, 2, threads, cancel))
         return cancel && atomic_load(cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_OUT_OF_MEMORY;
     return PHOS_OK;
 }
@@ -706,9 +707,14 @@ static void precompute_sites(void *ctx, uint32_t item, uint32_t thread)
     for (uint32_t i = begin; i < end; i++) {
         const float *site = m->radiance_sites + 9 * i;
         vec3 p = v3_load(site), n = v3_load(site + 3), rho = v3_load(site + 6);
-        vec3 E = photon_irradiance(&m->global, p, n, &ep, &pc->queries[thread]);
-        /* Lambertian exitance: L = ρ/π · E (W/(m²·sr)). */
+        kdtree_query *q = &pc->queries[thread];
+        q->radius2 = ep.max_radius * ep.max_radius; /* what it stays if there is no photon to search */
+        vec3 E = photon_irradiance(&m->global, p, n, &ep, q);
+        /* Lambertian exitance: L = ρ/π · E (W/(m²·sr)), and the radius
+         * of the estimate (the disc metric's, so never below the
+         * Euclidean distance of the photons it counted). */
         pc->out[i] = photon_make(p, v3_scale(v3_mul(rho, E), PHOS_INV_PI), n, n, 0);
+        radiance_photon_set_radius(&pc->out[i], sqrtf(q->radius2));
     }
 }
 
@@ -730,7 +736,7 @@ phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_s
     if (st == PHOS_OK && !parallel_for((n + SITES_PER_ITEM - 1) / SITES_PER_ITEM, threads, precompute_sites, &pc, cancel))
         st = PHOS_ERROR_CANCELLED;
     if (st == PHOS_OK && (!photon_map_reserve(&m->radiance, n) || !photon_map_append(&m->radiance, pc.out, n) ||
-                          !photon_map_build(&m->radiance, cancel)))
+                          !photon_map_build_many((photon_map *const[]){&m->radiance}, 1, threads, cancel)))
         st = PHOS_ERROR_OUT_OF_MEMORY;
     for (uint32_t t = 0; pc.queries && t < threads; t++)
         kdtree_query_free(&pc.queries[t]);

@@ -91,7 +91,7 @@ void photon_maps_note_short(photon_maps *m, const scene *s, const photon_trace_s
 
 /* Balances the kd-trees of the global and caustic maps; PHOS_ERROR_CANCELLED
  * soon after *cancel is set (cancel may be NULL). */
-phos_status photon_maps_build(photon_maps *m, atomic_int *cancel);
+phos_status photon_maps_build(photon_maps *m, uint32_t threads, atomic_int *cancel);
 
 /* Christensen 1999: at each radiance site, the radiance the surface
  * reflects there, ρ/π·E, from the global map's photons that scattered at

@@ -100,7 +100,8 @@ vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
     return estimate(m, b, wo, x, n, ep, q);
 }
 
-int radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q, vec3 *L)
+int radiance_photon_lookup_radius(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q, vec3 *L,
+                                  float *radius)
 {
     *L = v3s(0.0f);
     /* The nearest record facing about the way n does: the search ranks
@@ -113,6 +114,28 @@ int radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius
     q->k = capacity;
     if (q->found == 0)
         return 0;
-    *L = photon_power(kdtree_result(m->photons, q, 0));
+    const photon *p = kdtree_result(m->photons, q, 0);
+    *L = photon_power(p);
+    if (radius)
+        *radius = radiance_photon_radius(p);
     return 1;
+}
+
+int radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q, vec3 *L)
+{
+    return radiance_photon_lookup_radius(m, x, n, max_radius, q, L, NULL);
+}
+
+void radiance_photon_set_radius(photon *p, float radius)
+{
+    float code = radius > 0.0f ? ceilf(256.0f * log2f(radius)) + 32768.0f : 0.0f;
+    uint32_t c = code <= 0.0f ? 0u : code >= 65535.0f ? 65535u : (uint32_t)code; /* NaN: 0 */
+    p->theta = (uint8_t)(c & 0xffu);
+    p->phi = (uint8_t)(c >> 8);
+}
+
+float radiance_photon_radius(const photon *p)
+{
+    uint32_t c = (uint32_t)p->theta | (uint32_t)p->phi << 8;
+    return exp2f(((float)c - 32768.0f) / 256.0f);
 }

@@ -64,4 +64,17 @@ vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
  * the fly from the global map). docs/algorithms.md §5.3. */
 int radiance_photon_lookup(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q, vec3 *L);
 
+/* The same, also returning the radius (scene units) of the estimate the
+ * radiance photon was computed from (radiance_photon_set_radius). */
+int radiance_photon_lookup_radius(const photon_map *m, vec3 x, vec3 n, float max_radius, kdtree_query *q, vec3 *L,
+                                  float *radius);
+
+/* A radiance photon has no direction of travel, so its two direction
+ * bytes keep the radius of the estimate behind it: 16 bits, in steps of
+ * 1/256 of an octave, r = 2^((code − 32768)/256), rounded up (the decoded
+ * radius is never below r, by at most 0.3 %). Final gathering reads it to
+ * tell whether a gather ray landed inside that estimate's disc. */
+void radiance_photon_set_radius(photon *p, float radius);
+float radiance_photon_radius(const photon *p);
+
 #endif /* PHOS_RADIANCE_ESTIMATE_H */

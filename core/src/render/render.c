@@ -456,7 +456,7 @@ static phos_status run_stage(render *r, uint32_t stage)
     case PHOS_STAGE_TRACING_PHOTONS:
         return trace_photons(r);
     case PHOS_STAGE_BUILDING_KDTREES:
-        return photon_maps_build(r->maps, &r->cancel);
+        return photon_maps_build(r->maps, r->threads, &r->cancel);
     case PHOS_STAGE_PRECOMPUTING_RADIANCE:
         return photon_maps_precompute_radiance(r->scene, &r->photon_settings, r->maps, &r->cancel);
     case PHOS_STAGE_FILLING_IRRADIANCE_CACHE:
