@@ -240,6 +240,16 @@ def new_render_settings():
     return d
 
 
+def settings_stages(settings):
+    """The stages (enum phos_stage) a render with these settings runs, in
+    order: the core's plan, without making a render."""
+    ids = (ctypes.c_uint32 * PHOS_STAGE_COUNT)()
+    n = _u32()
+    if lib().phos_settings_stages(ctypes.byref(settings), ids, PHOS_STAGE_COUNT, ctypes.byref(n)) != PHOS_OK:
+        raise PhosError("reading the plan of the settings")
+    return list(ids[:min(n.value, PHOS_STAGE_COUNT)])
+
+
 # -------------------------------------------------------------------- scene
 
 class _Handle:

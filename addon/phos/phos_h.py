@@ -853,6 +853,7 @@ FUNCTIONS = {
     "phos_photon_maps_release": (None, [ctypes.c_void_p]),
     "phos_render_start": (ctypes.c_int, [ctypes.c_void_p]),
     "phos_render_stages": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_stage_info), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint32)]),
+    "phos_settings_stages": (ctypes.c_int, [ctypes.POINTER(phos_render_settings), ctypes.POINTER(ctypes.c_uint32), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint32)]),
     "phos_render_progress": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_progress)]),
     "phos_render_next_tile": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_tile), ctypes.POINTER(ctypes.c_uint32)]),
     "phos_render_read": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint32, ctypes.POINTER(ctypes.c_float), ctypes.c_size_t]),

@@ -14,7 +14,7 @@ import bpy
 
 from . import core
 from .export.material import uses_nodes
-from .properties import CACHE_PASSES, DEBUG_PASSES, DENOISING_PASSES, LIGHT_PASSES, NOISE_PASSES
+from .properties import CACHE_PASSES, DEBUG_PASSES, DENOISING_PASSES, LIGHT_PASSES, NOISE_PASSES, enabled_passes, render_settings
 
 ENGINE = 'PHOS'
 
@@ -100,10 +100,24 @@ class PHOS_RENDER_PT_sampling_filter(PhosButtonsPanel, bpy.types.Panel):
         sub.prop(phos, "filter_target", text="Apply To")
 
 
+def planned_stages(context):
+    """The stages a final render of this scene and view layer would run:
+    the core's plan (core.settings_stages), so that a panel is shown exactly
+    when its stage runs. None if the core cannot say (no library)."""
+    try:
+        rs = render_settings(context.scene, 1, 1)
+        for p in enabled_passes(context.view_layer):
+            rs.pass_mask |= 1 << p.pass_id
+        return core.settings_stages(rs)
+    except (core.PhosError, OSError, AttributeError):
+        return None
+
+
 def uses_photon_maps(context):
     """Whether a render builds photon maps: PHOTON, or a photon debug pass
     (which builds them under PATH too)."""
-    return context.scene.phos.integrator == 'PHOTON' or _debug_passes_enabled(context)
+    stages = planned_stages(context)
+    return stages is None or core.PHOS_STAGE_TRACING_PHOTONS in stages
 
 
 class PHOS_RENDER_PT_photon_mapping(PhosButtonsPanel, bpy.types.Panel):
@@ -184,12 +198,10 @@ class PHOS_RENDER_PT_photon_mapping_advanced(PhosButtonsPanel, bpy.types.Panel):
         sub.prop(phos, "photon_map_file", text="Path")
 
 
-def cache_used(phos):
-    """Whether a render with these settings uses the irradiance cache (as the
-    core's stage plan decides, core/src/render/stages.c)."""
-    if phos.integrator == 'PHOTON' and phos.photon_view == 'FAST':
-        return False
-    return phos.irradiance_cache == 'ALWAYS' or (phos.irradiance_cache == 'PHOTON' and phos.integrator == 'PHOTON')
+def cache_used(context):
+    """Whether a render with these settings fills the irradiance cache."""
+    stages = planned_stages(context)
+    return stages is None or core.PHOS_STAGE_FILLING_IRRADIANCE_CACHE in stages
 
 
 class PHOS_RENDER_PT_irradiance_cache(PhosButtonsPanel, bpy.types.Panel):
@@ -205,7 +217,7 @@ class PHOS_RENDER_PT_irradiance_cache(PhosButtonsPanel, bpy.types.Panel):
         phos = context.scene.phos
         layout.prop(phos, "irradiance_cache", text="Use")
         layout = layout.column()
-        layout.active = cache_used(phos)
+        layout.active = cache_used(context)
         layout.prop(phos, "ic_accuracy")
         layout.prop(phos, "ic_rays", text="Rays")
         col = layout.column(align=True)
@@ -215,11 +227,6 @@ class PHOS_RENDER_PT_irradiance_cache(PhosButtonsPanel, bpy.types.Panel):
         sub = layout.column()
         sub.active = phos.ic_file_mode != 'NONE'
         sub.prop(phos, "ic_file", text="Path")
-
-
-def _debug_passes_enabled(context):
-    settings = getattr(context.view_layer, "phos", None)
-    return settings is not None and any(getattr(settings, p.prop) for p in DEBUG_PASSES)
 
 
 class PHOS_RENDER_PT_light_paths(PhosButtonsPanel, bpy.types.Panel):
@@ -377,7 +384,7 @@ class PHOS_VIEW_LAYER_PT_passes_cache_debug(PhosPassGroupPanel, bpy.types.Panel)
     passes = CACHE_PASSES
 
     def draw_note(self, context, layout):
-        if context.view_layer.phos.use_pass_irradiance_cache and not cache_used(context.scene.phos):
+        if context.view_layer.phos.use_pass_irradiance_cache and not cache_used(context):
             layout.label(text="The irradiance cache is not used: the pass stays black", icon='INFO')
 
 

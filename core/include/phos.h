@@ -1040,6 +1040,15 @@ typedef struct phos_stage_info {
  * in running order. */
 PHOS_API phos_status phos_render_stages(const phos_render *render, phos_stage_info *out, uint32_t max,
                                         uint32_t *out_count);
+/* The plan a render with these settings would have, without making one:
+ * the stage ids (enum phos_stage) in running order, as phos_render_stages
+ * would list them, so that a user interface shows the settings of the
+ * stages that will run and hides the others by the core's own rule. Only
+ * the settings that choose stages are read (integrator, photon_view,
+ * irradiance_cache, pass_mask, noise_filter); phos_render_create still
+ * validates them all. */
+PHOS_API phos_status phos_settings_stages(const phos_render_settings *settings, uint32_t *stage_ids, uint32_t max,
+                                          uint32_t *out_count);
 
 /* The photon maps, as phos_progress names the one being traced. */
 enum phos_photon_map { PHOS_MAP_GLOBAL = 0, PHOS_MAP_CAUSTIC = 1 };

@@ -260,6 +260,16 @@ def test_render_tab_reads_as_cycles(scene):
             assert not too_long, "%s: labels cut at the default width: %s" % (cls.__name__, too_long)
             named = [t for t in labels if t]
             assert len(set(named)) == len(named), "%s: two rows named alike: %s" % (cls.__name__, named)
+    # The Irradiance Cache panel is active exactly when the core's plan
+    # fills the cache.
+    for integrator, view, cache, used in (("PATH", "FINAL_GATHER", "PHOTON", False),
+                                          ("PATH", "FINAL_GATHER", "ALWAYS", True),
+                                          ("PHOTON", "FINAL_GATHER", "PHOTON", True),
+                                          ("PHOTON", "FAST", "ALWAYS", False),
+                                          ("PHOTON", "FINAL_GATHER", "OFF", False)):
+        scene.phos.integrator, scene.phos.photon_view, scene.phos.irradiance_cache = integrator, view, cache
+        assert ui.cache_used(context) == used, (integrator, view, cache)
+    scene.phos.photon_view, scene.phos.irradiance_cache = "FINAL_GATHER", "PHOTON"
     scene.phos.integrator = "PATH"
     scene.view_layers[0].phos.use_pass_photons = True  # a photon debug pass builds the maps under PATH
     assert ui.PHOS_RENDER_PT_photon_mapping.poll(context)

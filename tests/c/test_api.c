@@ -9,8 +9,9 @@
 #include <string.h>
 #include <time.h>
 
-#include "render/memory.h"
 #include "cache/fingerprint.h"
+#include "render/memory.h"
+#include "render/stages.h"
 #include "scene/scene.h"
 #include "test_scenes.h"
 #include "test_util.h"
@@ -435,6 +436,27 @@ static void check_plan(phos_scene *s, uint32_t integrator, uint32_t view, uint32
     for (uint32_t i = 0; same && i < n; i++)
         same = plan[i].id == want[i];
     CHECK_MSG(same, "integrator %u view %u passes 0x%x: %u stages", integrator, view, pass_mask, n);
+    /* The plan from the settings alone is the render's. */
+    uint32_t ids[PHOS_STAGE_COUNT], id_count = 0;
+    CHECK(phos_settings_stages(&rs, ids, PHOS_STAGE_COUNT, &id_count) == PHOS_OK && id_count == n);
+    for (uint32_t i = 0; i < n && i < id_count; i++)
+        CHECK_MSG(ids[i] == plan[i].id, "settings plan stage %u: %u, the render's %u", i, ids[i], plan[i].id);
+    CHECK(phos_settings_stages(&rs, NULL, 0, &id_count) == PHOS_OK && id_count == n);
+    CHECK(phos_settings_stages(&rs, NULL, 1, &id_count) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_settings_stages(NULL, ids, PHOS_STAGE_COUNT, &id_count) == PHOS_ERROR_INVALID_ARGUMENT);
+    /* Progress through the plan only grows: each stage's share follows
+     * the last's, and FINISHED is the whole bar. */
+    stage_plan sp;
+    stage_plan_make(&rs, &sp);
+    float last = -1.0f;
+    int grows = stage_plan_fraction(&sp, 0, 0.0f) == 0.0f;
+    for (uint32_t i = 0; i < sp.count; i++)
+        for (float within = 0.0f; within <= 1.0f; within += 0.25f) {
+            float f = stage_plan_fraction(&sp, i, within);
+            grows &= f >= last && f <= 1.0f;
+            last = f;
+        }
+    CHECK_MSG(grows && stage_plan_fraction(&sp, sp.count - 1, 0.0f) == 1.0f, "progress through the plan");
     for (uint32_t i = 0; same && i < n; i++)
         if (plan[i].id == PHOS_STAGE_RENDERING)
             CHECK_MSG(strcmp(plan[i].name, render_name) == 0, "%s", plan[i].name);

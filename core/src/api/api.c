@@ -1143,27 +1143,22 @@ phos_status phos_render_progress(phos_render *r, phos_progress *out)
     out->cache_interpolated = atomic_load(&r->cache_hits);
     out->cache_rays_traced = atomic_load(&r->cache_rays);
     out->gather_rays = atomic_load(&r->gather_rays);
-    /* The photon stages take the first 20 % of the bar when there are any,
-     * the irradiance cache's pre-pass the next 20 % when it runs, the tiles
-     * the rest. */
-    /* The tiles' share: pixel samples done, over all passes. */
+    /* How far through its stage it is; the plan gives each stage its
+     * share of the bar. The tiles' part: pixel samples done, over all
+     * passes; the photons' part: photons stored over the maps it traces
+     * (no global map for the path-traced gather). */
     uint64_t work_total = (uint64_t)r->film.width * r->film.height * r->settings.samples;
     float tiles = work_total ? (float)((double)atomic_load(&r->work_done) / (double)work_total) : 1.0f;
-    /* The maps it really traces (no global map for the path-traced gather). */
     float photons_target = (float)r->photon_settings.global_photons + (float)r->photon_settings.caustic_photons;
-    float maps_part = r->use_maps ? 0.2f : 0.0f, cache_part = r->use_cache ? 0.2f : 0.0f;
-    float before = maps_part + cache_part;
-    float photon_part = photons_target > 0.0f ? fminf((float)out->photons_stored / photons_target, 1.0f) : 1.0f;
-    uint32_t cache_passes = irradiance_cache_fill_passes(&r->cache_fill);
-    float cache_done = (float)atomic_load(&r->cache_passes_done) / (float)(cache_passes ? cache_passes : 1);
-    switch (out->stage_id) {
-    case PHOS_STAGE_TRACING_PHOTONS: out->fraction = 0.15f * photon_part; break;
-    case PHOS_STAGE_BUILDING_KDTREES: out->fraction = 0.16f; break;
-    case PHOS_STAGE_PRECOMPUTING_RADIANCE: out->fraction = 0.18f; break;
-    case PHOS_STAGE_FILLING_IRRADIANCE_CACHE: out->fraction = maps_part + cache_part * cache_done; break;
-    case PHOS_STAGE_WAITING: out->fraction = 0.0f; break;
-    default: out->fraction = before + (1.0f - before) * tiles; break;
-    }
+    float within = 0.0f;
+    if (out->stage_id == PHOS_STAGE_TRACING_PHOTONS)
+        within = photons_target > 0.0f ? (float)out->photons_stored / photons_target : 1.0f;
+    else if (out->stage_id == PHOS_STAGE_FILLING_IRRADIANCE_CACHE) {
+        uint32_t cache_passes = irradiance_cache_fill_passes(&r->cache_fill);
+        within = (float)atomic_load(&r->cache_passes_done) / (float)(cache_passes ? cache_passes : 1);
+    } else if (out->stage_id == PHOS_STAGE_RENDERING)
+        within = tiles;
+    out->fraction = stage_plan_fraction(&r->plan, out->stage_index, within);
     const char *stage = stage_name(out->stage_id, r->settings.integrator);
     if (out->state == PHOS_STATE_CANCELLED)
         stage = "Cancelled";
@@ -1183,6 +1178,19 @@ phos_status phos_render_stages(const phos_render *r, phos_stage_info *out, uint3
         out[i].id = r->plan.stages[i];
         snprintf(out[i].name, sizeof(out[i].name), "%s", stage_name(r->plan.stages[i], r->settings.integrator));
     }
+    return PHOS_OK;
+}
+
+phos_status phos_settings_stages(const phos_render_settings *rs, uint32_t *stage_ids, uint32_t max,
+                                 uint32_t *out_count)
+{
+    if (!rs || !out_count || (max && !stage_ids))
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    stage_plan plan;
+    stage_plan_make(rs, &plan);
+    *out_count = plan.count;
+    for (uint32_t i = 0; i < plan.count && i < max; i++)
+        stage_ids[i] = plan.stages[i];
     return PHOS_OK;
 }
 

@@ -40,6 +40,36 @@ void stage_plan_make(const phos_render_settings *rs, stage_plan *plan)
     plan->count = n;
 }
 
+/* Each stage's share of a progress bar, relative to the others a plan
+ * runs: a render with photon maps and the cache spends about a fifth of
+ * its time on each before the tiles (docs/benchmarks.md's stage times). */
+static const float stage_weight[PHOS_STAGE_COUNT] = {
+    [PHOS_STAGE_WAITING] = 0.0f,
+    [PHOS_STAGE_TRACING_PHOTONS] = 15.0f,
+    [PHOS_STAGE_BUILDING_KDTREES] = 2.0f,
+    [PHOS_STAGE_PRECOMPUTING_RADIANCE] = 3.0f,
+    [PHOS_STAGE_FILLING_IRRADIANCE_CACHE] = 20.0f,
+    [PHOS_STAGE_RENDERING] = 60.0f,
+    [PHOS_STAGE_FILTERING] = 1.0f,
+    [PHOS_STAGE_FINISHED] = 0.0f,
+};
+
+float stage_plan_fraction(const stage_plan *plan, uint32_t index, float within)
+{
+    float total = 0.0f, done = 0.0f;
+    for (uint32_t i = 0; i < plan->count; i++) {
+        float w = stage_weight[plan->stages[i]];
+        total += w;
+        if (i < index)
+            done += w;
+        else if (i == index)
+            done += w * (within > 0.0f ? (within < 1.0f ? within : 1.0f) : 0.0f);
+    }
+    if (index >= plan->count || plan->stages[index] == PHOS_STAGE_FINISHED)
+        return 1.0f;
+    return total > 0.0f ? done / total : 0.0f;
+}
+
 int stage_plan_has(const stage_plan *plan, uint32_t stage)
 {
     for (uint32_t i = 0; i < plan->count; i++)

@@ -24,6 +24,11 @@ void stage_plan_make(const phos_render_settings *rs, stage_plan *plan);
 /* 1 if the settings turn the irradiance cache on for their integrator. */
 int stage_plan_uses_cache(const phos_render_settings *rs);
 
+/* How far along a progress bar a render is, 0..1, running the plan's
+ * stage at `index`, `within` (0..1) of the way through it: each stage of
+ * the plan has its share (stages.c), FINISHED is 1. */
+float stage_plan_fraction(const stage_plan *plan, uint32_t index, float within);
+
 /* 1 if the plan runs the stage. */
 int stage_plan_has(const stage_plan *plan, uint32_t stage);
 
