@@ -44,6 +44,24 @@ static inline vec3 hemisphere_stratum_direction(uint32_t j, uint32_t k, uint32_t
     return v3(cosf(phi) * sin_t, sinf(phi) * sin_t, cos_t);
 }
 
+/* The one loop over a hemisphere's strata, for every gather that stands on
+ * it: for each of the M×N strata of `rays` (index = j·N + k), the jittered
+ * direction wi (world space) and its cosine to the normal, in the frame of
+ * the query's shading normal, from the gather's own sampler g (dimensions
+ * 2·index and 2·index + 1). Strata whose direction lies below the
+ * geometric or the shading surface are left out (their light is zero and
+ * they see no surface). A cancel stops the walk within a row of strata,
+ * a few hundred rays at most: it then returns 0 and the caller discards
+ * what it gathered. */
+typedef struct hemisphere_ray {
+    uint32_t index; /* stratum j·N + k */
+    vec3 wi;        /* world space, unit */
+    float cos_t;    /* wi · the shading normal, > 0 */
+    vec3 origin;    /* where the ray leaves: the point lifted off the surface */
+} hemisphere_ray;
+typedef void (*hemisphere_visit)(void *ctx, const indirect_query *q, const hemisphere_ray *ray, const sampler *g);
+int hemisphere_walk(const indirect_query *q, uint32_t M, uint32_t N, hemisphere_visit visit, void *ctx);
+
 /* ∫ f_d L_i cos dω over the query's hemisphere with `rays` cosine-stratified
  * rays, each weighted by f_d·π (the cosine pdf's cos θ/π cancels the cosine
  * of the integrand). count_emitters: the rays count the emitters their

@@ -82,6 +82,32 @@ static float gradient_limit(vec3 E, const vec3 grad_t[3])
     return len > 0.0f ? luminance(E) / len : INFINITY;
 }
 
+/* What the record keeps of its hemisphere: each stratum's radiance and
+ * distance (for the gradients), and the sums. */
+typedef struct record_walk {
+    hemisphere_incoming incoming;
+    vec3 *L;
+    float *R;
+    vec3 E, E_caustic, w_sum;
+    float inv_R_sum;
+} record_walk;
+
+static void record_visit(void *ctx, const indirect_query *q, const hemisphere_ray *ray, const sampler *g)
+{
+    record_walk *w = ctx;
+    q->scratch->gather_rays++;
+    gather_estimate Li = w->incoming(q, ray->origin, ray->wi, g, ray->index, 0.0f);
+    if (!v3_is_finite(Li.indirect) || !v3_is_finite(Li.caustic))
+        return;
+    w->L[ray->index] = Li.indirect;
+    w->R[ray->index] = Li.distance;
+    w->E = v3_add(w->E, Li.indirect);
+    w->E_caustic = v3_add(w->E_caustic, Li.caustic);
+    w->w_sum = v3_madd(w->w_sum, ray->wi, luminance(Li.indirect));
+    if (Li.distance < INFINITY && Li.distance > 0.0f)
+        w->inv_R_sum += 1.0f / Li.distance;
+}
+
 int irradiance_record_compute(const indirect_query *q, hemisphere_incoming incoming, uint32_t rays, float R_lo,
                               float R_hi, irradiance_record *out)
 {
@@ -95,33 +121,15 @@ int irradiance_record_compute(const indirect_query *q, hemisphere_incoming incom
         free(R);
         return 0;
     }
-    sampler g = sampler_split(q->smp, HEMISPHERE_GATHER_STREAM + q->vertex);
-    frame f = frame_from_normal(sf->ns);
-    vec3 o_up = offset_ray_origin(sf->p, sf->ng);
-    vec3 E = v3s(0.0f), E_caustic = v3s(0.0f), w_sum = v3s(0.0f);
-    float inv_R_sum = 0.0f;
-    uint32_t index = 0;
-    for (uint32_t j = 0; j < M; j++) {
-        for (uint32_t k = 0; k < N; k++, index++) {
-            vec3 local = hemisphere_stratum_direction(j, k, M, N, sampler_2d(&g, 2u * index));
-            vec3 wi = frame_to_world(&f, local);
-            L[index] = v3s(0.0f);
-            R[index] = INFINITY;
-            if (v3_dot(wi, sf->ng) <= 0.0f || local.z <= 0.0f)
-                continue; /* below the surface: no light, and no surface seen */
-            q->scratch->gather_rays++;
-            gather_estimate Li = incoming(q, o_up, wi, &g, index, 0.0f);
-            if (!v3_is_finite(Li.indirect) || !v3_is_finite(Li.caustic))
-                continue;
-            L[index] = Li.indirect;
-            R[index] = Li.distance;
-            E = v3_add(E, Li.indirect);
-            E_caustic = v3_add(E_caustic, Li.caustic);
-            w_sum = v3_madd(w_sum, wi, luminance(Li.indirect));
-            if (Li.distance < INFINITY && Li.distance > 0.0f)
-                inv_R_sum += 1.0f / Li.distance;
-        }
+    for (uint32_t i = 0; i < M * N; i++) {
+        L[i] = v3s(0.0f);
+        R[i] = INFINITY; /* below the surface: no light, and no surface seen */
     }
+    record_walk w = {incoming, L, R, v3s(0.0f), v3s(0.0f), v3s(0.0f), 0.0f};
+    hemisphere_walk(q, M, N, record_visit, &w); /* cancelled: the fill discards the record */
+    vec3 E = w.E, E_caustic = w.E_caustic, w_sum = w.w_sum;
+    float inv_R_sum = w.inv_R_sum;
+    frame f = frame_from_normal(sf->ns);
     float scale = PHOS_PI / (float)(M * N);
     out->p = sf->p;
     out->n = sf->ns;
