@@ -322,29 +322,74 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
     return status;
 }
 
-/* Appends the kept photons (those with all of `flags`) scaled by
- * `scale`, packed into 20-byte records. */
-static phos_status append_photons(photon_map *m, const batch *kept, float scale, uint16_t flags)
+/* Packing traced photons into 20-byte records (photon_make: frexp, acos,
+ * atan2 and the normal's octahedral search, some 100 ns each) runs on
+ * every thread, in chunks of this many, each into its own slots. */
+#define ENCODE_CHUNK 16384u
+
+typedef struct encode_job {
+    const batch *kept;
+    float scale;
+    uint16_t flags;
+    const uint32_t *first_out; /* per chunk: its first slot in out */
+    photon *out;
+} encode_job;
+
+static void encode_chunk(void *ctx, uint32_t item, uint32_t thread)
 {
-    for (uint32_t i = 0; i < kept->count; i++) {
-        const traced_photon *tp = &kept->items[i];
-        if ((tp->flags & flags) != flags)
-            continue;
-        photon p = photon_make(tp->position, v3_scale(tp->power, scale), tp->direction, tp->normal, tp->flags);
-        if (!photon_map_append(m, &p, 1))
-            return PHOS_ERROR_OUT_OF_MEMORY;
+    (void)thread;
+    const encode_job *job = ctx;
+    uint32_t begin = item * ENCODE_CHUNK, end = begin + ENCODE_CHUNK;
+    if (end > job->kept->count)
+        end = job->kept->count;
+    photon *out = job->out + job->first_out[item];
+    for (uint32_t i = begin; i < end; i++) {
+        const traced_photon *tp = &job->kept->items[i];
+        if ((tp->flags & job->flags) == job->flags)
+            *out++ = photon_make(tp->position, v3_scale(tp->power, job->scale), tp->direction, tp->normal,
+                                 tp->flags);
     }
-    return PHOS_OK;
+}
+
+/* Appends the kept photons (those with all of `flags`) scaled by
+ * `scale`, packed into 20-byte records on `threads` threads, in their
+ * order. */
+static phos_status append_photons(photon_map *m, const batch *kept, float scale, uint16_t flags, uint32_t threads)
+{
+    uint32_t chunks = (kept->count + ENCODE_CHUNK - 1) / ENCODE_CHUNK;
+    if (chunks == 0)
+        return PHOS_OK;
+    uint32_t *first_out = malloc(sizeof(uint32_t) * chunks);
+    if (!first_out)
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    uint32_t total = 0;
+    for (uint32_t c = 0; c < chunks; c++) {
+        first_out[c] = total;
+        uint32_t end = (c + 1) * ENCODE_CHUNK < kept->count ? (c + 1) * ENCODE_CHUNK : kept->count;
+        for (uint32_t i = c * ENCODE_CHUNK; i < end; i++)
+            total += (kept->items[i].flags & flags) == flags;
+    }
+    photon *out = malloc(sizeof(photon) * (total ? total : 1));
+    phos_status st = out ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
+    if (st == PHOS_OK) {
+        encode_job job = {kept, scale, flags, first_out, out};
+        parallel_for(chunks, threads, encode_chunk, &job, NULL);
+        if (!photon_map_append(m, out, total))
+            st = PHOS_ERROR_OUT_OF_MEMORY;
+    }
+    free(out);
+    free(first_out);
+    return st;
 }
 
 /* Scales by 1/emitted and fills the map. */
-static phos_status fill_map(photon_map *m, const batch *kept, uint64_t emitted)
+static phos_status fill_map(photon_map *m, const batch *kept, uint64_t emitted, uint32_t threads)
 {
     if (kept->count == 0)
         return PHOS_OK;
     if (!photon_map_reserve(m, kept->count))
         return PHOS_ERROR_OUT_OF_MEMORY;
-    return append_photons(m, kept, 1.0f / (float)emitted, 0);
+    return append_photons(m, kept, 1.0f / (float)emitted, 0, threads);
 }
 
 static uint32_t count_caustic(const batch *kept)
@@ -364,7 +409,7 @@ static uint32_t count_caustic(const batch *kept)
  * variance where the two sets' photons carry similar power, and gives
  * every photon the same share of the map's power on average. */
 static phos_status fill_caustic_map(photon_map *m, const batch *global, uint64_t global_emitted, uint32_t reused,
-                                    const batch *own, uint64_t own_emitted)
+                                    const batch *own, uint64_t own_emitted, uint32_t threads)
 {
     uint32_t n = reused + own->count;
     if (n == 0)
@@ -372,10 +417,11 @@ static phos_status fill_caustic_map(photon_map *m, const batch *global, uint64_t
     if (!photon_map_reserve(m, n))
         return PHOS_ERROR_OUT_OF_MEMORY;
     double alpha = (double)reused / n;
-    phos_status st = reused ? append_photons(m, global, (float)(alpha / (double)global_emitted), PHOTON_CAUSTIC)
+    phos_status st = reused ? append_photons(m, global, (float)(alpha / (double)global_emitted), PHOTON_CAUSTIC,
+                                             threads)
                             : PHOS_OK;
     if (st == PHOS_OK && own->count)
-        st = append_photons(m, own, (float)((1.0 - alpha) / (double)own_emitted), 0);
+        st = append_photons(m, own, (float)((1.0 - alpha) / (double)own_emitted), 0, threads);
     return st;
 }
 
@@ -632,7 +678,8 @@ static phos_status trace_caustic_map(const scene *s, const photon_trace_settings
     if (target)
         projection_map_free(&aim);
     if (st == PHOS_OK) {
-        st = fill_caustic_map(&out->caustic, global, out->global_emitted, reused, &own, out->caustic_emitted);
+        st = fill_caustic_map(&out->caustic, global, out->global_emitted, reused, &own, out->caustic_emitted,
+                              parallel_thread_count(ps->threads));
         out->caustic_reused = reused;
     }
     free(own.items);
@@ -654,7 +701,7 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     const projection_map *ga = aimed ? &global_aim : NULL;
     st = trace_map(s, ps, MAP_GLOBAL, ga, ps->global_photons, &kept, &out->global_emitted, cancel, progress, 0);
     if (st == PHOS_OK)
-        st = fill_map(&out->global, &kept, out->global_emitted);
+        st = fill_map(&out->global, &kept, out->global_emitted, parallel_thread_count(ps->threads));
     uint32_t global_count = kept.count;
     if (st == PHOS_OK && global_count > 0)
         st = trace_radiance_sites(s, ps, ga, out, (global_count + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE,
