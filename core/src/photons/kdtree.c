@@ -134,9 +134,8 @@ static int select_median(photon *a, uint32_t n, uint32_t m, int axis, atomic_int
     return 1;
 }
 
-/* Builds the subtree of node h (1-based heap index) of a class whose
- * photons are p[0..n) in buckets of `depth` levels: the node covers
- * buckets [j0, j1) and so photons [s, e). 0 if cancelled. */
+/* One class's build: its photons p[0..n) in 2^depth buckets, and its
+ * split planes. */
 typedef struct class_build {
     photon *p;
     uint32_t n, depth;
@@ -144,14 +143,25 @@ typedef struct class_build {
     atomic_int *cancel;
 } class_build;
 
-static int build_node(const class_build *cb, uint32_t h, uint32_t j0, uint32_t j1, cell_box cell)
+/* A node still to be built: node h (1-based heap index) of a class's
+ * subtree, covering buckets [j0, j1), so photons from bucket_start(j0) to
+ * bucket_start(j1), inside `cell`. */
+typedef struct build_node_job {
+    const class_build *cb;
+    uint32_t node, j0, j1;
+    cell_box cell;
+} build_node_job;
+
+/* Splits node t (not a bucket): selects its photons' median along its
+ * cell's longest axis, writes its split plane, and returns its two
+ * children in child[0] (left) and child[1]. 0 if cancelled. */
+static int split_node(const build_node_job *t, build_node_job child[2])
 {
-    if (j1 - j0 == 1)
-        return 1; /* a bucket */
-    uint32_t jm = j0 + (j1 - j0) / 2;
-    uint32_t s = bucket_start(cb->n, cb->depth, j0), e = bucket_start(cb->n, cb->depth, j1);
+    const class_build *cb = t->cb;
+    uint32_t jm = t->j0 + (t->j1 - t->j0) / 2;
+    uint32_t s = bucket_start(cb->n, cb->depth, t->j0), e = bucket_start(cb->n, cb->depth, t->j1);
     uint32_t m = bucket_start(cb->n, cb->depth, jm);
-    int axis = longest_axis(&cell);
+    int axis = longest_axis(&t->cell);
     if (!select_median(cb->p + s, e - s, m - s, axis, cb->cancel))
         return 0;
     /* After the selection p[m] is the least of the right half along the
@@ -160,93 +170,80 @@ static int build_node(const class_build *cb, uint32_t h, uint32_t j0, uint32_t j
     for (uint32_t i = s + 1; i < m; i++)
         lo = cb->p[i].position[axis] > lo ? cb->p[i].position[axis] : lo;
     float hi = cb->p[m].position[axis];
-    cb->splits[h - 1] = (kdtree_split){lo, hi, (uint32_t)axis};
-    cell_box left = cell, right = cell;
-    left.hi[axis] = lo;
-    right.lo[axis] = hi;
-    return build_node(cb, 2 * h, j0, jm, left) && build_node(cb, 2 * h + 1, jm, j1, right);
-}
-
-/* A subtree left for the parallel part of the build. */
-typedef struct pending_subtree {
-    class_build cb;
-    uint32_t node, j0, j1;
-    cell_box cell;
-} pending_subtree;
-
-typedef struct build_plan {
-    pending_subtree *items;
-    uint32_t count, capacity;
-    atomic_int failed; /* a subtree was cancelled */
-} build_plan;
-
-static int plan_add(build_plan *p, const class_build *cb, uint32_t node, uint32_t j0, uint32_t j1, cell_box cell)
-{
-    if (p->count == p->capacity) {
-        uint32_t grown = p->capacity ? 2 * p->capacity : 64;
-        pending_subtree *items = realloc(p->items, sizeof(pending_subtree) * grown);
-        if (!items)
-            return 0;
-        p->items = items;
-        p->capacity = grown;
-    }
-    p->items[p->count++] = (pending_subtree){*cb, node, j0, j1, cell};
+    cb->splits[t->node - 1] = (kdtree_split){lo, hi, (uint32_t)axis};
+    child[0] = child[1] = *t;
+    child[0].node = 2 * t->node;
+    child[0].j1 = jm;
+    child[0].cell.hi[axis] = lo;
+    child[1].node = 2 * t->node + 1;
+    child[1].j0 = jm;
+    child[1].cell.lo[axis] = hi;
     return 1;
 }
 
-/* build_node for the top `levels` levels only; the subtrees below are
- * added to the plan. */
-static int build_top(const class_build *cb, uint32_t h, uint32_t j0, uint32_t j1, cell_box cell, uint32_t levels,
-                     build_plan *plan)
+/* Builds the subtree of t, down to its buckets. 0 if cancelled. */
+static int build_subtree(const build_node_job *t)
 {
-    if (levels == 0 || j1 - j0 == 1)
-        return plan_add(plan, cb, h, j0, j1, cell);
-    uint32_t jm = j0 + (j1 - j0) / 2;
-    uint32_t s = bucket_start(cb->n, cb->depth, j0), e = bucket_start(cb->n, cb->depth, j1);
-    uint32_t m = bucket_start(cb->n, cb->depth, jm);
-    int axis = longest_axis(&cell);
-    if (!select_median(cb->p + s, e - s, m - s, axis, cb->cancel))
-        return 0;
-    float lo = cb->p[s].position[axis];
-    for (uint32_t i = s + 1; i < m; i++)
-        lo = cb->p[i].position[axis] > lo ? cb->p[i].position[axis] : lo;
-    float hi = cb->p[m].position[axis];
-    cb->splits[h - 1] = (kdtree_split){lo, hi, (uint32_t)axis};
-    cell_box left = cell, right = cell;
-    left.hi[axis] = lo;
-    right.lo[axis] = hi;
-    return build_top(cb, 2 * h, j0, jm, left, levels - 1, plan) &&
-           build_top(cb, 2 * h + 1, jm, j1, right, levels - 1, plan);
+    if (t->j1 - t->j0 == 1)
+        return 1; /* a bucket */
+    build_node_job child[2];
+    return split_node(t, child) && build_subtree(&child[0]) && build_subtree(&child[1]);
 }
 
-static uint32_t subtree_photons(const pending_subtree *t)
+/* The nodes of a build still to be made, level by level. */
+typedef struct build_plan {
+    build_node_job *items, *next; /* this level's nodes; the next level's (2 per node) */
+    uint32_t count;
+    uint32_t top_levels;          /* the levels split node by node across threads */
+    atomic_int failed;            /* a node was cancelled */
+} build_plan;
+
+/* A node splits at a top level only if its class is large enough to share
+ * out, and it is not a bucket. */
+static int splits_at_top(const build_node_job *t)
 {
-    return bucket_start(t->cb.n, t->cb.depth, t->j1) - bucket_start(t->cb.n, t->cb.depth, t->j0);
+    return t->cb->n >= KDTREE_PARALLEL_MIN && t->j1 - t->j0 > 1;
 }
 
-/* Largest first, so that no thread is left with a big one at the end;
- * ties by position in the plan, so the order is the same every time (the
- * tree does not depend on it: subtrees own disjoint photons and planes). */
-static int compare_subtrees(const void *a, const void *b)
+static void split_top(void *ctx, uint32_t item, uint32_t thread)
 {
-    const pending_subtree *x = a, *y = b;
-    uint32_t nx = subtree_photons(x), ny = subtree_photons(y);
-    if (nx != ny)
-        return nx < ny ? 1 : -1;
-    return x < y ? -1 : (x > y);
+    (void)thread;
+    build_plan *plan = ctx;
+    const build_node_job *t = &plan->items[item];
+    build_node_job *child = &plan->next[2 * item];
+    if (!splits_at_top(t))
+        child[0] = *t;
+    else if (!split_node(t, child))
+        atomic_store(&plan->failed, 1);
 }
 
 static void build_pending(void *ctx, uint32_t item, uint32_t thread)
 {
     (void)thread;
     build_plan *plan = ctx;
-    const pending_subtree *t = &plan->items[item];
-    if (!build_node(&t->cb, t->node, t->j0, t->j1, t->cell))
+    if (!build_subtree(&plan->items[item]))
         atomic_store(&plan->failed, 1);
 }
 
-/* The split planes and class boxes of one map; its classes' roots. */
-static int prepare_map(photon_map *m, uint32_t top_levels, build_plan *plan, atomic_int *cancel)
+static uint32_t job_photons(const build_node_job *t)
+{
+    return bucket_start(t->cb->n, t->cb->depth, t->j1) - bucket_start(t->cb->n, t->cb->depth, t->j0);
+}
+
+/* Largest first, so that no thread is left with a big one at the end;
+ * ties by position in the plan, so the order is the same every time (the
+ * tree does not depend on it: subtrees own disjoint photons and planes). */
+static int compare_jobs(const void *a, const void *b)
+{
+    const build_node_job *x = a, *y = b;
+    uint32_t nx = job_photons(x), ny = job_photons(y);
+    if (nx != ny)
+        return nx < ny ? 1 : -1;
+    return x < y ? -1 : (x > y);
+}
+
+/* The split planes and class boxes of one map. */
+static int prepare_map(photon_map *m, atomic_int *cancel)
 {
     uint64_t total = 0;
     for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
@@ -273,11 +270,6 @@ static int prepare_map(photon_map *m, uint32_t top_levels, build_plan *plan, ato
         cell_box box = bounds_of(m->photons + t->start, t->count);
         memcpy(t->lo, box.lo, sizeof(t->lo));
         memcpy(t->hi, box.hi, sizeof(t->hi));
-        class_build cb = {m->photons + t->start, t->count, t->depth, m->splits + t->first_split, cancel};
-        /* Only classes worth splitting between threads get top levels. */
-        uint32_t levels = t->count >= KDTREE_PARALLEL_MIN ? top_levels : 0;
-        if (!build_top(&cb, 1, 0, 1u << t->depth, box, levels, plan))
-            return 0;
     }
     return 1;
 }
@@ -285,21 +277,62 @@ static int prepare_map(photon_map *m, uint32_t top_levels, build_plan *plan, ato
 int kdtree_build(photon_map *const *maps, unsigned count, uint32_t threads, atomic_int *cancel)
 {
     threads = parallel_thread_count(threads);
-    /* The top levels are built on one thread, and the subtrees below them
-     * on all: 2^levels subtrees per class give each thread several. Each
-     * level on one thread costs about 1/depth of the build. */
-    uint32_t top_levels = 0;
-    while (threads > 1 && (1u << top_levels) < KDTREE_PARALLEL_ITEMS_PER_THREAD * threads)
-        top_levels++;
-    build_plan plan = {NULL, 0, 0, 0};
-    int ok = 1;
-    for (unsigned i = 0; ok && i < count; i++)
-        ok = prepare_map(maps[i], top_levels, &plan, cancel);
+    uint32_t classes = 0;
+    for (unsigned i = 0; i < count; i++) {
+        if (!prepare_map(maps[i], cancel))
+            return 0;
+        for (unsigned c = 0; c < PHOTON_CLASSES; c++)
+            classes += maps[i]->classes[c].count > 0;
+    }
+    /* The top levels are split node by node, each level's nodes side by
+     * side (the root's selection alone runs on one thread), until every
+     * thread has several subtrees; the subtrees below are then built
+     * whole, largest first. */
+    build_plan plan = {NULL, NULL, 0, 0, 0};
+    while (threads > 1 && (1u << plan.top_levels) < KDTREE_PARALLEL_ITEMS_PER_THREAD * threads)
+        plan.top_levels++;
+    uint32_t room = classes << plan.top_levels;
+    class_build *builds = malloc(sizeof(class_build) * (classes ? classes : 1));
+    plan.items = malloc(sizeof(build_node_job) * (room ? room : 1));
+    plan.next = malloc(sizeof(build_node_job) * (room ? room : 1));
+    int ok = builds && plan.items && plan.next;
+    for (unsigned i = 0; ok && i < count; i++) {
+        photon_map *m = maps[i];
+        for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
+            const photon_class_tree *t = &m->classes[c];
+            if (t->count == 0)
+                continue;
+            builds[plan.count] = (class_build){m->photons + t->start, t->count, t->depth,
+                                               m->splits + t->first_split, cancel};
+            cell_box box;
+            memcpy(box.lo, t->lo, sizeof(box.lo));
+            memcpy(box.hi, t->hi, sizeof(box.hi));
+            plan.items[plan.count] = (build_node_job){&builds[plan.count], 1, 0, 1u << t->depth, box};
+            plan.count++;
+        }
+    }
+    for (uint32_t level = 0; ok && level < plan.top_levels; level++) {
+        /* Each node leaves its children (or itself, if it does not split)
+         * at 2i, 2i + 1 of the next level, then the gaps are closed in
+         * order: the next level's list depends only on this one's. */
+        for (uint32_t i = 0; i < plan.count; i++)
+            plan.next[2 * i + 1].cb = NULL;
+        ok = parallel_for(plan.count, threads, split_top, &plan, cancel) && !atomic_load(&plan.failed);
+        uint32_t n = 0;
+        for (uint32_t i = 0; ok && i < plan.count; i++) {
+            plan.items[n++] = plan.next[2 * i];
+            if (plan.next[2 * i + 1].cb)
+                plan.items[n++] = plan.next[2 * i + 1];
+        }
+        plan.count = n;
+    }
     if (ok && plan.count) {
-        qsort(plan.items, plan.count, sizeof(pending_subtree), compare_subtrees);
+        qsort(plan.items, plan.count, sizeof(build_node_job), compare_jobs);
         ok = parallel_for(plan.count, threads, build_pending, &plan, cancel) && !atomic_load(&plan.failed);
     }
+    free(builds);
     free(plan.items);
+    free(plan.next);
     return ok;
 }
 

@@ -443,72 +443,95 @@ unsigned photon_class(const photon *p)
            (photon_is_caustic(p) ? 2u : 0u);
 }
 
-/* Photons handled between two looks at the cancel flag (a few ms). */
-#define SORT_CANCEL_SLICE (1u << 18)
 
 static int cancelled(atomic_int *cancel) { return cancel && atomic_load_explicit(cancel, memory_order_relaxed); }
 
-/* Counting sort by class, stable; each photon's class (which decodes its
- * normal) is computed once. The sorted copy replaces the array, which
- * also drops the growth slack. 0 when memory is exhausted or cancelled
- * (the map then keeps its photons in their order). */
-static int sort_by_class(photon_map *m, atomic_int *cancel)
-{
-    uint32_t count[PHOTON_CLASSES] = {0};
-    uint8_t *cls = malloc(m->count ? m->count : 1);
-    if (!cls)
-        return 0;
-    for (uint32_t i = 0; i < m->count; i++) {
-        if ((i & (SORT_CANCEL_SLICE - 1)) == 0 && cancelled(cancel)) {
-            free(cls);
-            return 0;
-        }
-        cls[i] = (uint8_t)photon_class(&m->photons[i]);
-        count[cls[i]]++;
-    }
-    uint32_t next[PHOTON_CLASSES];
-    for (unsigned c = 0, start = 0; c < PHOTON_CLASSES; start += count[c], c++) {
-        m->classes[c].start = next[c] = start;
-        m->classes[c].count = count[c];
-    }
-    photon *sorted = m->count ? malloc(sizeof(photon) * (size_t)m->count) : NULL;
-    if (m->count && !sorted) {
-        free(cls);
-        return 0;
-    }
-    for (uint32_t i = 0; i < m->count; i++) {
-        if ((i & (SORT_CANCEL_SLICE - 1)) == 0 && cancelled(cancel)) {
-            free(cls);
-            free(sorted);
-            return 0;
-        }
-        sorted[next[cls[i]]++] = m->photons[i];
-    }
-    free(cls);
-    if (m->count) {
-        free(m->photons);
-        m->photons = sorted;
-        m->capacity = m->count;
-    }
-    return 1;
-}
+/* The counting sort by class runs in slices of this many photons, each on
+ * one thread (a few ms; the cancel flag is looked at between them). */
+#define SORT_SLICE (1u << 16)
 
-typedef struct sort_job {
-    photon_map *const *maps;
-    atomic_int *cancel;
-    atomic_int failed;
-} sort_job;
+typedef struct class_sort {
+    photon_map *m;
+    photon *sorted;
+    uint8_t *cls;      /* per photon: its class */
+    uint32_t *offsets; /* per slice and class: the slice's count, then its first slot */
+    uint32_t slices;
+} class_sort;
 
-static void sort_one(void *ctx, uint32_t item, uint32_t thread)
+static void count_slice(void *ctx, uint32_t item, uint32_t thread)
 {
     (void)thread;
-    sort_job *job = ctx;
-    if (!job->maps[item]->built && !sort_by_class(job->maps[item], job->cancel))
-        atomic_store(&job->failed, 1);
+    class_sort *cs = ctx;
+    uint32_t *count = cs->offsets + (size_t)item * PHOTON_CLASSES;
+    uint32_t end = (item + 1) * SORT_SLICE < cs->m->count ? (item + 1) * SORT_SLICE : cs->m->count;
+    for (uint32_t c = 0; c < PHOTON_CLASSES; c++)
+        count[c] = 0;
+    for (uint32_t i = item * SORT_SLICE; i < end; i++) {
+        cs->cls[i] = (uint8_t)photon_class(&cs->m->photons[i]);
+        count[cs->cls[i]]++;
+    }
+}
+
+static void scatter_slice(void *ctx, uint32_t item, uint32_t thread)
+{
+    (void)thread;
+    class_sort *cs = ctx;
+    uint32_t next[PHOTON_CLASSES];
+    memcpy(next, cs->offsets + (size_t)item * PHOTON_CLASSES, sizeof(next));
+    uint32_t end = (item + 1) * SORT_SLICE < cs->m->count ? (item + 1) * SORT_SLICE : cs->m->count;
+    for (uint32_t i = item * SORT_SLICE; i < end; i++)
+        cs->sorted[next[cs->cls[i]]++] = cs->m->photons[i];
+}
+
+/* Counting sort by class, stable, on `threads` threads: each slice counts
+ * its photons' classes (which decodes their normals once), the counts give
+ * every slice its first slot in each class, in slice order, and the slices
+ * then scatter side by side; the result is that of one pass in order. The
+ * sorted copy replaces the array, which also drops the growth slack. 0
+ * when memory is exhausted or cancelled (the map then keeps its photons
+ * in their order). */
+static int sort_by_class(photon_map *m, uint32_t threads, atomic_int *cancel)
+{
+    class_sort cs = {m, NULL, NULL, NULL, (m->count + SORT_SLICE - 1) / SORT_SLICE};
+    if (m->count == 0) {
+        memset(m->classes, 0, sizeof(m->classes));
+        return 1;
+    }
+    cs.cls = malloc(m->count);
+    cs.offsets = malloc(sizeof(uint32_t) * PHOTON_CLASSES * (size_t)cs.slices);
+    cs.sorted = malloc(sizeof(photon) * (size_t)m->count);
+    int ok = cs.cls && cs.offsets && cs.sorted && parallel_for(cs.slices, threads, count_slice, &cs, cancel);
+    if (ok) {
+        uint32_t start = 0;
+        for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
+            m->classes[c].start = start;
+            for (uint32_t k = 0; k < cs.slices; k++) {
+                uint32_t *slot = &cs.offsets[(size_t)k * PHOTON_CLASSES + c];
+                uint32_t n = *slot;
+                *slot = start;
+                start += n;
+            }
+            m->classes[c].count = start - m->classes[c].start;
+        }
+        ok = parallel_for(cs.slices, threads, scatter_slice, &cs, cancel);
+    }
+    free(cs.cls);
+    free(cs.offsets);
+    if (!ok) {
+        free(cs.sorted);
+        return 0;
+    }
+    free(m->photons);
+    m->photons = cs.sorted;
+    m->capacity = m->count;
+    return 1;
 }
 
 int photon_map_build_many(photon_map *const *maps, unsigned count, uint32_t threads, atomic_int *cancel)
 {
+    for (unsigned i = 0; i < count; i++)
+        if (!maps[i]->built && (cancelled(cancel) || !sort_by_class(maps[i], threads, cancel)))
+            return 0;
     photon_map *todo[8];
     unsigned n = 0;
     for (unsigned i = 0; i < count; i++)
@@ -519,10 +542,7 @@ int photon_map_build_many(photon_map *const *maps, unsigned count, uint32_t thre
         }
     if (n == 0)
         return 1;
-    sort_job job = {todo, cancel, 0};
-    if (!parallel_for(n, parallel_thread_count(threads) < n ? parallel_thread_count(threads) : n, sort_one, &job,
-                      cancel) ||
-        atomic_load(&job.failed) || cancelled(cancel) || !kdtree_build(todo, n, threads, cancel))
+    if (cancelled(cancel) || !kdtree_build(todo, n, threads, cancel))
         return 0;
     for (unsigned i = 0; i < n; i++) {
         /* Give back the growth slack: a shrinking realloc keeps the data
