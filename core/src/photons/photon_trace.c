@@ -784,7 +784,7 @@ phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_s
         st = PHOS_ERROR_CANCELLED;
     if (st == PHOS_OK && (!photon_map_reserve(&m->radiance, n) || !photon_map_append(&m->radiance, pc.out, n) ||
                           !photon_map_build_many((photon_map *const[]){&m->radiance}, 1, threads, cancel)))
-        st = PHOS_ERROR_OUT_OF_MEMORY;
+        st = cancel && atomic_load(cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_OUT_OF_MEMORY;
     for (uint32_t t = 0; pc.queries && t < threads; t++)
         kdtree_query_free(&pc.queries[t]);
     free(pc.queries);
