@@ -562,9 +562,9 @@ def command_bench(args):
     for _ in range(args.path_reps if "path" in args.parts else 0):
         for engine in runs:
             runs[engine].append(_path_speed_row(scene, module, args, ref, engine, samples))
-    for engine, rows in runs.items():
-        if rows:
-            add(sorted(rows, key=lambda r: r["seconds_per_sample"])[len(rows) // 2], "path_speed")
+    for engine, reps in runs.items():  # not `rows`: add() appends to the table's rows
+        if reps:
+            add(sorted(reps, key=lambda r: r["seconds_per_sample"])[len(reps) // 2], "path_speed")
     # Cycles as artists run it (the official builds), and Phos through the
     # same denoiser, all at the time Phos PHOTON takes at its defaults, or
     # at the settings --grid gives (the first value of each).
