@@ -330,7 +330,8 @@ static void check_set(int kind, uint32_t n, int queries, int all_slots, kdtree_q
     }
     st->bad_determinism += memcmp(m.photons, again.photons, sizeof(photon) * n) != 0 ||
                            m.split_count != again.split_count ||
-                           memcmp(m.splits, again.splits, sizeof(kdtree_split) * m.split_count) != 0;
+                           (m.split_count && /* none: no array to compare */
+                            memcmp(m.splits, again.splits, sizeof(kdtree_split) * m.split_count) != 0);
     st->bad_multiset += !same_multiset(in, m.photons, n);
     st->bad_order += !map_ordered(&m, &st->bad_axes);
     st->bad_slots += !slots_found(&m, all_slots ? 0 : n / 2, &qk[0]);
