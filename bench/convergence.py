@@ -132,15 +132,7 @@ def render_passes(scene, passes=()):
     vl = scene.view_layers[0]
     for name in ("sample_count", "noisy_image"):
         setattr(vl.phos, "use_pass_" + name, name in passes)
-    clock = quality._Clock()
-    handlers = bpy.app.handlers
-    handlers.render_pre.append(clock.pre)
-    handlers.render_post.append(clock.post)
-    try:
-        bpy.ops.render.render()
-    finally:
-        handlers.render_pre.remove(clock.pre)
-        handlers.render_post.remove(clock.post)
+    seconds = quality.timed_render(scene)
     fmt = scene.render.image_settings
     saved = (fmt.file_format, fmt.color_mode, fmt.color_depth)
     with tempfile.TemporaryDirectory() as tmp:
@@ -149,7 +141,7 @@ def render_passes(scene, passes=()):
         bpy.data.images["Render Result"].save_render(path, scene=scene)
         layers = exrread.read_passes(path)
     fmt.file_format, fmt.color_mode, fmt.color_depth = saved
-    return {k: v.astype(np.float64) for k, v in layers.items()}, clock.end - clock.start
+    return {k: v.astype(np.float64) for k, v in layers.items()}, seconds
 
 
 EMITTER_RADIANCE = 1.0   # a reference pixel above this (any channel) sees an emitter

@@ -36,6 +36,17 @@ COLOURS = {"PHOTON": "tab:orange", "PATH": "tab:blue", "CYCLES": "tab:gray"}
 SAMPLER_COLOURS = {"RANDOM": "tab:gray", "STRATIFIED": "tab:green", "HALTON": "tab:purple", "SOBOL": "tab:blue"}
 
 
+def save_figure(fig, out_dir, name, tight=True):
+    """Writes fig to out_dir/name (110 dpi), closes it and returns the
+    path; tight: lay it out first (not where a colour bar spans axes)."""
+    if tight:
+        fig.tight_layout()
+    path = os.path.join(out_dir, name)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
 def read_csv(path):
     if not os.path.exists(path):
         return []
@@ -76,11 +87,7 @@ def plot_quality(scenes, out_dir):
         ax.grid(True, which="both", alpha=0.3)
     axes[0][0].set_ylabel("relative MSE")
     axes[0][0].legend()
-    fig.tight_layout()
-    path = os.path.join(out_dir, "quality_vs_time.png")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out_dir, "quality_vs_time.png")
 
 
 def display(img, exposure):
@@ -114,10 +121,7 @@ def plot_strip(scene, npz_path, out_dir, reference_engine):
             ax.set_xticks([])
             ax.set_yticks([])
     fig.colorbar(im, ax=axes[1].tolist(), shrink=0.8, label="relative squared error")
-    path = os.path.join(out_dir, "strip_%s.png" % scene)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out_dir, "strip_%s.png" % scene, tight=False)
 
 
 def plot_scaling(rows, photon_rows, out_dir):
@@ -146,11 +150,7 @@ def plot_scaling(rows, photon_rows, out_dir):
         axes[1].set_xlabel("photons")
         axes[1].legend()
         axes[1].grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    path = os.path.join(out_dir, "scaling.png")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out_dir, "scaling.png")
 
 
 def srgb(img):
@@ -181,11 +181,7 @@ def plot_samplers(rows, out_dir):
             ax.set_xlabel("samples per pixel")
             ax.grid(True, which="both", alpha=0.3)
     axes[0][0].legend(fontsize=8)
-    fig.tight_layout()
-    path = os.path.join(out_dir, "convergence_samplers.png")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out_dir, "convergence_samplers.png")
 
 
 def plot_adaptive(rows, out_dir):
@@ -208,11 +204,7 @@ def plot_adaptive(rows, out_dir):
     ax.set_title("PATH, Cornell box", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    path = os.path.join(out_dir, "convergence_adaptive.png")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out_dir, "convergence_adaptive.png")
 
 
 def plot_filter_strip(npz_path, out_dir):
@@ -229,12 +221,8 @@ def plot_filter_strip(npz_path, out_dir):
         ax.set_xticks([])
         ax.set_yticks([])
     fig.suptitle("%s, %s spp" % (data["integrator"], int(data["samples"])), fontsize=9)
-    fig.tight_layout()
     name = os.path.basename(npz_path)[:-len(".npz")]
-    path = os.path.join(out_dir, name + ".png")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, out_dir, name + ".png")
 
 
 def convergence_section(out_dir):

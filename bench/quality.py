@@ -108,8 +108,9 @@ class _Clock:
         self.end = time.perf_counter()
 
 
-def render(scene):
-    """Render the scene; returns (linear RGB float64 array (h, w, 3), seconds)."""
+def timed_render(scene):
+    """Render the scene into Render Result; returns the seconds from
+    render_pre to render_post (export to last pixel)."""
     clock = _Clock()
     handlers = bpy.app.handlers
     handlers.render_pre.append(clock.pre)
@@ -119,7 +120,12 @@ def render(scene):
     finally:
         handlers.render_pre.remove(clock.pre)
         handlers.render_post.remove(clock.post)
-    seconds = clock.end - clock.start
+    return clock.end - clock.start
+
+
+def render(scene):
+    """Render the scene; returns (linear RGB float64 array (h, w, 3), seconds)."""
+    seconds = timed_render(scene)
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "result.exr")
         fmt = scene.render.image_settings
