@@ -109,7 +109,7 @@ def planned_stages(context):
         for p in enabled_passes(context.view_layer):
             rs.pass_mask |= 1 << p.pass_id
         return core.settings_stages(rs)
-    except (core.PhosError, OSError, AttributeError):
+    except core.PhosError:
         return None
 
 

@@ -532,25 +532,22 @@ int photon_map_build_many(photon_map *const *maps, unsigned count, uint32_t thre
     for (unsigned i = 0; i < count; i++)
         if (!maps[i]->built && (cancelled(cancel) || !sort_by_class(maps[i], threads, cancel)))
             return 0;
-    photon_map *todo[8];
+    photon_map **todo = malloc(sizeof(photon_map *) * (count ? count : 1));
+    if (!todo)
+        return 0;
     unsigned n = 0;
     for (unsigned i = 0; i < count; i++)
-        if (!maps[i]->built) {
-            if (n == sizeof(todo) / sizeof(todo[0]))
-                return 0;
+        if (!maps[i]->built)
             todo[n++] = maps[i];
-        }
-    if (n == 0)
-        return 1;
-    if (cancelled(cancel) || !kdtree_build(todo, n, threads, cancel))
-        return 0;
-    for (unsigned i = 0; i < n; i++) {
+    int ok = n == 0 || (!cancelled(cancel) && kdtree_build(todo, n, threads, cancel));
+    for (unsigned i = 0; ok && i < n; i++) {
         /* Give back the growth slack: a shrinking realloc keeps the data
          * even if it fails, so failure here only means the slack stays. */
         photon_map_resize(todo[i], todo[i]->count);
         todo[i]->built = 1;
     }
-    return 1;
+    free(todo);
+    return ok;
 }
 
 int photon_map_build(photon_map *m, atomic_int *cancel) { return photon_map_build_many(&m, 1, 1, cancel); }

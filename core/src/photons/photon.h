@@ -187,7 +187,7 @@ int photon_map_append(photon_map *m, const photon *photons, uint32_t count);
  * twice is a no-op. cancel may be NULL: when *cancel becomes nonzero it
  * returns 0 soon, the map unusable. */
 int photon_map_build(photon_map *m, atomic_int *cancel);
-/* photon_map_build for up to 8 maps at once, on `threads` threads (0: one
+/* photon_map_build for several maps at once, on `threads` threads (0: one
  * per core): their sorts side by side, then their trees' subtrees
  * (kdtree_build). Each map comes out exactly as photon_map_build alone
  * would leave it. Returns 0 as photon_map_build does. */
