@@ -394,9 +394,17 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         """Deliver tiles as they finish until the render ends or is cancelled."""
         cancelled = False
         buffers = None
+        # With progressive refinement the first pass is shown whole, never
+        # tile by tile: under its tiles Blender's new result is still empty,
+        # so a redraw during that pass would show holes. Tiles after it only
+        # refine pixels already shown.
+        hold_first_pass = bool(rs.progressive)
         while True:
             progress = render.progress()
-            while True:
+            if hold_first_pass and progress.samples_done > 0:
+                buffers = self._deliver_whole(render, rs, buffers)
+                hold_first_pass = False
+            while not hold_first_pass:
                 tile = render.next_tile()
                 if tile is None:
                     break
@@ -466,6 +474,17 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             # Blender 5 prints stats lines only with its render log on;
             # a farm's log should still show each stage.
             print(text, flush=True)
+
+    def _deliver_whole(self, render, rs, buffers):
+        """The whole region in one result, once the first pass has covered
+        it: the tiles finished so far are dropped from the queue first, so
+        any that finish during the read are delivered again after it."""
+        while render.next_tile() is not None:
+            pass
+        whole = core.phos_tile()
+        whole.x, whole.y = rs.region_x, rs.region_y
+        whole.width, whole.height = rs.region_width, rs.region_height
+        return self._deliver_tile(render, whole, buffers)
 
     def _deliver_tile(self, render, tile, buffers):
         """Copy one finished tile into a render result (relative to the border).

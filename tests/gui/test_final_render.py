@@ -13,13 +13,13 @@ pixel may be wholly the old image or wholly empty; none may be partly empty.
 A plane under a uniform world makes this checkable pixel by pixel: no
 sample of it can be black, the first render's world is red and the
 second's blue, so each pixel's hue tells which render it comes from even at
-one sample per pixel. The screen is read from the X server (xscreen.py) on
-a thread of its own while Blender renders.
+one sample per pixel. The screen is read from the X server by a process of
+its own (xscreen.Watcher) while Blender renders.
 """
 
 import os
 import sys
-import threading
+import tempfile
 import time
 
 import bpy
@@ -34,7 +34,7 @@ import phostest as pt  # noqa: E402 (tests/blender, put on the path by guitest)
 SCREEN = xscreen.Screen()
 GRAB_SECONDS = 0.02
 RED, BLUE = (1.0, 0.15, 0.1), (0.1, 0.15, 1.0)
-state = {"finished": 0, "frames": [], "stop": False}
+state = {"finished": 0}
 
 
 @bpy.app.handlers.persistent
@@ -63,13 +63,6 @@ def image_rect():
     return x + left, y + top, right - left + 1, bottom - top + 1
 
 
-def grab_frames():
-    """Read the image's rectangle until told to stop."""
-    while not state["stop"]:
-        state["frames"].append(SCREEN.grab(*state["rect"]))
-        time.sleep(GRAB_SECONDS)
-
-
 def classify(frame):
     """Per pixel: red (first render), blue (second), or neither (a hole)."""
     px = frame.astype(np.int32)
@@ -89,8 +82,8 @@ def step(n):
         cam.data.show_passepartout = False
         pt.set_world(scene, RED)
         scene.view_settings.view_transform = 'Standard'
-        pt.configure_output(scene, 320, 180)
-        scene.phos.samples = 16
+        pt.configure_output(scene, 960, 540)
+        scene.phos.samples = 1
         bpy.app.handlers.render_complete.append(_finished)
         bpy.context.preferences.view.render_display_type = 'AREA'  # the Image Editor in the 3D view's place
         render_f12()
@@ -106,8 +99,15 @@ def step(n):
         # The second render: blue, and long enough to be seen on its way.
         scene = bpy.context.scene
         scene.world.node_tree.nodes["Background"].inputs["Color"].default_value[:3] = BLUE
-        scene.phos.samples = 64
-        threading.Thread(target=grab_frames, daemon=True).start()
+        scene.phos.samples = 16
+        # One thread at 960x540: the first pass then lasts many of the
+        # screen reader's reads, so tiles landing one by one are seen (an
+        # engine that delivers the first pass tile by tile fails 3 runs of
+        # 3; at 320x180 on two threads it failed 1 run in 8).
+        scene.render.threads_mode = 'FIXED'
+        scene.render.threads = 1
+        state["frames_file"] = tempfile.NamedTemporaryFile(suffix=".rgb", delete=False).name
+        state["watcher"] = xscreen.Watcher(state["rect"], state["frames_file"], GRAB_SECONDS)
         state["started"] = time.monotonic()
         render_f12()
         return 2
@@ -120,8 +120,9 @@ def step(n):
     if n == 3:
         if time.monotonic() - state["settled"] < 1.0:  # the last draw
             return n
-        state["stop"] = True
-        frames = [f for f in state["frames"] if f is not None]
+        state["watcher"].stop()
+        frames = state["watcher"].frames()
+        os.unlink(state["frames_file"])
         counts = [[int(m.sum()) for m in classify(f)] for f in frames]
         size = frames[0].shape[0] * frames[0].shape[1]
         first_new = next((i for i, c in enumerate(counts) if c[1] > 0), len(counts))

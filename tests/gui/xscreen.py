@@ -1,11 +1,20 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """What the X server's screen shows (the GUI tests, bench/viewport.py):
 XGetImage through Xlib, on a connection of its own, so it reads what
-Blender drew and swapped, whichever way Blender's GPU backend drew it, and
-may be called from any thread."""
+Blender drew and swapped, whichever way Blender's GPU backend drew it.
+
+`python3 xscreen.py X Y W H FILE` (Watcher) reads a rectangle again and
+again in a process of its own, for a test that watches the screen while
+Blender renders: a Python thread inside Blender doing the same crashed
+Blender now and then (in numpy's ctypes bridge, during a render)."""
 
 import ctypes
 import ctypes.util
+import os
+import shutil
+import subprocess
+import sys
+import time
 
 import numpy as np
 
@@ -45,7 +54,7 @@ class Screen:
             return None
         im = img.contents
         row = im.bytes_per_line
-        raw = np.ctypeslib.as_array(im.data, shape=(height * row,)).copy()
+        raw = np.frombuffer(ctypes.string_at(im.data, height * row), dtype=np.uint8)
         self.x11.XFree(ctypes.cast(im.data, ctypes.c_void_p))
         self.x11.XFree(ctypes.cast(img, ctypes.c_void_p))
         bgrx = raw.reshape(height, row)[:, :width * 4].reshape(height, width, 4)
@@ -57,3 +66,43 @@ def region_rect(window, region):
     width, height), for Screen.grab."""
     top = window.y + window.height - (region.y + region.height)
     return window.x + region.x, top, region.width, region.height
+
+
+class Watcher:
+    """A process reading a screen rectangle every `seconds` into a file of
+    raw RGB frames, until stop(); frames() gives them as (n, h, w, 3)."""
+
+    def __init__(self, rect, path, seconds=0.02):
+        self.rect, self.path = rect, path
+        # The system's Python, which has numpy as Blender's does on Debian
+        # (a python3 first on PATH, such as a virtualenv's, may not).
+        python = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else shutil.which("python3")
+        self.process = subprocess.Popen([python, os.path.abspath(__file__)] + [str(v) for v in rect]
+                                        + [path, str(seconds)], stdin=subprocess.PIPE)
+
+    def stop(self):
+        self.process.stdin.close()  # the watcher ends at the next frame
+        self.process.wait(timeout=10)
+
+    def frames(self):
+        _, _, w, h = self.rect
+        data = np.fromfile(self.path, dtype=np.uint8)
+        return data[:data.size - data.size % (w * h * 3)].reshape(-1, h, w, 3)
+
+
+def _watch(x, y, w, h, path, seconds):
+    import select
+    screen = Screen()
+    with open(path, "wb") as out:
+        while True:
+            frame = screen.grab(x, y, w, h)
+            if frame is not None:
+                out.write(np.ascontiguousarray(frame).tobytes())
+                out.flush()
+            ready, _, _ = select.select([sys.stdin], [], [], seconds)
+            if ready and not sys.stdin.buffer.read1(1):  # closed: stop
+                return
+
+
+if __name__ == "__main__":
+    _watch(*[int(v) for v in sys.argv[1:5]], sys.argv[5], float(sys.argv[6]))
