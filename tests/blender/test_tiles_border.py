@@ -101,10 +101,13 @@ def test_small_tiles_stream_and_match_large_tiles(glass_scene, tmp_path):
 
 
 def test_progressive_refinement_streams_passes_and_matches_one_pass(glass_scene, tmp_path):
-    """F12 with progressive refinement (the default): the whole frame after
-    one sample a pixel, then passes of 1, 2, 4 more (8 samples); every pass
-    covers the frame once, and the last image equals the one-pass render's
-    bit for bit."""
+    """F12 with progressive refinement (the default): the whole frame in one
+    result after one sample a pixel, never the first pass tile by tile (a
+    redraw then showed holes: tests/gui/test_final_render.py), then tiles
+    as the passes of 1, 2, 4 more refine it (8 samples); the last image
+    equals the one-pass render's bit for bit. How many of the later
+    passes' tiles are read depends on how far the render got before the
+    first pass was read: tiles finished by then are in that read."""
     glass_scene.phos.tile_size = 16
     assert glass_scene.phos.use_progressive_refine
     with _ReadSpy() as progressive:
@@ -114,13 +117,10 @@ def test_progressive_refinement_streams_passes_and_matches_one_pass(glass_scene,
         one_pass = pt.render_array(glass_scene, tmp_path, name="one_pass")
     n_tiles = len(single.rects)
     passes = 4  # samples 1, 2, 4, 8
-    assert len(progressive.rects) == passes * n_tiles, (len(progressive.rects), n_tiles)
-    # Each pass's tiles cover the frame once before the next pass begins.
-    for k in range(passes):
-        cover = np.zeros((HEIGHT, WIDTH), int)
-        for x, y, w, h in progressive.rects[k * n_tiles:(k + 1) * n_tiles]:
-            cover[y:y + h, x:x + w] += 1
-        assert np.all(cover == 1), "pass %d: tiles overlap or leave gaps" % k
+    assert progressive.rects[0] == (0, 0, WIDTH, HEIGHT), progressive.rects[:3]
+    later = progressive.rects[1:]
+    assert len(later) <= (passes - 1) * n_tiles
+    assert set(later) <= set(single.rects), "a later read is not one of the tiles"
     diff = np.argwhere(np.any(refined != one_pass, axis=2))
     assert diff.size == 0, "%d pixels differ between progressive refinement and one pass, first at %s" % (
         len(diff), diff[:5].tolist())
