@@ -734,6 +734,10 @@ class phos_render_settings(ctypes.Structure):
         ("caustic_roughness", ctypes.c_float),
         ("global_estimate_photons", ctypes.c_uint32),
         ("caustic_estimate_photons", ctypes.c_uint32),
+        ("progressive_caustics", ctypes.c_uint32),
+        ("progressive_caustic_photons", ctypes.c_uint32),
+        ("progressive_first_photons", ctypes.c_uint32),
+        ("progressive_alpha", ctypes.c_float),
         ("max_radius", ctypes.c_float),
         ("final_gather_rays", ctypes.c_uint32),
         ("photon_view", ctypes.c_uint32),
@@ -1004,6 +1008,26 @@ RENDER_SETTINGS = (
         user=True, prop='caustic_estimate_photons', kind='NUMBER', enum=None, soft_max=1000,
         label='Caustic Estimate',
         description='Nearest photons used in a (cone-filtered) radiance estimate of the caustic map'),
+    RenderSetting(
+        name='progressive_caustics', ctype='uint32_t', default=0, min=0, max=1,
+        user=True, prop='use_progressive_caustics', kind='BOOLEAN', enum=None, soft_max=0,
+        label='Progressive',
+        description='A new caustic map for every sample, read within a radius that shrinks from sample to sample, so caustics converge to the exact image as samples grow instead of staying blurred by a fixed number of nearest photons'),
+    RenderSetting(
+        name='progressive_caustic_photons', ctype='uint32_t', default=10000, min=1, max=67108864,
+        user=True, prop='progressive_caustic_photons', kind='NUMBER', enum=None, soft_max=1000000,
+        label='Photons per Sample',
+        description='Caustic photons stored for each sample when caustics are progressive'),
+    RenderSetting(
+        name='progressive_first_photons', ctype='uint32_t', default=8, min=1, max=10000,
+        user=True, prop='progressive_first_photons', kind='NUMBER', enum=None, soft_max=100,
+        label='First Radius Photons',
+        description="Photons within a point's first progressive radius (from the map of the sample before); the radius then shrinks with every sample"),
+    RenderSetting(
+        name='progressive_alpha', ctype='float', default=0.5, min=0.01, max=0.99,
+        user=True, prop='progressive_alpha', kind='FACTOR', enum=None, soft_max=0.0,
+        label='Alpha',
+        description='How fast the progressive radius shrinks: the squared radius falls as samples^(alpha-1); lower shrinks faster, leaving less blur and more noise'),
     RenderSetting(
         name='max_radius', ctype='float', default=0.0, min=0.0, max=3.4028234663852886e+38,
         user=True, prop='max_radius', kind='LENGTH', enum=None, soft_max=10.0,

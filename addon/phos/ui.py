@@ -177,6 +177,14 @@ class PHOS_RENDER_PT_photon_mapping_caustic(PhotonMapPanel, bpy.types.Panel):
     def draw_more(self, layout, phos):
         # Glossy lobes smoother than this carry caustics (docs/algorithms.md §12).
         layout.prop(phos, "caustic_roughness", text="Roughness")
+        # Stochastic progressive photon mapping (docs/algorithms.md §4.6):
+        # a map per sample, read within a shrinking radius.
+        layout.prop(phos, "use_progressive_caustics")
+        col = layout.column(align=True)
+        col.active = phos.use_progressive_caustics
+        col.prop(phos, "progressive_caustic_photons", text="Photons per Sample")
+        col.prop(phos, "progressive_first_photons", text="First Radius")
+        col.prop(phos, "progressive_alpha")
 
 
 class PHOS_RENDER_PT_photon_mapping_advanced(PhosButtonsPanel, bpy.types.Panel):

@@ -900,6 +900,25 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
     USER(uint32_t, caustic_estimate_photons, 80, 1, 10000, caustic_estimate_photons, NUMBER,      \
          1000, "Caustic Estimate",                                                                \
          "Nearest photons used in a (cone-filtered) radiance estimate of the caustic map")        \
+    /* Stochastic progressive photon mapping for the caustics (Hachisuka &                     \
+     * Jensen 2009; Knaus & Zwicker 2011): docs/algorithms.md §4.6. */                         \
+    USER(uint32_t, progressive_caustics, 0, 0, 1, use_progressive_caustics, BOOLEAN, 0,          \
+         "Progressive",                                                                           \
+         "A new caustic map for every sample, read within a radius that shrinks from sample to "  \
+         "sample, so caustics converge to the exact image as samples grow instead of staying "    \
+         "blurred by a fixed number of nearest photons")                                          \
+    /* 10 000 photons a sample, 8 in the first radius, α = 0.5: measured on the               \
+     * metal ring (docs/benchmarks.md, "Progressive caustics on the metal ring"). */           \
+    USER(uint32_t, progressive_caustic_photons, 10000, 1, 1u << 26, progressive_caustic_photons,  \
+         NUMBER, 1000000, "Photons per Sample",                                                   \
+         "Caustic photons stored for each sample when caustics are progressive")                  \
+    USER(uint32_t, progressive_first_photons, 8, 1, 10000, progressive_first_photons, NUMBER,     \
+         100, "First Radius Photons",                                                             \
+         "Photons within a point's first progressive radius (from the map of the sample before); " \
+         "the radius then shrinks with every sample")                                             \
+    USER(float, progressive_alpha, 0.5f, 0.01f, 0.99f, progressive_alpha, FACTOR, 0, "Alpha",      \
+         "How fast the progressive radius shrinks: the squared radius falls as samples^(alpha-1); " \
+         "lower shrinks faster, leaving less blur and more noise")                                \
     USER(float, max_radius, 0.0f, 0.0f, FLT_MAX, max_radius, LENGTH, 10.0f, "Max Radius",         \
          "Largest search radius of a radiance estimate; 0 chooses it from the "                   \
          "scene's size (its diagonal / 40)")                                                      \

@@ -57,7 +57,7 @@ static phos_scene *box_with_spheres(void)
 
 /* The integrator, photon view and cache setting of the renders below. */
 static uint32_t g_integrator, g_view, g_cache = PHOS_IRRADIANCE_CACHE_PHOTON, g_progressive = 1;
-static uint32_t g_sampler = PHOS_SAMPLER_SOBOL, g_adaptive, g_filter;
+static uint32_t g_sampler = PHOS_SAMPLER_SOBOL, g_adaptive, g_filter, g_progressive_caustics;
 
 static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32_t seed, uint32_t rx, uint32_t ry,
                           uint32_t rw, uint32_t rh)
@@ -87,6 +87,8 @@ static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32
     rs.adaptive_min_samples = 4;
     rs.adaptive_threshold = 0.05f;
     rs.noise_filter = g_filter;
+    rs.progressive_caustics = g_progressive_caustics;
+    rs.progressive_caustic_photons = 2000;
     return test_render(s, &rs);
 }
 
@@ -356,6 +358,18 @@ int main(void)
         check_deterministic(s, filter_names[f]);
     }
     g_filter = PHOS_NOISE_FILTER_NONE;
+    /* Progressive caustics: a caustic map per sample, the same for any
+     * thread count, tile order or region; and not the fixed map's image. */
+    g_view = PHOS_PHOTON_VIEW_FINAL_GATHER;
+    g_progressive_caustics = 1;
+    check_deterministic(s, "PHOTON, progressive caustics");
+    float *progressive = render_with(s, 2, 16, 7, 0, 0, 0, 0);
+    g_progressive_caustics = 0;
+    float *fixed = render_with(s, 2, 16, 7, 0, 0, 0, 0);
+    CHECK_MSG(progressive && fixed && memcmp(progressive, fixed, 4 * 48 * 40 * sizeof(float)) != 0,
+              "progressive caustics render the fixed map's image");
+    free(progressive);
+    free(fixed);
     check_progressive_passes(s);
     check_caches_identical(s);
     phos_scene_destroy(s);

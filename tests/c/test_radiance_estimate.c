@@ -6,10 +6,16 @@
  * the geometric one, so that photons from below the geometric surface
  * reflect nothing. And the shortcut must not be taken for a BSDF it does
  * not describe.
+ *
+ * Progressive photon mapping's fixed-radius estimate: it sums exactly the
+ * photons inside its disc (against brute force over the whole map), its
+ * mean over independent maps is the true radiance of uniform light
+ * whatever the radius, and the radius sequence shrinks as i^((α−1)/2).
  */
 #include <string.h>
 
 #include "photons/kdtree.h"
+#include "photons/progressive_caustics.h"
 #include "photons/radiance_estimate.h"
 #include "sampling/sampler.h"
 #include "shading/bsdf.h"
@@ -166,8 +172,107 @@ static void test_radiance_photon_radius(void)
     CHECK(radiance_photon_radius(&p) == least);
 }
 
+/* Every photon of the map inside the disc, by brute force, f per photon. */
+static vec3 brute_force_within(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, float radius,
+                               uint32_t *count)
+{
+    kdtree_filter f = {n, ESTIMATE_NORMAL_MIN_COS, 0, 1};
+    float c2m1 = ESTIMATE_DISC_FLATTEN * ESTIMATE_DISC_FLATTEN - 1.0f;
+    vec3 sum = v3s(0.0f);
+    *count = 0;
+    for (uint32_t i = 0; i < m->count; i++) {
+        const photon *p = &m->photons[i];
+        if (!(kdtree_disc_dist2(p, x, n, c2m1) < radius * radius) || !kdtree_filter_accepts(&f, p))
+            continue;
+        vec3 wi = v3_neg(photon_direction(p));
+        sum = v3_add(sum, v3_mul(v3_scale(bsdf_eval(b, wo, wi, NULL), 1.0f / v3_dot(wi, n)), photon_power(p)));
+        (*count)++;
+    }
+    return v3_scale(sum, 1.0f / (PHOS_PI * radius * radius));
+}
+
+static void test_fixed_radius_estimate(void)
+{
+    photon_map m;
+    plane_map(&m, 20000);
+    vec3 rho = v3(0.8f, 0.5f, 0.2f);
+    closure c = diffuse_closure(PHOS_CLOSURE_DIFFUSE, rho);
+    closure on = diffuse_closure(PHOS_CLOSURE_OREN_NAYAR, rho);
+    on.roughness = 0.5f;
+    vec3 wo = v3_normalize(v3(0.3f, -0.2f, 1.0f));
+    const float radii[] = {0.01f, 0.05f, 0.2f};
+    for (int shortcut = 0; shortcut < 2; shortcut++) {
+        bsdf b;
+        bsdf_init(&b, v3(0, 0, 1), v3(0, 0, 1));
+        bsdf_add_closure(&b, shortcut ? &c : &on); /* Lambertian (summed once) or per photon */
+        for (int r = 0; r < 3; r++) {
+            uint32_t count;
+            vec3 want = brute_force_within(&m, &b, wo, v3(0.1f, -0.05f, 0.0f), v3(0, 0, 1), radii[r], &count);
+            vec3 got = photon_radiance_within(&m, &b, wo, v3(0.1f, -0.05f, 0.0f), v3(0, 0, 1), radii[r], 0);
+            CHECK_MSG(count > 0 && rel_diff(got, want) < 1e-4f, "radius %g: %g against brute force %g (%u photons)",
+                      (double)radii[r], (double)got.x, (double)want.x, count);
+        }
+    }
+    photon_map_free(&m);
+
+    /* Uniform light: photons of power Φ/N spread over a unit square, all
+     * from straight above, carry irradiance E = Φ per m². Over independent
+     * maps, the mean of the fixed-radius estimate is ρ/π·E for small and
+     * large radii alike; the tolerance is four standard errors of the
+     * mean, measured from the estimates themselves. */
+    const uint32_t maps = 200, n = 4000;
+    bsdf b;
+    bsdf_init(&b, v3(0, 0, 1), v3(0, 0, 1));
+    bsdf_add_closure(&b, &c);
+    for (int r = 0; r < 2; r++) {
+        float radius = r ? 0.1f : 0.02f;
+        double sum = 0.0, sum2 = 0.0;
+        uint32_t s = 99 + (uint32_t)r;
+        photon *p = malloc(sizeof(photon) * n);
+        for (uint32_t k = 0; k < maps; k++) {
+            for (uint32_t i = 0; i < n; i++)
+                p[i] = photon_make(v3(rnd(&s) - 0.5f, rnd(&s) - 0.5f, 0.0f), v3s(1.0f / (float)n), v3(0, 0, -1),
+                                   v3(0, 0, 1), 0);
+            photon_map_init(&m);
+            CHECK(photon_map_append(&m, p, n) && photon_map_build(&m, NULL));
+            double L = photon_radiance_within(&m, &b, wo, v3s(0.0f), v3(0, 0, 1), radius, 0).x;
+            sum += L;
+            sum2 += L * L;
+            photon_map_free(&m);
+        }
+        free(p);
+        double mean = sum / maps, var = (sum2 / maps - mean * mean) / (maps - 1);
+        double want = rho.x / PHOS_PI;
+        CHECK_MSG(fabs(mean - want) < 4.0 * sqrt(var), "radius %g: mean %g over %u maps, want %g (se %g)",
+                  (double)radius, mean, maps, want, sqrt(var));
+    }
+}
+
+/* R_i² = Π (j + α)/(j + 1): 1 at the first sample, falling as i^(α−1)
+ * (the product is Γ(i + 1 + α)/(Γ(1 + α) Γ(i + 2)) ~ i^(α−1)/Γ(1 + α)). */
+static void test_progressive_radius(void)
+{
+    CHECK(progressive_caustics_shrink(0, 0.7f) == 1.0f);
+    float r1 = progressive_caustics_shrink(1, 0.7f);
+    CHECK(fabsf(r1 * r1 - 0.85f) < 1e-6f);
+    for (int a = 0; a < 3; a++) {
+        float alpha = 0.3f + 0.3f * (float)a;
+        double big = 1e5, r = progressive_caustics_shrink((uint32_t)big, alpha);
+        double want = pow(big, alpha - 1.0) / tgamma(1.0 + alpha);
+        CHECK_MSG(fabs(r * r / want - 1.0) < 1e-3, "alpha %g: R² %g at 1e5, asymptote %g", (double)alpha, r * r, want);
+        float prev = 2.0f;
+        for (uint32_t i = 0; i < 100; i++) {
+            float ri = progressive_caustics_shrink(i, alpha);
+            CHECK(ri < prev);
+            prev = ri;
+        }
+    }
+}
+
 int main(void)
 {
+    test_fixed_radius_estimate();
+    test_progressive_radius();
     test_radiance_photon_radius();
     test_lambertian_shortcut();
     return test_summary("test_radiance_estimate");

@@ -65,8 +65,8 @@ const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bs
         bsdf receivers;
         bsdf_caustic_receivers(v->b, is->caustic_roughness, &receivers);
         if (receivers.count)
-            camera_path_add_diffuse(p, 1, photon_radiance(&is->maps->caustic, &receivers, v->wo, v->sf->p, v->sf->ns,
-                                                          &is->caustic_estimate, &p->scratch->caustic));
+            camera_path_add_diffuse(p, 1, photon_caustic_radiance(is, &receivers, v->wo, v->sf->p, v->sf->ns,
+                                                                  p->scratch));
         p->reads_caustics = 1;
     }
     /* Go on through the specular and glossy part. */

@@ -34,6 +34,7 @@ enum light_component {
 };
 
 struct indirect_diffuse_provider;
+struct progressive_caustics;
 
 typedef struct integrator_settings {
     uint32_t max_bounces;          /* scattering events after the camera hit */
@@ -61,6 +62,9 @@ typedef struct integrator_settings {
      * at least this rough receive the caustic map's estimate at camera
      * vertices (diffuse_split.c). 0 under PATH: only deltas. */
     float caustic_roughness;
+    /* Progressive caustics (progressive_caustics.h): the current sample's
+     * map and radius replace the caustic map's k nearest; NULL: off. */
+    const struct progressive_caustics *progressive;
     /* 1: camera paths also record the denoising features (a Denoising pass is on). */
     int denoising_features;
     const phos_camera_desc *camera; /* for the features' camera-space normal */
@@ -100,6 +104,12 @@ sample_result path_trace(const scene *s, const integrator_settings *is, camera_r
  * photon.c. */
 sample_result photon_render(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
                             integrator_scratch *scratch);
+
+/* The caustics reflected toward wo through b at x (n on wo's side),
+ * W/(m²·sr): the caustic map's k nearest photons, or with progressive
+ * caustics the current sample's map within its radius. */
+vec3 photon_caustic_radiance(const integrator_settings *is, const bsdf *b, vec3 wo, vec3 x, vec3 n,
+                             integrator_scratch *scratch);
 
 /* The maps' estimates at the first diffuse surface the camera sees (the
  * debug passes), for either integrator. */

@@ -6,6 +6,7 @@
  * estimates.
  */
 #include "integrators/camera_path.h"
+#include "photons/progressive_caustics.h"
 #include "photons/radiance_estimate.h"
 #include "transport/specular_chain.h"
 
@@ -15,6 +16,14 @@ sample_result photon_render(const scene *s, const integrator_settings *is, camer
                             integrator_scratch *scratch)
 {
     return camera_path_walk(s, is, ray, smp, scratch, diffuse_split_vertex_policy);
+}
+
+vec3 photon_caustic_radiance(const integrator_settings *is, const bsdf *b, vec3 wo, vec3 x, vec3 n,
+                             integrator_scratch *scratch)
+{
+    if (is->progressive)
+        return progressive_caustic_radiance(is->progressive, b, wo, x, n, &scratch->caustic);
+    return photon_radiance(&is->maps->caustic, b, wo, x, n, &is->caustic_estimate, &scratch->caustic);
 }
 
 void photon_debug_estimates(const scene *s, const integrator_settings *is, camera_ray ray,
@@ -32,6 +41,5 @@ void photon_debug_estimates(const scene *s, const integrator_settings *is, camer
     bsdf_split(&end.b, &diffuse, &rest);
     res->photon_map = v3_mul(end.beta, photon_radiance(&is->maps->global, &diffuse, end.wo, end.sf.p, end.sf.ns,
                                                        &is->global_estimate, &scratch->global));
-    res->caustic_map = v3_mul(end.beta, photon_radiance(&is->maps->caustic, &diffuse, end.wo, end.sf.p, end.sf.ns,
-                                                        &is->caustic_estimate, &scratch->caustic));
+    res->caustic_map = v3_mul(end.beta, photon_caustic_radiance(is, &diffuse, end.wo, end.sf.p, end.sf.ns, scratch));
 }

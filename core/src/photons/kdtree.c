@@ -459,11 +459,17 @@ typedef struct search_entry {
 static inline __attribute__((always_inline)) uint32_t map_search(const photon_map *m, vec3 x, int disc,
                                                                  vec3 normal, float c2m1,
                                                                  const kdtree_filter *f, float max_radius2,
-                                                                 kdtree_query *q)
+                                                                 kdtree_query *q, kdtree_visit visit,
+                                                                 void *ctx)
 {
-    q->found = 0;
-    q->radius2 = max_radius2;
-    if (!m->built || q->k == 0 || !(max_radius2 > 0.0f))
+    /* visit non-NULL: a range search, which hands every photon inside
+     * the radius to visit and keeps none (q is unused). */
+    uint32_t visited = 0;
+    if (!visit) {
+        q->found = 0;
+        q->radius2 = max_radius2;
+    }
+    if (!m->built || (!visit && q->k == 0) || !(max_radius2 > 0.0f))
         return 0;
     const float xq[3] = {x.x, x.y, x.z};
     float r2 = max_radius2;
@@ -521,29 +527,44 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
         for (uint32_t i = s; i < end; i++) {
             const photon *p = &m->photons[i];
             float d2 = disc ? kdtree_disc_dist2(p, x, normal, c2m1) : kdtree_dist2(p, x);
-            if (d2 < r2 && (!f || kdtree_filter_accepts(f, p)))
-                r2 = knn_add(q, d2, i, r2);
+            if (d2 < r2 && (!f || kdtree_filter_accepts(f, p))) {
+                if (visit) {
+                    visit(ctx, p, d2);
+                    visited++;
+                } else {
+                    r2 = knn_add(q, d2, i, r2);
+                }
+            }
         }
     }
+    if (visit)
+        return visited;
     q->radius2 = r2; /* still max_radius2 unless k were found */
     return q->found;
 }
 
 uint32_t photon_map_knn(const photon_map *m, vec3 x, float max_radius2, kdtree_query *q)
 {
-    return map_search(m, x, 0, v3s(0.0f), 0.0f, NULL, max_radius2, q);
+    return map_search(m, x, 0, v3s(0.0f), 0.0f, NULL, max_radius2, q, NULL, NULL);
 }
 
 uint32_t photon_map_knn_disc(const photon_map *m, vec3 x, vec3 normal, float flatten, float max_radius2,
                              kdtree_query *q)
 {
     float c = flatten > 1.0f ? flatten : 1.0f;
-    return map_search(m, x, 1, normal, c * c - 1.0f, NULL, max_radius2, q);
+    return map_search(m, x, 1, normal, c * c - 1.0f, NULL, max_radius2, q, NULL, NULL);
 }
 
 uint32_t photon_map_knn_surface(const photon_map *m, vec3 x, float flatten, const kdtree_filter *f,
                                 float max_radius2, kdtree_query *q)
 {
     float c = flatten > 1.0f ? flatten : 1.0f;
-    return map_search(m, x, 1, f->normal, c * c - 1.0f, f, max_radius2, q);
+    return map_search(m, x, 1, f->normal, c * c - 1.0f, f, max_radius2, q, NULL, NULL);
+}
+
+uint32_t photon_map_range_surface(const photon_map *m, vec3 x, float flatten, const kdtree_filter *f,
+                                  float radius2, kdtree_visit visit, void *ctx)
+{
+    float c = flatten > 1.0f ? flatten : 1.0f;
+    return map_search(m, x, 1, f->normal, c * c - 1.0f, f, radius2, NULL, visit, ctx);
 }

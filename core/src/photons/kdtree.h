@@ -126,6 +126,13 @@ uint32_t photon_map_knn_disc(const photon_map *m, vec3 x, vec3 normal, float fla
                              kdtree_query *q);
 uint32_t photon_map_knn_surface(const photon_map *m, vec3 x, float flatten, const kdtree_filter *f,
                                 float max_radius2, kdtree_query *q);
+/* Every photon of m the filter accepts with disc distance² < radius2
+ * (strictly), handed to visit(ctx, photon, d2) in the search's order,
+ * which depends on the map alone; returns how many. A fixed-radius
+ * search: progressive photon mapping's estimate (radiance_estimate.h). */
+typedef void (*kdtree_visit)(void *ctx, const photon *p, float d2);
+uint32_t photon_map_range_surface(const photon_map *m, vec3 x, float flatten, const kdtree_filter *f,
+                                  float radius2, kdtree_visit visit, void *ctx);
 /* The j-th result (j < q->found) as a photon of the tree. */
 static inline const photon *kdtree_result(const photon *tree, const kdtree_query *q, uint32_t j)
 {

@@ -52,6 +52,22 @@ static float kernel_weight(const estimate_params *ep, float d2, float r2)
     return 1.0f;
 }
 
+/* A photon's power times the BSDF toward wo, f ΔΦ (b NULL: f = 1); with
+ * `lambertian` (bsdf_lambertian_about) the power alone, or none below the
+ * geometric surface, and the caller multiplies the sum by ρ/π. */
+static inline vec3 reflected_power(const photon *p, int lambertian, const bsdf *b, vec3 wo, vec3 n)
+{
+    vec3 power = photon_power(p);
+    if (lambertian)
+        return v3_dot(photon_direction(p), b->ng) < 0.0f ? power : v3s(0.0f);
+    if (!b)
+        return power;
+    vec3 wi = v3_neg(photon_direction(p)); /* toward where the photon came from */
+    /* bsdf_eval includes |cos θi|; the estimate wants f alone. The search
+     * kept only photons with cos θi = wi·n > 0. */
+    return v3_mul(v3_scale(bsdf_eval(b, wo, wi, NULL), 1.0f / v3_dot(wi, n)), power);
+}
+
 /* Σ w_j f_j ΔΦ_j / (π r² · norm) over the photons found, with f_j the BSDF
  * toward wo (b NULL: f = 1, the irradiance). One loop for both estimates.
  * A Lambertian b (bsdf_lambertian_about) has the same f = ρ/π for every
@@ -72,21 +88,41 @@ static vec3 estimate(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
         if (j == far_index)
             continue;
         const photon *p = kdtree_result(m->photons, q, j);
-        vec3 power = photon_power(p);
-        if (lambertian) {
-            if (!(v3_dot(photon_direction(p), b->ng) < 0.0f))
-                continue;
-        } else if (b) {
-            vec3 wi = v3_neg(photon_direction(p)); /* toward where the photon came from */
-            /* bsdf_eval includes |cos θi|; the estimate wants f alone. The
-             * search kept only photons with cos θi = wi·n > 0. */
-            power = v3_mul(v3_scale(bsdf_eval(b, wo, wi, NULL), 1.0f / v3_dot(wi, n)), power);
-        }
-        sum = v3_madd(sum, power, kernel_weight(ep, q->dist2[j], w.r2));
+        sum = v3_madd(sum, reflected_power(p, lambertian, b, wo, n), kernel_weight(ep, q->dist2[j], w.r2));
     }
     if (lambertian)
         sum = v3_mul(sum, v3_scale(rho, PHOS_INV_PI));
     return v3_scale(sum, 1.0f / (PHOS_PI * w.r2 * w.norm));
+}
+
+/* The range search's running sum (photon_radiance_within). */
+typedef struct range_sum {
+    const bsdf *b;
+    vec3 wo, n, sum;
+    int lambertian;
+} range_sum;
+
+static void add_in_range(void *ctx, const photon *p, float d2)
+{
+    (void)d2; /* a box kernel */
+    range_sum *rs = ctx;
+    rs->sum = v3_add(rs->sum, reflected_power(p, rs->lambertian, rs->b, rs->wo, rs->n));
+}
+
+vec3 photon_radiance_within(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, float radius,
+                            uint16_t exclude_flags)
+{
+    range_sum rs = {b, wo, n, v3s(0.0f), 0};
+    if (m->count == 0 || !(radius > 0.0f) || b->count == 0)
+        return rs.sum;
+    vec3 rho;
+    rs.lambertian = bsdf_lambertian_about(b, n, &rho);
+    kdtree_filter f = {n, ESTIMATE_NORMAL_MIN_COS, exclude_flags, 1};
+    float r2 = radius * radius;
+    photon_map_range_surface(m, x, ESTIMATE_DISC_FLATTEN, &f, r2, add_in_range, &rs);
+    if (rs.lambertian)
+        rs.sum = v3_mul(rs.sum, v3_scale(rho, PHOS_INV_PI));
+    return v3_scale(rs.sum, 1.0f / (PHOS_PI * r2));
 }
 
 vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q)

@@ -51,6 +51,15 @@ vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_param
 vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, const estimate_params *ep,
                      kdtree_query *q);
 
+/* Reflected radiance W/(m²·sr) from every photon within `radius` (disc
+ * metric, the same filter as photon_radiance), with a box kernel:
+ * Σ f ΔΦ / (π r²). Given a radius that does not depend on the map's
+ * photons, the estimate's mean is the disc's average of the reflected
+ * radiance: progressive photon mapping's per-pass estimate (Knaus &
+ * Zwicker 2011; integrators/progressive_caustics.c). */
+vec3 photon_radiance_within(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, float radius,
+                            uint16_t exclude_flags);
+
 /* A radiance photon answers a lookup whose normal is within 41° of its
  * own. Christensen (1999) allows 60°; 41° keeps the lookup inside the
  * facing class of an axis-aligned wall (photon.h), where a 60° cone also

@@ -27,6 +27,10 @@ void render_memory_estimate(const phos_render_settings *rs, memory_estimate *out
     stage_plan_make(rs, &plan);
     if (stage_plan_has(&plan, PHOS_STAGE_TRACING_PHOTONS))
         out->photon_maps = photon_maps_memory_estimate(rs->global_photons, rs->caustic_photons);
+    /* Progressive caustics hold two maps of a sample's photons at a time:
+     * the sample's own and the one before (progressive_caustics.h). */
+    if (render_progressive_caustics(rs))
+        out->photon_maps += 2u * photon_maps_memory_estimate(0, rs->progressive_caustic_photons);
     /* The pre-pass covers the full frame, whatever the region. */
     if (stage_plan_has(&plan, PHOS_STAGE_FILLING_IRRADIANCE_CACHE))
         out->irradiance_cache = irradiance_cache_memory_estimate(rs->width, rs->height, rs->ic_min_spacing);

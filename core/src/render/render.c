@@ -305,7 +305,7 @@ static void render_tile(void *ctx, uint32_t item, uint32_t thread)
         for (uint32_t x = t->x; x < t->x + t->width && outcome == PIXEL_RENDERED; x++)
             outcome = atomic_load_explicit(&r->cancel, memory_order_relaxed)
                           ? PIXEL_CANCELLED
-                          : render_pixel(r, x, y, r->pass_first, r->pass_end, sc);
+                          : render_pixel(r, x, y, r->sweep_first, r->sweep_end, sc);
     int whole = outcome != PIXEL_CANCELLED;
     atomic_fetch_add(&r->rays_traced, embree_thread_rays() - rays_before);
     atomic_fetch_add(&r->cache_lookups, sc->cache_lookups - lookups_before);
@@ -313,11 +313,13 @@ static void render_tile(void *ctx, uint32_t item, uint32_t thread)
     atomic_fetch_add(&r->gather_rays, sc->gather_rays - gathers_before);
     if (!whole)
         return;
+    atomic_fetch_add(&r->work_done, (uint64_t)t->width * t->height * (r->sweep_end - r->sweep_first));
+    if (!r->sweep_delivers && outcome == PIXEL_RENDERED)
+        return;
     pthread_mutex_lock(&r->lock);
     r->finished[r->finished_count++] = item;
     pthread_mutex_unlock(&r->lock);
     atomic_fetch_add(&r->tiles_done, 1u);
-    atomic_fetch_add(&r->work_done, (uint64_t)t->width * t->height * (r->pass_end - r->pass_first));
 }
 
 /* -------------------------------------------------------- photon dots */
@@ -449,6 +451,45 @@ static phos_status trace_photons(render *r)
     return st;
 }
 
+/* Samples [first, end) of every tile, delivered if `delivers`. */
+static phos_status sweep(render *r, uint32_t first, uint32_t end, int delivers)
+{
+    r->sweep_first = first;
+    r->sweep_end = end;
+    r->sweep_delivers = delivers;
+    if (!parallel_for(r->tile_count, r->threads, render_tile, r, &r->cancel))
+        return atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_INTERNAL;
+    return PHOS_OK;
+}
+
+/* One pass of the rendering stage: one sweep, or with progressive
+ * caustics one sweep per sample, each after its own caustic map (the end
+ * of each sweep is the barrier that keeps the next map from replacing one
+ * still read). A cancel or the time limit is seen between samples. */
+static phos_status render_pass(render *r)
+{
+    if (!r->use_progressive)
+        return sweep(r, r->pass_first, r->pass_end, 1);
+    for (uint32_t i = r->pass_first; i < r->pass_end; i++) {
+        if (atomic_load(&r->cancel))
+            return PHOS_ERROR_CANCELLED;
+        /* Out of time: a last sweep that renders nothing (every pixel
+         * stops at once) delivers the tiles, without tracing a map. */
+        int timed_out = out_of_time(r);
+        if (!timed_out) {
+            phos_status st = progressive_caustics_begin_sample(&r->progressive, r->scene, i, &r->cancel);
+            if (st != PHOS_OK)
+                return st;
+            r->integrator.progressive = &r->progressive;
+        }
+        int last = i + 1 == r->pass_end || timed_out;
+        phos_status st = sweep(r, i, i + 1, last);
+        if (st != PHOS_OK || last)
+            return st;
+    }
+    return PHOS_OK;
+}
+
 /* Runs one stage of the plan (stages.h). */
 static phos_status run_stage(render *r, uint32_t stage)
 {
@@ -483,8 +524,9 @@ static phos_status run_stage(render *r, uint32_t stage)
         for (uint32_t p = 0; p < r->pass_count; p++) {
             r->pass_first = p ? r->pass_ends[p - 1] : 0;
             r->pass_end = r->pass_ends[p];
-            if (!parallel_for(r->tile_count, r->threads, render_tile, r, &r->cancel))
-                return atomic_load(&r->cancel) ? PHOS_ERROR_CANCELLED : PHOS_ERROR_INTERNAL;
+            phos_status st = render_pass(r);
+            if (st != PHOS_OK)
+                return st;
             if (out_of_time(r))
                 break; /* pixels hold different sample counts: the Sample Count pass shows them */
             atomic_store(&r->samples_done, r->pass_end);
@@ -620,15 +662,26 @@ int render_prepare(render *r)
     ps->radiance_k = rs->global_estimate_photons;
     ps->max_radius = radius;
     ps->caustic_roughness = rs->caustic_roughness;
+    /* Progressive caustics: the camera reads each sample's own map; the
+     * caustic map above serves only the final gather's near hits
+     * (final_gather.c). */
+    r->use_progressive = r->use_maps && render_progressive_caustics(rs);
+    progressive_caustics_init(&r->progressive, ps, rs->progressive_caustic_photons, rs->progressive_alpha,
+                              rs->progressive_first_photons, radius);
     r->scratch = calloc(r->threads, sizeof(integrator_scratch));
     if (!r->scratch)
         return 0;
     uint32_t k_radiance = 1; /* radiance_photon_lookup: the nearest facing record */
+    /* The caustic query serves the fixed estimate and the progressive
+     * first radius alike. */
+    uint32_t caustic_k = rs->caustic_estimate_photons > rs->progressive_first_photons ? rs->caustic_estimate_photons
+                                                                                        : rs->progressive_first_photons;
+    caustic_k = caustic_k ? caustic_k : 1;
     for (uint32_t t = 0; t < r->threads; t++) {
         integrator_scratch *sc = &r->scratch[t];
         sc->cancel = &r->cancel;
         if (!kdtree_query_init(&sc->global, rs->global_estimate_photons ? rs->global_estimate_photons : 1) ||
-            !kdtree_query_init(&sc->caustic, rs->caustic_estimate_photons ? rs->caustic_estimate_photons : 1) ||
+            !kdtree_query_init(&sc->caustic, caustic_k) ||
             !kdtree_query_init(&sc->radiance, k_radiance))
             return 0;
     }
@@ -675,6 +728,7 @@ void render_free(render *r)
         }
         free(r->scratch);
     }
+    progressive_caustics_free(&r->progressive);
     shared_maps_release(r->shared);
     irradiance_cache_free(&r->cache);
 }

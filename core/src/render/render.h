@@ -15,6 +15,7 @@
 #include "indirect/irradiance_cache.h"
 #include "indirect/irradiance_cache_fill.h"
 #include "photons/photon_trace.h"
+#include "photons/progressive_caustics.h"
 #include "photons/shared_maps.h"
 #include "scene/scene.h"
 
@@ -55,6 +56,14 @@ struct phos_render {
      * their ends, the one running, and the samples every pixel has. */
     uint32_t pass_count, pass_ends[RENDER_MAX_SAMPLE_PASSES];
     uint32_t pass_first, pass_end;
+    /* The sweep over the frame running now: samples [sweep_first,
+     * sweep_end) of every tile, delivered at its end if sweep_delivers.
+     * A pass is one sweep, or with progressive caustics one per sample,
+     * delivered at the pass's last. */
+    uint32_t sweep_first, sweep_end;
+    int sweep_delivers;
+    int use_progressive;           /* render_progressive_caustics */
+    progressive_caustics progressive;
     atomic_uint samples_done;
     double time_limit_end;         /* monotonic seconds at which the time limit strikes */
     atomic_uint_fast64_t work_done; /* pixel samples of finished tiles, for the progress bar */

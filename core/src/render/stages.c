@@ -121,10 +121,16 @@ uint32_t render_sample_passes(const phos_render_settings *rs, uint32_t ends[REND
     return count;
 }
 
+int render_progressive_caustics(const phos_render_settings *rs)
+{
+    return rs->integrator == PHOS_INTEGRATOR_PHOTON && rs->progressive_caustics && rs->samples > 1;
+}
+
 int render_keeps_sums(const phos_render_settings *rs)
 {
     uint32_t ends[RENDER_MAX_SAMPLE_PASSES];
-    return render_sample_passes(rs, ends) > 1;
+    /* Progressive caustics render one sample at a time over the frame. */
+    return render_sample_passes(rs, ends) > 1 || render_progressive_caustics(rs);
 }
 
 /* What the noise filter reads besides the user's passes: the Indirect

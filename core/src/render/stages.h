@@ -48,6 +48,11 @@ void stage_plan_drop_photon_stages(stage_plan *plan);
 #define RENDER_MAX_SAMPLE_PASSES 32
 uint32_t render_sample_passes(const phos_render_settings *rs, uint32_t ends[RENDER_MAX_SAMPLE_PASSES]);
 
+/* Whether the caustics are progressive (progressive_caustics.h): PHOTON
+ * with the setting on and more than one sample; the rendering stage then
+ * sweeps the frame one sample at a time, each with its own caustic map. */
+int render_progressive_caustics(const phos_render_settings *rs);
+
 /* Whether a render keeps its pixels' sums between passes (film.h). */
 int render_keeps_sums(const phos_render_settings *rs);
 
