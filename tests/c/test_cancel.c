@@ -137,6 +137,13 @@ static void test_render_stages(void)
     rs.final_gather_rays = 65536;
     rs.max_bounces = 64;
     cancel_in_stage(box, &rs, PHOS_STAGE_RENDERING, NULL, 0);
+    /* Progressive caustics: each sample first traces a caustic map of
+     * its own, here of 4 M photons (about a second), inside the
+     * rendering stage. */
+    rs = photon_settings(1000, 1000);
+    rs.progressive_caustics = 1;
+    rs.progressive_caustic_photons = 4000000;
+    cancel_in_stage(box, &rs, PHOS_STAGE_RENDERING, NULL, 0);
     /* And plain path tracing with long glass paths. */
     rs = photon_settings(0, 0);
     rs.integrator = PHOS_INTEGRATOR_PATH;
