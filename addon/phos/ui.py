@@ -182,7 +182,7 @@ class PHOS_RENDER_PT_photon_mapping_caustic(PhotonMapPanel, bpy.types.Panel):
         layout.prop(phos, "use_progressive_caustics")
         col = layout.column(align=True)
         col.active = phos.use_progressive_caustics
-        col.prop(phos, "progressive_caustic_photons", text="Photons per Sample")
+        col.prop(phos, "progressive_caustic_photons", text="Per Sample")
         col.prop(phos, "progressive_first_photons", text="First Radius")
         col.prop(phos, "progressive_alpha")
 
