@@ -1646,10 +1646,14 @@ static void test_global_photons_aimed_at_the_room(void)
  * 30 % dark). Since the sun's global photons are aimed at what the camera
  * reads (16 times as many land inside), the error over the image falls
  * from +2.8 % at 1 k photons and +1.2 % at 3 k to the noise by 10 k
- * (+0.3 %); the test asserts that it falls from 2 k to 100 k, and that at
- * 100 k and 1.6 M photons both errors are within 4 standard errors of the
- * two renders' noise. Measured at 1.6 M over three seed pairs: +0.5 % to
- * +0.8 % (limit about 1.05 %), in the strip 0.0 % to +0.4 % (2.9 %). */
+ * (+0.3 %); the test asserts that it falls from 2 k to 100 k (or is
+ * within the noise at 2 k already), and that at 100 k and 1.6 M photons
+ * both errors are within 4 standard errors of the two renders' noise.
+ * Measured at 1.6 M over three seed pairs: +0.5 % to +0.8 % (limit about
+ * 1.05 %), in the strip 0.0 % to +0.4 % (2.9 %). With the discs clipped at
+ * walls (radiance_estimate.h), seeds 9 and 10: -0.09 %, +0.45 %, +0.98 % at
+ * 2 k, 100 k and 1.6 M (strip +0.49 %, +0.44 %, +0.39 %), against -1.23 %,
+ * -0.51 %, +0.70 % (strip -1.16 %, -0.91 %, -0.07 %) with whole discs. */
 static void test_sunlit_room(void)
 {
     phos_scene *s = room_scene(0);
@@ -1695,8 +1699,10 @@ static void test_sunlit_room(void)
             free(pm2[p]);
         }
     }
-    CHECK_MSG(fabs(err[1]) < fabs(err[0]), "sunlit room: the error does not fall as photons grow: %+.4f then %+.4f",
-              err[0], err[1]);
+    /* Falling, unless already within the noise at 2 k (since the discs
+     * are clipped at walls: -0.09 %, where the whole disc read -1.23 %). */
+    CHECK_MSG(fabs(err[1]) < fmax(fabs(err[0]), limit[0]),
+              "sunlit room: the error does not fall as photons grow: %+.4f then %+.4f", err[0], err[1]);
     for (int i = 1; i < 3; i++) {
         CHECK_MSG(fabs(err[i]) < limit[i], "sunlit room, %u photons: indirect %+.2f %% off PATH (noise limit %.2f %%)",
                   photons[i], 100.0 * err[i], 100.0 * limit[i]);

@@ -733,6 +733,7 @@ phos_status photon_maps_build(photon_maps *m, uint32_t threads, atomic_int *canc
 }
 
 typedef struct precompute {
+    const scene *s;
     const photon_maps *maps;
     const photon_trace_settings *ps;
     kdtree_query *queries; /* one per thread */
@@ -747,7 +748,7 @@ static void precompute_sites(void *ctx, uint32_t item, uint32_t thread)
     const photon_maps *m = pc->maps;
     /* Light that scattered at least once before: final gathering takes
      * direct light at its hits from a light sample (final_gather.c). */
-    estimate_params ep = {pc->ps->radiance_k, pc->ps->max_radius, ESTIMATE_BOX, PHOTON_DIRECT};
+    estimate_params ep = {pc->ps->radiance_k, pc->ps->max_radius, ESTIMATE_BOX, PHOTON_DIRECT, pc->s};
     uint32_t begin = item * SITES_PER_ITEM, end = begin + SITES_PER_ITEM;
     if (end > m->radiance_site_count)
         end = m->radiance_site_count;
@@ -768,12 +769,11 @@ static void precompute_sites(void *ctx, uint32_t item, uint32_t thread)
 phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_settings *ps, photon_maps *m,
                                             atomic_int *cancel)
 {
-    (void)s;
     uint32_t n = m->radiance_site_count;
     if (n == 0)
         return PHOS_OK;
     uint32_t threads = parallel_thread_count(ps->threads);
-    precompute pc = {m, ps, calloc(threads, sizeof(kdtree_query)), malloc(sizeof(photon) * n)};
+    precompute pc = {s, m, ps, calloc(threads, sizeof(kdtree_query)), malloc(sizeof(photon) * n)};
     phos_status st = PHOS_OK;
     if (!pc.queries || !pc.out)
         st = PHOS_ERROR_OUT_OF_MEMORY;

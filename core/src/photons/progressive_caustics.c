@@ -77,6 +77,7 @@ phos_status progressive_caustics_begin_sample(progressive_caustics *pc, const sc
     st = trace_sample_map(pc, s, i, cur, cancel);
     if (st != PHOS_OK)
         return st;
+    pc->clip = s;
     pc->previous = &prev->caustic;
     pc->current = &cur->caustic;
     pc->sample = i;
@@ -98,5 +99,5 @@ vec3 progressive_caustic_radiance(const progressive_caustics *pc, const bsdf *b,
     photon_map_knn_surface(pc->previous, x, ESTIMATE_DISC_FLATTEN, &f, max_r2, q);
     float r0 = q->found == q->k ? sqrtf(q->radius2) : pc->max_radius;
     q->k = capacity;
-    return photon_radiance_within(pc->current, b, wo, x, n, r0 * pc->shrink, 0);
+    return photon_radiance_within(pc->current, b, wo, x, n, r0 * pc->shrink, 0, pc->clip);
 }

@@ -34,6 +34,7 @@ typedef struct progressive_caustics {
     float alpha;                  /* Knaus & Zwicker's α in (0, 1) */
     uint32_t k;                   /* photons within R_0 */
     float max_radius;             /* R_0 where fewer than k lie within it, scene units */
+    const struct phos_scene *clip; /* the scene whose walls cut the discs (radiance_estimate.h) */
     photon_trace_settings trace;  /* for every sample's map: no global map, its own count */
     uint32_t sample;              /* the sample whose map is current; UINT32_MAX before the first */
     uint64_t photons_traced;      /* stored over all samples so far, for the progress line */

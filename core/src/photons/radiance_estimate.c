@@ -21,6 +21,58 @@
  */
 #include "photons/radiance_estimate.h"
 
+#include <string.h>
+
+#include "sampling/sampler.h"
+#include "scene/embree.h"
+#include "scene/scene.h"
+
+/* Whether the probe from o along d meets, within r, a surface whose
+ * photons the estimate would not take: one facing away from n by more
+ * than the estimate's normal test allows (a wall). A surface facing about
+ * the way n does (the same surface curving up, inside a bowl or a lamp
+ * shade) holds photons the estimate counts, so the disc goes on there. */
+static int probe_reaches_wall(const scene *s, vec3 o, vec3 d, vec3 n, float r, ray_hit *h)
+{
+    if (!embree_intersect(s->bvh, o, d, 0.0f, r, 0, h))
+        return 0;
+    vec3 v[3];
+    scene_triangle_vertices(s, &s->instances[h->instance], h->prim, v);
+    vec3 ng = v3_normalize(v3_cross(v3_sub(v[1], v[0]), v3_sub(v[2], v[0])));
+    if (v3_dot(ng, d) > 0.0f)
+        ng = v3_neg(ng); /* the side the probe arrives on */
+    return !(v3_dot(ng, n) >= ESTIMATE_NORMAL_MIN_COS);
+}
+
+float estimate_disc_coverage(const scene *s, vec3 x, vec3 n, float r, uint32_t filter)
+{
+    if (!s || !(r > 0.0f))
+        return 1.0f;
+    frame f = frame_from_normal(n);
+    /* Just above the surface: a wall meeting it is hit at its distance,
+     * the surface itself never. */
+    vec3 o = v3_madd(x, n, 0.01f * r);
+    uint32_t bits[3];
+    memcpy(bits, &x, sizeof(bits));
+    float turn = u32_to_unit_float(hash_combine(hash_combine(hash_u32(bits[0]), bits[1]), bits[2]));
+    /* Each probe stands for its 1/N of the directions (a Riemann sum of
+     * the polar integral; with the turn uniform over one step its mean is
+     * the integral itself, so neighbouring estimates' errors average out
+     * over the image instead of adding up). */
+    float sum = 0.0f;
+    for (int i = 0; i < ESTIMATE_CLIP_PROBES; i++) {
+        float phi = 2.0f * PHOS_PI * ((float)i + turn) / (float)ESTIMATE_CLIP_PROBES;
+        vec3 d = frame_to_world(&f, v3(cosf(phi), sinf(phi), 0.0f));
+        ray_hit h;
+        float t = probe_reaches_wall(s, o, d, n, r, &h) ? h.t / r : 1.0f;
+        /* The kernel's integral along the probe, ∫_0^t w(ρ) ρ dρ, over
+         * its value at t = 1: box t², cone (t²/2 − t³/3)·6. */
+        sum += filter == ESTIMATE_CONE ? t * t * (3.0f - 2.0f * t) : t * t;
+    }
+    float coverage = sum / (float)ESTIMATE_CLIP_PROBES;
+    return coverage > 1.0f / ESTIMATE_CLIP_PROBES ? coverage : 1.0f / ESTIMATE_CLIP_PROBES;
+}
+
 typedef struct weighted_photon_sum {
     float r2;        /* squared radius of the estimate */
     float norm;      /* the kernel's integral over the disc, in units of πr² */
@@ -92,7 +144,10 @@ static vec3 estimate(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
     }
     if (lambertian)
         sum = v3_mul(sum, v3_scale(rho, PHOS_INV_PI));
-    return v3_scale(sum, 1.0f / (PHOS_PI * w.r2 * w.norm));
+    float area = PHOS_PI * w.r2 * w.norm;
+    if (ep->clip && !v3_is_zero(sum))
+        area *= estimate_disc_coverage(ep->clip, x, n, sqrtf(w.r2), ep->filter);
+    return v3_scale(sum, 1.0f / area);
 }
 
 /* The range search's running sum (photon_radiance_within). */
@@ -110,7 +165,7 @@ static void add_in_range(void *ctx, const photon *p, float d2)
 }
 
 vec3 photon_radiance_within(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, float radius,
-                            uint16_t exclude_flags)
+                            uint16_t exclude_flags, const scene *clip)
 {
     range_sum rs = {b, wo, n, v3s(0.0f), 0};
     if (m->count == 0 || !(radius > 0.0f) || b->count == 0)
@@ -122,7 +177,10 @@ vec3 photon_radiance_within(const photon_map *m, const bsdf *b, vec3 wo, vec3 x,
     photon_map_range_surface(m, x, ESTIMATE_DISC_FLATTEN, &f, r2, add_in_range, &rs);
     if (rs.lambertian)
         rs.sum = v3_mul(rs.sum, v3_scale(rho, PHOS_INV_PI));
-    return v3_scale(rs.sum, 1.0f / (PHOS_PI * r2));
+    float area = PHOS_PI * r2;
+    if (clip && !v3_is_zero(rs.sum))
+        area *= estimate_disc_coverage(clip, x, n, radius, ESTIMATE_BOX);
+    return v3_scale(rs.sum, 1.0f / area);
 }
 
 vec3 photon_irradiance(const photon_map *m, vec3 x, vec3 n, const estimate_params *ep, kdtree_query *q)

@@ -18,12 +18,31 @@ enum estimate_filter {
     ESTIMATE_CONE = 1 /* Jensen's cone filter, w = 1 − d/r, normalised by 1 − 2/3 */
 };
 
+struct phos_scene;
+
 typedef struct estimate_params {
     uint32_t k;              /* photons in the estimate */
     float max_radius;        /* scene units */
     uint32_t filter;         /* enum estimate_filter */
     uint16_t exclude_flags;  /* skip photons with any of these flags (PHOTON_DIRECT, PHOTON_CAUSTIC) */
+    /* Non-NULL: the disc's area is clipped where walls of this scene cut
+     * it (estimate_disc_coverage); NULL: the whole disc, πr². */
+    const struct phos_scene *clip;
 } estimate_params;
+
+/* Probes in the surface's plane that measure how much of a search disc
+ * the surface covers (docs/algorithms.md §4.6). */
+#define ESTIMATE_CLIP_PROBES 16
+
+/* The share of the disc of radius r about x, in the plane of unit normal
+ * n, that the surface covers before a wall: probes from just above x along
+ * the plane, each as long as the radius, and the polar area of what they
+ * reach, ½∮ min(t(φ), r)² dφ / (πr²) for the box kernel (the kernel's
+ * integral over that area, over its integral over the disc, for the
+ * cone). 1 where nothing is within r; 1/4 at the corner of a box-shaped
+ * room. The probes turn by an angle hashed from
+ * x, so neighbouring estimates do not share one set of directions. */
+float estimate_disc_coverage(const struct phos_scene *s, vec3 x, vec3 n, float r, uint32_t filter);
 
 /* Flattening of the search sphere along the normal (docs/algorithms.md
  * §4.3): keeps photons of an adjacent wall or the far side of a thin wall
@@ -56,9 +75,10 @@ vec3 photon_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
  * Σ f ΔΦ / (π r²). Given a radius that does not depend on the map's
  * photons, the estimate's mean is the disc's average of the reflected
  * radiance: progressive photon mapping's per-pass estimate (Knaus &
- * Zwicker 2011; integrators/progressive_caustics.c). */
+ * Zwicker 2011; photons/progressive_caustics.c). clip: as in estimate_params
+ * (NULL: the whole disc). */
 vec3 photon_radiance_within(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n, float radius,
-                            uint16_t exclude_flags);
+                            uint16_t exclude_flags, const struct phos_scene *clip);
 
 /* A radiance photon answers a lookup whose normal is within 41° of its
  * own. Christensen (1999) allows 60°; 41° keeps the lookup inside the

@@ -618,8 +618,8 @@ int render_prepare(render *r)
     is->max_bounces = rs->max_bounces;
     is->transparent_background = rs->transparent_background != 0;
     is->maps = NULL;
-    is->global_estimate = (estimate_params){rs->global_estimate_photons, radius, ESTIMATE_BOX, 0};
-    is->caustic_estimate = (estimate_params){rs->caustic_estimate_photons, radius, ESTIMATE_CONE, 0};
+    is->global_estimate = (estimate_params){rs->global_estimate_photons, radius, ESTIMATE_BOX, 0, r->scene};
+    is->caustic_estimate = (estimate_params){rs->caustic_estimate_photons, radius, ESTIMATE_CONE, 0, r->scene};
     is->final_gather_rays = rs->final_gather_rays;
     is->radiance_lookup_radius = radius;
     /* Where the diffuse part's indirect light comes from: PATH follows the
