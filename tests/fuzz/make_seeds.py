@@ -411,6 +411,9 @@ SEEDS = {
                                                     (0, [0])]),
     "regress_far_instance": scene(instances=[(0, [0], (1, 0, 0, 1e20, 0, 1, 0, 0, 0, 0, 1, 0))]),
     # A 10 GB film that fits this machine: allocated lazily, cancelled, freed.
+    # Maps so small that no class needs a split plane: the kd-tree build
+    # added an offset to the NULL split array (UBSan, 2026-12-05).
+    "regress_tiny_photon_map": scene(renders=[({"global_photons": 5, "caustic_photons": 3, **PHOTON}, 0)]),
     "regress_large_film": scene(renders=[({"width": 65536, "height": 10001, "pass_mask": 1023}, 0)]),
     "cache_file_garbage": scene(renders=[({"irradiance_cache": 2}, 1 | (2 << 1) | (0 << 3))]) + b"PHOSIRC\0garbage",
     "photon_file_garbage": scene(renders=[(PHOTON, 1 | (2 << 1) | (1 << 3))]) + b"PHOSPMF\0\x01\x00",

@@ -302,8 +302,10 @@ int kdtree_build(photon_map *const *maps, unsigned count, uint32_t threads, atom
             const photon_class_tree *t = &m->classes[c];
             if (t->count == 0)
                 continue;
-            builds[plan.count] = (class_build){m->photons + t->start, t->count, t->depth,
-                                               m->splits + t->first_split, cancel};
+            /* A map whose classes all fit in one bucket has no split array
+             * (NULL, which no offset may be added to, even zero). */
+            kdtree_split *splits = m->splits ? m->splits + t->first_split : NULL;
+            builds[plan.count] = (class_build){m->photons + t->start, t->count, t->depth, splits, cancel};
             cell_box box;
             memcpy(box.lo, t->lo, sizeof(box.lo));
             memcpy(box.hi, t->hi, sizeof(box.hi));
@@ -503,7 +505,7 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
         if (!(e.d2 < r2))
             continue;
         const photon_class_tree *t = &m->classes[e.cls];
-        const kdtree_split *splits = m->splits + t->first_split;
+        const kdtree_split *splits = m->splits ? m->splits + t->first_split : NULL; /* NULL: no class splits */
         uint32_t leaves = 1u << t->depth, h = e.node;
         /* Descend toward x, leaving the far children on the stack. */
         while (h < leaves) {
