@@ -10,7 +10,7 @@
 #include "cache/file_io.h"
 
 #define IC_FILE_MAGIC "PHOSIRC\n"
-#define IC_FILE_VERSION 3u /* 2: caustic_roughness; 3: sampler */
+#define IC_FILE_VERSION 4u /* 2: caustic_roughness; 3: sampler; 4: records from estimates clipped at walls */
 #define WHAT "irradiance cache"
 #define RECORD_WORDS 37u /* p, n, E, E_caustic, w_mean (3 each), grad_r, grad_t (9 each), R, R_free, R_lo, R_hi */
 
