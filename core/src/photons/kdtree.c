@@ -477,15 +477,17 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
     float r2 = max_radius2;
     search_entry stack[KDTREE_STACK_SIZE];
     int top = 0;
-    /* The facings whose photons the filter can accept. */
+    /* Whether the filter can accept a facing's photons: 1 yes, 0 no, −1
+     * not asked yet. Asked only of the classes near enough to enter, so
+     * a query far from any wall pays only for its own facing's. */
     int facing_ok[PHOTON_FACINGS];
     for (unsigned c = 0; c < PHOTON_FACINGS; c++)
-        facing_ok[c] = !f || !(facing_class_max_dot(c, f->normal) < f->min_normal_cos);
+        facing_ok[c] = f ? -1 : 1;
     /* The classes' roots, farthest first on the stack so that the
      * nearest is searched first and sets the radius for the rest. */
     for (unsigned c = 0; c < PHOTON_CLASSES; c++) {
         const photon_class_tree *t = &m->classes[c];
-        if (t->count == 0 || !facing_ok[c / 4u] || (f && (photon_class_flags(c) & f->exclude_flags)))
+        if (t->count == 0 || (f && (photon_class_flags(c) & f->exclude_flags)))
             continue;
         search_entry e = {c, 1, 0.0f, {0.0f, 0.0f, 0.0f}};
         for (int a = 0; a < 3; a++) {
@@ -494,6 +496,11 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
             e.d2 += e.off[a] * e.off[a];
         }
         if (!(e.d2 < r2))
+            continue;
+        int *ok = &facing_ok[c / 4u];
+        if (*ok < 0)
+            *ok = !(facing_class_max_dot(c / 4u, f->normal) < f->min_normal_cos);
+        if (!*ok)
             continue;
         int j = top++;
         for (; j > 0 && stack[j - 1].d2 < e.d2; j--) /* stable: equal distances keep class order */
