@@ -387,6 +387,27 @@ static void test_estimate_at_walls(void)
     phos_scene_destroy(s);
 }
 
+/* An estimate takes the k its parameters give, whatever its query was
+ * made for: the render's caustic query is sized for the larger of the
+ * caustic estimate's k and progressive caustics' first-radius k. */
+static void test_k_from_params(void)
+{
+    photon_map m;
+    plane_map(&m, 20000);
+    kdtree_query exact, larger;
+    CHECK(kdtree_query_init(&exact, 10) && kdtree_query_init(&larger, 40));
+    estimate_params ep = {10, 0.3f, ESTIMATE_CONE, 0};
+    vec3 x = v3(0.1f, -0.05f, 0.0f), n = v3(0, 0, 1);
+    vec3 want = photon_irradiance(&m, x, n, &ep, &exact);
+    vec3 got = photon_irradiance(&m, x, n, &ep, &larger);
+    CHECK_MSG(got.x == want.x && got.y == want.y && got.z == want.z,
+              "k = 10 with a query for 40: %g, with a query for 10: %g", (double)got.x, (double)want.x);
+    CHECK(larger.k == 40);
+    kdtree_query_free(&exact);
+    kdtree_query_free(&larger);
+    photon_map_free(&m);
+}
+
 int main(void)
 {
     test_disc_coverage();
@@ -395,5 +416,6 @@ int main(void)
     test_progressive_radius();
     test_radiance_photon_radius();
     test_lambertian_shortcut();
+    test_k_from_params();
     return test_summary("test_radiance_estimate");
 }

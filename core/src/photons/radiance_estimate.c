@@ -86,6 +86,11 @@ static uint32_t gather(const photon_map *m, vec3 x, vec3 n, const estimate_param
 {
     float max_r2 = ep->max_radius * ep->max_radius;
     kdtree_filter f = {n, ESTIMATE_NORMAL_MIN_COS, ep->exclude_flags, 1};
+    /* k from the estimate, not the query, which may be made for more
+     * (render.c's caustic one also serves progressive caustics' first
+     * radius). */
+    uint32_t capacity = q->k;
+    q->k = ep->k < capacity ? ep->k : capacity;
     photon_map_knn_surface(m, x, ESTIMATE_DISC_FLATTEN, &f, max_r2, q);
     uint32_t far_index = UINT32_MAX;
     w->r2 = max_r2;
@@ -93,6 +98,7 @@ static uint32_t gather(const photon_map *m, vec3 x, vec3 n, const estimate_param
         w->r2 = q->radius2;
         far_index = 0; /* the k-th nearest (kdtree_query) */
     }
+    q->k = capacity;
     w->norm = ep->filter == ESTIMATE_CONE ? 1.0f / 3.0f : 1.0f;
     return far_index;
 }
