@@ -731,6 +731,18 @@ static void test_memory_estimate(void)
     render_memory_estimate(&rs, &e);
     CHECK_MSG(e.photon_maps > 0 && e.irradiance_cache > 0 && e.total < 400e6, "default PHOTON needs %.0f MB",
               (double)e.total / 1e6);
+    /* The path-traced gather traces no global map, and the estimate
+     * counts none; the debug pass that shows the map brings it back. */
+    uint64_t both = e.photon_maps;
+    rs.photon_view = PHOS_PHOTON_VIEW_PATH_TRACED;
+    render_memory_estimate(&rs, &e);
+    CHECK_MSG(e.photon_maps > 0 && e.photon_maps < both, "path-traced gather: %.1f MB of maps, with a global map %.1f MB",
+              (double)e.photon_maps / 1e6, (double)both / 1e6);
+    rs.pass_mask |= 1u << PHOS_PASS_PHOTON_MAP;
+    render_memory_estimate(&rs, &e);
+    CHECK(e.photon_maps == both);
+    rs.pass_mask = 1u << PHOS_PASS_COMBINED;
+    rs.photon_view = PHOS_PHOTON_VIEW_FINAL_GATHER;
     /* 2^28 photons in each map: tens of GiB, refused with 16 GiB free. */
     rs.global_photons = rs.caustic_photons = 1u << 28;
     render_memory_estimate(&rs, &e);

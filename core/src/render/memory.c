@@ -26,7 +26,7 @@ void render_memory_estimate(const phos_render_settings *rs, memory_estimate *out
     stage_plan plan;
     stage_plan_make(rs, &plan);
     if (stage_plan_has(&plan, PHOS_STAGE_TRACING_PHOTONS))
-        out->photon_maps = photon_maps_memory_estimate(rs->global_photons, rs->caustic_photons);
+        out->photon_maps = photon_maps_memory_estimate(render_global_photons(rs), rs->caustic_photons);
     /* Progressive caustics hold two maps of a sample's photons at a time:
      * the sample's own and the one before (progressive_caustics.h). */
     if (render_progressive_caustics(rs))

@@ -648,11 +648,7 @@ int render_prepare(render *r)
     if (r->use_cache && !irradiance_cache_init(&r->cache, r->scene->bounds_min, r->scene->bounds_max, rs->ic_accuracy))
         return 0;
     photon_trace_settings *ps = &r->photon_settings;
-    /* The path-traced gather reads no global map: trace one only for the
-     * debug passes that show it. */
-    int global_needed = !(rs->integrator == PHOS_INTEGRATOR_PHOTON && rs->photon_view == PHOS_PHOTON_VIEW_PATH_TRACED) ||
-                        (rs->pass_mask & ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_PHOTONS)));
-    ps->global_photons = global_needed ? rs->global_photons : 0;
+    ps->global_photons = render_global_photons(rs);
     ps->caustic_photons = rs->caustic_photons;
     ps->max_emitted = (uint64_t)rs->max_photons_emitted_millions * 1000000u;
     ps->max_bounces = rs->max_bounces;

@@ -126,6 +126,13 @@ int render_progressive_caustics(const phos_render_settings *rs)
     return rs->integrator == PHOS_INTEGRATOR_PHOTON && rs->progressive_caustics && rs->samples > 1;
 }
 
+uint32_t render_global_photons(const phos_render_settings *rs)
+{
+    int read = !(rs->integrator == PHOS_INTEGRATOR_PHOTON && rs->photon_view == PHOS_PHOTON_VIEW_PATH_TRACED) ||
+               (rs->pass_mask & ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_PHOTONS)));
+    return read ? rs->global_photons : 0;
+}
+
 int render_keeps_sums(const phos_render_settings *rs)
 {
     uint32_t ends[RENDER_MAX_SAMPLE_PASSES];

@@ -53,6 +53,12 @@ uint32_t render_sample_passes(const phos_render_settings *rs, uint32_t ends[REND
  * sweeps the frame one sample at a time, each with its own caustic map. */
 int render_progressive_caustics(const phos_render_settings *rs);
 
+/* The photons the global map stores: none when nothing reads it, which
+ * is PHOTON's path-traced gather without the debug passes that show the
+ * map. The tracing (render.c) and the memory estimate (memory.c) both
+ * ask here. */
+uint32_t render_global_photons(const phos_render_settings *rs);
+
 /* Whether a render keeps its pixels' sums between passes (film.h). */
 int render_keeps_sums(const phos_render_settings *rs);
 
