@@ -63,7 +63,8 @@ FULL_HD_PIXELS = 1920 * 1080  # Blender's default output size
 REFERENCE_SEED_BASE = 1000000  # chunk k of a reference renders with seed BASE + k
 PHOTON_SETTING_NAMES = ("global_photons", "caustic_photons", "global_estimate_photons",
                         "caustic_estimate_photons", "final_gather_rays", "max_radius",
-                        "irradiance_cache", "ic_accuracy", "ic_rays", "ic_min_spacing", "ic_max_spacing")
+                        "caustic_sample_share", "irradiance_cache", "ic_accuracy", "ic_rays", "ic_min_spacing",
+                        "ic_max_spacing")
 
 
 def log(msg):

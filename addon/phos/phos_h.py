@@ -734,6 +734,7 @@ class phos_render_settings(ctypes.Structure):
         ("caustic_roughness", ctypes.c_float),
         ("global_estimate_photons", ctypes.c_uint32),
         ("caustic_estimate_photons", ctypes.c_uint32),
+        ("caustic_sample_share", ctypes.c_float),
         ("progressive_caustics", ctypes.c_uint32),
         ("progressive_caustic_photons", ctypes.c_uint32),
         ("progressive_first_photons", ctypes.c_uint32),
@@ -1008,6 +1009,11 @@ RENDER_SETTINGS = (
         user=True, prop='caustic_estimate_photons', kind='NUMBER', enum=None, soft_max=1000,
         label='Caustic Estimate',
         description='Nearest photons used in a (cone-filtered) radiance estimate of the caustic map'),
+    RenderSetting(
+        name='caustic_sample_share', ctype='float', default=0.25, min=0.0, max=1.0,
+        user=True, prop='caustic_sample_share', kind='FACTOR', enum=None, soft_max=0.0,
+        label='Caustic Samples',
+        description="Share of a pixel's samples that read the caustic map, its first ones (at least one); the caustics are the mean over those alone and the other samples skip the estimate (1: every sample)"),
     RenderSetting(
         name='progressive_caustics', ctype='uint32_t', default=0, min=0, max=1,
         user=True, prop='use_progressive_caustics', kind='BOOLEAN', enum=None, soft_max=0,

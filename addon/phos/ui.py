@@ -177,6 +177,11 @@ class PHOS_RENDER_PT_photon_mapping_caustic(PhotonMapPanel, bpy.types.Panel):
     def draw_more(self, layout, phos):
         # Glossy lobes smoother than this carry caustics (docs/algorithms.md §12).
         layout.prop(phos, "caustic_roughness", text="Roughness")
+        # The share of a pixel's samples that read the map (docs/algorithms.md
+        # §4.7); progressive caustics read a map of their own every sample.
+        row = layout.row()
+        row.active = not phos.use_progressive_caustics
+        row.prop(phos, "caustic_sample_share", text="Samples")
         # Stochastic progressive photon mapping (docs/algorithms.md §4.6):
         # a map per sample, read within a shrinking radius.
         layout.prop(phos, "use_progressive_caustics")

@@ -900,6 +900,14 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
     USER(uint32_t, caustic_estimate_photons, 80, 1, 10000, caustic_estimate_photons, NUMBER,      \
          1000, "Caustic Estimate",                                                                \
          "Nearest photons used in a (cone-filtered) radiance estimate of the caustic map")        \
+    /* A pixel's caustic is smooth at the scale of its samples (80 of the                     \
+     * demo's 800 k photons fill a disc about a pixel wide), so reading the                    \
+     * map at every sample mostly repeats one value: docs/algorithms.md §4.7. */              \
+    USER(float, caustic_sample_share, 0.25f, 0.0f, 1.0f, caustic_sample_share, FACTOR, 0,         \
+         "Caustic Samples",                                                                       \
+         "Share of a pixel's samples that read the caustic map, its first ones (at least one); "  \
+         "the caustics are the mean over those alone and the other samples skip the estimate "    \
+         "(1: every sample)")                                                                     \
     /* Stochastic progressive photon mapping for the caustics (Hachisuka &                     \
      * Jensen 2009; Knaus & Zwicker 2011): docs/algorithms.md §4.6. */                         \
     USER(uint32_t, progressive_caustics, 0, 0, 1, use_progressive_caustics, BOOLEAN, 0,          \

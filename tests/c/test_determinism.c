@@ -11,6 +11,7 @@
  * bytes for 1 and 2 threads; and Embree's BVH, built with 1 build thread
  * or with many, returns the same hits (docs/reliability.md).
  */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -58,6 +59,7 @@ static phos_scene *box_with_spheres(void)
 /* The integrator, photon view and cache setting of the renders below. */
 static uint32_t g_integrator, g_view, g_cache = PHOS_IRRADIANCE_CACHE_PHOTON, g_progressive = 1;
 static uint32_t g_sampler = PHOS_SAMPLER_SOBOL, g_adaptive, g_filter, g_progressive_caustics;
+static float g_caustic_share = 1.0f;
 
 static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32_t seed, uint32_t rx, uint32_t ry,
                           uint32_t rw, uint32_t rh)
@@ -89,6 +91,7 @@ static float *render_with(phos_scene *s, uint32_t threads, uint32_t tile, uint32
     rs.noise_filter = g_filter;
     rs.progressive_caustics = g_progressive_caustics;
     rs.progressive_caustic_photons = 2000;
+    rs.caustic_sample_share = g_caustic_share;
     return test_render(s, &rs);
 }
 
@@ -314,6 +317,78 @@ static void check_embree_hits(void)
         free(hits[c]);
 }
 
+/* Every pass of a render, read at full frame (freed by the caller). */
+static void read_all_passes(phos_scene *s, const phos_render_settings *rs, float *img[PHOS_PASS_COUNT])
+{
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, rs, &r) == PHOS_OK);
+    CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        size_t count = (size_t)phos_pass_channels(p) * rs->width * rs->height;
+        img[p] = malloc(sizeof(float) * count);
+        CHECK(phos_render_read(r, p, 0, 0, rs->width, rs->height, img[p], count) == PHOS_OK);
+    }
+    phos_render_destroy(r);
+}
+
+/* caustic_sample_share (docs/algorithms.md §4.7): with 8 samples and a
+ * quarter of them reading the caustic map, each pixel's Caustics are the
+ * mean over its first 2 samples, which is what a 2-sample render shows;
+ * every other component is the 8 samples' mean, untouched; and Combined
+ * is their sum. Rendered in progressive passes (1, 2, 4, 8), so the
+ * caustic sums also go through the film between passes. */
+static void check_caustic_share(phos_scene *s)
+{
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.integrator = PHOS_INTEGRATOR_PHOTON;
+    rs.ic_rays = 64;
+    rs.global_photons = 20000;
+    rs.caustic_photons = 20000;
+    rs.width = 48;
+    rs.height = 40;
+    rs.threads = 2;
+    rs.pass_mask = (1u << PHOS_PASS_COUNT) - 1u;
+    float *quarter[PHOS_PASS_COUNT], *every[PHOS_PASS_COUNT], *two[PHOS_PASS_COUNT];
+    rs.samples = 8;
+    rs.caustic_sample_share = 0.25f;
+    read_all_passes(s, &rs, quarter);
+    rs.caustic_sample_share = 1.0f;
+    read_all_passes(s, &rs, every);
+    rs.samples = 2;
+    read_all_passes(s, &rs, two);
+    size_t n = 3u * rs.width * rs.height;
+    double caustics = 0.0, worst = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        caustics += quarter[PHOS_PASS_CAUSTICS][i];
+        worst = fmax(worst, fabs((double)quarter[PHOS_PASS_CAUSTICS][i] - two[PHOS_PASS_CAUSTICS][i]) /
+                                fmax(fabs((double)two[PHOS_PASS_CAUSTICS][i]), 1e-3));
+    }
+    CHECK_MSG(caustics > 0.0, "the scene's glass sphere casts no caustic: nothing is tested");
+    CHECK_MSG(worst < 1e-6, "Caustics of 2 of 8 samples against a 2-sample render: relative difference %g", worst);
+    CHECK_MSG(memcmp(quarter[PHOS_PASS_CAUSTICS], every[PHOS_PASS_CAUSTICS], n * sizeof(float)) != 0,
+              "the Caustics pass is every sample's");
+    static const uint32_t others[] = {PHOS_PASS_EMISSION, PHOS_PASS_DIRECT, PHOS_PASS_SPECULAR, PHOS_PASS_INDIRECT};
+    for (size_t k = 0; k < sizeof(others) / sizeof(others[0]); k++)
+        CHECK_MSG(memcmp(quarter[others[k]], every[others[k]], n * sizeof(float)) == 0,
+                  "pass %u changed with the caustic share", others[k]);
+    double combined = 0.0;
+    for (size_t px = 0; px < (size_t)rs.width * rs.height; px++)
+        for (int c = 0; c < 3; c++) {
+            double sum = 0.0;
+            for (size_t k = 0; k < sizeof(others) / sizeof(others[0]); k++)
+                sum += quarter[others[k]][3 * px + c];
+            sum += quarter[PHOS_PASS_CAUSTICS][3 * px + c];
+            combined = fmax(combined, fabs(sum - quarter[PHOS_PASS_COMBINED][4 * px + c]) / fmax(fabs(sum), 1e-3));
+        }
+    CHECK_MSG(combined < 1e-5, "Combined differs from its components' sum by %g", combined);
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        free(quarter[p]);
+        free(every[p]);
+        free(two[p]);
+    }
+}
+
 int main(void)
 {
     phos_scene *s = box_with_spheres();
@@ -370,7 +445,23 @@ int main(void)
               "progressive caustics render the fixed map's image");
     free(progressive);
     free(fixed);
+    /* The caustic map read by a quarter of each pixel's samples (2 of 8),
+     * kept apart between the passes of progressive refinement; and not the
+     * image of every sample reading it. */
+    g_caustic_share = 0.25f;
+    check_deterministic(s, "PHOTON, caustics on a quarter of the samples");
+    g_adaptive = 1;
+    check_deterministic(s, "PHOTON, caustics on a quarter of the samples, adaptive sampling");
+    g_adaptive = 0;
+    float *shared = render_with(s, 2, 16, 7, 0, 0, 0, 0);
+    g_caustic_share = 1.0f;
+    fixed = render_with(s, 2, 16, 7, 0, 0, 0, 0);
+    CHECK_MSG(shared && fixed && memcmp(shared, fixed, 4 * 48 * 40 * sizeof(float)) != 0,
+              "a quarter of the samples reading the caustic map renders every sample's image");
+    free(shared);
+    free(fixed);
     check_progressive_passes(s);
+    check_caustic_share(s);
     check_caches_identical(s);
     phos_scene_destroy(s);
     check_embree_hits();

@@ -64,9 +64,18 @@ const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bs
     if (!is->gathers_find_caustics) {
         bsdf receivers;
         bsdf_caustic_receivers(v->b, is->caustic_roughness, &receivers);
-        if (receivers.count)
-            camera_path_add_diffuse(p, 1, photon_caustic_radiance(is, &receivers, v->wo, v->sf->p, v->sf->ns,
-                                                                  p->scratch));
+        /* With caustic_reads, the first vertex's estimate is made by the
+         * pixel's first samples only and averaged over them (render.c); it
+         * still counts for this sample's later vertices (reads_caustics),
+         * since the pixel's caustics include it. */
+        int shared = is->caustic_reads && p->depth == 0;
+        if (receivers.count && (!shared || p->smp->index < is->caustic_reads)) {
+            vec3 L = photon_caustic_radiance(is, &receivers, v->wo, v->sf->p, v->sf->ns, p->scratch);
+            if (shared)
+                p->res->caustic_read = v3_madd(p->res->caustic_read, v3_mul(p->beta, L), 1.0f);
+            else
+                camera_path_add_diffuse(p, 1, L);
+        }
         p->reads_caustics = 1;
     }
     /* Go on through the specular and glossy part. */

@@ -65,6 +65,11 @@ typedef struct integrator_settings {
     /* Progressive caustics (progressive_caustics.h): the current sample's
      * map and radius replace the caustic map's k nearest; NULL: off. */
     const struct progressive_caustics *progressive;
+    /* Nonzero: only a pixel's first `caustic_reads` samples read the
+     * caustic map at their first vertex, into sample_result.caustic_read,
+     * which the film averages over those samples alone (render.c; 0: every
+     * sample reads it, into COMPONENT_CAUSTICS). */
+    uint32_t caustic_reads;
     /* 1: camera paths also record the denoising features (a Denoising pass is on). */
     int denoising_features;
     const phos_camera_desc *camera; /* for the features' camera-space normal */
@@ -86,6 +91,8 @@ typedef struct sample_result {
     vec3 component[COMPONENT_COUNT]; /* W/(m²·sr) along the camera ray */
     vec3 photon_map;               /* debug: global-map estimate at the first diffuse hit */
     vec3 caustic_map;              /* debug: caustic-map estimate there */
+    vec3 caustic_read;             /* the first vertex's caustic-map estimate, kept apart when
+                                    * integrator_settings.caustic_reads is set (0 otherwise) */
     vec3 denoising_albedo;         /* the denoising features (integrator_settings.denoising_features) */
     vec3 denoising_normal;         /* camera space, unit (0 if the ray hit nothing) */
     float alpha;                   /* 1 where the ray hit something opaque */

@@ -23,7 +23,8 @@ uint32_t phos_pass_channels(uint32_t pass)
 uint64_t film_memory_bytes(uint32_t width, uint32_t height, uint32_t pass_mask, uint32_t extras)
 {
     int keep_sums = (extras & FILM_KEEP_SUMS) != 0;
-    uint64_t bytes = sizeof(uint32_t) + ((extras & FILM_MOMENTS) ? 2 * sizeof(double) : 0);
+    uint64_t bytes = sizeof(uint32_t) + ((extras & FILM_MOMENTS) ? 2 * sizeof(double) : 0) +
+                     ((keep_sums && (extras & FILM_CAUSTIC_READS)) ? 3 * sizeof(double) : 0);
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++)
         if ((pass_mask | (1u << PHOS_PASS_COMBINED)) & (1u << p)) {
             bytes += phos_pass_channels(p) * sizeof(float);
@@ -59,7 +60,10 @@ int film_create(film *f, uint32_t x0, uint32_t y0, uint32_t width, uint32_t heig
     f->sample_counts = calloc(pixels, sizeof(uint32_t));
     if (extras & FILM_MOMENTS)
         f->moments = calloc(2 * pixels, sizeof(double));
-    if (!f->sample_counts || ((extras & FILM_MOMENTS) && !f->moments)) {
+    int caustic_reads = keep_sums && (extras & FILM_CAUSTIC_READS);
+    if (caustic_reads)
+        f->caustic_reads = calloc(3 * pixels, sizeof(double));
+    if (!f->sample_counts || ((extras & FILM_MOMENTS) && !f->moments) || (caustic_reads && !f->caustic_reads)) {
         film_free(f);
         return 0;
     }
@@ -76,8 +80,10 @@ void film_free(film *f)
     }
     free(f->sample_counts);
     free(f->moments);
+    free(f->caustic_reads);
     f->sample_counts = NULL;
     f->moments = NULL;
+    f->caustic_reads = NULL;
 }
 
 /* Blackman-Harris window over [−w, w] (Harris 1978, 4-term). */

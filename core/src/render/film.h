@@ -26,6 +26,11 @@ typedef struct film {
      * adaptive sampling's error and the noise filters' variance (NULL when
      * neither is on). */
     double *moments;
+    /* Per pixel, the sum of its first samples' caustic-map estimates
+     * (integrator_settings.caustic_reads), kept between passes (NULL when
+     * the render does not read the caustic map on a share of samples, or
+     * renders in one pass). */
+    double *caustic_reads;
 } film;
 
 #define PIXEL_CONVERGED 0x80000000u
@@ -33,7 +38,8 @@ typedef struct film {
 /* What a film keeps besides its pass planes. */
 enum film_extras {
     FILM_KEEP_SUMS = 1,  /* the sums of mean passes, for progressive refinement */
-    FILM_MOMENTS = 2     /* film.moments */
+    FILM_MOMENTS = 2,    /* film.moments */
+    FILM_CAUSTIC_READS = 4 /* film.caustic_reads (with FILM_KEEP_SUMS) */
 };
 
 /* Whether a pass is the mean of a pixel's samples (the photon and record

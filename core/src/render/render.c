@@ -111,6 +111,7 @@ typedef struct pixel_sums {
     double debug[2][3];          /* the photon map's and the caustic map's estimates */
     double features[2][3];       /* denoising albedo and normal */
     double moments[2];           /* Σ Y and Σ Y² of the samples' luminance (film.moments) */
+    double caustic_read[3];      /* Σ of the first samples' caustic-map estimates (film.caustic_reads) */
 } pixel_sums;
 
 /* Where each sum lives in pixel_sums, by pass (NULL: not a mean). */
@@ -143,23 +144,33 @@ static void exchange_sums(const render *r, uint32_t x, uint32_t y, pixel_sums *a
         size_t bytes = sizeof(double) * phos_pass_channels(p);
         memcpy(store ? kept : mine, store ? mine : kept, bytes);
     }
+    if (r->film.caustic_reads) {
+        double *kept = r->film.caustic_reads + 3 * film_index(&r->film, x, y);
+        memcpy(store ? kept : a->caustic_read, store ? a->caustic_read : kept, sizeof(a->caustic_read));
+    }
     if (r->film.moments) {
         double *kept = r->film.moments + 2 * film_index(&r->film, x, y);
         memcpy(store ? kept : a->moments, store ? a->moments : kept, sizeof(a->moments));
     }
 }
 
-/* The film's pixel of every enabled mean pass: its sum over `samples`. */
+/* The film's pixel of every enabled mean pass: its sum over `samples`.
+ * The first samples' caustic-map estimates (caustic_reads) are the mean
+ * over those samples, min(samples, caustic_reads), and join the Caustics
+ * component and Combined (docs/algorithms.md §4.7). */
 static void write_means(render *r, uint32_t x, uint32_t y, pixel_sums *a, uint32_t samples)
 {
     double inv = 1.0 / (double)samples;
+    uint32_t reads = r->integrator.caustic_reads;
+    double inv_reads = reads ? 1.0 / (double)(samples < reads ? samples : reads) : 0.0;
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
         const double *sum = sums_of(a, p);
         if (!pass_on(r, p) || !sum)
             continue;
         float *px = film_pixel(&r->film, p, x, y);
+        int caustics = reads && (p == PHOS_PASS_COMBINED || p == component_pass[COMPONENT_CAUSTICS]);
         for (uint32_t ch = 0; ch < phos_pass_channels(p); ch++)
-            px[ch] = (float)(sum[ch] * inv);
+            px[ch] = (float)(sum[ch] * inv + (caustics && ch < 3 ? a->caustic_read[ch] * inv_reads : 0.0));
     }
     if (pass_on(r, PHOS_PASS_SAMPLE_COUNT))
         film_pixel(&r->film, PHOS_PASS_SAMPLE_COUNT, x, y)[0] = (float)samples / (float)r->settings.samples;
@@ -257,8 +268,11 @@ static enum pixel_outcome render_pixel(render *r, uint32_t x, uint32_t y, uint32
         int finite = 1;
         for (int c = 0; c < COMPONENT_COUNT; c++)
             finite &= v3_is_finite(sr.component[c]);
-        if (!finite)
+        if (!finite || !v3_is_finite(sr.caustic_read)) {
             memset(sr.component, 0, sizeof(sr.component));
+            sr.caustic_read = v3s(0.0f);
+        }
+        add3(a.caustic_read, sr.caustic_read);
         double total[3] = {0.0, 0.0, 0.0};
         for (int c = 0; c < COMPONENT_COUNT; c++) {
             add3(a.component[c], sr.component[c]);
@@ -633,6 +647,7 @@ int render_prepare(render *r)
     is->cache = NULL;
     is->gathers_find_caustics = !photon;
     is->caustic_roughness = photon ? rs->caustic_roughness : 0.0f;
+    is->caustic_reads = render_caustic_reads(rs);
     is->denoising_features = (r->film.pass_mask & ((1u << PHOS_PASS_DENOISING_ALBEDO) |
                                                (1u << PHOS_PASS_DENOISING_NORMAL))) != 0;
     is->camera = &r->scene->camera;

@@ -3,6 +3,8 @@
  */
 #include "render/stages.h"
 
+#include <math.h>
+
 #include "render/film.h"
 
 /* The passes that need the photon maps whatever the integrator. */
@@ -159,9 +161,20 @@ uint32_t render_film_passes(const phos_render_settings *rs)
     return rs->pass_mask | (1u << PHOS_PASS_COMBINED) | filter_input_passes(rs);
 }
 
+uint32_t render_caustic_reads(const phos_render_settings *rs)
+{
+    if (rs->integrator != PHOS_INTEGRATOR_PHOTON || render_progressive_caustics(rs))
+        return 0;
+    double reads = ceil((double)rs->caustic_sample_share * (double)rs->samples);
+    uint32_t k = reads < 1.0 ? 1u : (uint32_t)reads; /* NaN: 1 */
+    return k < rs->samples ? k : 0;
+}
+
 uint32_t render_film_extras(const phos_render_settings *rs)
 {
     uint32_t extras = render_keeps_sums(rs) ? FILM_KEEP_SUMS : 0u;
+    if (render_caustic_reads(rs))
+        extras |= FILM_CAUSTIC_READS;
     if (rs->adaptive_sampling || rs->noise_filter != PHOS_NOISE_FILTER_NONE)
         extras |= FILM_MOMENTS;
     return extras;

@@ -59,6 +59,12 @@ int render_progressive_caustics(const phos_render_settings *rs);
  * ask here. */
 uint32_t render_global_photons(const phos_render_settings *rs);
 
+/* The samples per pixel that read the caustic map at their first vertex
+ * when only a share of them do: ⌈caustic_sample_share × samples⌉, at
+ * least 1, for PHOTON with the fixed caustic map; 0 when every sample
+ * reads it. */
+uint32_t render_caustic_reads(const phos_render_settings *rs);
+
 /* Whether a render keeps its pixels' sums between passes (film.h). */
 int render_keeps_sums(const phos_render_settings *rs);
 
