@@ -1012,7 +1012,7 @@ RENDER_SETTINGS = (
     RenderSetting(
         name='caustic_sample_share', ctype='float', default=0.25, min=0.0, max=1.0,
         user=True, prop='caustic_sample_share', kind='FACTOR', enum=None, soft_max=0.0,
-        label='Caustic Samples',
+        label='Caustic Sample Share',
         description="Share of a pixel's samples that read the caustic map, its first ones (at least one); the caustics are the mean over those alone and the other samples skip the estimate (1: every sample)"),
     RenderSetting(
         name='progressive_caustics', ctype='uint32_t', default=0, min=0, max=1,

@@ -181,7 +181,7 @@ class PHOS_RENDER_PT_photon_mapping_caustic(PhotonMapPanel, bpy.types.Panel):
         # §4.7); progressive caustics read a map of their own every sample.
         row = layout.row()
         row.active = not phos.use_progressive_caustics
-        row.prop(phos, "caustic_sample_share", text="Samples")
+        row.prop(phos, "caustic_sample_share", text="Sample Share")
         # Stochastic progressive photon mapping (docs/algorithms.md §4.6):
         # a map per sample, read within a shrinking radius.
         layout.prop(phos, "use_progressive_caustics")

@@ -904,7 +904,7 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
      * demo's 800 k photons fill a disc about a pixel wide), so reading the                    \
      * map at every sample mostly repeats one value: docs/algorithms.md §4.7. */              \
     USER(float, caustic_sample_share, 0.25f, 0.0f, 1.0f, caustic_sample_share, FACTOR, 0,         \
-         "Caustic Samples",                                                                       \
+         "Caustic Sample Share",                                                                  \
          "Share of a pixel's samples that read the caustic map, its first ones (at least one); "  \
          "the caustics are the mean over those alone and the other samples skip the estimate "    \
          "(1: every sample)")                                                                     \

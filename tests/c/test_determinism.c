@@ -161,37 +161,49 @@ static void check_deterministic(phos_scene *s, const char *name)
     free(r);
 }
 
-/* Every pass, progressive or in one pass, bit for bit; and a render
- * cancelled between passes keeps a whole image of the samples so far. */
+/* The settings of the renders whose passes are compared below. */
+static void pass_test_settings(phos_render_settings *rs)
+{
+    phos_render_settings_init(rs);
+    rs->integrator = PHOS_INTEGRATOR_PHOTON;
+    rs->ic_rays = 64;
+    rs->global_photons = 20000;
+    rs->caustic_photons = 5000;
+    rs->width = 48;
+    rs->height = 40;
+    rs->threads = 2;
+    rs->pass_mask = (1u << PHOS_PASS_COUNT) - 1u;
+}
+
+/* Every pass of a finished render, read at full frame (freed by the
+ * caller). */
+static void read_all_passes(phos_scene *s, const phos_render_settings *rs, float *img[PHOS_PASS_COUNT])
+{
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, rs, &r) == PHOS_OK);
+    CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
+    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
+        size_t count = (size_t)phos_pass_channels(p) * rs->width * rs->height;
+        img[p] = malloc(sizeof(float) * count);
+        CHECK(phos_render_read(r, p, 0, 0, rs->width, rs->height, img[p], count) == PHOS_OK);
+    }
+    phos_progress pr;
+    CHECK(phos_render_progress(r, &pr) == PHOS_OK);
+    CHECK_MSG(pr.samples_done == rs->samples && pr.fraction == 1.0f, "samples done %u of %u, fraction %g",
+              pr.samples_done, rs->samples, (double)pr.fraction);
+    phos_render_destroy(r);
+}
+
+/* Every pass, progressive or in one pass, bit for bit. */
 static void check_progressive_passes(phos_scene *s)
 {
     phos_render_settings rs;
-    phos_render_settings_init(&rs);
-    rs.integrator = PHOS_INTEGRATOR_PHOTON;
-    rs.ic_rays = 64;
-    rs.global_photons = 20000;
-    rs.caustic_photons = 5000;
-    rs.width = 48;
-    rs.height = 40;
+    pass_test_settings(&rs);
     rs.samples = 6; /* passes end at 1, 2, 4, 6 */
-    rs.threads = 2;
-    rs.pass_mask = (1u << PHOS_PASS_COUNT) - 1u;
     float *img[2][PHOS_PASS_COUNT];
     for (int k = 0; k < 2; k++) {
         rs.progressive = (uint32_t)k;
-        phos_render *r = NULL;
-        CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
-        CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
-        for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
-            size_t count = (size_t)phos_pass_channels(p) * rs.width * rs.height;
-            img[k][p] = malloc(sizeof(float) * count);
-            CHECK(phos_render_read(r, p, 0, 0, rs.width, rs.height, img[k][p], count) == PHOS_OK);
-        }
-        phos_progress pr;
-        CHECK(phos_render_progress(r, &pr) == PHOS_OK);
-        CHECK_MSG(pr.samples_done == 6 && pr.fraction == 1.0f, "samples done %u, fraction %g", pr.samples_done,
-                  (double)pr.fraction);
-        phos_render_destroy(r);
+        read_all_passes(s, &rs, img[k]);
     }
     for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
         size_t bytes = sizeof(float) * phos_pass_channels(p) * rs.width * rs.height;
@@ -317,20 +329,6 @@ static void check_embree_hits(void)
         free(hits[c]);
 }
 
-/* Every pass of a render, read at full frame (freed by the caller). */
-static void read_all_passes(phos_scene *s, const phos_render_settings *rs, float *img[PHOS_PASS_COUNT])
-{
-    phos_render *r = NULL;
-    CHECK(phos_render_create(s, rs, &r) == PHOS_OK);
-    CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
-    for (uint32_t p = 0; p < PHOS_PASS_COUNT; p++) {
-        size_t count = (size_t)phos_pass_channels(p) * rs->width * rs->height;
-        img[p] = malloc(sizeof(float) * count);
-        CHECK(phos_render_read(r, p, 0, 0, rs->width, rs->height, img[p], count) == PHOS_OK);
-    }
-    phos_render_destroy(r);
-}
-
 /* caustic_sample_share (docs/algorithms.md §4.7): with 8 samples and a
  * quarter of them reading the caustic map, each pixel's Caustics are the
  * mean over its first 2 samples, which is what a 2-sample render shows;
@@ -340,15 +338,8 @@ static void read_all_passes(phos_scene *s, const phos_render_settings *rs, float
 static void check_caustic_share(phos_scene *s)
 {
     phos_render_settings rs;
-    phos_render_settings_init(&rs);
-    rs.integrator = PHOS_INTEGRATOR_PHOTON;
-    rs.ic_rays = 64;
-    rs.global_photons = 20000;
+    pass_test_settings(&rs);
     rs.caustic_photons = 20000;
-    rs.width = 48;
-    rs.height = 40;
-    rs.threads = 2;
-    rs.pass_mask = (1u << PHOS_PASS_COUNT) - 1u;
     float *quarter[PHOS_PASS_COUNT], *every[PHOS_PASS_COUNT], *two[PHOS_PASS_COUNT];
     rs.samples = 8;
     rs.caustic_sample_share = 0.25f;
