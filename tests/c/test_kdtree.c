@@ -380,7 +380,8 @@ static void test_depth(void)
     }
     CHECK_MSG(bad == 0, "%d photon counts with a depth that is not the least", bad);
     CHECK(kdtree_depth(0) == 0 && kdtree_depth(KDTREE_BUCKET) == 0 && kdtree_depth(KDTREE_BUCKET + 1) == 1);
-    CHECK(kdtree_depth(0x7fffffffu) == 28);
+    /* ⌈(2^31 − 1)/2^d⌉ ≤ B = 2^b first at d = 31 − b (B is a power of two). */
+    CHECK(kdtree_depth(0x7fffffffu) == 31u - (uint32_t)__builtin_ctz(KDTREE_BUCKET));
 }
 
 static void test_small_sets(kdtree_query qk[3])

@@ -332,8 +332,8 @@ static void test_map_lifecycle(void)
 
     /* Memory: exactly 20 bytes per photon, the handle and the split
      * planes: one per bucket but one in each class, and buckets hold more
-     * than KDTREE_BUCKET / 2 photons, so fewer than 2 · 12 / 8 = 3 bytes
-     * per photon. The test's bound: splits · KDTREE_BUCKET < 2n. */
+     * than KDTREE_BUCKET / 2 photons, so fewer than 2 · 12 / 16 = 1.5
+     * bytes per photon. The test's bound: splits · KDTREE_BUCKET < 2n. */
     CHECK(a.capacity == n && b.capacity == n);
     CHECK(a.split_count == b.split_count && (uint64_t)a.split_count * KDTREE_BUCKET < 2u * (uint64_t)n);
     CHECK(photon_map_memory(&a) == sizeof(photon_map) + 20u * (size_t)n + sizeof(kdtree_split) * a.split_count);

@@ -85,53 +85,94 @@ static inline void swap_photons(photon *a, photon *b)
     *b = t;
 }
 
-static inline float median_of_3(float a, float b, float c)
-{
-    float lo = a < b ? a : b, hi = a < b ? b : a;
-    lo = hi < c ? hi : c > lo ? c : lo; /* median: max(min(a, b), min(max(a, b), c)) */
-    return lo;
-}
-
 /* Ranges of at least this many photons look at the cancel flag first:
  * well under a millisecond of work between two looks. */
 #define KDTREE_CANCEL_GRAIN 16384u
 
-/* Hoare's FIND (CACM 1961) in Wirth's form: afterwards a[m] holds the key
- * of rank m, everything before it ≤ a[m] ≤ everything after it. The scans
- * stop on keys equal to the pivot, so runs of equal keys (photons on an
- * axis-aligned wall) are split evenly and may end up on both sides of the
- * median. The pivot is the median of the first, middle and last keys:
- * sorted or reverse-sorted input then partitions at the middle instead of
- * degrading to O(n²) as the last-element pivot of Jensen's median_split. */
-static int select_median(photon *a, uint32_t n, uint32_t m, int axis, atomic_int *cancel)
+/* Floyd & Rivest's SELECT (CACM 1975, Algorithm 489): afterwards a[m]
+ * holds the key of rank m, everything before it ≤ a[m] ≤ everything after
+ * it. A range of more than FR_SAMPLE_MIN photons first selects within a
+ * sample of about n^(2/3)/2 around the rank, so that the pivot it then
+ * partitions about lies a few sample deviations from the rank: the big
+ * range is partitioned about once, n + min(m, n − m) + o(n) comparisons,
+ * where Hoare's FIND with a median-of-three pivot makes about 2.75n and
+ * as many passes over the photons (docs/algorithms.md §2.3). The sample's
+ * size and bounds are integer arithmetic and correctly rounded square
+ * roots only, so the tree is the same on every machine. The scans stop on
+ * keys equal to the pivot, so runs of equal keys (photons on an
+ * axis-aligned wall) are split evenly. */
+#define FR_SAMPLE_MIN 600
+
+static inline float key(const photon *a, ptrdiff_t i, int axis) { return a[i].position[axis]; }
+
+/* ⌊log2 n⌋ + 1 for n ≥ 1. */
+static int bit_length(uint64_t n) { return 64 - __builtin_clzll(n); }
+
+/* The sample's bounds [*lo, *hi] around rank k of [left, right]:
+ * s = n^(2/3)/2 photons, offset toward the middle by sd = √(ln n · s(n − s)/n)/2
+ * (Floyd & Rivest's constants), with n^(2/3) taken as 2^⌊(2/3)·bits⌋ and
+ * ln n as 0.69·bits (bits = ⌊log2 n⌋ + 1): any s near theirs works. In
+ * integers but for one correctly rounded square root, so the bounds are
+ * the same on every machine. */
+static void sample_bounds(ptrdiff_t left, ptrdiff_t right, ptrdiff_t k, ptrdiff_t *lo, ptrdiff_t *hi)
 {
-    ptrdiff_t lo = 0, hi = (ptrdiff_t)n - 1, k = (ptrdiff_t)m;
-    while (lo < hi) {
+    uint64_t n = (uint64_t)(right - left + 1), i = (uint64_t)(k - left + 1);
+    int bits = bit_length(n);
+    uint64_t s = (uint64_t)1 << (2 * bits / 3 - 1);  /* n ≤ 2^31: s ≤ 2^20, s·n < 2^52 */
+    uint64_t spread = s * (n - s) / n;               /* s(n − s)/n ≤ s */
+    ptrdiff_t sd = (ptrdiff_t)(sqrt((double)(69u * (uint64_t)bits * spread / 100u)) / 2.0);
+    if (2 * i < n)
+        sd = -sd;
+    ptrdiff_t new_lo = k - (ptrdiff_t)(i * s / n) + sd, new_hi = k + (ptrdiff_t)((n - i) * s / n) + sd;
+    *lo = new_lo > left ? new_lo : left;
+    *hi = new_hi < right ? new_hi : right;
+}
+
+static int select_rank(photon *a, ptrdiff_t left, ptrdiff_t right, ptrdiff_t k, int axis, atomic_int *cancel)
+{
+    while (right > left) {
         /* One partition of millions of photons takes milliseconds. */
-        if (hi - lo >= (ptrdiff_t)KDTREE_CANCEL_GRAIN && cancel &&
+        if (right - left >= (ptrdiff_t)KDTREE_CANCEL_GRAIN && cancel &&
             atomic_load_explicit(cancel, memory_order_relaxed))
             return 0;
-        float pivot = median_of_3(a[lo].position[axis], a[lo + (hi - lo) / 2].position[axis],
-                                  a[hi].position[axis]);
-        ptrdiff_t i = lo, j = hi;
-        do {
-            while (a[i].position[axis] < pivot)
+        if (right - left > FR_SAMPLE_MIN) {
+            ptrdiff_t lo, hi;
+            sample_bounds(left, right, k, &lo, &hi);
+            if (!select_rank(a, lo, hi, k, axis, cancel))
+                return 0;
+        }
+        /* Partition [left, right] about t = a[k], which ends at j. */
+        float t = key(a, k, axis);
+        ptrdiff_t i = left, j = right;
+        swap_photons(&a[left], &a[k]);
+        if (key(a, right, axis) > t)
+            swap_photons(&a[right], &a[left]);
+        while (i < j) {
+            swap_photons(&a[i], &a[j]);
+            i++;
+            j--;
+            while (key(a, i, axis) < t)
                 i++;
-            while (pivot < a[j].position[axis])
+            while (key(a, j, axis) > t)
                 j--;
-            if (i <= j) {
-                swap_photons(&a[i], &a[j]);
-                i++;
-                j--;
-            }
-        } while (i <= j);
-        /* Now a[lo..j] ≤ pivot ≤ a[i..hi], and any slot between equals it. */
-        if (j < k)
-            lo = i;
-        if (k < i)
-            hi = j;
+        }
+        if (key(a, left, axis) == t)
+            swap_photons(&a[left], &a[j]);
+        else {
+            j++;
+            swap_photons(&a[j], &a[right]);
+        }
+        if (j <= k)
+            left = j + 1;
+        if (k <= j)
+            right = j - 1;
     }
     return 1;
+}
+
+static int select_median(photon *a, uint32_t n, uint32_t m, int axis, atomic_int *cancel)
+{
+    return n == 0 || select_rank(a, 0, (ptrdiff_t)n - 1, (ptrdiff_t)m, axis, cancel);
 }
 
 /* One class's build: its photons p[0..n) in 2^depth buckets, and its
@@ -346,7 +387,7 @@ int kdtree_query_init(kdtree_query *q, uint32_t k)
     q->found = 0;
     q->radius2 = 0.0f;
     q->index = malloc(sizeof(uint32_t) * (k ? k : 1));
-    q->dist2 = malloc(sizeof(float) * (k ? k : 1));
+    q->dist2 = malloc(sizeof(float) * (k + 1)); /* and the heap's −∞ past the end */
     if (!q->index || !q->dist2) {
         kdtree_query_free(q);
         return 0;
@@ -367,20 +408,17 @@ void kdtree_query_free(kdtree_query *q)
 }
 
 /* Max-heap on dist2 (0-based: children of j are 2j+1, 2j+2): moves the
- * entry at j down to its place. */
-static void heap_sift_down(float *dist2, uint32_t *index, uint32_t size, uint32_t j)
+ * entry (d, id) down from j to its place. dist2[size] is −∞, so the last
+ * parent's missing right child is never the larger one and the loop tests
+ * no bound but the first child's. */
+static inline void heap_sift_down(float *dist2, uint32_t *index, uint32_t size, uint32_t j, float d, uint32_t id)
 {
-    float d = dist2[j];
-    uint32_t id = index[j];
-    for (;;) {
-        uint32_t c = 2 * j + 1;
-        if (c >= size)
+    for (uint32_t c = 2 * j + 1; c < size; c = 2 * j + 1) {
+        c += dist2[c + 1] > dist2[c]; /* the larger child, without a branch to mispredict */
+        float dc = dist2[c];
+        if (dc <= d)
             break;
-        if (c + 1 < size && dist2[c + 1] > dist2[c])
-            c++;
-        if (dist2[c] <= d)
-            break;
-        dist2[j] = dist2[c];
+        dist2[j] = dc;
         index[j] = index[c];
         j = c;
     }
@@ -400,13 +438,12 @@ static inline float knn_add(kdtree_query *q, float d2, uint32_t i, float r2)
         q->index[q->found] = i;
         if (++q->found < q->k)
             return r2;
+        q->dist2[q->k] = -INFINITY;
         for (uint32_t j = q->k / 2; j-- > 0;)
-            heap_sift_down(q->dist2, q->index, q->k, j);
+            heap_sift_down(q->dist2, q->index, q->k, j, q->dist2[j], q->index[j]);
         return q->dist2[0];
     }
-    q->dist2[0] = d2;
-    q->index[0] = i;
-    heap_sift_down(q->dist2, q->index, q->k, 0);
+    heap_sift_down(q->dist2, q->index, q->k, 0, d2, i);
     return q->dist2[0];
 }
 
@@ -447,6 +484,20 @@ static float facing_class_max_dot(unsigned c, vec3 n)
             best = fmaxf(best, len); /* n·m/|m| = |m| for the projection */
     }
     return best;
+}
+
+/* A search near the bottom of a subtree scans most of the few buckets
+ * below the node it reaches (at k = 50, some 36 buckets a search): their
+ * photons are asked for from memory at once, when the node of
+ * 2^KDTREE_PREFETCH_LEVELS buckets is entered, instead of one bucket's
+ * cache lines at a time as the scan gets to them. */
+#define KDTREE_PREFETCH_LEVELS 2u
+static inline void prefetch_buckets(const photon *p, uint32_t n, uint32_t depth, uint32_t h, uint32_t below)
+{
+    uint32_t j0 = (h << below) - (1u << depth), j1 = j0 + (1u << below);
+    const char *a = (const char *)(p + bucket_start(n, depth, j0)), *b = (const char *)(p + bucket_start(n, depth, j1));
+    for (; a < b; a += 64)
+        __builtin_prefetch(a);
 }
 
 /* One search for every metric and filter; `disc` and whether `filter` is
@@ -508,12 +559,22 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
         stack[j] = e;
     }
     while (top > 0) {
-        search_entry e = stack[--top];
-        if (!(e.d2 < r2))
+        /* Read field by field: the entry's slot is reused by the first
+         * far child pushed, and a whole-struct copy went through memory
+         * (a stalled store-to-load forward at every push). */
+        const search_entry *popped = &stack[--top];
+        float cell_d2 = popped->d2;
+        if (!(cell_d2 < r2))
             continue;
-        const photon_class_tree *t = &m->classes[e.cls];
+        uint32_t cls = popped->cls, h = popped->node;
+        float off[3] = {popped->off[0], popped->off[1], popped->off[2]};
+        const photon_class_tree *t = &m->classes[cls];
         const kdtree_split *splits = m->splits ? m->splits + t->first_split : NULL; /* NULL: no class splits */
-        uint32_t leaves = 1u << t->depth, h = e.node;
+        uint32_t leaves = 1u << t->depth;
+        const photon *class_photons = m->photons + t->start;
+        uint32_t below = t->depth - (31u - (uint32_t)__builtin_clz(h)); /* levels from h to its buckets */
+        if (below <= KDTREE_PREFETCH_LEVELS)
+            prefetch_buckets(class_photons, t->count, t->depth, h, below);
         /* Descend toward x, leaving the far children on the stack. */
         while (h < leaves) {
             const kdtree_split *sp = &splits[h - 1];
@@ -521,15 +582,20 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
             float to_lo = xq[a] - sp->lo, to_hi = xq[a] - sp->hi;
             int right = to_lo + to_hi > 0.0f; /* nearer the right child's side of the gap */
             float cut = right ? to_lo : to_hi; /* to the far child's plane */
-            float far_d2 = e.d2 - e.off[a] * e.off[a] + cut * cut;
+            float far_d2 = cell_d2 - off[a] * off[a] + cut * cut;
             if (far_d2 < r2) {
-                search_entry far = e;
-                far.node = 2 * h + !right;
-                far.d2 = far_d2;
-                far.off[a] = cut;
-                stack[top++] = far;
+                search_entry *far = &stack[top++];
+                far->cls = cls;
+                far->node = 2 * h + !right;
+                far->d2 = far_d2;
+                far->off[0] = off[0];
+                far->off[1] = off[1];
+                far->off[2] = off[2];
+                far->off[a] = cut;
             }
             h = 2 * h + right;
+            if (--below == KDTREE_PREFETCH_LEVELS)
+                prefetch_buckets(class_photons, t->count, t->depth, h, below);
         }
         uint32_t j = h - leaves, s = t->start + bucket_start(t->count, t->depth, j),
                  end = t->start + bucket_start(t->count, t->depth, j + 1);

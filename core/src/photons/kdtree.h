@@ -32,9 +32,10 @@ extern "C" {
 
 /* The most photons a bucket holds. A search scans a bucket's photons in
  * order, from contiguous memory; smaller buckets prune more finely but
- * cost a split plane (12 bytes) and a node visit each. Measured in
- * docs/benchmarks.md ("The kd-tree against nanoflann"). */
-#define KDTREE_BUCKET 8
+ * cost a split plane (12 bytes), a node visit and a level of the build's
+ * selection each. 8 and 16 searched alike; 16 builds faster (measured in
+ * docs/benchmarks.md, "The kd-tree against nanoflann"). */
+#define KDTREE_BUCKET 16
 
 /* Builds the trees of `count` maps over their photons, which
  * photon_map_build has sorted into classes (m->classes' start and count):
@@ -65,7 +66,7 @@ typedef struct kdtree_query {
     float *dist2;      /* k entries: squared distances (in the query's metric) */
 } kdtree_query;
 
-/* Allocates room for k results (8·k bytes). Returns 0 when memory is
+/* Allocates room for k results (8·k + 4 bytes). Returns 0 when memory is
  * exhausted. q->k may be lowered later (a nearest photon search with
  * k = 1 on a query made for more), not raised. */
 int kdtree_query_init(kdtree_query *q, uint32_t k);

@@ -12,7 +12,7 @@
  * A photon map has an explicit lifecycle (as Mitsuba's): reserve → append →
  * build → read-only queries (kdtree.h). After the build it holds exactly
  * 20·N bytes of photons, its kd-tree's split planes (12 bytes per bucket
- * of 5 to 8 photons) and sizeof(photon_map); nothing else.
+ * of 8 to 16 photons) and sizeof(photon_map); nothing else.
  */
 #ifndef PHOS_PHOTON_H
 #define PHOS_PHOTON_H
