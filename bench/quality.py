@@ -8,7 +8,10 @@ Commands (each takes --scene NAME, a script in scenes/, and --resolution W H):
 
     reference   render, or extend, the scene's reference: Cycles in chunks
                 of --chunk-samples samples, each with its own seed, until
-                the reference holds --chunks chunks. Kept in --reference-dir
+                the reference holds --chunks chunks (or, with
+                --reference-engine PHOS or a scene that names it, Phos with
+                consistent methods only: progressive caustics, path-traced
+                gathers). Kept in --reference-dir
                 (make bench names it; not in git), as the per-pixel sum and
                 sum of squares of the chunk images, so that the reference's
                 own noise is known and can be taken out of every error.
@@ -149,17 +152,61 @@ _last_image = [None]  # the last render's image, for the bench's strips
 
 # --------------------------------------------------------------- reference
 
-def reference_recipe(module):
+# A Phos reference must come from methods that converge to the exact
+# image as its samples grow, never from the estimate being measured: the
+# caustics by progressive photon mapping (a new map every sample, the
+# radius shrinking), the indirect light by unbiased path-traced gathers,
+# no irradiance cache. Fixed-k PHOTON with more photons would be PHOTON
+# judging itself: its own blur would never count.
+CONSISTENT_PHOS_REFERENCE = {"use_progressive_caustics": True, "photon_view": "PATH_TRACED",
+                             "irradiance_cache": "OFF"}
+
+
+# What a consistent Phos reference uses where its scene names none: 20 000
+# caustic photons a sample; the gathers' paths read a fixed caustic map of
+# 4 M photons (20 nearest) at their later diffuse vertices, light a diffuse
+# bounce has already blurred; one gather ray a sample.
+PHOS_REFERENCE_SETTINGS = dict(CONSISTENT_PHOS_REFERENCE, progressive_caustic_photons=20000,
+                               caustic_photons=4000000, caustic_estimate_photons=20, final_gather_rays=1)
+# The progressive radius shrinks over one chunk's samples only (each chunk
+# is a render of its own); more chunks average the noise, not that blur.
+# So a Phos reference's chunks are long: its remaining blur is that of
+# 2048 samples, the radius² down by 2048^(1 − α) = 45× from the first.
+PHOS_REFERENCE_CHUNK_SAMPLES = 2048
+
+
+def reference_recipe(module, engine=None):
     """How a scene's reference is rendered: Cycles (engine "CYCLES"), or,
     for a scene Cycles cannot converge (a small lamp's caustic through
-    glass, found only by hitting the lamp), Phos PHOTON with the scene's
-    BENCH_REFERENCE settings (far more photons than any measured setting),
-    each chunk its own seed and so its own photon maps."""
-    return getattr(module, "BENCH_REFERENCE", {"engine": "CYCLES", "settings": {}})
+    glass, found only by hitting the lamp), Phos PHOTON with only
+    consistent methods (CONSISTENT_PHOS_REFERENCE) and the scene's
+    BENCH_REFERENCE settings, each chunk its own seed and so its own
+    photon maps. `engine` ("CYCLES" or "PHOS", None: the scene's) asks for
+    the other kind: PHOS_REFERENCE_SETTINGS in chunks of
+    PHOS_REFERENCE_CHUNK_SAMPLES, as many as --chunks asks. A Phos recipe
+    that is not consistent is refused."""
+    recipe = getattr(module, "BENCH_REFERENCE", {"engine": "CYCLES", "settings": {}})
+    if engine == "PHOS" and recipe["engine"] != "PHOS":
+        recipe = {"engine": "PHOS", "chunk_samples": PHOS_REFERENCE_CHUNK_SAMPLES,
+                  "settings": dict(PHOS_REFERENCE_SETTINGS)}
+    elif engine == "CYCLES" and recipe["engine"] != "CYCLES":
+        recipe = {"engine": "CYCLES", "settings": {}}
+    if recipe["engine"] == "PHOS":
+        settings = recipe.get("settings", {})
+        wrong = sorted(name for name, value in CONSISTENT_PHOS_REFERENCE.items() if settings.get(name) != value)
+        if wrong:
+            raise SystemExit("%s's reference is Phos without %s: a reference must come from methods that "
+                             "converge as samples grow (bench/quality.py, CONSISTENT_PHOS_REFERENCE)"
+                             % (module.__name__, ", ".join("%s = %r" % (n, CONSISTENT_PHOS_REFERENCE[n])
+                                                          for n in wrong)))
+    return recipe
 
 
 def reference_path(ref_dir, scene_name, resolution, engine="CYCLES"):
-    suffix = "" if engine == "CYCLES" else "_" + engine.lower()
+    """The cached reference's file. A Phos reference's name says it is the
+    consistent one ("_phos_ppm"), so that one rendered by an older recipe
+    (fixed-k PHOTON) is never read as it."""
+    suffix = "" if engine == "CYCLES" else "_" + engine.lower() + "_ppm"
     return os.path.join(ref_dir, "%s_%dx%d%s.npz" % (scene_name, resolution[0], resolution[1], suffix))
 
 
@@ -224,7 +271,7 @@ def machine_description():
 
 def command_reference(args):
     scene, module = build_scene(args.scene)
-    recipe = reference_recipe(module)
+    recipe = reference_recipe(module, getattr(args, "reference_engine", None))
     engine = recipe["engine"]
     path = reference_path(args.reference_dir, args.scene, args.resolution, engine)
     ref = Reference.load(path)
@@ -256,7 +303,8 @@ def command_reference(args):
 
 
 def load_reference(args):
-    engine = reference_recipe(importlib.import_module(args.scene))["engine"]
+    module = importlib.import_module(args.scene)
+    engine = reference_recipe(module, getattr(args, "reference_engine", None))["engine"]
     path = reference_path(args.reference_dir, args.scene, args.resolution, engine)
     ref = Reference.load(path)
     if ref is None:
@@ -601,6 +649,9 @@ def main():
     p.add_argument("--scene", required=True)
     p.add_argument("--resolution", type=int, nargs=2, default=(128, 128), metavar=("W", "H"))
     p.add_argument("--reference-dir", default=os.path.join(os.path.expanduser("~"), ".cache", "phos-bench"))
+    p.add_argument("--reference-engine", choices=("CYCLES", "PHOS"), default=None,
+                   help="the reference's kind (default: the scene's BENCH_REFERENCE, else Cycles); "
+                        "PHOS is progressive caustics and path-traced gathers only")
     p.add_argument("--chunks", type=int, default=16)
     p.add_argument("--chunk-samples", type=int, default=256)
     p.add_argument("--grid", default="")

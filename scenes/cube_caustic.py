@@ -44,10 +44,19 @@ PHOTON_SETTINGS = {
 # The benchmark's reference (bench/quality.py). Cycles finds this caustic
 # only where a path from the floor happens to hit the small lamp through
 # the specular object; after 8192 samples it is still fireflies, and its
-# errors would be mostly its own. PHOTON with 10 and 80 times the default
-# photon counts converges instead (docs/benchmarks.md).
-BENCH_REFERENCE = {"engine": "PHOS", "chunks": 8, "chunk_samples": 128,
-                   "settings": {"global_photons": 2000000, "caustic_photons": 4000000, "final_gather_rays": 8}}
+# errors would be mostly its own. The reference is Phos with consistent
+# methods only: progressive caustics (a new map of 20 000 photons every
+# sample, the radius shrinking) and path-traced gathers, no irradiance
+# cache and no global map; the gathers' paths read a fixed caustic map of
+# 4 M photons at their later diffuse vertices, light that a diffuse bounce
+# has already blurred. Chunks of 2048 samples, since the radius shrinks
+# within a chunk only (docs/benchmarks.md, "Phos references, consistent
+# methods only").
+BENCH_REFERENCE = {"engine": "PHOS", "chunks": 8, "chunk_samples": 2048,
+                   "settings": {"use_progressive_caustics": True, "progressive_caustic_photons": 20000,
+                                "photon_view": "PATH_TRACED", "irradiance_cache": "OFF",
+                                "caustic_photons": 4000000, "caustic_estimate_photons": 20,
+                                "final_gather_rays": 1}}
 
 
 def build(scene):

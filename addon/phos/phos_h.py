@@ -1005,7 +1005,7 @@ RENDER_SETTINGS = (
         label='Global Estimate',
         description='Nearest photons used in a radiance estimate of the global map'),
     RenderSetting(
-        name='caustic_estimate_photons', ctype='uint32_t', default=80, min=1, max=10000,
+        name='caustic_estimate_photons', ctype='uint32_t', default=20, min=1, max=10000,
         user=True, prop='caustic_estimate_photons', kind='NUMBER', enum=None, soft_max=1000,
         label='Caustic Estimate',
         description='Nearest photons used in a (cone-filtered) radiance estimate of the caustic map'),

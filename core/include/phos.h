@@ -897,11 +897,15 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
          "like diffuse surfaces (0: only sharp mirrors and glass make caustics)")                 \
     USER(uint32_t, global_estimate_photons, 50, 1, 10000, global_estimate_photons, NUMBER, 1000,  \
          "Global Estimate", "Nearest photons used in a radiance estimate of the global map")      \
-    USER(uint32_t, caustic_estimate_photons, 80, 1, 10000, caustic_estimate_photons, NUMBER,      \
+    /* 20: against references that resolve the caustic (Cycles on the Cornell              \
+     * box, progressive photon mapping on the metal ring) it had 1.4× and 3.3×                 \
+     * less error × time than 80 (docs/benchmarks.md, "The caustic k chosen                    \
+     * against consistent references"). */                                                    \
+    USER(uint32_t, caustic_estimate_photons, 20, 1, 10000, caustic_estimate_photons, NUMBER,      \
          1000, "Caustic Estimate",                                                                \
          "Nearest photons used in a (cone-filtered) radiance estimate of the caustic map")        \
-    /* A pixel's caustic is smooth at the scale of its samples (80 of the                     \
-     * demo's 800 k photons fill a disc about a pixel wide), so reading the                    \
+    /* A pixel's caustic is smooth at the scale of its samples (the demo's                     \
+     * caustic discs are about a pixel wide), so reading the                                   \
      * map at every sample mostly repeats one value: docs/algorithms.md §4.7. */              \
     USER(float, caustic_sample_share, 0.25f, 0.0f, 1.0f, caustic_sample_share, FACTOR, 0,         \
          "Caustic Sample Share",                                                                  \

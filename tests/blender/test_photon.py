@@ -132,7 +132,7 @@ def test_photon_settings_and_defaults(scene):
     p = scene.phos
     props = type(p).bl_rna.properties
     expected = {"global_photons": 200000, "caustic_photons": 800000, "global_estimate_photons": 50,
-                "caustic_estimate_photons": 80, "max_radius": 0.0, "final_gather_rays": 4,
+                "caustic_estimate_photons": 20, "max_radius": 0.0, "final_gather_rays": 4,
                 "photon_view": "FINAL_GATHER"}
     for name, value in expected.items():
         assert getattr(p, name) == value, name

@@ -1,0 +1,59 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The benchmark's references come only from methods that converge to the
+exact image as their samples grow (bench/quality.py): Cycles, or Phos with
+progressive caustics and path-traced gathers. A method is never its own
+reference: fixed-k PHOTON with more photons would keep its own blur."""
+
+import glob
+import importlib
+import os
+import sys
+import types
+
+import pytest
+
+REPO_DIR = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(REPO_DIR, "bench"))
+sys.path.insert(0, os.path.join(REPO_DIR, "scenes"))
+
+import quality  # noqa: E402
+
+SCENES = sorted(os.path.splitext(os.path.basename(p))[0]
+                for p in glob.glob(os.path.join(REPO_DIR, "scenes", "*.py"))
+                if not os.path.basename(p).startswith("_"))
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_scene_reference_is_consistent(name):
+    recipe = quality.reference_recipe(importlib.import_module(name))
+    assert recipe["engine"] in ("CYCLES", "PHOS"), recipe
+    if recipe["engine"] == "PHOS":
+        for setting, value in quality.CONSISTENT_PHOS_REFERENCE.items():
+            assert recipe["settings"][setting] == value, (name, setting)
+
+
+def test_fixed_photon_reference_is_refused():
+    """The recipe cube_caustic had before: PHOTON's own estimate with more
+    photons."""
+    module = types.ModuleType("fixed_reference_scene")
+    module.BENCH_REFERENCE = {"engine": "PHOS", "chunks": 8, "chunk_samples": 128,
+                              "settings": {"global_photons": 2000000, "caustic_photons": 4000000}}
+    with pytest.raises(SystemExit, match="converge"):
+        quality.reference_recipe(module)
+
+
+def test_phos_reference_file_is_not_an_older_recipes():
+    """A cached Phos reference from before (named *_phos.npz) is not read as
+    the consistent one."""
+    path = quality.reference_path("/refs", "cube_caustic", (128, 128), "PHOS")
+    assert path.endswith("_phos_ppm.npz")
+    assert quality.reference_path("/refs", "cube_caustic", (128, 128)) == "/refs/cube_caustic_128x128.npz"
+
+
+@pytest.mark.parametrize("name", ["metal_ring", "glass_sphere_caustic"])
+def test_phos_reference_on_request_is_consistent(name):
+    """--reference-engine PHOS on a scene whose own reference is Cycles."""
+    recipe = quality.reference_recipe(importlib.import_module(name), "PHOS")
+    assert recipe["engine"] == "PHOS" and "chunks" not in recipe
+    for setting, value in quality.CONSISTENT_PHOS_REFERENCE.items():
+        assert recipe["settings"][setting] == value, setting
