@@ -180,18 +180,19 @@ def reference_recipe(module, engine=None):
     for a scene Cycles cannot converge (a small lamp's caustic through
     glass, found only by hitting the lamp), Phos PHOTON with only
     consistent methods (CONSISTENT_PHOS_REFERENCE) and the scene's
-    BENCH_REFERENCE settings, each chunk its own seed and so its own
-    photon maps. `engine` ("CYCLES" or "PHOS", None: the scene's) asks for
-    the other kind: PHOS_REFERENCE_SETTINGS in chunks of
-    PHOS_REFERENCE_CHUNK_SAMPLES, as many as --chunks asks. A Phos recipe
-    that is not consistent is refused."""
+    BENCH_REFERENCE settings (PHOS_REFERENCE_SETTINGS in chunks of
+    PHOS_REFERENCE_CHUNK_SAMPLES where it names none), each chunk its own
+    seed and so its own photon maps. `engine` ("CYCLES" or "PHOS", None:
+    the scene's) asks for the other kind, in as many chunks as --chunks
+    asks. A Phos recipe that is not consistent is refused."""
     recipe = getattr(module, "BENCH_REFERENCE", {"engine": "CYCLES", "settings": {}})
     if engine == "PHOS" and recipe["engine"] != "PHOS":
-        recipe = {"engine": "PHOS", "chunk_samples": PHOS_REFERENCE_CHUNK_SAMPLES,
-                  "settings": dict(PHOS_REFERENCE_SETTINGS)}
+        recipe = {"engine": "PHOS"}
     elif engine == "CYCLES" and recipe["engine"] != "CYCLES":
         recipe = {"engine": "CYCLES", "settings": {}}
     if recipe["engine"] == "PHOS":
+        recipe = dict({"chunk_samples": PHOS_REFERENCE_CHUNK_SAMPLES, "settings": dict(PHOS_REFERENCE_SETTINGS)},
+                      **recipe)
         settings = recipe.get("settings", {})
         wrong = sorted(name for name, value in CONSISTENT_PHOS_REFERENCE.items() if settings.get(name) != value)
         if wrong:

@@ -45,18 +45,11 @@ PHOTON_SETTINGS = {
 # only where a path from the floor happens to hit the small lamp through
 # the specular object; after 8192 samples it is still fireflies, and its
 # errors would be mostly its own. The reference is Phos with consistent
-# methods only: progressive caustics (a new map of 20 000 photons every
-# sample, the radius shrinking) and path-traced gathers, no irradiance
-# cache and no global map; the gathers' paths read a fixed caustic map of
-# 4 M photons at their later diffuse vertices, light that a diffuse bounce
-# has already blurred. Chunks of 2048 samples, since the radius shrinks
-# within a chunk only (docs/benchmarks.md, "Phos references, consistent
-# methods only").
-BENCH_REFERENCE = {"engine": "PHOS", "chunks": 8, "chunk_samples": 2048,
-                   "settings": {"use_progressive_caustics": True, "progressive_caustic_photons": 20000,
-                                "photon_view": "PATH_TRACED", "irradiance_cache": "OFF",
-                                "caustic_photons": 4000000, "caustic_estimate_photons": 20,
-                                "final_gather_rays": 1}}
+# methods only, bench/quality.py's PHOS_REFERENCE_SETTINGS: progressive
+# caustics and path-traced gathers, no irradiance cache and no global map,
+# in chunks of 2048 samples (docs/benchmarks.md, "Phos references,
+# consistent methods only").
+BENCH_REFERENCE = {"engine": "PHOS", "chunks": 8}
 
 
 def build(scene):
