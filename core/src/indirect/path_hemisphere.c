@@ -17,8 +17,9 @@ static gather_estimate path_traced_ray(const indirect_query *q, vec3 o, vec3 wi,
                                        float ray_pdf)
 {
     sampler ray_smp = sampler_split(g, HEMISPHERE_RAY_STREAM + ray_index); /* hemisphere.h */
-    sample_result r = camera_path_walk_indirect(q->s, q->is, q->light, o, wi, q->depth + 1, ray_pdf,
-                                                q->is->gathers_find_caustics, &ray_smp, q->scratch, path_vertex_policy);
+    sample_result r;
+    camera_path_walk_indirect(q->s, q->is, q->light, o, wi, q->depth + 1, ray_pdf, q->is->gathers_find_caustics,
+                              &ray_smp, q->scratch, path_vertex_policy, &r);
     /* The walk files what its first segment sees as its Emission and the
      * caustics as its Caustics. */
     gather_estimate out = GATHER_ESTIMATE_ZERO;

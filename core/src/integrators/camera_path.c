@@ -148,13 +148,15 @@ typedef struct walk_start {
     const light_context *from; /* first_pdf > 0: the vertex the walk leaves, for the light-pick pdf */
 } walk_start;
 
-static sample_result walk(const scene *s, const integrator_settings *is, const walk_start *start, const sampler *smp,
-                          integrator_scratch *scratch, vertex_policy policy)
+/* Writes the sample into *res in place: a sample_result built locally and
+ * returned was copied out in 16-byte loads of fields just written in
+ * smaller stores, a stalled store-to-load forward at every sample. */
+static void walk(const scene *s, const integrator_settings *is, const walk_start *start, const sampler *smp,
+                 integrator_scratch *scratch, vertex_policy policy, sample_result *res)
 {
-    sample_result res;
-    memset(&res, 0, sizeof(res));
-    res.first_distance = INFINITY;
-    camera_path p = {s, is, smp, scratch, &res, v3s(1.0f), start->depth, 0, 1, v3s(0.0f), 0};
+    memset(res, 0, sizeof(*res));
+    res->first_distance = INFINITY;
+    camera_path p = {s, is, smp, scratch, res, v3s(1.0f), start->depth, 0, 1, v3s(0.0f), 0};
     /* Per channel, the share of light found on the current segment that no
      * caustic-map estimate has counted (glossy receivers, see below). */
     vec3 uncounted = v3s(1.0f);
@@ -192,9 +194,9 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
     do {                                                                                            \
         vec3 L_ = v3_mul((L), uncounted);                                                           \
         float w_ = (w);                                                                             \
-        add_to(&res, emission_component, p.beta, L_, w_);                                           \
+        add_to(res, emission_component, p.beta, L_, w_);                                           \
         if (features)                                                                               \
-            res.denoising_albedo = v3_madd(res.denoising_albedo, v3_mul(feature_beta, v3_mul(p.beta, L_)), w_); \
+            res->denoising_albedo = v3_madd(res->denoising_albedo, v3_mul(feature_beta, v3_mul(p.beta, L_)), w_); \
     } while (0)
 
     for (;;) {
@@ -202,7 +204,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         int hit = embree_intersect(s->bvh, o, d, tmin, tmax, camera_segment, &h);
         float t_hit = hit ? h.t : tmax;
         if (vertex == 0 && hit)
-            res.first_distance = h.t;
+            res->first_distance = h.t;
         int emission_component = classify(p.depth, p.first_diffuse, p.later_delta);
         if (start->indirect_only && only_delta && p.depth > start->depth)
             emission_component = start->caustics_apart ? COMPONENT_CAUSTICS : -1;
@@ -219,7 +221,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
                 ADD_EMISSION(lights_escape(s, prev_delta ? NULL : &prev, d, prev_pdf, prev_delta, camera_segment),
                              1.0f);
             if (camera_segment && !is->transparent_background)
-                res.alpha = 1.0f;
+                res->alpha = 1.0f;
             break;
         }
 
@@ -235,7 +237,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         sf.transparent_depth = depths.transparent;
         uint32_t v_index = vertex++;
         if (camera_segment && sf.mat->holdout && apply_holdout(s, &sf, p.beta, &holdout)) {
-            res.alpha = 1.0f;
+            res->alpha = 1.0f;
             break;
         }
         if (sf.mat->emissive) {
@@ -253,10 +255,10 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         bsdf b, storage;
         material_bsdf(s, &sf, &b);
         if (features)
-            features = record_features(&res, is, &b, v3_neg(d), &feature_beta);
+            features = record_features(res, is, &b, v3_neg(d), &feature_beta);
         if (b.count == 0) {
             if (camera_segment)
-                res.alpha = 1.0f;
+                res->alpha = 1.0f;
             break;
         }
         light_context here = light_context_at(&sf);
@@ -269,7 +271,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
         if (!next ||
             !bsdf_sample_direction(next, v.wo, u_pick, sampler_2d(smp, dim_bounce(v_index, DIM_BSDF_DIR)), &bs)) {
             if (camera_segment)
-                res.alpha = 1.0f;
+                res->alpha = 1.0f;
             break;
         }
         p.beta = v3_mul(p.beta, bs.weight);
@@ -284,7 +286,7 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
             continue;
         }
         if (camera_segment)
-            res.alpha = 1.0f;
+            res->alpha = 1.0f;
         camera_segment = 0;
         transparent_steps = 0;
         count_caustics_once(&p, next, v.wo, &bs, &uncounted);
@@ -317,24 +319,23 @@ static sample_result walk(const scene *s, const integrator_settings *is, const w
             p.beta = v3_scale(p.beta, 1.0f / q);
         }
     }
-    res.alpha = clampf(res.alpha - holdout, 0.0f, 1.0f);
-    return res;
+    res->alpha = clampf(res->alpha - holdout, 0.0f, 1.0f);
 #undef ADD_EMISSION
 }
 
-sample_result camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
-                               integrator_scratch *scratch, vertex_policy policy)
+void camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                      integrator_scratch *scratch, vertex_policy policy, sample_result *res)
 {
     walk_start start = {ray, 1, 0, 0, 0, 0.0f, NULL};
-    return walk(s, is, &start, smp, scratch, policy);
+    walk(s, is, &start, smp, scratch, policy, res);
 }
 
-sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, const light_context *from, vec3 o,
-                                        vec3 d, uint32_t depth, float first_pdf, int caustics_apart,
-                                        const sampler *smp, integrator_scratch *scratch, vertex_policy policy)
+void camera_path_walk_indirect(const scene *s, const integrator_settings *is, const light_context *from, vec3 o, vec3 d,
+                               uint32_t depth, float first_pdf, int caustics_apart, const sampler *smp,
+                               integrator_scratch *scratch, vertex_policy policy, sample_result *res)
 {
     /* A gather from a vertex carries no pixel's footprint (0: the bump's
      * fallback step, material.c). */
     walk_start start = {{o, d, 0.0f, INFINITY, 0.0f, 0.0f}, 0, depth, 1, caustics_apart, first_pdf, from};
-    return walk(s, is, &start, smp, scratch, policy);
+    walk(s, is, &start, smp, scratch, policy, res);
 }

@@ -74,9 +74,9 @@ const bsdf *path_vertex_policy(camera_path *p, const path_vertex *v, bsdf *stora
  * through the rest of the BSDF only. */
 const bsdf *diffuse_split_vertex_policy(camera_path *p, const path_vertex *v, bsdf *rest);
 
-/* Walks the camera ray; the result holds its light components and alpha. */
-sample_result camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
-                               integrator_scratch *scratch, vertex_policy policy);
+/* Walks the camera ray; *res receives its light components and alpha. */
+void camera_path_walk(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                      integrator_scratch *scratch, vertex_policy policy, sample_result *res);
 
 /* Walks a gather ray that leaves a camera-path vertex after `depth`
  * scattering events (the one there included). Emission found on the first
@@ -87,9 +87,9 @@ sample_result camera_path_walk(const scene *s, const integrator_settings *is, ca
  * result's Caustics (which a walk from a vertex holds nothing else in).
  * The result's Emission holds what the first segment saw, its Specular and
  * Direct the rest of the radiance arriving along the ray. */
-sample_result camera_path_walk_indirect(const scene *s, const integrator_settings *is, const light_context *from, vec3 o,
-                                        vec3 d, uint32_t depth, float first_pdf, int caustics_apart,
-                                        const sampler *smp, integrator_scratch *scratch, vertex_policy policy);
+void camera_path_walk_indirect(const scene *s, const integrator_settings *is, const light_context *from, vec3 o, vec3 d,
+                               uint32_t depth, float first_pdf, int caustics_apart, const sampler *smp,
+                               integrator_scratch *scratch, vertex_policy policy, sample_result *res);
 
 /* Light estimated at the vertex that arrived straight from an emitter and
  * scattered there once more (next-event estimation): f·L·T/pdf. */

@@ -102,15 +102,15 @@ typedef struct sample_result {
 /* The integrators: each is a vertex policy of the camera-path walker
  * (camera_path.h). Unbiased path tracing with next-event estimation and
  * MIS (Veach 1997); path.c. */
-sample_result path_trace(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
-                         integrator_scratch *scratch);
+void path_trace(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                integrator_scratch *scratch, sample_result *res);
 
 /* Photon mapping (Jensen 1996, 2001): direct light by next-event
  * estimation, specular and glossy by ray tracing, caustics from the
  * caustic map, indirect diffuse from the settings' indirect provider;
  * photon.c. */
-sample_result photon_render(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
-                            integrator_scratch *scratch);
+void photon_render(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                   integrator_scratch *scratch, sample_result *res);
 
 /* The caustics reflected toward wo through b at x (n on wo's side),
  * W/(m²·sr): the caustic map's k nearest photons, or with progressive

@@ -22,8 +22,8 @@ const bsdf *path_vertex_policy(camera_path *p, const path_vertex *v, bsdf *stora
     return v->b;
 }
 
-sample_result path_trace(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
-                         integrator_scratch *scratch)
+void path_trace(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                integrator_scratch *scratch, sample_result *res)
 {
-    return camera_path_walk(s, is, ray, smp, scratch, is->indirect ? diffuse_split_vertex_policy : path_vertex_policy);
+    camera_path_walk(s, is, ray, smp, scratch, is->indirect ? diffuse_split_vertex_policy : path_vertex_policy, res);
 }

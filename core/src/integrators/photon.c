@@ -12,10 +12,10 @@
 
 #define DEBUG_CHAIN_STEPS 16   /* surfaces the debug passes follow from the camera */
 
-sample_result photon_render(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
-                            integrator_scratch *scratch)
+void photon_render(const scene *s, const integrator_settings *is, camera_ray ray, const sampler *smp,
+                   integrator_scratch *scratch, sample_result *res)
 {
-    return camera_path_walk(s, is, ray, smp, scratch, diffuse_split_vertex_policy);
+    camera_path_walk(s, is, ray, smp, scratch, diffuse_split_vertex_policy, res);
 }
 
 vec3 photon_caustic_radiance(const integrator_settings *is, const bsdf *b, vec3 wo, vec3 x, vec3 n,

@@ -247,20 +247,31 @@ static enum pixel_outcome render_pixel(render *r, uint32_t x, uint32_t y, uint32
     if (first > 0)
         exchange_sums(r, x, y, &a, 0);
     uint32_t n = first, converged = 0;
+    /* One footprint for all the pixel's samples: the angle between
+     * neighbouring pixels' rays changes across a pixel by about one part in
+     * the image's width, far below what texture filtering resolves. */
+    camera_ray centre;
+    camera_ray_set_footprint(&s->camera, ((float)x + 0.5f) / (float)rs->width, ((float)y + 0.5f) / (float)rs->height,
+                             rs->width, rs->height, &centre);
+    sampler smp = sampler_for_pixel(rs->sampler, rs->seed, x, y, first, rs->samples);
     for (uint32_t i = first; i < end && !converged; i++) {
         if (atomic_load_explicit(&r->cancel, memory_order_relaxed))
             return PIXEL_CANCELLED;
         if (out_of_time(r))
             return PIXEL_OUT_OF_TIME;
-        sampler smp = sampler_for_pixel(rs->sampler, rs->seed, x, y, i, rs->samples);
+        smp.index = i;
         float2 uf = sampler_2d(&smp, DIM_FILM);
         float fx = ((float)x + 0.5f + pixel_filter_sample(&r->filter, uf.x)) / (float)rs->width;
         float fy = ((float)y + 0.5f + pixel_filter_sample(&r->filter, uf.y)) / (float)rs->height;
-        camera_ray ray = camera_generate_ray(&s->camera, fx, fy, sampler_2d(&smp, DIM_LENS));
-        camera_ray_set_footprint(&s->camera, fx, fy, rs->width, rs->height, &ray);
-        sample_result sr = rs->integrator == PHOS_INTEGRATOR_PHOTON
-                               ? photon_render(s, &r->integrator, ray, &smp, scratch)
-                               : path_trace(s, &r->integrator, ray, &smp, scratch);
+        float2 lens = camera_has_lens(&s->camera) ? sampler_2d(&smp, DIM_LENS) : (float2){0.5f, 0.5f};
+        camera_ray ray = camera_generate_ray(&s->camera, fx, fy, lens);
+        ray.spread_origin = centre.spread_origin;
+        ray.spread_per_distance = centre.spread_per_distance;
+        sample_result sr;
+        if (rs->integrator == PHOS_INTEGRATOR_PHOTON)
+            photon_render(s, &r->integrator, ray, &smp, scratch, &sr);
+        else
+            path_trace(s, &r->integrator, ray, &smp, scratch, &sr);
         if (debug)
             photon_debug_estimates(s, &r->integrator, ray, scratch, &sr);
         /* A non-finite sample (a numerical failure) is dropped rather than

@@ -12,33 +12,33 @@ camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, fl
 {
     float x = c->frame_min[0] + fx * (c->frame_max[0] - c->frame_min[0]);
     float y = c->frame_min[1] + fy * (c->frame_max[1] - c->frame_min[1]);
-    vec3 o_cam, d_cam;
-    float depth_scale; /* ray length per unit of depth along −Z */
+    /* Origin and direction in camera space; the direction need not be
+     * unit, its depth along the view axis (−Z) is `depth`. */
+    vec3 o_cam = v3s(0.0f), dir = v3(x, y, -1.0f);
+    float depth = 1.0f;
     if (c->type == PHOS_CAMERA_ORTHOGRAPHIC) {
         o_cam = v3(x, y, 0.0f);
-        d_cam = v3(0.0f, 0.0f, -1.0f);
-        depth_scale = 1.0f;
-    } else {
-        vec3 dir = v3(x, y, -1.0f);
-        o_cam = v3s(0.0f);
-        if (c->aperture_radius > 0.0f) {
-            /* Thin lens: aim from a point on the aperture at the point of the
-             * primary ray that lies on the focal plane. */
-            vec3 focus = v3_scale(dir, c->focus_distance);
-            float2 dk = warp_disk_concentric(lens);
-            o_cam = v3(dk.x * c->aperture_radius, dk.y * c->aperture_radius, 0.0f);
-            dir = v3_sub(focus, o_cam);
-        }
-        d_cam = v3_normalize(dir);
-        depth_scale = 1.0f / fmaxf(-d_cam.z, 1e-6f);
+        dir = v3(0.0f, 0.0f, -1.0f);
+    } else if (camera_has_lens(c)) {
+        /* Thin lens: aim from a point on the aperture at the point of the
+         * primary ray that lies on the focal plane. */
+        vec3 focus = v3_scale(dir, c->focus_distance);
+        float2 dk = warp_disk_concentric(lens);
+        o_cam = v3(dk.x * c->aperture_radius, dk.y * c->aperture_radius, 0.0f);
+        dir = v3_sub(focus, o_cam);
+        depth = c->focus_distance;
     }
     camera_ray r;
     r.o = xform_point(c->transform, o_cam);
-    r.d = v3_normalize(xform_vector(c->transform, d_cam));
-    /* The transform may scale: measure clipping in world units along d. */
-    float world_per_cam = v3_length(xform_vector(c->transform, d_cam));
-    r.tmin = c->clip_start * depth_scale * world_per_cam;
-    r.tmax = c->clip_end * depth_scale * world_per_cam;
+    /* The transform may scale: the world length of `dir` over its depth is
+     * the ray length per unit of depth, which turns the clip depths into
+     * distances along the unit direction. */
+    vec3 d_world = xform_vector(c->transform, dir);
+    float length = v3_length(d_world);
+    r.d = v3_scale(d_world, 1.0f / length);
+    float length_per_depth = length / depth;
+    r.tmin = c->clip_start * length_per_depth;
+    r.tmax = c->clip_end * length_per_depth;
     r.spread_origin = 0.0f;
     r.spread_per_distance = 0.0f;
     return r;

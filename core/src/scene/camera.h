@@ -23,6 +23,13 @@ typedef struct camera_ray {
  * bottom-left corner), lens sample in [0,1)². */
 camera_ray camera_generate_ray(const phos_camera_desc *c, float fx, float fy, float2 lens);
 
+/* Whether camera_generate_ray reads its lens sample: a perspective camera
+ * with an aperture. Without one, a render draws no lens dimensions. */
+static inline int camera_has_lens(const phos_camera_desc *c)
+{
+    return c->type != PHOS_CAMERA_ORTHOGRAPHIC && c->aperture_radius > 0.0f;
+}
+
 /* Sets the ray's footprint for a film of width × height pixels, as Cycles
  * does for its camera rays: a perspective ray starts as a point and
  * spreads by the angle between neighbouring pixels' directions; an
