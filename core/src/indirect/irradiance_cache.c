@@ -257,6 +257,10 @@ static void weigh_record(void *ctx, uint32_t i)
         return;
     vec3 dp = v3_sub(k->p, r->p);
     float rho = reach(k->c, r);
+    /* Beyond the reach, w ≤ q whatever the normals (the test below): most
+     * records a lookup visits end here, before its square roots. */
+    if (v3_length2(dp) >= rho * rho)
+        return;
     /* In front: the point lies behind the record's surface. */
     if (0.5f * v3_dot(dp, v3_add(k->n, r->n)) < -IN_FRONT_TOLERANCE * rho)
         return;

@@ -254,6 +254,8 @@ static enum pixel_outcome render_pixel(render *r, uint32_t x, uint32_t y, uint32
     camera_ray_set_footprint(&s->camera, ((float)x + 0.5f) / (float)rs->width, ((float)y + 0.5f) / (float)rs->height,
                              rs->width, rs->height, &centre);
     sampler smp = sampler_for_pixel(rs->sampler, rs->seed, x, y, first, rs->samples);
+    float inv_width = 1.0f / (float)rs->width, inv_height = 1.0f / (float)rs->height;
+    int features = r->integrator.denoising_features;
     for (uint32_t i = first; i < end && !converged; i++) {
         if (atomic_load_explicit(&r->cancel, memory_order_relaxed))
             return PIXEL_CANCELLED;
@@ -261,8 +263,8 @@ static enum pixel_outcome render_pixel(render *r, uint32_t x, uint32_t y, uint32
             return PIXEL_OUT_OF_TIME;
         smp.index = i;
         float2 uf = sampler_2d(&smp, DIM_FILM);
-        float fx = ((float)x + 0.5f + pixel_filter_sample(&r->filter, uf.x)) / (float)rs->width;
-        float fy = ((float)y + 0.5f + pixel_filter_sample(&r->filter, uf.y)) / (float)rs->height;
+        float fx = ((float)x + 0.5f + pixel_filter_sample(&r->filter, uf.x)) * inv_width;
+        float fy = ((float)y + 0.5f + pixel_filter_sample(&r->filter, uf.y)) * inv_height;
         float2 lens = camera_has_lens(&s->camera) ? sampler_2d(&smp, DIM_LENS) : (float2){0.5f, 0.5f};
         camera_ray ray = camera_generate_ray(&s->camera, fx, fy, lens);
         ray.spread_origin = centre.spread_origin;
@@ -275,34 +277,35 @@ static enum pixel_outcome render_pixel(render *r, uint32_t x, uint32_t y, uint32
         if (debug)
             photon_debug_estimates(s, &r->integrator, ray, scratch, &sr);
         /* A non-finite sample (a numerical failure) is dropped rather than
-         * allowed to poison the pixel. */
-        int finite = 1;
+         * allowed to poison the pixel: a NaN or an infinity in any component
+         * makes their float sum non-finite too. */
+        vec3 total = sr.caustic_read;
         for (int c = 0; c < COMPONENT_COUNT; c++)
-            finite &= v3_is_finite(sr.component[c]);
-        if (!finite || !v3_is_finite(sr.caustic_read)) {
+            total = v3_add(total, sr.component[c]);
+        if (!v3_is_finite(total)) {
             memset(sr.component, 0, sizeof(sr.component));
             sr.caustic_read = v3s(0.0f);
         }
         add3(a.caustic_read, sr.caustic_read);
-        double total[3] = {0.0, 0.0, 0.0};
+        double sample_sum[3] = {0.0, 0.0, 0.0};
         for (int c = 0; c < COMPONENT_COUNT; c++) {
             add3(a.component[c], sr.component[c]);
-            add3(total, sr.component[c]);
+            add3(sample_sum, sr.component[c]);
         }
         for (int ch = 0; ch < 3; ch++)
-            a.combined[ch] += total[ch];
+            a.combined[ch] += sample_sum[ch];
         a.combined[3] += sr.alpha;
-        double y_lum = luminance(total);
+        double y_lum = luminance(sample_sum);
         a.moments[0] += y_lum;
         a.moments[1] += y_lum * y_lum;
-        if (v3_is_finite(sr.photon_map) && v3_is_finite(sr.caustic_map)) {
+        if (debug && v3_is_finite(sr.photon_map) && v3_is_finite(sr.caustic_map)) {
             add3(a.debug[0], sr.photon_map);
             add3(a.debug[1], sr.caustic_map);
         }
         /* The features' means over the samples: the normal is not
          * renormalised, so a pixel straddling an edge holds the mean
          * direction (Cycles). */
-        if (v3_is_finite(sr.denoising_albedo) && v3_is_finite(sr.denoising_normal)) {
+        if (features && v3_is_finite(sr.denoising_albedo) && v3_is_finite(sr.denoising_normal)) {
             add3(a.features[0], sr.denoising_albedo);
             add3(a.features[1], sr.denoising_normal);
         }

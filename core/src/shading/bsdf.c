@@ -219,6 +219,16 @@ static float microfacet_reflection(const query *q, const mf_lobe *m, vec3 *h, fl
     float D = lobe_D(m, *h);
     if (!(D > 0.0f))
         return 0.0f;
+    if (!m->beckmann) {
+        /* GGX: the visible-normal pdf D·(wo·h)/((1 + Λ(wo)) cos θo) times
+         * the Jacobian 1/(4 wo·h) shares D and Λ(wo) with f, and wo·h > 0
+         * for a reflection's half vector: pdf = D / (4 cos θo (1 + Λ(wo))). */
+        float lo = ggx_lambda_aniso(q->wo, m->ax, m->ay), li = ggx_lambda_aniso(q->wi, m->ax, m->ay);
+        float G = m->correlated ? 1.0f / (1.0f + lo + li) : 1.0f / ((1.0f + lo) * (1.0f + li));
+        float D_over = D / (4.0f * q->wo.z);
+        *pdf = D_over / (1.0f + lo);
+        return D_over * G;
+    }
     *pdf = lobe_h_pdf(m, q->wo, *h) * microfacet_reflect_jacobian(q->wo, *h);
     return D * lobe_G(m, q->wo, q->wi) / (4.0f * q->wo.z);
 }
