@@ -57,6 +57,18 @@ static void test_camera_footprint(void)
     camera_ray corner = camera_generate_ray(&c, 0.02f, 0.02f, lens);
     camera_ray_set_footprint(&c, 0.02f, 0.02f, 200, 200, &corner);
     CHECK(corner.spread_per_distance < r.spread_per_distance);
+
+    /* A render measures the footprint once per pixel, at its centre
+     * (render.c): within a pixel, even a wide camera's corner pixel (tan of
+     * the half angle 1.5, 64 pixels), it changes by about one part in the
+     * image's width, 1.5 % here. */
+    c.frame_min[0] = c.frame_min[1] = -1.5f;
+    c.frame_max[0] = c.frame_max[1] = 1.5f;
+    camera_ray centre, edge;
+    camera_ray_set_footprint(&c, 0.5f / 64.0f, 0.5f / 64.0f, 64, 64, &centre);
+    camera_ray_set_footprint(&c, 0.0f, 0.0f, 64, 64, &edge);
+    float change = fabsf(edge.spread_per_distance / centre.spread_per_distance - 1.0f);
+    CHECK_MSG(change > 0.0f && change < 2.0f / 64.0f, "footprint change across a corner pixel %g", change);
 }
 
 /* ------------------------------------------------------------------ Bump */
