@@ -17,9 +17,17 @@
  *    what the camera reads: between a cube in view and one out of it, the
  *    cube in view gets a larger share of the photons than without a
  *    camera, each cube's power is unchanged within noise, and the maps
- *    are the same for 1 and 2 threads.
+ *    are the same for 1 and 2 threads;
+ *  - a global map that no gather from what the camera sees would read (a
+ *    cube on nothing) is not traced, while a cube on a floor gets its map;
+ *    a render without one is PATH's image within noise, and so is a view
+ *    whose gathers do find surfaces rendered with the empty map of
+ *    another view loaded from its file (its gathers path-trace: read from
+ *    the empty map, the inside of a closed box is 35 % too dark).
  */
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "photons/photon_trace.h"
@@ -291,6 +299,172 @@ static void check_cones_weighed_by_the_camera(void)
     }
 }
 
+/* ------------------------------------------------ a map nothing reads */
+
+/* A closed 2 m box of albedo 0.5 with a lamp inside and a lamp outside.
+ * View A, from outside, sees only its outer faces, whose gathers all leave
+ * for the empty world: nothing would read a global photon. View B, from
+ * inside, sees walls lit by many bounces, which the gathers bring: what a
+ * global map would hold. */
+static phos_scene *closed_box(int view_b)
+{
+    phos_scene *s = phos_scene_create();
+    uint32_t grey = test_add_diffuse(s, 0.5f, 0.5f, 0.5f);
+    const float a = 1.0f;
+    float q[6][4][3] = {
+        {{-a, -a, -a}, {-a, a, -a}, {a, a, -a}, {a, -a, -a}}, {{-a, -a, a}, {a, -a, a}, {a, a, a}, {-a, a, a}},
+        {{-a, -a, -a}, {a, -a, -a}, {a, -a, a}, {-a, -a, a}}, {{-a, a, -a}, {-a, a, a}, {a, a, a}, {a, a, -a}},
+        {{-a, -a, -a}, {-a, -a, a}, {-a, a, a}, {-a, a, -a}}, {{a, -a, -a}, {a, a, -a}, {a, a, a}, {a, -a, a}},
+    };
+    test_add_instance(s, test_add_quads(s, (const float(*)[4][3])q, 6), grey, 0, 0, 0);
+    for (int inside = 0; inside < 2; inside++) {
+        phos_light_desc l;
+        phos_light_desc_init(&l);
+        l.type = PHOS_LIGHT_POINT;
+        l.radius = 0.05f;
+        l.color[0] = l.color[1] = l.color[2] = inside ? 5.0f : 50.0f;
+        l.position[0] = inside ? 0.0f : 3.0f, l.position[1] = inside ? -0.5f : -2.0f, l.position[2] = inside ? 0.8f : 4.0f;
+        phos_scene_add_light(s, &l, NULL);
+    }
+    if (view_b)
+        test_set_camera_pitched(s, 0.0f, -0.9f, 0.0f, 1.5708f, 0.8f);
+    else
+        test_set_camera_pitched(s, 0.0f, -6.0f, 3.0f, 1.2f, 0.3f);
+    if (phos_scene_commit(s) != PHOS_OK) {
+        phos_scene_destroy(s);
+        return NULL;
+    }
+    return s;
+}
+
+static phos_render_settings unread_settings(uint32_t integrator)
+{
+    phos_render_settings rs;
+    phos_render_settings_init(&rs);
+    rs.integrator = integrator;
+    rs.width = rs.height = 24;
+    rs.samples = 16;
+    rs.seed = 3;
+    rs.max_bounces = 8;
+    rs.global_photons = 20000;
+    rs.caustic_photons = 1000;
+    rs.irradiance_cache = PHOS_IRRADIANCE_CACHE_OFF; /* final gathering: unbiased against PATH */
+    rs.pass_mask = 1u << PHOS_PASS_COMBINED;
+    return rs;
+}
+
+/* Renders with the photon maps' file in `mode` (path NULL: none); the
+ * Combined image (RGBA, to free) and the photons stored. */
+static float *render_with_maps_file(phos_scene *s, const phos_render_settings *rs, const char *path, uint32_t mode,
+                                    uint32_t *stored)
+{
+    phos_render *r = NULL;
+    float *img = NULL;
+    *stored = UINT32_MAX;
+    if (phos_render_create(s, rs, &r) != PHOS_OK)
+        return NULL;
+    if ((!path || phos_render_set_cache_file(r, PHOS_CACHE_PHOTON_MAPS, path, mode) == PHOS_OK) &&
+        phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK) {
+        phos_progress p;
+        if (phos_render_progress(r, &p) == PHOS_OK)
+            *stored = p.photons_stored;
+        size_t n = (size_t)4 * rs->width * rs->height;
+        img = malloc(sizeof(float) * n);
+        if (img && phos_render_read(r, PHOS_PASS_COMBINED, 0, 0, rs->width, rs->height, img, n) != PHOS_OK) {
+            free(img);
+            img = NULL;
+        }
+    } else {
+        printf("  render failed: %s\n", phos_render_error(r));
+    }
+    phos_render_destroy(r);
+    return img;
+}
+
+/* The mean of a − b over pixels and RGB, and its standard error from the
+ * pixels' spread (independent per pixel). */
+static void mean_difference(const float *a, const float *b, uint32_t pixels, double *mean, double *se)
+{
+    double sum = 0.0, sum2 = 0.0;
+    for (uint32_t i = 0; i < pixels; i++) {
+        double d = 0.0;
+        for (int c = 0; c < 3; c++)
+            d += (a[4 * i + c] - b[4 * i + c]) / 3.0;
+        sum += d;
+        sum2 += d * d;
+    }
+    *mean = sum / pixels;
+    *se = sqrt(fmax(sum2 / pixels - *mean * *mean, 0.0) / (pixels - 1));
+}
+
+static void check_same_as_path(const char *what, const float *photon_img, const float *path_img, uint32_t pixels)
+{
+    double mean, se, path_mean = test_mean_rgb(path_img, 4, pixels);
+    mean_difference(photon_img, path_img, pixels, &mean, &se);
+    printf("  %s: PHOTON - PATH %.5f (± %.5f) on a PATH mean of %.5f\n", what, mean, se, path_mean);
+    CHECK_MSG(path_mean > 10.0 * se, "%s: PATH's mean %.5f is lost in its noise %.5f", what, path_mean, se);
+    CHECK_MSG(fabs(mean) < 4.0 * se, "%s: PHOTON differs from PATH by %.5f (± %.5f)", what, mean, se);
+}
+
+/* The pilot (photon_importance.h) sees that no gather from what the
+ * camera sees finds a surface: the global map is not traced, and it is
+ * not short either. With a floor the gathers reach, or in a render that
+ * does not read the map through gathers only, it is traced. A render of
+ * the view that traced none is PATH's image; maps saved from it and loaded
+ * for a view whose gathers do find the floor leave those gathers to path
+ * tracing, not to the empty map, and that render is PATH's image too. */
+static void check_unread_map_not_traced(void)
+{
+    photon_maps m;
+    photon_trace_settings ps = trace_settings(20000, 0);
+    for (int floor = 0; floor < 2; floor++)
+        for (int gathers_only = 0; gathers_only < 2; gathers_only++) {
+            phos_scene *s = cube_scene(LAMP_POINT, floor);
+            ps.gathers_only = (uint32_t)gathers_only;
+            photon_maps_init(&m);
+            atomic_int cancel = 0;
+            CHECK(photon_maps_trace((const scene *)s, &ps, &m, &cancel, NULL) == PHOS_OK);
+            int skipped = gathers_only && !floor;
+            printf("cube %s, gathers only %d: %u global photons from %llu paths\n", floor ? "on a floor" : "on nothing",
+                   gathers_only, m.global.count, (unsigned long long)m.global_emitted);
+            CHECK_MSG(skipped ? m.global.count == 0 && m.global_emitted == 0 : m.global.count == 20000,
+                      "%u global photons", m.global.count);
+            CHECK(m.short_maps == 0);
+            photon_maps_free(&m);
+            phos_scene_destroy(s);
+        }
+
+    const char *path = "/tmp/phos_test_unread_global.phosmap";
+    remove(path);
+    phos_scene *a = closed_box(0), *b = closed_box(1);
+    CHECK(a && b);
+    if (!a || !b)
+        return;
+    phos_render_settings photon = unread_settings(PHOS_INTEGRATOR_PHOTON), path_rs = unread_settings(PHOS_INTEGRATOR_PATH);
+    path_rs.samples = 64;
+    uint32_t pixels = photon.width * photon.height, stored_a, stored_b, stored_loaded, unused;
+    float *img_a = render_with_maps_file(a, &photon, path, PHOS_CACHE_FILE_SAVE, &stored_a);
+    float *ref_a = render_with_maps_file(a, &path_rs, NULL, 0, &unused);
+    float *img_b = render_with_maps_file(b, &photon, NULL, 0, &stored_b);
+    float *loaded_b = render_with_maps_file(b, &photon, path, PHOS_CACHE_FILE_LOAD, &stored_loaded);
+    float *ref_b = render_with_maps_file(b, &path_rs, NULL, 0, &unused);
+    CHECK(img_a && ref_a && img_b && loaded_b && ref_b);
+    printf("closed box: %u photons stored for view A, %u for view B, %u loaded from A's file\n", stored_a,
+           stored_b, stored_loaded);
+    CHECK_MSG(stored_a == 0, "view A stored %u photons that nothing reads", stored_a);
+    CHECK_MSG(stored_b >= 20000, "view B stored %u photons", stored_b);
+    CHECK(stored_loaded == 0);
+    if (img_a && ref_a && img_b && loaded_b && ref_b) {
+        check_same_as_path("view A, no global map", img_a, ref_a, pixels);
+        check_same_as_path("view B, its own map", img_b, ref_b, pixels);
+        check_same_as_path("view B, view A's maps loaded", loaded_b, ref_b, pixels);
+    }
+    free(img_a), free(ref_a), free(img_b), free(loaded_b), free(ref_b);
+    remove(path);
+    phos_scene_destroy(a);
+    phos_scene_destroy(b);
+}
+
 int main(void)
 {
     check_unbiased_and_worth_it(LAMP_POINT, 0, "point lamp, cube on nothing", 5.0);
@@ -302,5 +476,6 @@ int main(void)
     check_unaimed_where_nothing_gains(1);
     check_hopeless_map_stops();
     check_cones_weighed_by_the_camera();
+    check_unread_map_not_traced();
     return test_summary("test_photon_aiming");
 }

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sampling/sampler.h"
 #include "sampling/warp.h"
 #include "scene/camera.h"
 #include "scene/embree.h"
@@ -76,14 +77,21 @@ void photon_importance_free(photon_importance *imp)
     memset(imp, 0, sizeof(*imp));
 }
 
-/* From a surface the camera sees, the first surfaces of a stratified
- * cosine hemisphere of rays: where a final gather there reads. */
-static void mark_gather(photon_importance *imp, const scene *s, const surface *sf)
+/* From a surface the camera sees (pilot ray `pixel`), the first surfaces
+ * of a stratified cosine hemisphere of rays: where a final gather there
+ * reads. Each stratum is jittered by a hash of the pilot ray and the
+ * stratum, so that the pilot's gathers together cover the whole
+ * hemisphere: at the strata's centres none would leave below 21° of
+ * elevation, and an object near a surface's horizon (a cube seen from the
+ * floor it stands on) would never be found. */
+static void mark_gather(photon_importance *imp, const scene *s, const surface *sf, uint32_t pixel)
 {
     frame f = frame_from_normal(sf->ns);
     for (int i = 0; i < PILOT_GATHER; i++)
         for (int j = 0; j < PILOT_GATHER; j++) {
-            float2 u = {((float)i + 0.5f) / PILOT_GATHER, ((float)j + 0.5f) / PILOT_GATHER};
+            uint32_t jitter = hash_u32(pixel * (PILOT_GATHER * PILOT_GATHER) + (uint32_t)(i * PILOT_GATHER + j));
+            float2 u = {((float)i + (float)(jitter & 0xffffu) * (1.0f / 65536.0f)) / PILOT_GATHER,
+                        ((float)j + (float)(jitter >> 16) * (1.0f / 65536.0f)) / PILOT_GATHER};
             vec3 d = frame_to_world(&f, warp_cosine_hemisphere(u));
             if (v3_dot(d, sf->ng) <= 0.0f)
                 continue;
@@ -93,6 +101,7 @@ static void mark_gather(photon_importance *imp, const scene *s, const surface *s
             surface hit;
             surface_from_hit(s, h.instance, h.prim, h.b1, h.b2, d, &hit);
             mark(imp, hit.p, hit.ns);
+            imp->gather_hits++;
         }
 }
 
@@ -118,7 +127,7 @@ int photon_importance_build(photon_importance *imp, const scene *s)
             if (!specular_chain_follow(s, &c, ray.o, ray.d, ray.tmin, ray.tmax, &end))
                 continue;
             mark(imp, end.sf.p, end.sf.ns);
-            mark_gather(imp, s, &end.sf);
+            mark_gather(imp, s, &end.sf, (uint32_t)(j * PILOT + i));
         }
     return 1;
 }

@@ -25,6 +25,8 @@ typedef struct photon_importance {
     vec3 lo;                    /* grid origin (m) */
     float inv_voxel;            /* voxels per metre */
     uint32_t n;                 /* voxels per axis */
+    uint32_t gather_hits;       /* the pilot's gather rays that found a surface: 0, no gather from
+                                   what the camera sees reads a global photon */
 } photon_importance;
 
 /* Marks what the camera sees and its gathers reach. Returns 0 when memory

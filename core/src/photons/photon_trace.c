@@ -576,7 +576,7 @@ static void pilot_item(void *ctx, uint32_t item, uint32_t thread)
 /* Weighs the map's cells and (where a lamp has more than one) cones by
  * pilots; *weighed: any were. */
 static phos_status weigh_by_pilots(const scene *s, const photon_trace_settings *ps, projection_map *aim,
-                                   atomic_int *cancel, int *weighed)
+                                   const photon_importance *imp, atomic_int *cancel, int *weighed)
 {
     uint32_t cells = 0, cones = 0;
     for (uint32_t g = 0; g < aim->group_count; g++) {
@@ -585,11 +585,6 @@ static phos_status weigh_by_pilots(const scene *s, const photon_trace_settings *
         cones += !pg->distant && !pg->all ? pg->count : 0;
     }
     uint32_t items = cells + cones;
-    photon_importance imp;
-    if (!photon_importance_build(&imp, s)) {
-        photon_importance_free(&imp);
-        return PHOS_ERROR_OUT_OF_MEMORY;
-    }
     float *weights = malloc(sizeof(float) * items);
     uint32_t *item_group = malloc(sizeof(uint32_t) * items);
     uint32_t *group_pilots = calloc(aim->group_count, sizeof(uint32_t));
@@ -603,7 +598,7 @@ static phos_status weigh_by_pilots(const scene *s, const photon_trace_settings *
             for (uint32_t k = 0; !pg->all && k < pg->count; k++)
                 item_group[base + pg->first + k] = g;
         }
-        pilot p = {s, ps, aim, &imp, cells, item_group, group_pilots, weights};
+        pilot p = {s, ps, aim, imp, cells, item_group, group_pilots, weights};
         if (!parallel_for(items, parallel_thread_count(ps->threads), pilot_item, &p, cancel))
             st = PHOS_ERROR_CANCELLED;
         else if (!projection_map_set_weights(aim, s, weights) || !projection_map_set_cone_weights(aim, weights + cells))
@@ -612,9 +607,22 @@ static phos_status weigh_by_pilots(const scene *s, const photon_trace_settings *
     free(weights);
     free(item_group);
     free(group_pilots);
-    photon_importance_free(&imp);
     *weighed = st == PHOS_OK;
     return st;
+}
+
+/* Where the camera reads global photons (photon_importance.h), built once
+ * when the aim or the test for an unread map first asks for it. */
+typedef struct view_pilot {
+    photon_importance imp;
+    int state; /* 0: not built, 1: built, -1: out of memory */
+} view_pilot;
+
+static const photon_importance *view_pilot_get(view_pilot *v, const scene *s)
+{
+    if (v->state == 0)
+        v->state = photon_importance_build(&v->imp, s) ? 1 : -1;
+    return v->state == 1 ? &v->imp : NULL;
 }
 
 /* Global photons aimed (docs/algorithms.md §3.1): lamps and emissive
@@ -626,7 +634,7 @@ static phos_status weigh_by_pilots(const scene *s, const photon_trace_settings *
  * freed) where no light gains by it: every lamp among the objects, as in
  * a closed room, and no distant light with a camera. */
 static phos_status aim_global(const scene *s, const photon_trace_settings *ps, projection_map *aim, int *aimed,
-                              int *at_view, atomic_int *cancel)
+                              int *at_view, view_pilot *view, atomic_int *cancel)
 {
     *aimed = *at_view = 0;
     if (!projection_map_build_global(aim, s))
@@ -645,7 +653,8 @@ static phos_status aim_global(const scene *s, const photon_trace_settings *ps, p
             projection_map_free(aim);
         return PHOS_OK;
     }
-    phos_status st = weigh_by_pilots(s, ps, aim, cancel, at_view);
+    const photon_importance *imp = view_pilot_get(view, s);
+    phos_status st = imp ? weigh_by_pilots(s, ps, aim, imp, cancel, at_view) : PHOS_ERROR_OUT_OF_MEMORY;
     if (st != PHOS_OK)
         projection_map_free(aim);
     else
@@ -686,6 +695,27 @@ static phos_status trace_caustic_map(const scene *s, const photon_trace_settings
     return st;
 }
 
+/* The global map's photon count: none where the render would not read
+ * the map (photon_trace_settings.gathers_only) because none of the
+ * pilot's gathers from what the camera sees finds a surface, as around a
+ * lone object in an empty world (Blender's default cube): every gather
+ * leaves for the sky, and tracing the map would be time spent on photons
+ * nothing reads. The render then path-traces its gathers (render.c), so a
+ * gather the pilot missed still gets its light. */
+static phos_status global_target(const scene *s, const photon_trace_settings *ps, view_pilot *view,
+                                 uint32_t *target)
+{
+    *target = ps->global_photons;
+    if (!*target || !ps->gathers_only || !s->has_camera)
+        return PHOS_OK;
+    const photon_importance *imp = view_pilot_get(view, s);
+    if (!imp)
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    if (imp->gather_hits == 0)
+        *target = 0;
+    return PHOS_OK;
+}
+
 phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, photon_maps *out, atomic_int *cancel,
                               photon_trace_progress *progress)
 {
@@ -693,20 +723,27 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     if (progress)
         atomic_store(&progress->map, PHOS_MAP_GLOBAL);
     projection_map global_aim;
+    view_pilot view = {0};
     int aimed = 0, at_view = 0;
-    phos_status st =
-        ps->global_photons && !ps->unaimed ? aim_global(s, ps, &global_aim, &aimed, &at_view, cancel) : PHOS_OK;
+    uint32_t target;
+    phos_status st = global_target(s, ps, &view, &target);
+    if (st == PHOS_OK && target && !ps->unaimed)
+        st = aim_global(s, ps, &global_aim, &aimed, &at_view, &view, cancel);
+    if (view.state == 1)
+        photon_importance_free(&view.imp);
     if (st != PHOS_OK)
         return st;
     const projection_map *ga = aimed ? &global_aim : NULL;
-    st = trace_map(s, ps, MAP_GLOBAL, ga, ps->global_photons, &kept, &out->global_emitted, cancel, progress, 0);
+    st = trace_map(s, ps, MAP_GLOBAL, ga, target, &kept, &out->global_emitted, cancel, progress, 0);
     if (st == PHOS_OK)
         st = fill_map(&out->global, &kept, out->global_emitted, parallel_thread_count(ps->threads));
     uint32_t global_count = kept.count;
     if (st == PHOS_OK && global_count > 0)
         st = trace_radiance_sites(s, ps, ga, out, (global_count + RADIANCE_SITE_STRIDE - 1) / RADIANCE_SITE_STRIDE,
                                   cancel, progress);
-    out->aimed_at_view = at_view;
+    /* A map left out for this view is as much the view's as an aimed one:
+     * a final render after a camera move traces it again. */
+    out->aimed_at_view = at_view || (ps->global_photons && !target);
     if (aimed)
         projection_map_free(&global_aim);
     if (st == PHOS_OK)
@@ -720,7 +757,10 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
 void photon_maps_note_short(photon_maps *m, const scene *s, const photon_trace_settings *ps)
 {
     int caustic_traced = ps->caustic_photons > 0 && scene_can_scatter_caustic(s, ps->caustic_roughness);
-    m->short_maps = (ps->global_photons && m->global.count < ps->global_photons ? 1u << PHOS_MAP_GLOBAL : 0u) |
+    /* A global map that emitted nothing was not traced, not cut short. */
+    m->short_maps = (ps->global_photons && m->global_emitted && m->global.count < ps->global_photons
+                         ? 1u << PHOS_MAP_GLOBAL
+                         : 0u) |
                     (caustic_traced && m->caustic.count < ps->caustic_photons ? 1u << PHOS_MAP_CAUSTIC : 0u);
 }
 

@@ -18,7 +18,9 @@ typedef struct photon_maps {
     photon_map caustic;        /* paths L S+ D */
     photon_map radiance;       /* Christensen 1999: power = outgoing radiance W/(m²·sr),
                                   direction and normal bits = the surface normal on the lit side */
-    uint64_t global_emitted;   /* photon paths emitted to fill each map */
+    uint64_t global_emitted;   /* photon paths emitted to fill each map; 0 for a global map not
+                                  traced (no light, or no gather would read it: gathers then path-trace
+                                  instead, render.c) */
     uint64_t caustic_emitted;  /* by the caustic pass itself */
     uint32_t caustic_reused;   /* of the caustic map's photons, those the global pass traced */
     /* Where radiance photons will be computed (as many as a quarter of the
@@ -52,6 +54,9 @@ typedef struct photon_trace_settings {
                                   photons (bsdf.h, closure_scatters_caustic) */
     uint32_t unaimed;          /* 1: the global map's lights emit over their whole distribution (the
                                   tests' reference for aimed maps); 0 in every render */
+    uint32_t gathers_only;     /* 1: the render reads the global map only at the hits of gathers
+                                  from surfaces (render_global_read_by_gathers), so a map that no
+                                  gather from what the camera sees can reach is not traced */
 } photon_trace_settings;
 
 /* What the maps depend on besides the scene, as 32-bit words (floats by

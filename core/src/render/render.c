@@ -479,6 +479,22 @@ static phos_status trace_photons(render *r)
     return st;
 }
 
+/* Once the maps are complete (traced, loaded or given): a global map not
+ * traced, because no gather the camera's pilot sent found a surface
+ * (photon_trace.c) or no light emits, is not read. Gathers path-trace
+ * onward instead, which is consistent, and costs nothing where they only
+ * leave for the sky; maps loaded or kept from a render that did not trace
+ * theirs read so for any view. */
+static void settle_gathers(render *r)
+{
+    integrator_settings *is = &r->integrator;
+    if (!r->use_maps || is->cache_inner != &indirect_final_gather || r->maps->global_emitted != 0)
+        return;
+    is->cache_inner = &indirect_path_hemisphere;
+    if (!r->use_cache)
+        is->indirect = is->cache_inner;
+}
+
 /* Samples [first, end) of every tile, delivered if `delivers`. */
 static phos_status sweep(render *r, uint32_t first, uint32_t end, int delivers)
 {
@@ -521,6 +537,8 @@ static phos_status render_pass(render *r)
 /* Runs one stage of the plan (stages.h). */
 static phos_status run_stage(render *r, uint32_t stage)
 {
+    if (!stage_is_photon_stage(stage))
+        settle_gathers(r);
     switch (stage) {
     case PHOS_STAGE_TRACING_PHOTONS:
         return trace_photons(r);
@@ -678,6 +696,7 @@ int render_prepare(render *r)
         return 0;
     photon_trace_settings *ps = &r->photon_settings;
     ps->global_photons = render_global_photons(rs);
+    ps->gathers_only = render_global_read_by_gathers(rs) != 0;
     ps->caustic_photons = rs->caustic_photons;
     ps->max_emitted = (uint64_t)rs->max_photons_emitted_millions * 1000000u;
     ps->max_bounces = rs->max_bounces;

@@ -135,6 +135,12 @@ uint32_t render_global_photons(const phos_render_settings *rs)
     return read ? rs->global_photons : 0;
 }
 
+int render_global_read_by_gathers(const phos_render_settings *rs)
+{
+    return rs->integrator == PHOS_INTEGRATOR_PHOTON && rs->photon_view == PHOS_PHOTON_VIEW_FINAL_GATHER &&
+           !(rs->pass_mask & ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_PHOTONS)));
+}
+
 int render_keeps_sums(const phos_render_settings *rs)
 {
     uint32_t ends[RENDER_MAX_SAMPLE_PASSES];

@@ -58,6 +58,10 @@ int render_progressive_caustics(const phos_render_settings *rs);
  * map. The tracing (render.c) and the memory estimate (memory.c) both
  * ask here. */
 uint32_t render_global_photons(const phos_render_settings *rs);
+/* Whether the render reads the global map only where gathers from surfaces
+ * land (final gathering, and the irradiance cache's records made by it):
+ * no fast view, no debug pass of the map (photon_trace_settings.gathers_only). */
+int render_global_read_by_gathers(const phos_render_settings *rs);
 
 /* The samples per pixel that read the caustic map at their first vertex
  * when only a share of them do: ⌈caustic_sample_share × samples⌉, at
