@@ -1028,8 +1028,12 @@ PHOS_API phos_status phos_render_set_cache_file(phos_render *render, uint32_t ki
  * a camera change unless any_view is 1 (they stay an unbiased map for any
  * view, if a less dense one where the first camera did not look; the
  * viewport takes them, a final render should not, so that its image does
- * not depend on an earlier view). Also refused for a render that uses no
- * maps or reads or writes its photon maps' file. */
+ * not depend on an earlier view). So are maps without a global map
+ * because no gather from the first camera's view would have read one (an
+ * object alone in an empty world): a render given them path-traces its
+ * gathers, right for any view but slower where gathers find surfaces.
+ * Also refused for a render that uses no maps or reads or writes its
+ * photon maps' file. */
 typedef struct phos_photon_maps phos_photon_maps;
 PHOS_API phos_status phos_render_keep_photon_maps(phos_render *render, phos_photon_maps **out_maps);
 PHOS_API phos_status phos_render_use_photon_maps(phos_render *render, phos_photon_maps *maps, uint32_t any_view);
