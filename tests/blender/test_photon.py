@@ -481,7 +481,11 @@ SHORT_MAP_SCRIPT = r"""
 import bpy
 import phostest as pt
 sc = pt.reset_file()
-pt.add_cube(sc, "Cube", size=1.0, material=pt.diffuse("Grey", (0.6, 0.6, 0.6)))
+grey = pt.diffuse("Grey", (0.6, 0.6, 0.6))
+pt.add_cube(sc, "Cube", size=1.0, material=grey)
+# A floor the cube's gathers reach: without anything to read it, the
+# global map would not be traced at all (docs/algorithms.md §3.1).
+pt.add_plane(sc, "Floor", size=10.0, location=(0, 0, -0.5), material=grey)
 pt.add_light(sc, 'SPOT', 500.0, location=(2, -1, 3), target=(4, -2, 6), spot_size=0.8)
 pt.set_world(sc, (0, 0, 0), 0.0)
 pt.add_camera(sc)
@@ -495,9 +499,10 @@ print("SHORT-MAP-SCRIPT-DONE")
 
 
 def test_short_map_is_reported(tmp_path):
-    """A spot turned away from the only object lights nothing: the global
-    pass stops at its probe of 1 M paths instead of emitting the 50 M the
-    cap allows, and the render says so in a warning naming the map."""
+    """A spot turned away from the cube and its floor lights nothing: the
+    global pass stops at its probe of 1 M paths instead of emitting the
+    50 M the cap allows, and the render says so in a warning naming the
+    map."""
     rc, out = pt.run_script(SHORT_MAP_SCRIPT, tmp_path, timeout=120)
     assert rc == 0 and "SHORT-MAP-SCRIPT-DONE" in out, out[-3000:]
     assert re.search(r"the global photon map holds 0 of 200,000 photons", out), out[-3000:]
