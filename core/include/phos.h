@@ -898,7 +898,7 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
     USER(uint32_t, global_estimate_photons, 50, 1, 10000, global_estimate_photons, NUMBER, 1000,  \
          "Global Estimate", "Nearest photons used in a radiance estimate of the global map")      \
     /* 20: against references that resolve the caustic (Cycles on the Cornell              \
-     * box, progressive photon mapping on the metal ring) it had 1.4× and 3.3×                 \
+     * box, progressive photon mapping on the metal ring) it had 1.4× and 1.6–3.3×             \
      * less error × time than 80 (docs/benchmarks.md, "The caustic k chosen                    \
      * against consistent references"). */                                                    \
     USER(uint32_t, caustic_estimate_photons, 20, 1, 10000, caustic_estimate_photons, NUMBER,      \

@@ -9,6 +9,8 @@
 
 /* The passes that need the photon maps whatever the integrator. */
 #define PHOTON_DEBUG_PASSES ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_CAUSTIC_MAP) | (1u << PHOS_PASS_PHOTONS))
+/* Those of them that read the global map itself, not through gathers. */
+#define GLOBAL_MAP_DEBUG_PASSES ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_PHOTONS))
 
 int stage_plan_uses_cache(const phos_render_settings *rs)
 {
@@ -131,14 +133,14 @@ int render_progressive_caustics(const phos_render_settings *rs)
 uint32_t render_global_photons(const phos_render_settings *rs)
 {
     int read = !(rs->integrator == PHOS_INTEGRATOR_PHOTON && rs->photon_view == PHOS_PHOTON_VIEW_PATH_TRACED) ||
-               (rs->pass_mask & ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_PHOTONS)));
+               (rs->pass_mask & GLOBAL_MAP_DEBUG_PASSES);
     return read ? rs->global_photons : 0;
 }
 
 int render_global_read_by_gathers(const phos_render_settings *rs)
 {
     return rs->integrator == PHOS_INTEGRATOR_PHOTON && rs->photon_view == PHOS_PHOTON_VIEW_FINAL_GATHER &&
-           !(rs->pass_mask & ((1u << PHOS_PASS_PHOTON_MAP) | (1u << PHOS_PASS_PHOTONS)));
+           !(rs->pass_mask & GLOBAL_MAP_DEBUG_PASSES);
 }
 
 int render_keeps_sums(const phos_render_settings *rs)
