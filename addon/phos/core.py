@@ -600,6 +600,12 @@ class Render(_Handle):
         self._raise_on(self._lib.phos_render_set_cache_file(self.handle, kind, os.fsencode(path), mode),
                        "setting the cache file")
 
+    def add_view(self, camera):
+        """Before start(): a further view (a core camera, new_camera()) the
+        photon maps are aimed at and the irradiance cache is filled from,
+        after the scene's camera (a farm's cache job, docs/farm.md)."""
+        self._raise_on(self._lib.phos_render_add_view(self.handle, ctypes.byref(camera)), "adding a view")
+
     def keep_photon_maps(self):
         """The photon maps of this render as a PhotonMaps that outlives it,
         once its photon stages have finished; None before that, or for a

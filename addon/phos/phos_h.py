@@ -22,6 +22,7 @@ PHOS_SHADER_MAX_TABLE = 65536
 PHOS_MAX_CLOSURES = 16
 PHOS_MAX_MESH_ATTRIBUTES = 64
 PHOS_WORLD_NO_MATERIAL = 4294967295
+PHOS_MAX_VIEWS = 65536
 
 # enum phos_status
 PHOS_OK = 0
@@ -728,6 +729,7 @@ class phos_render_settings(ctypes.Structure):
         ("filter_target", ctypes.c_uint32),
         ("filter_width", ctypes.c_float),
         ("transparent_background", ctypes.c_uint32),
+        ("caches_only", ctypes.c_uint32),
         ("pass_mask", ctypes.c_uint32),
         ("global_photons", ctypes.c_uint32),
         ("caustic_photons", ctypes.c_uint32),
@@ -853,6 +855,7 @@ FUNCTIONS = {
     "phos_render_destroy": (None, [ctypes.c_void_p]),
     "phos_render_error": (ctypes.c_char_p, [ctypes.c_void_p]),
     "phos_render_set_cache_file": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32, ctypes.c_char_p, ctypes.c_uint32]),
+    "phos_render_add_view": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_camera_desc)]),
     "phos_render_keep_photon_maps": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
     "phos_render_use_photon_maps": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint32]),
     "phos_photon_maps_release": (None, [ctypes.c_void_p]),
@@ -979,6 +982,11 @@ RENDER_SETTINGS = (
         user=False, prop=None, kind=None, enum=None, soft_max=None,
         label=None,
         description='1: the world is not seen by camera rays, alpha = coverage'),
+    RenderSetting(
+        name='caches_only', ctype='uint32_t', default=0, min=0, max=1,
+        user=False, prop=None, kind=None, enum=None, soft_max=None,
+        label=None,
+        description="1: trace the photon maps and fill the irradiance cache, render no pixel (a render farm's cache job, with phos_render_set_cache_file saving them)"),
     RenderSetting(
         name='pass_mask', ctype='uint32_t', default=1, min=0, max=16383,
         user=False, prop=None, kind=None, enum=None, soft_max=None,
@@ -1128,6 +1136,7 @@ __all__ = (
     'PHOS_MAX_CLOSURES',
     'PHOS_MAX_MESH_ATTRIBUTES',
     'PHOS_WORLD_NO_MATERIAL',
+    'PHOS_MAX_VIEWS',
     'PHOS_OK',
     'PHOS_ERROR_INVALID_ARGUMENT',
     'PHOS_ERROR_INVALID_STATE',

@@ -877,6 +877,9 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
          "Width of the Blackman-Harris pixel filter (0 is a box of one pixel)")                   \
     HOST(uint32_t, transparent_background, 0, 0, 1,                                               \
          "1: the world is not seen by camera rays, alpha = coverage")                             \
+    HOST(uint32_t, caches_only, 0, 0, 1,                                                          \
+         "1: trace the photon maps and fill the irradiance cache, render no pixel "               \
+         "(a render farm's cache job, with phos_render_set_cache_file saving them)")              \
     HOST(uint32_t, pass_mask, 1u << PHOS_PASS_COMBINED, 0, (1u << PHOS_PASS_COUNT) - 1u,          \
          "Bit (1 << pass) per enabled pass; COMBINED is always on")                               \
     /* Photon mapping (PHOTON integrator, and the photon debug passes). */                        \
@@ -1005,6 +1008,19 @@ enum phos_cache_file_mode {
 PHOS_API phos_status phos_render_set_cache_file(phos_render *render, uint32_t kind, const char *path,
                                                 uint32_t mode);
 
+/* More views the caches are made for, besides the scene's camera: a
+ * render farm's cache job makes one photon map and one irradiance cache
+ * for a whole camera path (docs/farm.md). Before phos_render_start, in
+ * order, at most PHOS_MAX_VIEWS; the camera is checked as
+ * phos_scene_set_camera checks it. The global photons are aimed at what
+ * every view reads, and the irradiance cache's pre-pass runs from each
+ * view after the camera's, adding records only where those before leave
+ * a gap, so the result depends on the views' order and nothing else. The
+ * image is still rendered from the scene's camera (or not at all with
+ * caches_only). */
+#define PHOS_MAX_VIEWS 65536u
+PHOS_API phos_status phos_render_add_view(phos_render *render, const phos_camera_desc *camera);
+
 /* Photon maps kept between renders of one scene: the viewport keeps them
  * while only the view moves, and a second render of an unchanged scene
  * (Blender's Persistent Data) reads them instead of tracing again. Maps
@@ -1052,8 +1068,8 @@ enum phos_render_state {
  * for a render given maps by phos_render_use_photon_maps): WAITING, then the
  * photon stages if it uses photon maps (the PHOTON integrator or a photon
  * debug pass; PRECOMPUTING_RADIANCE for final gathering only), the
- * irradiance cache's pre-pass if the cache is on, RENDERING, FILTERING if
- * a noise filter is on, FINISHED. */
+ * irradiance cache's pre-pass if the cache is on, RENDERING and FILTERING
+ * if a noise filter is on (neither with caches_only), FINISHED. */
 enum phos_stage {
     PHOS_STAGE_WAITING = 0,
     PHOS_STAGE_TRACING_PHOTONS = 1,

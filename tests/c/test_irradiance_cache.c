@@ -510,6 +510,113 @@ static void test_cache_file_round_trip(void)
     phos_scene_destroy(s);
 }
 
+/* A render farm's cache job (docs/farm.md): one render that renders no
+ * pixel (caches_only) fills the cache from the scene's camera A and from
+ * a further view B (phos_render_add_view), and saves it. A render from B
+ * that loads it finds its lookups covered as well as B's own pre-pass
+ * covers them, where A's cache alone leaves gaps; the file is the same
+ * for 1 and 2 threads; a view is checked as the camera is. */
+static int save_cache_for_views(phos_scene *s, const phos_render_settings *rs, const phos_camera_desc *views,
+                                uint32_t view_count, const char *path, uint32_t *records)
+{
+    phos_render *r = NULL;
+    if (phos_render_create(s, rs, &r) != PHOS_OK)
+        return 0;
+    int ok = phos_render_set_cache_file(r, PHOS_CACHE_IRRADIANCE, path, PHOS_CACHE_FILE_SAVE) == PHOS_OK;
+    for (uint32_t v = 0; v < view_count && ok; v++)
+        ok = phos_render_add_view(r, &views[v]) == PHOS_OK;
+    phos_stage_info plan[PHOS_STAGE_COUNT];
+    uint32_t stages = 0;
+    ok = ok && phos_render_stages(r, plan, PHOS_STAGE_COUNT, &stages) == PHOS_OK;
+    for (uint32_t i = 0; i < stages; i++)
+        CHECK_MSG(plan[i].id != PHOS_STAGE_RENDERING, "a caches_only render plans its rendering stage");
+    phos_progress p;
+    ok = ok && phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK &&
+         phos_render_progress(r, &p) == PHOS_OK;
+    if (ok)
+        *records = p.cache_records;
+    else
+        printf("  cache job failed: %s\n", phos_render_error(r));
+    phos_render_destroy(r);
+    return ok;
+}
+
+static int same_file(const char *a, const char *b)
+{
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    int same = fa && fb;
+    while (same) {
+        int ca = fgetc(fa), cb = fgetc(fb);
+        same = ca == cb;
+        if (ca == EOF || cb == EOF)
+            break;
+    }
+    if (fa)
+        fclose(fa);
+    if (fb)
+        fclose(fb);
+    return same;
+}
+
+static void test_views_fill_the_cache(void)
+{
+    const char *path_a = "/tmp/phos_test_views_a.phosirc", *path_ab = "/tmp/phos_test_views_ab.phosirc",
+               *path_ab1 = "/tmp/phos_test_views_ab1.phosirc";
+    char msg[512];
+    phos_scene *s = test_cornell_box(0);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    phos_camera_desc b = test_camera_pitched(0.3f, 3.5f, 1.2f, -1.5708f, 0.45f);
+    phos_render_settings rs = cache_settings(PHOS_INTEGRATOR_PATH, 40, 4, 9);
+    rs.pass_mask = 1u << PHOS_PASS_COMBINED;
+    rs.caches_only = 1;
+    uint32_t records_a = 0, records_ab = 0, records_ab1 = 0;
+    CHECK(save_cache_for_views(s, &rs, NULL, 0, path_a, &records_a));
+    CHECK(save_cache_for_views(s, &rs, &b, 1, path_ab, &records_ab));
+    rs.threads = 1;
+    CHECK(save_cache_for_views(s, &rs, &b, 1, path_ab1, &records_ab1));
+    CHECK_MSG(same_file(path_ab, path_ab1), "the cache of views A and B differs between 1 and 2 threads");
+    CHECK_MSG(records_ab > records_a, "view B added no record (%u, A alone %u)", records_ab, records_a);
+
+    /* Bad views are refused as a bad camera is, and not after start. */
+    phos_render *r = NULL;
+    CHECK(phos_render_create(s, &rs, &r) == PHOS_OK);
+    phos_camera_desc bad = b;
+    bad.frame_max[0] = bad.frame_min[0];
+    CHECK(phos_render_add_view(r, &bad) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(phos_render_error(r), "frame") != NULL, "%s", phos_render_error(r));
+    CHECK(phos_render_add_view(r, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_render_add_view(NULL, &b) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
+    CHECK(phos_render_add_view(r, &b) == PHOS_ERROR_INVALID_STATE);
+    phos_render_destroy(r);
+
+    /* Rendered from B: its own pre-pass, A's cache, A and B's cache. */
+    CHECK(phos_scene_set_camera(s, &b) == PHOS_OK && phos_scene_commit(s) == PHOS_OK);
+    rs.caches_only = 0;
+    rs.threads = 0;
+    render_out own, from_a, from_ab;
+    CHECK(render_with_file(s, &rs, path_a, PHOS_CACHE_FILE_NONE, &own, msg, sizeof(msg)));
+    CHECK(render_with_file(s, &rs, path_a, PHOS_CACHE_FILE_LOAD, &from_a, msg, sizeof(msg)));
+    CHECK(render_with_file(s, &rs, path_ab, PHOS_CACHE_FILE_LOAD, &from_ab, msg, sizeof(msg)));
+    double f_own = (double)own.progress.cache_interpolated / (double)own.progress.cache_lookups,
+           f_a = (double)from_a.progress.cache_interpolated / (double)from_a.progress.cache_lookups,
+           f_ab = (double)from_ab.progress.cache_interpolated / (double)from_ab.progress.cache_lookups;
+    printf("  view B's lookups covered: own pre-pass %.4f, A's cache %.4f, A and B's %.4f (%u, %u records)\n",
+           f_own, f_a, f_ab, records_a, records_ab);
+    CHECK_MSG(f_ab >= f_own - 0.002, "A and B's cache covers %.4f of B's lookups, B's own %.4f", f_ab, f_own);
+    CHECK_MSG(f_a < f_ab - 0.01, "A's cache alone already covers B (%.4f): the test shows nothing", f_a);
+    CHECK(from_ab.progress.cache_rays_traced == 0);
+    render_out_free(&own);
+    render_out_free(&from_a);
+    render_out_free(&from_ab);
+    remove(path_a);
+    remove(path_ab);
+    remove(path_ab1);
+    phos_scene_destroy(s);
+}
+
 /* The photon maps kept in a file: PHOTON with the maps read back renders
  * the image of the render that traced them, bit for bit, and (with the
  * irradiance cache read too) without tracing a photon or casting a
@@ -575,5 +682,6 @@ int main(void)
     test_cache_is_deterministic();
     test_cache_file_round_trip();
     test_photon_map_file_round_trip();
+    test_views_fill_the_cache();
     return test_summary("test_irradiance_cache");
 }

@@ -467,6 +467,46 @@ static void check_unread_map_not_traced(void)
     phos_scene_destroy(b);
 }
 
+/* A render farm's cache job aims one map at a whole camera path
+ * (phos_render_add_view, docs/farm.md): the closed box's outside view A
+ * with view B inside added traces the global map that A alone would leave
+ * out, in a render that renders no pixel; B's render that loads it stores
+ * its photons and renders PATH's image. */
+static void check_views_aim_the_map(void)
+{
+    const char *path = "/tmp/phos_test_views.phosmap";
+    remove(path);
+    phos_scene *a = closed_box(0), *b = closed_box(1);
+    CHECK(a && b);
+    if (!a || !b)
+        return;
+    phos_render_settings photon = unread_settings(PHOS_INTEGRATOR_PHOTON), path_rs = unread_settings(PHOS_INTEGRATOR_PATH);
+    path_rs.samples = 64;
+    phos_render_settings job = photon;
+    job.caches_only = 1;
+    phos_camera_desc inside = test_camera_pitched(0.0f, -0.9f, 0.0f, 1.5708f, 0.8f);
+    phos_render *r = NULL;
+    phos_progress p = {0};
+    CHECK(phos_render_create(a, &job, &r) == PHOS_OK);
+    CHECK(phos_render_set_cache_file(r, PHOS_CACHE_PHOTON_MAPS, path, PHOS_CACHE_FILE_SAVE) == PHOS_OK);
+    CHECK(phos_render_add_view(r, &inside) == PHOS_OK);
+    CHECK(phos_render_start(r) == PHOS_OK && phos_render_wait(r, -1.0) == PHOS_OK);
+    CHECK(phos_render_progress(r, &p) == PHOS_OK);
+    phos_render_destroy(r);
+    printf("closed box, view A with view B added: %u photons stored\n", p.photons_stored);
+    CHECK_MSG(p.photons_stored >= 20000, "%u photons stored for the views A and B", p.photons_stored);
+    uint32_t pixels = photon.width * photon.height, loaded, unused;
+    float *img = render_with_maps_file(b, &photon, path, PHOS_CACHE_FILE_LOAD, &loaded);
+    float *ref = render_with_maps_file(b, &path_rs, NULL, 0, &unused);
+    CHECK(img && ref && loaded >= 20000);
+    if (img && ref)
+        check_same_as_path("view B, the map of views A and B loaded", img, ref, pixels);
+    free(img), free(ref);
+    remove(path);
+    phos_scene_destroy(a);
+    phos_scene_destroy(b);
+}
+
 int main(void)
 {
     check_unbiased_and_worth_it(LAMP_POINT, 0, "point lamp, cube on nothing", 5.0);
@@ -479,5 +519,6 @@ int main(void)
     check_hopeless_map_stops();
     check_cones_weighed_by_the_camera();
     check_unread_map_not_traced();
+    check_views_aim_the_map();
     return test_summary("test_photon_aiming");
 }

@@ -216,7 +216,9 @@ static void test_set_camera(phos_scene *s, float x, float y, float z, float tan_
 
 /* Camera at (x, y, z) pitched down by `pitch` radians from looking along
  * −Z (a rotation about X: −Z maps to (0, sin p, −cos p)). */
-static void test_set_camera_pitched(phos_scene *s, float x, float y, float z, float pitch, float tan_half)
+/* A camera at (x, y, z) looking along −z turned by `pitch` about x
+ * (π/2: along +y), of square frame ±tan_half. */
+static phos_camera_desc test_camera_pitched(float x, float y, float z, float pitch, float tan_half)
 {
     phos_camera_desc c;
     phos_camera_desc_init(&c);
@@ -227,6 +229,12 @@ static void test_set_camera_pitched(phos_scene *s, float x, float y, float z, fl
     c.frame_max[0] = c.frame_max[1] = tan_half;
     c.clip_start = 1e-3f;
     c.clip_end = 1e4f;
+    return c;
+}
+
+static void test_set_camera_pitched(phos_scene *s, float x, float y, float z, float pitch, float tan_half)
+{
+    phos_camera_desc c = test_camera_pitched(x, y, z, pitch, tan_half);
     phos_scene_set_camera(s, &c);
 }
 

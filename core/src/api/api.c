@@ -738,27 +738,37 @@ phos_status phos_scene_set_world(phos_scene *s, const phos_world_desc *d)
     return PHOS_OK;
 }
 
-phos_status phos_scene_set_camera(phos_scene *s, const phos_camera_desc *d)
+/* What is wrong with a camera, or NULL: for the scene's camera and a
+ * render's further views alike. */
+static const char *camera_problem(const phos_camera_desc *d)
 {
-    CHECK_EDITABLE(s, "phos_scene_set_camera", d);
     if (d->type > PHOS_CAMERA_ORTHOGRAPHIC)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: unknown type %u", d->type);
+        return "unknown type";
     if (!all_finite(d->transform, 12))
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: the transform must be finite");
+        return "the transform must be finite";
     const float *m = d->transform;
     float det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
                 m[2] * (m[4] * m[9] - m[5] * m[8]);
     if (!(fabsf(det) > 1e-12f))
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: the transform is singular (zero scale?)");
+        return "the transform is singular (zero scale?)";
     if (!all_finite(d->frame_min, 2) || !all_finite(d->frame_max, 2) || !(d->frame_min[0] < d->frame_max[0]) ||
         !(d->frame_min[1] < d->frame_max[1]))
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: the frame must be finite with min < max");
+        return "the frame must be finite with min < max";
     if (!isfinite(d->aperture_radius) || d->aperture_radius < 0.0f)
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: aperture radius must be finite and >= 0");
+        return "aperture radius must be finite and >= 0";
     if (d->aperture_radius > 0.0f && !(isfinite(d->focus_distance) && d->focus_distance > 0.0f))
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: focus distance must be > 0 with depth of field");
+        return "focus distance must be > 0 with depth of field";
     if (!(isfinite(d->clip_start) && d->clip_start >= 0.0f) || !(d->clip_end > d->clip_start))
-        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: clipping needs 0 <= start < end");
+        return "clipping needs 0 <= start < end";
+    return NULL;
+}
+
+phos_status phos_scene_set_camera(phos_scene *s, const phos_camera_desc *d)
+{
+    CHECK_EDITABLE(s, "phos_scene_set_camera", d);
+    const char *problem = camera_problem(d);
+    if (problem)
+        FAIL(s, PHOS_ERROR_INVALID_ARGUMENT, "camera: %s", problem);
     s->camera = *d;
     s->has_camera = 1;
     scene_changed(s, PHOS_CHANGE_CAMERA);
@@ -1000,7 +1010,7 @@ void phos_render_destroy(phos_render *r)
 
 const char *phos_render_error(const phos_render *r) { return r ? r->error : "the render handle is NULL"; }
 
-static phos_status cache_file_error(render *r, phos_status st, const char *msg)
+static phos_status render_refuse(render *r, phos_status st, const char *msg)
 {
     render_set_error(r, st, msg);
     return st;
@@ -1011,23 +1021,52 @@ phos_status phos_render_set_cache_file(phos_render *r, uint32_t kind, const char
     if (!r)
         return PHOS_ERROR_INVALID_ARGUMENT;
     if (kind >= PHOS_CACHE_KIND_COUNT)
-        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: unknown cache kind");
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: unknown cache kind");
     if (mode > PHOS_CACHE_FILE_LOAD)
-        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: unknown mode");
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: unknown mode");
     if (mode != PHOS_CACHE_FILE_NONE && (!path || !path[0]))
-        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: no file name");
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: no file name");
     if (path && strlen(path) >= sizeof(r->cache_path[0]))
-        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: the file name is longer than 1023 bytes");
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "set_cache_file: the file name is longer than 1023 bytes");
     pthread_mutex_lock(&r->lock);
     int started = r->started;
     pthread_mutex_unlock(&r->lock);
     if (started)
-        return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "set_cache_file: the render has started");
+        return render_refuse(r, PHOS_ERROR_INVALID_STATE, "set_cache_file: the render has started");
     if (kind == PHOS_CACHE_PHOTON_MAPS && mode != PHOS_CACHE_FILE_NONE && r->maps_given)
-        return cache_file_error(r, PHOS_ERROR_INVALID_STATE,
+        return render_refuse(r, PHOS_ERROR_INVALID_STATE,
                                 "set_cache_file: the render was given photon maps (phos_render_use_photon_maps)");
     snprintf(r->cache_path[kind], sizeof(r->cache_path[kind]), "%s", mode != PHOS_CACHE_FILE_NONE ? path : "");
     r->cache_file_mode[kind] = mode;
+    return PHOS_OK;
+}
+
+phos_status phos_render_add_view(phos_render *r, const phos_camera_desc *camera)
+{
+    if (!r)
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    if (!camera)
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "add_view: the camera is NULL");
+    char msg[128];
+    const char *problem = camera_problem(camera);
+    if (problem) {
+        snprintf(msg, sizeof(msg), "add_view: %s", problem);
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, msg);
+    }
+    pthread_mutex_lock(&r->lock);
+    int started = r->started;
+    pthread_mutex_unlock(&r->lock);
+    if (started)
+        return render_refuse(r, PHOS_ERROR_INVALID_STATE, "add_view: the render has started");
+    if (r->view_count >= PHOS_MAX_VIEWS)
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "add_view: more than 65536 views");
+    phos_camera_desc *views = realloc(r->views, sizeof(*views) * (r->view_count + 1u));
+    if (!views)
+        return render_refuse(r, PHOS_ERROR_OUT_OF_MEMORY, "add_view: out of memory");
+    views[r->view_count++] = *camera;
+    r->views = views;
+    r->cache_fill.views = r->photon_settings.views = views;
+    r->cache_fill.view_count = r->photon_settings.view_count = r->view_count;
     return PHOS_OK;
 }
 
@@ -1046,12 +1085,12 @@ phos_status phos_render_keep_photon_maps(phos_render *r, phos_photon_maps **out)
     if (!r)
         return PHOS_ERROR_INVALID_ARGUMENT;
     if (!out)
-        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "keep_photon_maps: the output pointer is NULL");
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "keep_photon_maps: the output pointer is NULL");
     *out = NULL;
     if (!r->use_maps)
-        return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "keep_photon_maps: this render uses no photon maps");
+        return render_refuse(r, PHOS_ERROR_INVALID_STATE, "keep_photon_maps: this render uses no photon maps");
     if (!atomic_load(&r->maps_complete))
-        return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "keep_photon_maps: the photon maps are not built yet");
+        return render_refuse(r, PHOS_ERROR_INVALID_STATE, "keep_photon_maps: the photon maps are not built yet");
     shared_maps_retain(r->shared);
     *out = r->shared;
     return PHOS_OK;
@@ -1064,13 +1103,13 @@ phos_status phos_render_use_photon_maps(phos_render *r, phos_photon_maps *maps, 
     if (!r)
         return PHOS_ERROR_INVALID_ARGUMENT;
     if (!maps)
-        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, "use_photon_maps: the maps are NULL");
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "use_photon_maps: the maps are NULL");
     if (render_started(r))
-        return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "use_photon_maps: the render has started");
+        return render_refuse(r, PHOS_ERROR_INVALID_STATE, "use_photon_maps: the render has started");
     if (!r->use_maps)
-        return cache_file_error(r, PHOS_ERROR_INVALID_STATE, "use_photon_maps: this render uses no photon maps");
+        return render_refuse(r, PHOS_ERROR_INVALID_STATE, "use_photon_maps: this render uses no photon maps");
     if (r->cache_file_mode[PHOS_CACHE_PHOTON_MAPS] != PHOS_CACHE_FILE_NONE)
-        return cache_file_error(r, PHOS_ERROR_INVALID_STATE,
+        return render_refuse(r, PHOS_ERROR_INVALID_STATE,
                                 "use_photon_maps: this render reads or writes its photon maps' file");
     if (maps == r->shared)
         return PHOS_OK;
@@ -1080,7 +1119,7 @@ phos_status phos_render_use_photon_maps(phos_render *r, phos_photon_maps *maps, 
                                            any_view != 0, detail, sizeof(detail));
     if (why) {
         snprintf(msg, sizeof(msg), "use_photon_maps: %s", why);
-        return cache_file_error(r, PHOS_ERROR_INVALID_ARGUMENT, msg);
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, msg);
     }
     shared_maps_retain(maps);
     shared_maps_release(r->shared);

@@ -17,6 +17,12 @@
  * records are inserted in candidate order when the pass ends. Every random
  * number a record draws depends only on the seed and its pixel.
  *
+ * A render farm's cache job fills one cache for a whole camera path: the
+ * passes run again from each further view (phos_render_add_view), in
+ * order, and add records only where those before left a gap. A view's
+ * candidates draw from streams split by the view's index, so that a
+ * pixel's record in one view does not repeat its numbers in another.
+ *
  * The passes cover the full frame even when a border is rendered: a
  * region's pixels then read the same cache as in the full frame, which is
  * what makes a border, or a render farm's split of a frame, identical to
@@ -38,7 +44,7 @@
                                       dimensions (a record's rays draw from streams split off it) */
 #define FILL_BLOCK 64              /* candidates per work item of the lookup phase */
 
-uint32_t irradiance_cache_fill_passes(const irradiance_cache_fill_settings *fs)
+static uint32_t passes_per_view(const irradiance_cache_fill_settings *fs)
 {
     uint32_t S = 1, levels = 0, edge = fs->width > fs->height ? fs->width : fs->height;
     while (2 * S <= fs->max_spacing && 2 * S <= edge) {
@@ -46,6 +52,11 @@ uint32_t irradiance_cache_fill_passes(const irradiance_cache_fill_settings *fs)
         levels++;
     }
     return 1 + 3 * levels;
+}
+
+uint32_t irradiance_cache_fill_passes(const irradiance_cache_fill_settings *fs)
+{
+    return passes_per_view(fs) * (1u + fs->view_count);
 }
 
 /* Pass i's grid: pixels (x, y) with x ≡ ox and y ≡ oy modulo step. */
@@ -70,6 +81,8 @@ typedef struct fill_job {
     const integrator_settings *is;
     const irradiance_cache_fill_settings *fs;
     integrator_scratch *scratch;
+    const phos_camera_desc *camera; /* the view being filled from */
+    uint32_t view;                  /* its index: 0 the scene's camera, then fs->views */
     uint32_t step, ox, oy, nx, ny; /* the pass's grid */
     uint32_t candidates;
     uint8_t *uncovered;            /* per candidate */
@@ -90,7 +103,7 @@ static void candidate_pixel(const fill_job *job, uint32_t i, uint32_t *x, uint32
 static sampler candidate_sampler(const fill_job *job, uint32_t x, uint32_t y)
 {
     sampler pixel = sampler_for_pixel(job->fs->sampler, job->fs->seed, x, y, 0, 1);
-    return sampler_split(&pixel, FILL_RECORD_STREAM);
+    return sampler_split(&pixel, FILL_RECORD_STREAM + job->view);
 }
 
 /* The first surface with a diffuse part along pixel (x, y)'s candidate
@@ -104,7 +117,7 @@ static int candidate_point(const fill_job *job, uint32_t x, uint32_t y, specular
     sampler smp = candidate_sampler(job, x, y);
     float2 u = sampler_2d(&smp, FILL_DIM_FILM);
     float2 lens = {0.5f, 0.5f}; /* the lens centre */
-    camera_ray ray = camera_generate_ray(&job->s->camera, ((float)x + u.x) / (float)fs->width,
+    camera_ray ray = camera_generate_ray(job->camera, ((float)x + u.x) / (float)fs->width,
                                          ((float)y + u.y) / (float)fs->height, lens);
     specular_chain chain = {STOP_AT_DIFFUSE, FILL_CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL, 0.0f};
     if (!specular_chain_follow(job->s, &chain, ray.o, ray.d, ray.tmin, ray.tmax, end))
@@ -133,9 +146,8 @@ static void lookup_block(void *ctx, uint32_t item, uint32_t thread)
 
 /* World size of a pixel at p (scene units): the spacing clamps are in
  * pixels so that records neither crowd nor thin out on screen. */
-static float pixel_footprint(const scene *s, const irradiance_cache_fill_settings *fs, vec3 p)
+static float pixel_footprint(const phos_camera_desc *c, const irradiance_cache_fill_settings *fs, vec3 p)
 {
-    const phos_camera_desc *c = &s->camera;
     float per_unit = (c->frame_max[0] - c->frame_min[0]) / (float)fs->width;
     if (c->type == PHOS_CAMERA_ORTHOGRAPHIC)
         return per_unit;
@@ -157,7 +169,7 @@ static void record_one(void *ctx, uint32_t item, uint32_t thread)
     sampler smp = candidate_sampler(job, x, y);
     light_context light = light_context_at(&end.sf);
     indirect_query q = {job->s, job->is, &end.sf, &light, &diffuse, end.wo, &smp, 0, 0, &job->scratch[thread]};
-    float fp = pixel_footprint(job->s, job->fs, end.sf.p), acc = job->c->accuracy;
+    float fp = pixel_footprint(job->camera, job->fs, end.sf.p), acc = job->c->accuracy;
     job->ok[item] = (uint8_t)irradiance_record_compute(&q, job->is->cache_inner->incoming, job->fs->rays,
                                                        acc * job->fs->min_spacing * fp,
                                                        acc * job->fs->max_spacing * fp, &job->made[item]);
@@ -213,16 +225,20 @@ phos_status irradiance_cache_fill(irradiance_cache *c, const scene *s, const int
                                   const irradiance_cache_fill_settings *fs, integrator_scratch *scratch,
                                   atomic_int *cancel, atomic_uint *passes_done, atomic_uint_fast64_t *rays_traced)
 {
-    uint32_t passes = irradiance_cache_fill_passes(fs);
-    fill_job job = {c, s, is, fs, scratch, 0, 0, 0, 0, 0, 0, NULL, NULL, NULL, NULL, rays_traced};
-    for (uint32_t i = 0; i < passes; i++) {
-        if (atomic_load(cancel))
-            return PHOS_ERROR_CANCELLED;
-        pass_grid(passes, i, &job.step, &job.ox, &job.oy);
-        phos_status st = fill_pass(&job, cancel);
-        if (st != PHOS_OK)
-            return st;
-        atomic_fetch_add(passes_done, 1u);
+    uint32_t passes = passes_per_view(fs);
+    fill_job job = {c, s, is, fs, scratch, &s->camera, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, NULL, NULL, rays_traced};
+    for (uint32_t view = 0; view <= fs->view_count; view++) {
+        job.view = view;
+        job.camera = view == 0 ? &s->camera : &fs->views[view - 1];
+        for (uint32_t i = 0; i < passes; i++) {
+            if (atomic_load(cancel))
+                return PHOS_ERROR_CANCELLED;
+            pass_grid(passes, i, &job.step, &job.ox, &job.oy);
+            phos_status st = fill_pass(&job, cancel);
+            if (st != PHOS_OK)
+                return st;
+            atomic_fetch_add(passes_done, 1u);
+        }
     }
     /* Neighbour clamping has shrunk radii since their records were
      * placed: the final tree, as a saved cache gets it. */

@@ -105,7 +105,25 @@ static void mark_gather(photon_importance *imp, const scene *s, const surface *s
         }
 }
 
-int photon_importance_build(photon_importance *imp, const scene *s)
+/* The pilot of one view: PILOT × PILOT camera rays through pixel centres,
+ * each followed to its first diffuse surface and that surface's gathers. */
+static void mark_view(photon_importance *imp, const scene *s, const phos_camera_desc *camera, uint32_t view)
+{
+    specular_chain c = {STOP_AT_DIFFUSE, CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL, 0.0f};
+    for (int j = 0; j < PILOT; j++)
+        for (int i = 0; i < PILOT; i++) {
+            float2 lens = {0.5f, 0.5f};
+            camera_ray ray = camera_generate_ray(camera, ((float)i + 0.5f) / PILOT, ((float)j + 0.5f) / PILOT, lens);
+            specular_chain_end end;
+            if (!specular_chain_follow(s, &c, ray.o, ray.d, ray.tmin, ray.tmax, &end))
+                continue;
+            mark(imp, end.sf.p, end.sf.ns);
+            mark_gather(imp, s, &end.sf, view * (PILOT * PILOT) + (uint32_t)(j * PILOT + i));
+        }
+}
+
+int photon_importance_build(photon_importance *imp, const scene *s, const phos_camera_desc *views,
+                            uint32_t view_count)
 {
     memset(imp, 0, sizeof(*imp));
     if (!s->has_camera)
@@ -118,16 +136,8 @@ int photon_importance_build(photon_importance *imp, const scene *s)
     imp->bits = calloc(((size_t)GRID * GRID * GRID * 6u + 7u) / 8u, 1);
     if (!imp->bits)
         return 0;
-    specular_chain c = {STOP_AT_DIFFUSE, CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL, 0.0f};
-    for (int j = 0; j < PILOT; j++)
-        for (int i = 0; i < PILOT; i++) {
-            float2 lens = {0.5f, 0.5f};
-            camera_ray ray = camera_generate_ray(&s->camera, ((float)i + 0.5f) / PILOT, ((float)j + 0.5f) / PILOT, lens);
-            specular_chain_end end;
-            if (!specular_chain_follow(s, &c, ray.o, ray.d, ray.tmin, ray.tmax, &end))
-                continue;
-            mark(imp, end.sf.p, end.sf.ns);
-            mark_gather(imp, s, &end.sf, (uint32_t)(j * PILOT + i));
-        }
+    mark_view(imp, s, &s->camera, 0);
+    for (uint32_t v = 0; v < view_count; v++)
+        mark_view(imp, s, &views[v], v + 1);
     return 1;
 }

@@ -29,9 +29,12 @@ typedef struct photon_importance {
                                    what the camera sees reads a global photon */
 } photon_importance;
 
-/* Marks what the camera sees and its gathers reach. Returns 0 when memory
- * is exhausted or the scene has no camera (then nothing is marked). */
-int photon_importance_build(photon_importance *imp, const scene *s);
+/* Marks what the camera sees and its gathers reach, and likewise for each
+ * of `view_count` further views (a render farm's cache job aims one map at
+ * a whole camera path, phos_render_add_view). Returns 0 when memory is
+ * exhausted or the scene has no camera (then nothing is marked). */
+int photon_importance_build(photon_importance *imp, const scene *s, const phos_camera_desc *views,
+                            uint32_t view_count);
 void photon_importance_free(photon_importance *imp);
 
 /* Whether a photon stored at p with normal n (facing the side it arrived

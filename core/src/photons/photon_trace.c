@@ -618,10 +618,10 @@ typedef struct view_pilot {
     int state; /* 0: not built, 1: built, -1: out of memory */
 } view_pilot;
 
-static const photon_importance *view_pilot_get(view_pilot *v, const scene *s)
+static const photon_importance *view_pilot_get(view_pilot *v, const scene *s, const photon_trace_settings *ps)
 {
     if (v->state == 0)
-        v->state = photon_importance_build(&v->imp, s) ? 1 : -1;
+        v->state = photon_importance_build(&v->imp, s, ps->views, ps->view_count) ? 1 : -1;
     return v->state == 1 ? &v->imp : NULL;
 }
 
@@ -653,7 +653,7 @@ static phos_status aim_global(const scene *s, const photon_trace_settings *ps, p
             projection_map_free(aim);
         return PHOS_OK;
     }
-    const photon_importance *imp = view_pilot_get(view, s);
+    const photon_importance *imp = view_pilot_get(view, s, ps);
     phos_status st = imp ? weigh_by_pilots(s, ps, aim, imp, cancel, at_view) : PHOS_ERROR_OUT_OF_MEMORY;
     if (st != PHOS_OK)
         projection_map_free(aim);
@@ -708,7 +708,7 @@ static phos_status global_target(const scene *s, const photon_trace_settings *ps
     *target = ps->global_photons;
     if (!*target || !ps->gathers_only || !s->has_camera)
         return PHOS_OK;
-    const photon_importance *imp = view_pilot_get(view, s);
+    const photon_importance *imp = view_pilot_get(view, s, ps);
     if (!imp)
         return PHOS_ERROR_OUT_OF_MEMORY;
     if (imp->gather_hits == 0)

@@ -57,6 +57,9 @@ typedef struct photon_trace_settings {
     uint32_t gathers_only;     /* 1: the render reads the global map only at the hits of gathers
                                   from surfaces (render_global_read_by_gathers), so a map that no
                                   gather from what the camera sees can reach is not traced */
+    const phos_camera_desc *views; /* more views the global map is aimed at, besides the scene's
+                                      camera (phos_render_add_view); not among the words below */
+    uint32_t view_count;
 } photon_trace_settings;
 
 /* What the maps depend on besides the scene, as 32-bit words (floats by

@@ -775,4 +775,5 @@ void render_free(render *r)
     progressive_caustics_free(&r->progressive);
     shared_maps_release(r->shared);
     irradiance_cache_free(&r->cache);
+    free(r->views);
 }

@@ -48,6 +48,8 @@ struct phos_render {
     atomic_uint_fast64_t gather_rays;               /* hemisphere rays of tiles and pre-pass */
     char cache_path[PHOS_CACHE_KIND_COUNT][1024];   /* phos_render_set_cache_file, by enum phos_cache_kind */
     uint32_t cache_file_mode[PHOS_CACHE_KIND_COUNT]; /* enum phos_cache_file_mode */
+    phos_camera_desc *views;       /* phos_render_add_view: more views the caches are made for */
+    uint32_t view_count;
 
     phos_tile *tiles;
     uint32_t tile_count;

@@ -37,9 +37,11 @@ void stage_plan_make(const phos_render_settings *rs, stage_plan *plan)
     }
     if (stage_plan_uses_cache(rs))
         plan->stages[n++] = PHOS_STAGE_FILLING_IRRADIANCE_CACHE;
-    plan->stages[n++] = PHOS_STAGE_RENDERING;
-    if (rs->noise_filter != PHOS_NOISE_FILTER_NONE)
-        plan->stages[n++] = PHOS_STAGE_FILTERING;
+    if (!rs->caches_only) {
+        plan->stages[n++] = PHOS_STAGE_RENDERING;
+        if (rs->noise_filter != PHOS_NOISE_FILTER_NONE)
+            plan->stages[n++] = PHOS_STAGE_FILTERING;
+    }
     plan->stages[n++] = PHOS_STAGE_FINISHED;
     plan->count = n;
 }
