@@ -10,6 +10,8 @@ Package layout (lower modules never import higher ones):
     export/         depsgraph → core scene, one module per datablock
     engine.py       the RenderEngine: export, start, poll, deliver tiles
     ui.py           panels, and 'PHOS' added to Blender's own panels
+    farm/           render farms: `python3 -m phos.farm` (no bpy) and the
+                    task each farm node runs in Blender (farm/blender_task.py)
 
 Works as a legacy add-on (bl_info, Blender 3.4+) and as a 4.2+ extension
 (blender_manifest.toml); all imports are relative.
@@ -33,11 +35,17 @@ if "bpy" in locals():
                   "export.instances", "export", "engine", "ui"):
         importlib.reload(importlib.import_module("." + _name, __package__))
 
-import bpy  # noqa: E402  (after the reload block on purpose)
+try:
+    import bpy  # noqa: E402  (after the reload block on purpose)
+except ImportError:
+    # Outside Blender (python3 -m phos.farm, farm/__init__.py): only the
+    # farm's command line is used, which needs nothing below.
+    bpy = None
 
-from . import core, properties, engine, ui  # noqa: E402
+if bpy is not None:
+    from . import core, properties, engine, ui  # noqa: E402
 
-_modules = (properties, engine, ui)
+    _modules = (properties, engine, ui)
 
 
 def register():

@@ -84,6 +84,18 @@ PASS_REGISTRATION = {core.PHOS_PASS_KIND_COLOR: ("RGB", 'COLOR'), core.PHOS_PASS
 # scripts that measure Phos read them here (bench/quality.py).
 last_render_seconds = {}
 
+# A render farm's cache job (farm/blender_task.py) sets this around one
+# final render: that render traces the photon maps and fills the
+# irradiance cache for the scene's camera and these further views (core
+# cameras, export/camera.py camera_desc), saves them as the scene's cache
+# file settings say, and renders no pixel (phos_render_add_view,
+# caches_only).
+cache_job_views = None
+
+# Why the last final render failed, or None: a render in the background
+# reports only to its log, and a farm task must fail with the reason.
+last_render_error = None
+
 
 def _timing(plan, progress, export_seconds):
     """({"export": s, stage id: s, ...}, 'exporting and building the BVH 0.05 s, ...')."""
@@ -108,6 +120,26 @@ def _timing(plan, progress, export_seconds):
     return seconds, text
 
 
+def border_rect(width, height, min_x, max_x, min_y, max_y):
+    """(x, y, width, height) in pixels of a render border of a width ×
+    height frame (y from the bottom): the whole frame if it is empty.
+
+    The rect is x0 = int(min_x·W), x1 = int(max_x·W), computed in single
+    precision as Blender does (float border × int size, truncated): in
+    double precision 0.7 × 180 gives 125 where Blender gets 126, and the
+    last row would be missing. A farm's stitch (farm/blender_task.py)
+    places each region by it.
+    """
+    f32 = np.float32
+    x0, x1 = int(f32(min_x) * f32(width)), int(f32(max_x) * f32(width))
+    y0, y1 = int(f32(min_y) * f32(height)), int(f32(max_y) * f32(height))
+    x0, y0 = max(0, min(x0, width)), max(0, min(y0, height))
+    x1, y1 = max(x0, min(x1, width)), max(y0, min(y1, height))
+    if x1 > x0 and y1 > y0:
+        return x0, y0, x1 - x0, y1 - y0
+    return 0, 0, width, height
+
+
 class PhosRenderEngine(bpy.types.RenderEngine):
     bl_idname = "PHOS"
     bl_label = "Phos"
@@ -129,25 +161,14 @@ class PhosRenderEngine(bpy.types.RenderEngine):
     # ------------------------------------------------------------- geometry
 
     def _region(self, scene):
-        """(x, y, width, height) of the rendered region in full-frame pixels.
-
-        resolution_x/y include the percentage and stay full-frame with a
-        border; the border rect is x0 = int(min_x·W), x1 = int(max_x·W),
-        computed in single precision as Blender does (float border × int
-        size, truncated): in double precision 0.7 × 180 gives 125 where
-        Blender gets 126, and the last row would be missing.
-        """
-        width, height = self.resolution_x, self.resolution_y
+        """(x, y, width, height) of the rendered region in full-frame pixels
+        (resolution_x/y include the percentage and stay full-frame with a
+        border)."""
         r = scene.render
         if r.use_border and not self.is_preview:
-            f32 = np.float32
-            x0, x1 = int(f32(r.border_min_x) * f32(width)), int(f32(r.border_max_x) * f32(width))
-            y0, y1 = int(f32(r.border_min_y) * f32(height)), int(f32(r.border_max_y) * f32(height))
-            x0, y0 = max(0, min(x0, width)), max(0, min(y0, height))
-            x1, y1 = max(x0, min(x1, width)), max(y0, min(y1, height))
-            if x1 > x0 and y1 > y0:
-                return x0, y0, x1 - x0, y1 - y0
-        return 0, 0, width, height
+            return border_rect(self.resolution_x, self.resolution_y, r.border_min_x, r.border_max_x,
+                               r.border_min_y, r.border_max_y)
+        return 0, 0, self.resolution_x, self.resolution_y
 
     # -------------------------------------------------------------- viewport
 
@@ -214,17 +235,22 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         self._stats_text, self._stats_time = "", 0.0
         self._region_origin = region[:2]
         self._plan, self._last_stage = [], None  # the core's stages, the index of the one shown
-        global _final_renders
+        global _final_renders, last_render_error
         if not self.is_preview:
             _final_renders += 1
+            last_render_error = None
         try:
             self._render(depsgraph, scene, width, height, region)
         except core.PhosError as ex:
             self.report({'ERROR'}, "Phos: %s" % ex)
+            if not self.is_preview:
+                last_render_error = str(ex)
         except Exception as ex:  # a bug in the add-on must still end the frame cleanly
             import traceback
             traceback.print_exc()
             self.report({'ERROR'}, "Phos: unexpected error: %s: %s" % (type(ex).__name__, ex))
+            if not self.is_preview:
+                last_render_error = "unexpected error: %s: %s" % (type(ex).__name__, ex)
         finally:
             if not self.is_preview:
                 _final_renders -= 1
@@ -258,12 +284,17 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             if not self.is_preview:
                 for p in enabled_passes(depsgraph.view_layer):
                     rs.pass_mask |= 1 << p.pass_id
+            views = cache_job_views if not self.is_preview else None
+            if views is not None:
+                rs.caches_only = 1
 
             export_seconds = time.perf_counter() - t0
             with core.Render(core_scene, rs) as render:
                 files = cache_files(settings) if not self.is_preview else []
                 for kind, path, mode in files:
                     render.set_cache_file(kind, bpy.path.abspath(path), mode)
+                for view in views or ():
+                    render.add_view(view)
                 self._use_kept_maps(render, depsgraph, scene, files)
                 self._plan = render.stages()
                 render.start()

@@ -41,6 +41,17 @@ def export_camera(cam_ob, matrix_world, ctx):
     `matrix_world` is RenderEngine.camera_model_matrix(cam_ob) (the world
     matrix, with the stereo eye offset when rendering multi-view).
     """
+    desc = camera_desc(cam_ob, matrix_world, ctx.scene, ctx.warn)
+    try:
+        ctx.core.set_camera(desc)
+    except core.PhosError as ex:
+        raise core.PhosError("camera '%s': %s" % (cam_ob.name, ex), ex.status) from None
+
+
+def camera_desc(cam_ob, matrix_world, scene, warn):
+    """The core camera of a camera object with this model matrix, in
+    `scene` (its render size and aspect); `warn(message)` hears what is
+    rendered otherwise than Blender shows it."""
     desc = core.new_camera()
     matrix = _clear_scale(matrix_world)
     desc.transform[:] = core.matrix_to_3x4(matrix)
@@ -48,24 +59,23 @@ def export_camera(cam_ob, matrix_world, ctx):
     cam = cam_ob.data if cam_ob.type == 'CAMERA' else None
     if cam is None:
         # Blender lets any object be the active camera; look through it with a 50 mm lens.
-        ctx.warn("Phos: the active camera '%s' is not a camera; using a 50 mm lens" % cam_ob.name)
-        aspect = ctx.scene.render.resolution_y / max(ctx.scene.render.resolution_x, 1)
+        warn("Phos: the active camera '%s' is not a camera; using a 50 mm lens" % cam_ob.name)
+        aspect = scene.render.resolution_y / max(scene.render.resolution_x, 1)
         half = 18.0 / 50.0
         desc.type = core.PHOS_CAMERA_PERSPECTIVE
         desc.frame_min[:] = (-half, -half * aspect)
         desc.frame_max[:] = (half, half * aspect)
-        ctx.core.set_camera(desc)
-        return
+        return desc
 
     if cam.type == 'ORTHO':
         desc.type = core.PHOS_CAMERA_ORTHOGRAPHIC
     else:
         if cam.type != 'PERSP':
-            ctx.warn("Phos: camera '%s': %s cameras are not supported; rendering as perspective"
+            warn("Phos: camera '%s': %s cameras are not supported; rendering as perspective"
                      % (cam.name, cam.type.title()))
         desc.type = core.PHOS_CAMERA_PERSPECTIVE
 
-    corners = np.array([v[:] for v in cam.view_frame(scene=ctx.scene)], dtype=np.float64)
+    corners = np.array([v[:] for v in cam.view_frame(scene=scene)], dtype=np.float64)
     if desc.type == core.PHOS_CAMERA_PERSPECTIVE:
         xy = corners[:, :2] / -corners[:, 2:3]
     else:
@@ -82,12 +92,9 @@ def export_camera(cam_ob, matrix_world, ctx):
             desc.aperture_radius = (cam.lens * 1e-3) / (2.0 * fstop)
             desc.focus_distance = _focus_distance(cam, matrix)
             if cam.dof.aperture_blades >= 3 or abs(cam.dof.aperture_ratio - 1.0) > 1e-6:
-                ctx.warn("Phos: camera '%s': aperture blades and ratio are not supported; "
+                warn("Phos: camera '%s': aperture blades and ratio are not supported; "
                          "using a round aperture" % cam.name)
         else:
-            ctx.warn("Phos: camera '%s': depth of field of orthographic cameras is not supported"
+            warn("Phos: camera '%s': depth of field of orthographic cameras is not supported"
                      % cam.name)
-    try:
-        ctx.core.set_camera(desc)
-    except core.PhosError as ex:
-        raise core.PhosError("camera '%s': %s" % (cam_ob.name, ex), ex.status) from None
+    return desc
