@@ -10,8 +10,8 @@ Package layout (lower modules never import higher ones):
     export/         depsgraph → core scene, one module per datablock
     engine.py       the RenderEngine: export, start, poll, deliver tiles
     ui.py           panels, and 'PHOS' added to Blender's own panels
-    farm/           render farms: `python3 -m phos.farm` (no bpy) and the
-                    task each farm node runs in Blender (farm/blender_task.py)
+    farm/           render farms: `python3 -m phos.farm` (no bpy), the task each
+                    farm node runs in Blender (blender_task.py), the Farm panel
 
 Works as a legacy add-on (bl_info, Blender 3.4+) and as a 4.2+ extension
 (blender_manifest.toml); all imports are relative.
@@ -32,7 +32,8 @@ if "bpy" in locals():
     import importlib
     for _name in ("phos_h", "core", "properties", "export.context", "export.image", "export.program", "export.nodes", "export.material",
                   "export.mesh", "export.light", "export.camera", "export.world",
-                  "export.instances", "export", "engine", "ui"):
+                  "export.instances", "export", "engine", "ui", "farm.job", "farm.run", "farm.slurm",
+                  "farm.local", "farm.blender_task", "farm.panel"):
         importlib.reload(importlib.import_module("." + _name, __package__))
 
 try:
@@ -44,8 +45,9 @@ except ImportError:
 
 if bpy is not None:
     from . import core, properties, engine, ui  # noqa: E402
+    from .farm import panel as farm_panel  # noqa: E402
 
-    _modules = (properties, engine, ui)
+    _modules = (properties, engine, ui, farm_panel)
 
 
 def register():

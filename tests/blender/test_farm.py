@@ -242,6 +242,36 @@ def test_local_farm_renders_what_one_process_renders(tmp_path, farm_scene):
     assert "6 done" in out
 
 
+def test_farm_panel_submits_a_job(tmp_path, farm_scene, monkeypatch):
+    """Render Properties → Phos → Farm: Submit saves the file and runs
+    the job (here on this machine); Refresh Status reads its tasks."""
+    if not bpy.app.binary_path:
+        pytest.skip("Blender as a Python module has no binary for the panel to give the tasks")
+    for key, value in _farm_env(tmp_path).items():
+        monkeypatch.setenv(key, value)
+    blend = str(tmp_path / "panel.blend")
+    shutil.copy(farm_scene["blend"], blend)
+    bpy.ops.wm.open_mainfile(filepath=blend)
+    pt.enable_addon()
+    s = bpy.context.scene.phos_farm
+    s.manager, s.local_processes, s.jobs_folder = 'LOCAL', 2, str(tmp_path / "jobs")
+    assert bpy.ops.phos.farm_submit() == {'FINISHED'}
+    job_dir = s.last_job
+    assert os.path.dirname(job_dir) == str(tmp_path / "jobs")
+    end = time.time() + 300
+    while time.time() < end:
+        bpy.ops.phos.farm_status()
+        if s.last_status == "5 done" or "failed" in s.last_status:
+            break
+        time.sleep(0.5)
+    assert s.last_status == "5 done", "%s\n%s" % (s.last_status, open(os.path.join(job_dir, "submit.log")).read())
+    check_animation(job_dir, farm_scene["anim"])
+    # An unsaved file is refused with the reason.
+    pt.reset_file()
+    with pytest.raises(RuntimeError, match="save the .blend first"):
+        bpy.ops.phos.farm_submit()
+
+
 def test_stale_cache_is_refused_naming_what_differs(tmp_path, farm_scene):
     """A material changed between the cache task and a frame task: the
     frame task fails with the core's reason, `status` shows it, and after
