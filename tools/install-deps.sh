@@ -9,6 +9,7 @@
 #   tools/install-deps.sh --bpy      also what Blender as a Python module needs (tools/bpy-env.sh)
 #   tools/install-deps.sh --chroot   also debootstrap, for the Debian 13 chroot (tools/test-blender4.sh)
 #   tools/install-deps.sh --gui      also Xvfb, for the GUI test (`make test-gui`)
+#   tools/install-deps.sh --farm     also Slurm, munge and Node.js, for the render-farm tests
 set -euo pipefail
 
 PACKAGES=(
@@ -60,6 +61,16 @@ RELIABILITY_PACKAGES=(
   libclang-rt-dev  # its runtime libraries (libFuzzer, ASan, UBSan for clang)
 )
 
+# Only for the render-farm tests (tests/blender/test_farm.py, docs/farm.md):
+# a real single-machine Slurm cluster (its daemons are started by the test,
+# never as services), munge for its authentication, and Node.js for the
+# Flamenco job type's unit test. Without them those tests are skipped.
+FARM_PACKAGES=(
+  slurmctld slurmd slurm-client
+  munge
+  nodejs
+)
+
 check=0
 for arg in "$@"; do
   case "$arg" in
@@ -69,7 +80,8 @@ for arg in "$@"; do
     --bpy) PACKAGES+=("${BPY_PACKAGES[@]}") ;;
     --chroot) PACKAGES+=("${CHROOT_PACKAGES[@]}") ;;
     --gui) PACKAGES+=("${GUI_PACKAGES[@]}") ;;
-    *) echo "usage: $0 [--check] [--bench] [--reliability] [--bpy] [--chroot] [--gui]" >&2; exit 2 ;;
+    --farm) PACKAGES+=("${FARM_PACKAGES[@]}") ;;
+    *) echo "usage: $0 [--check] [--bench] [--reliability] [--bpy] [--chroot] [--gui] [--farm]" >&2; exit 2 ;;
   esac
 done
 

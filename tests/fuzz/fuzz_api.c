@@ -394,6 +394,28 @@ static void take_light_desc(reader *r, phos_light_desc *out)
     *out = d;
 }
 
+/* A camera from the input: Phos's defaults with any of its parts taken
+ * (the scene's camera and a render's further views alike). */
+static void take_camera(reader *r, phos_camera_desc *c)
+{
+    phos_camera_desc_init(c);
+    c->type = take_u8(r) % 3;
+    if (take_u8(r) & 1)
+        take_floats(r, c->transform, 12);
+    if (take_u8(r) & 1) {
+        take_floats(r, c->frame_min, 2);
+        take_floats(r, c->frame_max, 2);
+    }
+    if (take_u8(r) & 1) {
+        c->aperture_radius = take_float(r);
+        c->focus_distance = take_float(r);
+    }
+    if (take_u8(r) & 1) {
+        c->clip_start = take_float(r);
+        c->clip_end = take_float(r);
+    }
+}
+
 static void fuzz_lights(reader *r, phos_scene *s)
 {
     uint32_t n = take_u8(r) % 4;
@@ -414,22 +436,7 @@ static void fuzz_lights(reader *r, phos_scene *s)
     }
     if (take_u8(r) != 0xFF) { /* almost always a camera */
         phos_camera_desc c;
-        phos_camera_desc_init(&c);
-        c.type = take_u8(r) % 3;
-        if (take_u8(r) & 1)
-            take_floats(r, c.transform, 12);
-        if (take_u8(r) & 1) {
-            take_floats(r, c.frame_min, 2);
-            take_floats(r, c.frame_max, 2);
-        }
-        if (take_u8(r) & 1) {
-            c.aperture_radius = take_float(r);
-            c.focus_distance = take_float(r);
-        }
-        if (take_u8(r) & 1) {
-            c.clip_start = take_float(r);
-            c.clip_end = take_float(r);
-        }
+        take_camera(r, &c);
         phos_scene_set_camera(s, &c);
     }
 }
@@ -538,6 +545,14 @@ static void fuzz_render(reader *r, phos_scene *s, phos_photon_maps **kept)
             }
         }
         phos_render_set_cache_file(render, kind, path, mode);
+    }
+    for (uint8_t views = take_u8(r) % 3; views > 0; views--) {
+        phos_camera_desc c;
+        take_camera(r, &c);
+        phos_status added = phos_render_add_view(render, &c);
+        SAY("  add view: %s %s\n", phos_status_string(added), phos_render_error(render));
+        if (added != PHOS_OK && !phos_render_error(render)[0])
+            abort();
     }
     if (*kept) {
         uint8_t use = take_u8(r);
