@@ -320,11 +320,16 @@ def wait_for_job(cluster, job_dir, seconds=600):
 
 
 def test_slurm_renders_what_one_process_renders(tmp_path, farm_scene, slurm):
+    """The test cluster's MaxArraySize is 3, so the 4 frames and the 4
+    regions each go out as two array jobs, as a long job does on a real
+    cluster (1001 by default)."""
     env = dict(_farm_env(tmp_path), SLURM_CONF=slurm.conf)
     anim, still = str(tmp_path / "anim"), str(tmp_path / "still")
     code, out = submit(tmp_path, farm_scene["blend"], anim, "--frames", "1-4", env=env)
     assert "submitted to Slurm" in out
     submit(tmp_path, farm_scene["blend"], still, "--frames", "1", "--regions", "2x2", env=env)
+    with open(os.path.join(anim, "job.json")) as f:
+        assert [part[1:] for part in json.load(f)["manager_ids"]["render"]] == [[0, 3], [3, 1]]
     wait_for_job(slurm, anim)
     wait_for_job(slurm, still)
     check_animation(anim, farm_scene["anim"])
@@ -348,7 +353,7 @@ def test_slurm_requeue_of_a_task_killed_mid_render(tmp_path, farm_scene, slurm):
     job_dir = str(tmp_path / "job")
     submit(tmp_path, blend, job_dir, "--frames", "1", env=env)
     with open(os.path.join(job_dir, "job.json")) as f:
-        render_id = json.load(f)["manager_ids"]["render"]
+        render_id = json.load(f)["manager_ids"]["render"][0][0]
     log = os.path.join(job_dir, "logs", "frame-1.log")
     end = time.time() + 300
     while time.time() < end:

@@ -34,9 +34,11 @@ def _which_sbin(name):
 
 
 class SlurmCluster:
-    def __init__(self, root, cpus=2):
+    def __init__(self, root, cpus=2, max_array_size=3):
         self.root = os.path.abspath(root)
         self.cpus = cpus
+        # Small, so that the tests' jobs need several array jobs per stage.
+        self.max_array_size = max_array_size
         self.host = socket.gethostname().split(".")[0]
         self.procs = []
         self.conf = os.path.join(self.root, "slurm.conf")
@@ -87,6 +89,7 @@ class SlurmCluster:
             "ReturnToService=2",
             "MinJobAge=600",
             "KillWait=2",
+            "MaxArraySize=%d" % self.max_array_size,
             "NodeName=%s CPUs=%d State=UNKNOWN" % (self.host, self.cpus),
             "PartitionName=phostest Nodes=%s Default=YES MaxTime=INFINITE State=UP" % self.host,
         ]

@@ -6,7 +6,7 @@
            [--local N | --slurm-args "..."]
     status JOB_DIR
     resubmit JOB_DIR TASK... [--local N] [--slurm-args "..."]
-    task JOB_DIR (NAME | --stage S --index I)    one task, as a node runs it
+    task JOB_DIR (NAME | --stage S [--offset O] --index I)    one task, as a node runs it
 """
 
 import argparse
@@ -38,7 +38,8 @@ def _submit(a):
         _print_status(job)
         return 1 if failed else 0
     ids = slurm.submit(job, shlex.split(a.slurm_args))
-    print("Phos farm: submitted to Slurm: " + ", ".join("%s %s" % (s, i) for s, i in ids.items()))
+    print("Phos farm: submitted to Slurm: " + ", ".join(
+        "%s %s" % (s, i if isinstance(i, str) else " ".join(part[0] for part in i)) for s, i in ids.items()))
     print("Phos farm: watch it with: python3 -m phos.farm status %s" % job.job_dir)
     return 0
 
@@ -75,7 +76,7 @@ def _resubmit(a):
     for name in a.tasks:
         job.task(name)  # refuses an unknown name before anything runs
     if a.local or job.manager == "local":
-        failed = local.run_tasks(job, a.tasks, a.local or 1, echo=a.verbose)
+        failed = local.run_tasks(job, job.rerun(a.tasks), a.local or 1, echo=a.verbose)
         _print_status(job)
         return 1 if failed else 0
     ids = slurm.resubmit(job, a.tasks, shlex.split(a.slurm_args))
@@ -88,10 +89,10 @@ def _task(a):
     if a.name:
         name = a.name
     else:
-        tasks = job.stage_tasks(a.stage)
-        if not 0 <= a.index < len(tasks):
-            raise JobError("stage %s has no task %d" % (a.stage, a.index))
-        name = tasks[a.index].name
+        tasks, index = job.stage_tasks(a.stage), a.offset + a.index
+        if not 0 <= index < len(tasks):
+            raise JobError("stage %s has no task %d" % (a.stage, index))
+        name = tasks[index].name
     return run_task(job, name, echo=sys.stdout.isatty())
 
 
@@ -123,7 +124,8 @@ def main(argv=None):
     t.add_argument("job_dir")
     t.add_argument("name", nargs="?")
     t.add_argument("--stage", choices=("cache", "render", "stitch"))
-    t.add_argument("--index", type=int, default=0)
+    t.add_argument("--index", type=int, default=0, help="the task's index in its stage, less --offset")
+    t.add_argument("--offset", type=int, default=0, help="the stage's first task in this array job")
     a = p.parse_args(argv)
     if a.command == "task" and not a.name and not a.stage:
         p.error("task: give a task name, or --stage and --index")

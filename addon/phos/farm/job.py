@@ -190,6 +190,19 @@ class Job:
         raise JobError("job %s has no task '%s' (its tasks: cache, %s)"
                        % (self.job_dir, name, ", ".join(t.name for t in self.tasks()[1:4]) + ", …"))
 
+    def rerun(self, names):
+        """The tasks to run again for `names`: those, and the stitch of
+        each split frame one of them renders a region of (its stitch read
+        the old region)."""
+        out = list(dict.fromkeys(names))
+        for name in list(out):
+            task = self.task(name)
+            if task.stage == "render" and self.split:
+                stitch = "stitch-" + name.split("-")[1]
+                if stitch not in out:
+                    out.append(stitch)
+        return out
+
     def stage_tasks(self, stage):
         return [t for t in self.tasks() if t.stage == stage]
 

@@ -44,8 +44,8 @@ class PhosFarmSettings(bpy.types.PropertyGroup):
     manager: EnumProperty(
         name="Run On", default='SLURM',
         items=(('SLURM', "Slurm", "Submit the job's tasks with sbatch to the Slurm cluster this machine "
-                "submits to"),
-               ('LOCAL', "This Machine", "Run the job's tasks as local Blender processes, in the background")))
+                "submits to", 0),
+               ('LOCAL', "This Machine", "Run the job's tasks as local Blender processes, in the background", 1)))
     local_processes: IntProperty(
         name="Processes", default=2, min=1, max=256,
         description="Tasks run at the same time on this machine")
