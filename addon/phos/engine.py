@@ -92,8 +92,10 @@ last_render_seconds = {}
 # caches_only).
 cache_job_views = None
 
-# Why the last final render failed, or None: a render in the background
-# reports only to its log, and a farm task must fail with the reason.
+# Why a final render failed: a render in the background reports only to
+# its log, and a farm task must fail with the reason. Set on failure, never
+# cleared here (render() runs once per view layer: a later layer's success
+# must not hide an earlier one's failure); the farm task clears it first.
 last_render_error = None
 
 
@@ -238,7 +240,6 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         global _final_renders, last_render_error
         if not self.is_preview:
             _final_renders += 1
-            last_render_error = None
         try:
             self._render(depsgraph, scene, width, height, region)
         except core.PhosError as ex:

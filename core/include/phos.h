@@ -1018,7 +1018,7 @@ PHOS_API phos_status phos_render_set_cache_file(phos_render *render, uint32_t ki
  * a gap, so the result depends on the views' order and nothing else. The
  * image is still rendered from the scene's camera (or not at all with
  * caches_only). */
-#define PHOS_MAX_VIEWS 65536u
+#define PHOS_MAX_VIEWS 16384u
 PHOS_API phos_status phos_render_add_view(phos_render *render, const phos_camera_desc *camera);
 
 /* Photon maps kept between renders of one scene: the viewport keeps them

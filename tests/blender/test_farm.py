@@ -179,7 +179,7 @@ def test_job_graph_and_its_settings(addon):
     j = farm_job.Job("/s.blend", "/jobs/a", farm_job.parse_frames("1-3"), (1, 1))
     assert [(t.name, t.after) for t in j.tasks()] == [
         ("cache", []), ("frame-1", ["cache"]), ("frame-2", ["cache"]), ("frame-3", ["cache"])]
-    assert j.task("cache").args == ["cache", "--job-dir", "/jobs/a", "--frames", "1-3", "--key-frames", "1,2,3"]
+    assert j.task("cache").args == ["cache", "--job-dir", "/jobs/a", "--frames", "1-3", "--key-frames", "1-3"]
     j = farm_job.Job("/s.blend", "/jobs/b", [5, 6], (2, 2), [5])
     names = [t.name for t in j.tasks()]
     assert names == ["cache"] + ["region-5-%d" % i for i in range(4)] + ["stitch-5"] + \
@@ -266,7 +266,18 @@ def test_farm_panel_submits_a_job(tmp_path, farm_scene, monkeypatch):
         time.sleep(0.5)
     assert s.last_status == "5 done", "%s\n%s" % (s.last_status, open(os.path.join(job_dir, "submit.log")).read())
     check_animation(job_dir, farm_scene["anim"])
-    # An unsaved file is refused with the reason.
+    # What the farm cannot render as one machine would is refused with
+    # the reason, before anything is written: regions under a noise
+    # filter (it reads pixels a region cuts off), two view layers, an
+    # unsaved file.
+    s.regions, bpy.context.scene.phos.filter = "2x2", 'LOWPASS'
+    with pytest.raises(RuntimeError, match="noise filter reads pixels a region cuts off"):
+        bpy.ops.phos.farm_submit()
+    s.regions, bpy.context.scene.phos.filter = "1x1", 'NONE'
+    bpy.context.scene.view_layers.new("Second")
+    with pytest.raises(RuntimeError, match="one view layer; this one renders 2"):
+        bpy.ops.phos.farm_submit()
+    assert sorted(os.listdir(str(tmp_path / "jobs"))) == [os.path.basename(job_dir)]
     pt.reset_file()
     with pytest.raises(RuntimeError, match="save the .blend first"):
         bpy.ops.phos.farm_submit()
@@ -329,7 +340,7 @@ def test_slurm_renders_what_one_process_renders(tmp_path, farm_scene, slurm):
     assert "submitted to Slurm" in out
     submit(tmp_path, farm_scene["blend"], still, "--frames", "1", "--regions", "2x2", env=env)
     with open(os.path.join(anim, "job.json")) as f:
-        assert [part[1:] for part in json.load(f)["manager_ids"]["render"]] == [[0, 3], [3, 1]]
+        assert [part[1:] for part in json.load(f)["manager_ids"]["submitted"]["render"]] == [[0, [0, 1, 2]], [3, [3]]]
     wait_for_job(slurm, anim)
     wait_for_job(slurm, still)
     check_animation(anim, farm_scene["anim"])
@@ -343,6 +354,71 @@ def test_slurm_renders_what_one_process_renders(tmp_path, farm_scene, slurm):
     assert_same_image(frame_file(anim, 2), frame_file(farm_scene["anim"], 2))
 
 
+def test_slurm_failed_region_resubmitted_alone(tmp_path, farm_scene, slurm):
+    """A region fails (a Blender that refuses it while a flag file
+    exists): its frame's stitch fails saying which region is missing,
+    the other frame is stitched all the same, and resubmitting the region
+    alone brings its stitch along and gives the one-process image."""
+    flag = tmp_path / "fail_region"
+    flag.write_text("")
+    wrapper = tmp_path / "blender.sh"
+    wrapper.write_text("#!/bin/sh\ncase \"$*\" in *'--frame 1 --region 0 '*) if [ -e %s ]; then "
+                       "echo 'Phos farm: error: refused by the test'; exit 3; fi;; esac\nexec %s \"$@\"\n"
+                       % (shlex.quote(str(flag)), shlex.join(pt.BLENDER_COMMAND)))
+    wrapper.chmod(0o755)
+    env = dict(_farm_env(tmp_path), SLURM_CONF=slurm.conf)
+    job_dir = str(tmp_path / "job")
+    farm(tmp_path, "submit", farm_scene["blend"], "--job-dir", job_dir, "--blender", str(wrapper), "--frames",
+         "1-2", "--regions", "2x2", "--key-frames", "1", env=env)
+    wait_for_job(slurm, job_dir)
+    assert task_state(job_dir, "region-1-0")["state"] == "failed"
+    assert task_state(job_dir, "stitch-2")["state"] == "done"
+    stitch = task_state(job_dir, "stitch-1")
+    assert stitch["state"] == "failed" and "region 0 of frame 1 is missing" in stitch["error"], stitch
+    code, out = farm(tmp_path, "status", job_dir, env=env, check=False)
+    assert code == 1 and "refused by the test" in out, out
+    flag.unlink()
+    code, out = farm(tmp_path, "resubmit", job_dir, "region-1-0", env=env)
+    wait_for_job(slurm, job_dir)
+    assert task_state(job_dir, "stitch-1")["attempts"] == 2
+    code, out = farm(tmp_path, "status", job_dir, env=env)
+    assert "11 done" in out, out
+    assert_same_image(frame_file(job_dir, 1), frame_file(farm_scene["still"], 1))
+
+
+def test_python_and_flamenco_build_the_same_tasks(addon):
+    """Flamenco's job type and the Python graph give every task the same
+    name, arguments and dependencies."""
+    node = shutil.which("node") or shutil.which("nodejs")
+    if node is None:
+        pytest.skip("Node.js is not installed (tools/install-deps.sh --farm installs it)")
+    from phos.farm import job as farm_job
+    script = """
+const fs = require("fs"), vm = require("vm");
+const tasks = [];
+const author = {
+    Task: (name, type) => { const t = {name, cmds: [], deps: []};
+        t.addCommand = (c) => t.cmds.push(c); t.addDependency = (d) => t.deps.push(d.name); return t; },
+    Command: (type, params) => params,
+};
+const ctx = {author, print: () => {}};
+vm.runInNewContext('"use strict";' + fs.readFileSync(process.argv[1], "utf8") + ";this.compileJob = compileJob;", ctx);
+ctx.compileJob({settings: JSON.parse(process.argv[2]), addTask: (t) => tasks.push(t)});
+console.log(JSON.stringify(tasks.map((t) => [t.name, t.cmds[0].args.slice(5), t.deps])));
+"""
+    js = os.path.join(pt.ADDON_DIR, "phos", "farm", "flamenco", "phos_farm.js")
+    for frames, regions, keys in (("1-3,7", "1x1", ""), ("2,5", "2x3", "5"), ("1-4", "1x2", "1,3-4")):
+        settings = {"blendfile": "/s.blend", "job_dir": "/jobs/x", "frames": frames, "regions": regions,
+                    "key_frames": keys}
+        proc = subprocess.run([node, "-e", script, js, json.dumps(settings)], stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, timeout=60)
+        assert proc.returncode == 0, proc.stdout.decode()
+        fs = farm_job.parse_frames(frames)
+        j = farm_job.Job("/s.blend", "/jobs/x", fs, farm_job.parse_regions(regions),
+                         farm_job.choose_key_frames(fs, keys))
+        assert json.loads(proc.stdout) == [[t.name, t.args, t.after] for t in j.tasks()]
+
+
 def test_slurm_requeue_of_a_task_killed_mid_render(tmp_path, farm_scene, slurm):
     """`scontrol requeue` kills a frame task while it renders; Slurm runs
     it again and it writes the frame one process renders."""
@@ -353,7 +429,7 @@ def test_slurm_requeue_of_a_task_killed_mid_render(tmp_path, farm_scene, slurm):
     job_dir = str(tmp_path / "job")
     submit(tmp_path, blend, job_dir, "--frames", "1", env=env)
     with open(os.path.join(job_dir, "job.json")) as f:
-        render_id = json.load(f)["manager_ids"]["render"][0][0]
+        render_id = json.load(f)["manager_ids"]["submitted"]["render"][0][0]
     log = os.path.join(job_dir, "logs", "frame-1.log")
     end = time.time() + 300
     while time.time() < end:

@@ -215,9 +215,8 @@ static void test_set_camera(phos_scene *s, float x, float y, float z, float tan_
 }
 
 /* Camera at (x, y, z) pitched down by `pitch` radians from looking along
- * −Z (a rotation about X: −Z maps to (0, sin p, −cos p)). */
-/* A camera at (x, y, z) looking along −z turned by `pitch` about x
- * (π/2: along +y), of square frame ±tan_half. */
+ * −Z (a rotation about X: −Z maps to (0, sin p, −cos p)), of square frame
+ * ±tan_half. */
 static phos_camera_desc test_camera_pitched(float x, float y, float z, float pitch, float tan_half)
 {
     phos_camera_desc c;
@@ -232,6 +231,7 @@ static phos_camera_desc test_camera_pitched(float x, float y, float z, float pit
     return c;
 }
 
+/* The scene's camera, as test_camera_pitched. */
 static void test_set_camera_pitched(phos_scene *s, float x, float y, float z, float pitch, float tan_half)
 {
     phos_camera_desc c = test_camera_pitched(x, y, z, pitch, tan_half);

@@ -21,7 +21,7 @@ const SCRIPT_PATH = fileURLToPath(
     new URL("../../addon/phos/farm/flamenco/phos_farm.js", import.meta.url));
 const SOURCE = readFileSync(SCRIPT_PATH, "utf8");
 
-const BOOTSTRAP = "import addon_utils,importlib;n=[m.__name__ for m in addon_utils.modules() if m.__name__.rsplit('.',1)[-1]=='phos'][0];addon_utils.enable(n,default_set=False);importlib.import_module(n+'.farm.blender_task').main()";
+const BOOTSTRAP = "import addon_utils,importlib;n=next((m.__name__ for m in addon_utils.modules() if m.__name__.rsplit('.',1)[-1]=='phos'),'');assert n,'Phos farm: error: the Phos add-on is not installed in this Blender';addon_utils.enable(n,default_set=False);importlib.import_module(n+'.farm.blender_task').main()";
 
 const BLEND = "/farm/jobs/shot/shot.flamenco.blend";
 const DIR = "/farm/phos/shot_010";
@@ -236,7 +236,7 @@ test("4 frames, 1x1: cache + one task per frame, each after cache", () => {
     assert.deepEqual(tasks.map((t) => t.name), ["cache", "frame-1", "frame-2", "frame-3", "frame-4"]);
     const named = byName(tasks);
     assert.deepEqual(renderArgs(named.get("cache")),
-        phosArgs("cache", "--frames", "1-4", "--key-frames", "1,2,3,4"));
+        phosArgs("cache", "--frames", "1-4", "--key-frames", "1-4"));
     assert.deepEqual(named.get("cache").deps, []);
     for (const f of [1, 2, 3, 4]) {
         const task = named.get(`frame-${f}`);
@@ -280,7 +280,7 @@ test("frame lists: ranges, singles, whitespace, duplicates, order", () => {
     assert.deepEqual(tasks.map((t) => t.name),
         ["cache", "frame-1", "frame-2", "frame-3", "frame-10", "frame-30", "frame-31", "frame-32"]);
     assert.deepEqual(renderArgs(tasks[0]),
-        phosArgs("cache", "--frames", "1-3,10,30-32", "--key-frames", "1,2,3,10,30,31,32"));
+        phosArgs("cache", "--frames", "1-3,10,30-32", "--key-frames", "1-3,10,30-32"));
 });
 
 test("frame 0 is a frame", () => {
@@ -291,13 +291,13 @@ test("frame 0 is a frame", () => {
 test("key frames: empty means every frame, explicit list is kept sorted", () => {
     const every = compile({ frames: "1-10,20,30-32", key_frames: "" }).tasks[0];
     assert.deepEqual(renderArgs(every), phosArgs("cache", "--frames", "1-10,20,30-32",
-        "--key-frames", "1,2,3,4,5,6,7,8,9,10,20,30,31,32"));
+        "--key-frames", "1-10,20,30-32"));
 
     const blank = compile({ frames: "1-3", key_frames: "   " }).tasks[0];
-    assert.deepEqual(renderArgs(blank), phosArgs("cache", "--frames", "1-3", "--key-frames", "1,2,3"));
+    assert.deepEqual(renderArgs(blank), phosArgs("cache", "--frames", "1-3", "--key-frames", "1-3"));
 
     const missing = compile({ frames: "1-3", key_frames: undefined }).tasks[0];
-    assert.deepEqual(renderArgs(missing), phosArgs("cache", "--frames", "1-3", "--key-frames", "1,2,3"));
+    assert.deepEqual(renderArgs(missing), phosArgs("cache", "--frames", "1-3", "--key-frames", "1-3"));
 
     const listed = compile({ frames: "1-250", key_frames: "200, 1,100,100" });
     assert.deepEqual(renderArgs(listed.tasks[0]), phosArgs("cache", "--frames", "1-250", "--key-frames", "1,100,200"));

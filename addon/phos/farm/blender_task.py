@@ -32,15 +32,17 @@ import numpy as np
 
 from .. import core, engine
 from ..export import camera as camera_export
-from ..properties import render_settings
+from ..properties import CACHE_FILES, render_settings
 from .job import format_frames, parse_frames, parse_regions, read_json, region_border, write_json_atomically
 
 CACHES_FILE = "caches.json"
-# (scene.phos prefix, the core stage that makes it, file name)
-CACHE_KINDS = (
-    ("photon_map_file", core.PHOS_STAGE_TRACING_PHOTONS, "photons.phospmf"),
-    ("ic_file", core.PHOS_STAGE_FILLING_IRRADIANCE_CACHE, "irradiance.phosirc"),
-)
+# The core stage that makes each kind of cache file.
+MADE_BY = {core.PHOS_CACHE_PHOTON_MAPS: core.PHOS_STAGE_TRACING_PHOTONS,
+           core.PHOS_CACHE_IRRADIANCE: core.PHOS_STAGE_FILLING_IRRADIANCE_CACHE}
+# (scene.phos prefix, the core stage that makes it, file name in caches/),
+# the file named as the scene's default file is.
+CACHE_KINDS = tuple((prefix, MADE_BY[kind], os.path.basename(default))
+                    for kind, prefix, _what, default in CACHE_FILES)
 
 
 class TaskError(Exception):
@@ -52,15 +54,56 @@ def _say(text):
 
 
 def _resolution(scene):
-    pct = scene.render.resolution_percentage / 100.0
-    return int(scene.render.resolution_x * pct), int(scene.render.resolution_y * pct)
+    """The rendered size, in integers as Blender computes it (size ·
+    percentage / 100, truncated)."""
+    r = scene.render
+    return r.resolution_x * r.resolution_percentage // 100, r.resolution_y * r.resolution_percentage // 100
+
+
+def check_scene(scene):
+    """What the farm cannot render as one machine would, refused before
+    any work."""
+    if scene.render.engine != 'PHOS':
+        raise TaskError("the scene renders with %s, not Phos: set Render Engine to Phos" % scene.render.engine)
+    layers = [layer.name for layer in scene.view_layers if layer.use]
+    if len(layers) != 1:
+        # Each layer's render would save and load the caches of its own
+        # objects under one file name.
+        raise TaskError("the farm renders scenes of one view layer; this one renders %d (%s): untick "
+                        "'Use for Rendering' on all but one" % (len(layers), ", ".join(layers) or "none"))
+    if scene.phos.time_limit > 0.0:
+        _say("warning: a time limit (%.0f s) makes each frame depend on its node's speed: a requeued or "
+             "resubmitted task, or a region, is not the same image" % scene.phos.time_limit)
+
+
+def check_regions(scene):
+    """A split frame equals the whole only where every pixel depends on
+    its own samples alone."""
+    if scene.phos.filter != 'NONE':
+        raise TaskError("regions: the noise filter reads pixels a region cuts off, so the stitched frame would "
+                        "differ from the whole; render whole frames (regions 1x1) or turn the filter off")
+    if _compositor_active(scene):
+        raise TaskError("regions: the compositor runs on each region alone, so the stitched frame would differ "
+                        "from the whole; render whole frames (regions 1x1) or turn compositing off")
+
+
+def _compositor_active(scene):
+    """Whether a render's result goes through the compositor: a node tree
+    in use before Blender 5.0, a compositing node group in 5.0-5.2, a
+    compositor effect from 5.3."""
+    if not scene.render.use_compositing:
+        return False
+    if bpy.app.version < (5, 0, 0):
+        return bool(scene.use_nodes and scene.node_tree is not None and len(scene.node_tree.nodes))
+    if len(getattr(scene, "compositor_effects", ())):
+        return True
+    return getattr(scene, "compositing_node_group", None) is not None
 
 
 def _render(scene):
     """One final render of the scene as it is set; raises with the
     engine's message if Phos failed."""
-    if scene.render.engine != 'PHOS':
-        raise TaskError("the scene renders with %s, not Phos: set Render Engine to Phos" % scene.render.engine)
+    engine.last_render_error = None
     bpy.ops.render.render()
     if engine.last_render_error is not None:
         raise TaskError(engine.last_render_error)
@@ -70,6 +113,8 @@ def _output_settings(scene):
     """Every image the farm writes: 32-bit float RGBA OpenEXR, lossless,
     scene-linear, so regions stitch into the frame bit for bit."""
     s = scene.render.image_settings
+    if hasattr(s, "media_type"):  # Blender 5.0 chooses formats by media type
+        s.media_type = 'IMAGE'
     s.file_format = 'OPEN_EXR'
     s.color_mode = 'RGBA'
     s.color_depth = '32'
@@ -104,14 +149,16 @@ def _caches_used(scene):
 
 
 def _key_views(scene, key_frames):
-    """The core camera of each key frame after the first."""
+    """The core camera of each key frame after the first, as evaluated at
+    that frame (the render evaluates its own camera likewise)."""
     views = []
     for f in key_frames[1:]:
         scene.frame_set(f)
         cam = scene.camera
         if cam is None:
             raise TaskError("frame %d has no active camera" % f)
-        views.append(camera_export.camera_desc(cam, cam.matrix_world, scene, _say))
+        evaluated = cam.evaluated_get(bpy.context.evaluated_depsgraph_get())
+        views.append(camera_export.camera_desc(evaluated, evaluated.matrix_world, scene, _say))
     scene.frame_set(key_frames[0])
     return views
 
@@ -238,6 +285,9 @@ def _parse(argv):
 def run(argv):
     a = _parse(argv)
     scene = bpy.context.scene
+    check_scene(scene)
+    if a.task in ("region", "stitch"):
+        check_regions(scene)
     if a.task == "cache":
         keys = parse_frames(a.key_frames or a.frames, "key frames")
         run_cache(scene, a.job_dir, keys)

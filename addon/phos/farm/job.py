@@ -24,10 +24,12 @@ The job folder:
     logs/NAME.log               each task's Blender output, every attempt
 """
 
+import itertools
 import json
 import os
 import re
 import shlex
+import shutil
 
 JOB_FILE = "job.json"
 JOB_VERSION = 1
@@ -39,8 +41,11 @@ MAX_TASKS = 100000         # a typo such as 1-1000000 must not flood the manager
 # it, and hand the arguments after `--` to its farm.blender_task.main().
 # Flamenco's job type keeps the same line (tests/blender/test_farm.py
 # compares them); it has no braces, which Flamenco would read as variables.
-BOOTSTRAP = ("import addon_utils,importlib;n=[m.__name__ for m in addon_utils.modules() "
-             "if m.__name__.rsplit('.',1)[-1]=='phos'][0];addon_utils.enable(n,default_set=False);"
+# If both a legacy add-on and an extension named phos are installed, the
+# first Blender lists is taken.
+BOOTSTRAP = ("import addon_utils,importlib;n=next((m.__name__ for m in addon_utils.modules() "
+             "if m.__name__.rsplit('.',1)[-1]=='phos'),'');assert n,'Phos farm: error: the Phos add-on is "
+             "not installed in this Blender';addon_utils.enable(n,default_set=False);"
              "importlib.import_module(n+'.farm.blender_task').main()")
 
 
@@ -141,19 +146,22 @@ class Job:
     """A farm job's settings (as job.json keeps them) and its task graph."""
 
     def __init__(self, blend_file, job_dir, frames, regions=(1, 1), key_frames=None,
-                 blender="blender", blender_args=(), manager="local", manager_ids=None):
+                 blender="blender", blender_args=(), manager="local", manager_args=(), manager_ids=None):
         self.blend_file = os.path.abspath(blend_file)
         self.job_dir = os.path.abspath(job_dir)
         self.frames = list(frames)
         self.regions = tuple(regions)
         self.key_frames = list(key_frames) if key_frames is not None else list(self.frames)
-        self.blender = blender
+        self.blender = blender               # a command, split as a shell would (a path with spaces quoted)
         self.blender_args = list(blender_args)
         self.manager = manager
-        self.manager_ids = dict(manager_ids or {})  # stage → the manager's job id
+        self.manager_args = list(manager_args)  # sbatch options of every task, resubmissions too
+        self.manager_ids = dict(manager_ids or {})
+        self._tasks = None
         if not self.frames:
             raise JobError("frames: none given")
-        if len(self.tasks()) > MAX_TASKS:
+        per_frame = 1 if not self.split else self.regions[0] * self.regions[1] + 1
+        if 1 + len(self.frames) * per_frame > MAX_TASKS:
             raise JobError("%d frames with regions %dx%d make more than %d tasks; render fewer frames or "
                            "regions per job" % (len(self.frames), self.regions[0], self.regions[1], MAX_TASKS))
 
@@ -168,9 +176,15 @@ class Job:
 
     def tasks(self):
         """Every task in an order that runs each after what it waits for."""
+        if self._tasks is None:
+            self._tasks = self._make_tasks()
+            self._by_name = {t.name: t for t in self._tasks}
+        return self._tasks
+
+    def _make_tasks(self):
         regions = "%dx%d" % self.regions
         out = [Task("cache", "cache", self._args("cache", "--frames", format_frames(self.frames),
-                                                 "--key-frames", ",".join(map(str, self.key_frames))), [])]
+                                                 "--key-frames", format_frames(self.key_frames)), [])]
         for f in self.frames:
             if not self.split:
                 out.append(Task("frame-%d" % f, "render", self._args("frame", "--frame", f), ["cache"]))
@@ -184,24 +198,24 @@ class Job:
         return out
 
     def task(self, name):
-        for t in self.tasks():
-            if t.name == name:
-                return t
+        self.tasks()
+        if name in self._by_name:
+            return self._by_name[name]
         raise JobError("job %s has no task '%s' (its tasks: cache, %s)"
                        % (self.job_dir, name, ", ".join(t.name for t in self.tasks()[1:4]) + ", …"))
 
-    def rerun(self, names):
-        """The tasks to run again for `names`: those, and the stitch of
-        each split frame one of them renders a region of (its stitch read
-        the old region)."""
-        out = list(dict.fromkeys(names))
-        for name in list(out):
-            task = self.task(name)
-            if task.stage == "render" and self.split:
-                stitch = "stitch-" + name.split("-")[1]
-                if stitch not in out:
-                    out.append(stitch)
-        return out
+    def rerun(self, names, done=lambda name: False):
+        """The tasks to run again for `names`, in the job's order: those;
+        the stitch of every split frame one of them renders a region of
+        (it read the old region); and, after the cache task, every task
+        not `done` (after a failed cache task, none started)."""
+        wanted = {self.task(n).name for n in names}
+        for t in self.tasks():
+            if t.stage == "stitch" and any(a in wanted for a in t.after):
+                wanted.add(t.name)
+            elif "cache" in wanted and t.stage != "cache" and not done(t.name):
+                wanted.add(t.name)
+        return [t.name for t in self.tasks() if t.name in wanted]
 
     def stage_tasks(self, stage):
         return [t for t in self.tasks() if t.stage == stage]
@@ -219,6 +233,15 @@ class Job:
     def path(self, *parts):
         return os.path.join(self.job_dir, *parts)
 
+    def clear(self):
+        """Remove what an earlier job left in this folder (submit --overwrite):
+        its job.json and the folders below, nothing else."""
+        for sub in ("caches", "frames", "regions", "tasks", "logs"):
+            shutil.rmtree(self.path(sub), ignore_errors=True)
+        for name in (JOB_FILE, "submit.log"):
+            if os.path.exists(self.path(name)):
+                os.remove(self.path(name))
+
     def make_folders(self):
         for sub in ("caches", "frames", "regions", "tasks", "logs"):
             os.makedirs(self.path(sub), exist_ok=True)
@@ -227,7 +250,7 @@ class Job:
         data = {"version": JOB_VERSION, "blend_file": self.blend_file, "frames": format_frames(self.frames),
                 "regions": "%dx%d" % self.regions, "key_frames": format_frames(self.key_frames),
                 "blender": self.blender, "blender_args": self.blender_args, "manager": self.manager,
-                "manager_ids": self.manager_ids}
+                "manager_args": self.manager_args, "manager_ids": self.manager_ids}
         write_json_atomically(self.path(JOB_FILE), data)
 
     @classmethod
@@ -243,15 +266,23 @@ class Job:
         if data.get("version") != JOB_VERSION:
             raise JobError("%s was written by another version of Phos's farm (version %s, this one reads %d)"
                            % (path, data.get("version"), JOB_VERSION))
-        return cls(data["blend_file"], job_dir, parse_frames(data["frames"]), parse_regions(data["regions"]),
-                   parse_frames(data["key_frames"], "key frames"), data["blender"], data["blender_args"],
-                   data["manager"], data["manager_ids"])
+        try:
+            return cls(data["blend_file"], job_dir, parse_frames(data["frames"]), parse_regions(data["regions"]),
+                       parse_frames(data["key_frames"], "key frames"), data["blender"], data["blender_args"],
+                       data["manager"], data["manager_args"], data["manager_ids"])
+        except (KeyError, TypeError) as ex:
+            raise JobError("%s is damaged: %s is missing or wrong" % (path, ex))
+
+
+_tmp_names = itertools.count()
 
 
 def write_json_atomically(path, data):
     """Write `data` so that a reader never sees half a file, even if the
-    writer is killed (a requeued task)."""
-    tmp = "%s.%d.tmp" % (path, os.getpid())
+    writer is killed (a requeued task). Each call writes a temporary file
+    of its own: a signal handler may write the same file while the code it
+    interrupted was writing it."""
+    tmp = "%s.%d.%d.tmp" % (path, os.getpid(), next(_tmp_names))
     with open(tmp, "w") as f:
         json.dump(data, f, indent=1, sort_keys=True)
         f.write("\n")

@@ -10,19 +10,17 @@ the tasks' state from the job folder, as `status` does.
 """
 
 import os
+import shlex
 import subprocess
-import sys
 
 import bpy
 from bpy.props import EnumProperty, IntProperty, PointerProperty, StringProperty
 
-from . import slurm
+from . import command, status
+from .blender_task import TaskError, check_regions, check_scene
 from .job import Job, JobError, choose_key_frames, parse_frames, parse_regions
-from .run import task_state
 
 ENGINE = 'PHOS'
-PACKAGE = __package__.rsplit(".", 1)[0]
-PACKAGE_PARENT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 class PhosFarmSettings(bpy.types.PropertyGroup):
@@ -70,28 +68,6 @@ def _new_job_folder(settings):
     return os.path.join(root, "%s_%03d" % (stem, n))
 
 
-def _farm_python():
-    """A Python to run the command line with: Blender's own if it is one."""
-    exe = sys.executable or ""
-    if os.path.basename(exe).startswith("python") and os.path.isfile(exe):
-        return exe
-    import shutil
-    return shutil.which("python3") or "python3"
-
-
-def summarize(job_dir):
-    """'5 done, 2 running' for the job in job_dir."""
-    job = Job.load(job_dir)
-    queued = slurm.queued_states(job) if job.manager == "slurm" else {}
-    counts = {}
-    for t in job.tasks():
-        state = task_state(job, t.name).get("state", "waiting")
-        if t.name in queued and state != "running":
-            state = queued[t.name].split()[0].lower()
-        counts[state] = counts.get(state, 0) + 1
-    return ", ".join("%d %s" % (n, s) for s, n in sorted(counts.items()))
-
-
 class PHOS_OT_farm_submit(bpy.types.Operator):
     """Save the file and submit it as a farm job: caches made once, then every frame (or region)"""
 
@@ -106,24 +82,28 @@ class PHOS_OT_farm_submit(bpy.types.Operator):
             return {'CANCELLED'}
         try:
             frames = parse_frames(_scene_frames(scene, settings))
-            parse_regions(settings.regions)
+            regions = parse_regions(settings.regions)
             choose_key_frames(frames, settings.key_frames)
-        except JobError as ex:
+            check_scene(scene)
+            if regions != (1, 1):
+                check_regions(scene)
+        except (JobError, TaskError) as ex:
             self.report({'ERROR'}, "Phos farm: %s" % ex)
             return {'CANCELLED'}
         if bpy.data.is_dirty:
             bpy.ops.wm.save_mainfile()
         job_dir = _new_job_folder(settings)
-        cmd = [_farm_python(), "-m", PACKAGE + ".farm", "submit", bpy.data.filepath,
-               "--frames", _scene_frames(scene, settings), "--regions", settings.regions,
-               "--key-frames", settings.key_frames, "--job-dir", job_dir,
-               "--blender", bpy.app.binary_path or "blender"]
+        # Values as --option=value: an sbatch option as a value would be
+        # read as an option of the command line.
+        cmd = [command.python(), "-m", command.MODULE, "submit", bpy.data.filepath,
+               "--frames=" + _scene_frames(scene, settings), "--regions=" + settings.regions,
+               "--key-frames=" + settings.key_frames, "--job-dir=" + job_dir,
+               "--blender=" + shlex.quote(bpy.app.binary_path or "blender")]
         if settings.manager == 'LOCAL':
-            cmd += ["--local", str(settings.local_processes)]
+            cmd += ["--local=%d" % settings.local_processes]
         else:
-            cmd += ["--slurm-args", settings.slurm_args]
-        env = dict(os.environ)
-        env["PYTHONPATH"] = PACKAGE_PARENT + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+            cmd += ["--slurm-args=" + settings.slurm_args]
+        env = command.environment()
         os.makedirs(job_dir, exist_ok=True)
         log = open(os.path.join(job_dir, "submit.log"), "wb")
         try:
@@ -171,7 +151,7 @@ class PHOS_OT_farm_status(bpy.types.Operator):
             settings.last_status = lines[-1] if lines else "starting"
             return {'FINISHED'}
         try:
-            settings.last_status = summarize(job_dir)
+            settings.last_status = status.summary(status.task_states(Job.load(job_dir)))
         except JobError as ex:
             settings.last_status = ""
             self.report({'ERROR'}, "Phos farm: %s" % ex)

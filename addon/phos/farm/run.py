@@ -41,17 +41,20 @@ def _threads():
 
 def blender_env():
     """The environment for a task's Blender: this one, less the folder of
-    the Python running the farm on PATH. A Python launcher (pyenv, an
-    activated venv) puts its own folder first, and a Blender linked to
-    the system's Python (Debian's) takes the first python3 on PATH for its
-    home: it would then load another Python's library and miss numpy."""
+    the Python running the farm on PATH, unless it is a system folder. A
+    Python launcher (pyenv, an activated venv) puts its own folder first,
+    and a Blender linked to the system's Python (Debian's) takes the first
+    python3 on PATH for its home: it would then load another Python's
+    library and miss numpy."""
     env = dict(os.environ)
-    own = os.path.dirname(os.path.realpath(sys.executable)) if sys.executable else ""
-    if own and own not in ("/usr/bin", "/bin"):
-        keep = [p for p in env.get("PATH", "").split(os.pathsep)
-                if p and os.path.realpath(p) != own]
-        env["PATH"] = os.pathsep.join(keep)
+    own = os.path.dirname(os.path.abspath(sys.executable)) if sys.executable else ""
+    if own and own not in SYSTEM_BIN:
+        env["PATH"] = os.pathsep.join(p for p in env.get("PATH", "").split(os.pathsep)
+                                      if p and os.path.abspath(p) != own)
     return env
+
+
+SYSTEM_BIN = ("/usr/bin", "/bin", "/usr/local/bin", "/usr/sbin", "/sbin", "/usr/local/sbin")
 
 
 def _last_error(log_path, start):
@@ -67,26 +70,35 @@ def _last_error(log_path, start):
     return picked[-1] if picked else (lines[-1].strip() if lines else "")
 
 
-def _record_termination(job, name, info, proc):
-    """On SIGTERM (Slurm's requeue or time limit, scancel), stop Blender
-    and record the task as killed before exiting, so that `status` says
-    what happened to it. Only in the main thread, where Python handles
-    signals; --local runs tasks in worker threads and is stopped by Ctrl-C."""
-    import threading
-    if threading.current_thread() is not threading.main_thread():
-        return
+class _Termination:
+    """Until Blender has ended: on SIGTERM (Slurm's requeue or time limit,
+    scancel) stop it and record the task as killed before exiting, so
+    that `status` says what happened. Only in the main thread, where
+    Python handles signals; --local runs tasks in worker threads and is
+    stopped by Ctrl-C."""
 
-    def on_term(signum, _frame):
-        proc.terminate()
-        try:
-            proc.wait(5)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-        write_json_atomically(task_state_path(job, name),
-                              dict(info, state="killed", seconds=round(time.time() - info["started"], 3),
+    def __init__(self, job, name, info):
+        import threading
+        self.job, self.name, self.info, self.proc = job, name, info, None
+        self.active = threading.current_thread() is threading.main_thread()
+        if self.active:
+            self.previous = signal.signal(signal.SIGTERM, self._on_term)
+
+    def _on_term(self, signum, _frame):
+        if self.proc is not None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(5)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+        write_json_atomically(task_state_path(self.job, self.name),
+                              dict(self.info, state="killed", seconds=round(time.time() - self.info["started"], 3),
                                    error="stopped by signal %d (a requeue, time limit or scancel)" % signum))
         sys.exit(128 + signum)
-    signal.signal(signal.SIGTERM, on_term)
+
+    def close(self):
+        if self.active:
+            signal.signal(signal.SIGTERM, self.previous)
 
 
 def run_task(job, name, echo=False):
@@ -100,10 +112,26 @@ def run_task(job, name, echo=False):
     info = {"state": "running", "attempts": attempts, "host": socket.gethostname(), "started": t0,
             "slurm_restart_count": int(os.environ.get("SLURM_RESTART_COUNT", "0") or 0)}
     write_json_atomically(task_state_path(job, name), info)
+    termination = _Termination(job, name, info)
+    try:
+        code = _run_blender(job, task, log_path, echo, termination)
+    finally:
+        termination.close()
+    info.update(state="done" if code == 0 else "failed", exit_code=code, seconds=round(time.time() - t0, 3))
+    if code != 0:
+        info["error"] = _last_error(log_path, info["log_start"])
+    del info["log_start"]
+    write_json_atomically(task_state_path(job, name), info)
+    return code
+
+
+def _run_blender(job, task, log_path, echo, termination):
+    """Run the task's Blender, its output appended to the log; its exit code."""
+    info = termination.info
     cmd = job.blender_command(task, _threads())
     with open(log_path, "ab") as log:
-        start = log.tell()
-        log.write(("\n=== attempt %d on %s: %s\n" % (attempts, info["host"], " ".join(cmd))).encode())
+        info["log_start"] = log.tell()
+        log.write(("\n=== attempt %d on %s: %s\n" % (info["attempts"], info["host"], " ".join(cmd))).encode())
         log.flush()
         try:
             proc = subprocess.Popen(cmd, stdout=subprocess.PIPE if echo else log, stderr=subprocess.STDOUT,
@@ -112,15 +140,11 @@ def run_task(job, name, echo=False):
             log.write(("Phos farm: error: cannot start Blender (%s): %s\n" % (job.blender, ex.strerror)).encode())
             code = 127
         else:
-            _record_termination(job, name, info, proc)
+            termination.proc = proc
             if echo:
                 for line in proc.stdout:
                     log.write(line)
                     sys.stdout.buffer.write(line)
                     sys.stdout.flush()
             code = proc.wait()
-    info.update(state="done" if code == 0 else "failed", exit_code=code, seconds=round(time.time() - t0, 3))
-    if code != 0:
-        info["error"] = _last_error(log_path, start)
-    write_json_atomically(task_state_path(job, name), info)
     return code

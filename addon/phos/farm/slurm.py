@@ -1,39 +1,40 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""A job on Slurm: one sbatch job per stage (docs/farm.md, "Slurm").
+"""A job on Slurm: sbatch array jobs, stage by stage (docs/farm.md, "Slurm").
 
     cache    one task
-    render   an array job, one element per frame or region, after the
-             cache job succeeded (--dependency=afterok)
-    stitch   an array job, one element per split frame, after the render
-             array succeeded
+    render   an array job, one element per frame or region, started once
+             the cache job succeeded (--dependency=afterok)
+    stitch   an array job, one element per split frame, started once the
+             render elements have ended (afterany: a stitch whose region
+             failed fails itself, saying which, and the other frames'
+             stitches still run)
 
 A stage with more tasks than Slurm's MaxArraySize is several array jobs.
 Every element runs `python3 -m phos.farm task JOB_DIR --stage S --offset
-O --index $SLURM_ARRAY_TASK_ID`, that is run_task on the node, so a Slurm task
-does exactly what a local one does. Jobs are submitted with --requeue: a
-task killed by a node failure or `scontrol requeue` runs again and, the
-render being deterministic, writes the same frame. State comes from the
-task files (run.py), and from squeue for what has not started.
+O --index $SLURM_ARRAY_TASK_ID`, that is run_task on the node, so a Slurm
+task does exactly what a local one does. Jobs are submitted with
+--requeue: a task killed by a node failure or `scontrol requeue` runs
+again and, the render being deterministic, writes the same frame.
 """
 
 import os
 import shlex
 import subprocess
-import sys
 
-from .job import JobError
+from . import command
+from .job import STAGES, JobError, format_frames
 
-# The folder holding the `phos` package, for the nodes' PYTHONPATH.
-PACKAGE_PARENT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-PACKAGE = __package__.rsplit(".", 1)[0]   # "phos", or the extension's full name
+
+def _slurm(cmd, what):
+    """Run a Slurm command; its CompletedProcess. JobError when it cannot start."""
+    try:
+        return subprocess.run(cmd, capture_output=True, text=True, check=False)
+    except OSError as ex:
+        raise JobError("cannot run %s (%s): is Slurm's client installed on this machine?" % (what, ex.strerror))
 
 
 def _sbatch(args, script):
-    cmd = ["sbatch", "--parsable"] + args + [script]
-    try:
-        out = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    except OSError as ex:
-        raise JobError("cannot run sbatch (%s): is Slurm's client installed here?" % ex.strerror)
+    out = _slurm(["sbatch", "--parsable"] + args + [script], "sbatch")
     if out.returncode != 0:
         raise JobError("sbatch refused the job: %s" % (out.stderr.strip() or out.stdout.strip()))
     return out.stdout.strip().split(";")[0]
@@ -45,10 +46,10 @@ def _script(job, stage, offset):
     path = job.path("tasks", "slurm-%s-%d.sh" % (stage, offset))
     lines = [
         "#!/bin/sh",
-        "# Phos farm: stage '%s' of %s (written by python3 -m %s.farm submit)" % (stage, job.blend_file, PACKAGE),
-        "export PYTHONPATH=%s${PYTHONPATH:+:$PYTHONPATH}" % shlex.quote(PACKAGE_PARENT),
-        "exec %s -m %s.farm task %s --stage %s --offset %d --index \"${SLURM_ARRAY_TASK_ID:-0}\""
-        % (shlex.quote(sys.executable), PACKAGE, shlex.quote(job.job_dir), stage, offset),
+        "# Phos farm: stage '%s' of %s (written by python3 -m %s submit)" % (stage, job.blend_file, command.MODULE),
+        "export PYTHONPATH=%s${PYTHONPATH:+:$PYTHONPATH}" % shlex.quote(command.PACKAGE_PARENT),
+        "exec %s -m %s task %s --stage %s --offset %d --index \"${SLURM_ARRAY_TASK_ID:-0}\""
+        % (shlex.quote(command.python()), command.MODULE, shlex.quote(job.job_dir), stage, offset),
     ]
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -58,8 +59,8 @@ def _script(job, stage, offset):
 
 def max_array_size():
     """Slurm's MaxArraySize: array indices run from 0 to one less (1001
-    by default, so a 250-frame job of 2 × 2 regions needs two arrays)."""
-    out = subprocess.run(["scontrol", "show", "config"], capture_output=True, text=True, check=False)
+    by default, so a 300-frame job of 2 × 2 regions needs two arrays)."""
+    out = _slurm(["scontrol", "show", "config"], "scontrol")
     for line in out.stdout.splitlines():
         key, _, value = line.partition("=")
         if key.strip() == "MaxArraySize" and value.strip().isdigit():
@@ -67,79 +68,80 @@ def max_array_size():
     return 1001
 
 
-def _common_args(job, stage, slurm_args, array):
+def _common_args(job, stage, array):
     output = "slurm-%s-%%A_%%a.out" % stage if array else "slurm-%s-%%j.out" % stage
     return (["--job-name", "phos-%s-%s" % (os.path.splitext(os.path.basename(job.blend_file))[0], stage),
-             "--output", job.path("logs", output), "--requeue", "--chdir", job.job_dir] + list(slurm_args))
+             "--output", job.path("logs", output), "--requeue", "--chdir", job.job_dir] + list(job.manager_args))
 
 
-def submit(job, slurm_args=()):
-    """Submit the job's stages; job.manager_ids gets their Slurm job ids:
-    the cache job's, then per array stage [job id, first task, tasks] of
-    each of its array jobs (more than one when a stage has more tasks
-    than Slurm's MaxArraySize)."""
-    ids, after, chunk = {}, [], max_array_size()
-    for stage in ("cache", "render", "stitch"):
-        tasks = job.stage_tasks(stage)
-        if not tasks:
-            continue
-        parts = []
-        for offset in range(0, len(tasks), chunk):
-            count = min(chunk, len(tasks) - offset)
-            array = stage != "cache"
-            args = _common_args(job, stage, slurm_args, array)
-            if array:
-                args += ["--array", "0-%d" % (count - 1)]
-            if after:
-                args += ["--dependency", "afterok:" + ":".join(after)]
-            parts.append([_sbatch(args, _script(job, stage, offset)), offset, count])
-        ids[stage] = parts[0][0] if stage == "cache" else parts
-        after = [p[0] for p in parts]
-    job.manager, job.manager_ids = "slurm", ids
+DEPENDENCY = {"render": "afterok", "stitch": "afterany"}
+
+
+def _submit_stages(job, names):
+    """Submit tasks `names`, stage by stage, each stage's as array jobs of
+    at most MaxArraySize elements over its stage indices, each waiting
+    for the stage before it among them. Returns {stage: [[job id, offset,
+    [stage indices]], …]}; on a refusal, cancels what it submitted."""
+    chunk, wanted = max_array_size(), set(names)
+    ids, after = {}, []
+    try:
+        for stage in STAGES:
+            indices = [i for i, t in enumerate(job.stage_tasks(stage)) if t.name in wanted]
+            if not indices:
+                continue
+            parts = []
+            for offset in sorted({i // chunk * chunk for i in indices}):
+                elements = [i - offset for i in indices if offset <= i < offset + chunk]
+                args = _common_args(job, stage, stage != "cache")
+                if stage != "cache":
+                    args += ["--array", format_frames(elements)]  # Slurm's syntax: 0-2,5
+                if after:
+                    args += ["--dependency", "%s:%s" % (DEPENDENCY[stage], ":".join(after))]
+                parts.append([_sbatch(args, _script(job, stage, offset)), offset, [offset + e for e in elements]])
+            ids[stage] = parts
+            after = [p[0] for p in parts]
+    except JobError:
+        submitted = [p[0] for parts in ids.values() for p in parts]
+        if submitted:
+            _slurm(["scancel"] + submitted, "scancel")
+        raise
+    return ids
+
+
+def submit(job):
+    """Submit every task; job.manager_ids records the array jobs."""
+    job.manager = "slurm"
+    job.manager_ids = {"submitted": _submit_stages(job, [t.name for t in job.tasks()])}
+    job.save()
+    return job.manager_ids["submitted"]
+
+
+def resubmit(job, names):
+    """Submit tasks `names` again (Job.rerun says which) as array jobs of
+    their own. Elements still pending that can never start (their
+    dependency failed) are cancelled first: the resubmission runs them."""
+    _cancel_never_starting(job)
+    ids = _submit_stages(job, names)
+    job.manager_ids.setdefault("resubmitted", []).append(ids)
     job.save()
     return ids
 
 
-def resubmit(job, names, slurm_args=()):
-    """Submit the tasks `names` again, each alone (their caches exist),
-    with the stitch of any region among them after it (Job.rerun); pending elements
-    that waited for them are cancelled first, since Slurm never starts
-    an element whose dependency failed."""
-    names = job.rerun(names)
-    _cancel_pending(job)
-    ids = {}
-    for name in names:
-        task = job.task(name)
-        index = [t.name for t in job.stage_tasks(task.stage)].index(name)
-        args = _common_args(job, task.stage, slurm_args, True) + ["--array", "0"]
-        waits = [ids[a] for a in task.after if a in ids]
-        if waits:
-            args += ["--dependency", "afterok:" + ":".join(waits)]
-        ids[name] = _sbatch(args, _script(job, task.stage, index))
-    job.manager_ids.setdefault("resubmitted", {}).update(ids)
-    job.save()
-    return ids
-
-
-def _cancel_pending(job):
-    """Cancel this job's elements that can never start (their dependency failed)."""
+def _cancel_never_starting(job):
     for job_id, _index, state, reason in _queue(job):
         if state == "PENDING" and "DependencyNeverSatisfied" in reason:
-            subprocess.run(["scancel", job_id], capture_output=True, check=False)
+            _slurm(["scancel", job_id], "scancel")
 
 
 def _array_jobs(job):
-    """Slurm job id → the tasks its elements run, in index order."""
+    """Slurm job id → {array index: task name} for every submission of the job."""
+    submissions = [job.manager_ids.get("submitted", {})] + list(job.manager_ids.get("resubmitted", []))
     by_id = {}
-    for stage, entry in job.manager_ids.items():
-        if stage == "cache":
-            by_id[entry] = job.stage_tasks("cache")
-        elif stage in ("render", "stitch"):
+    for submission in submissions:
+        for stage, parts in submission.items():
             tasks = job.stage_tasks(stage)
-            for job_id, offset, count in entry:
-                by_id[job_id] = tasks[offset:offset + count]
-    for name, job_id in job.manager_ids.get("resubmitted", {}).items():
-        by_id[job_id] = [job.task(name)]
+            for job_id, offset, indices in parts:
+                by_id[job_id] = {i - offset: tasks[i].name for i in indices if i < len(tasks)}
     return by_id
 
 
@@ -149,27 +151,19 @@ def _queue(job):
     ids = list(_array_jobs(job))
     if not ids:
         return []
-    out = subprocess.run(["squeue", "-h", "-r", "-j", ",".join(ids), "-o", "%i|%K|%T|%r"],
-                         capture_output=True, text=True, check=False)
-    rows = []
-    for line in out.stdout.splitlines():
-        parts = line.split("|")
-        if len(parts) == 4:
-            rows.append(tuple(parts))
-    return rows
+    out = _slurm(["squeue", "-h", "-r", "-j", ",".join(ids), "-o", "%i|%K|%T|%r"], "squeue")
+    return [tuple(line.split("|")) for line in out.stdout.splitlines() if line.count("|") == 3]
 
 
 def queued_states(job):
-    """Task name → Slurm state (PENDING, RUNNING, …) for the elements
-    still in the queue."""
+    """Task name → Slurm state (PENDING, RUNNING, …, with the reason) of
+    the elements still in the queue."""
     by_id = _array_jobs(job)
     states = {}
     for job_id, index, state, reason in _queue(job):
-        tasks = by_id.get(job_id.split("_")[0])
-        if not tasks:
-            continue
-        i = int(index) if index.isdigit() else 0
-        if i >= len(tasks):
-            continue
-        states[tasks[i].name] = state + (" (%s)" % reason if reason and reason != "None" else "")
+        names = by_id.get(job_id.split("_")[0], {})
+        name = names.get(int(index) if index.isdigit() else 0)
+        if name:
+            states[name] = state + (" (%s)" % reason if reason and reason != "None" else "")
     return states
+

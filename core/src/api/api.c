@@ -1059,7 +1059,7 @@ phos_status phos_render_add_view(phos_render *r, const phos_camera_desc *camera)
     if (started)
         return render_refuse(r, PHOS_ERROR_INVALID_STATE, "add_view: the render has started");
     if (r->view_count >= PHOS_MAX_VIEWS)
-        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "add_view: more than 65536 views");
+        return render_refuse(r, PHOS_ERROR_INVALID_ARGUMENT, "add_view: more than 16384 views");
     phos_camera_desc *views = realloc(r->views, sizeof(*views) * (r->view_count + 1u));
     if (!views)
         return render_refuse(r, PHOS_ERROR_OUT_OF_MEMORY, "add_view: out of memory");

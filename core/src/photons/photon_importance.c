@@ -106,7 +106,9 @@ static void mark_gather(photon_importance *imp, const scene *s, const surface *s
 }
 
 /* The pilot of one view: PILOT × PILOT camera rays through pixel centres,
- * each followed to its first diffuse surface and that surface's gathers. */
+ * each followed to its first diffuse surface and that surface's gathers.
+ * The gathers' jitter hashes view · PILOT² + ray: distinct for every view
+ * up to PHOS_MAX_VIEWS (16384 · 4096 · 16 strata < 2³²). */
 static void mark_view(photon_importance *imp, const scene *s, const phos_camera_desc *camera, uint32_t view)
 {
     specular_chain c = {STOP_AT_DIFFUSE, CHAIN_STEPS, 1, NULL, 0, 0.0f, NULL, 0.0f};

@@ -38,7 +38,7 @@
 // The Python run by every task. Kept on one line: a Python test compares it
 // with the constant of the same name on the Python side. It must not contain
 // curly braces, which Flamenco reads as variables such as {blender}.
-const PHOS_BOOTSTRAP = "import addon_utils,importlib;n=[m.__name__ for m in addon_utils.modules() if m.__name__.rsplit('.',1)[-1]=='phos'][0];addon_utils.enable(n,default_set=False);importlib.import_module(n+'.farm.blender_task').main()";
+const PHOS_BOOTSTRAP = "import addon_utils,importlib;n=next((m.__name__ for m in addon_utils.modules() if m.__name__.rsplit('.',1)[-1]=='phos'),'');assert n,'Phos farm: error: the Phos add-on is not installed in this Blender';addon_utils.enable(n,default_set=False);importlib.import_module(n+'.farm.blender_task').main()";
 
 // The job type as Flamenco shows it in Blender's submission panel and in the
 // Manager's web interface. Setting fields follow Flamenco's AvailableJobSetting
@@ -121,7 +121,7 @@ function compileJob(job) {
     const keyFrames = chooseKeyFrames(frames, settingText(settings, "key_frames", ""));
 
     checkTaskCount(frames, regions);
-    const keyList = keyFrames.join(",");
+    const keyList = formatFrameList(keyFrames);
     if (keyList.length > PHOS_MAX_ARG_CHARS) {
         fail("key_frames: " + keyFrames.length + " key frames make a command line too long for Blender; "
             + "give fewer key frames in the Key Frames setting");
