@@ -90,10 +90,10 @@ def task_log(job_dir, name):
 
 # ------------------------------------------------------------------ scenes
 
-def make_blend(path, width, height, samples):
+def make_blend(path, width, height, samples, box_moves=False):
     """A floor, a box and a point lamp under a dim world, PHOTON with the
     irradiance cache (photon maps and cache both used), the camera moving
-    over frames 1-4; saved to `path`."""
+    over frames 1-4 (and the box too if box_moves); saved to `path`."""
     scene = pt.reset_file()
     pt.add_plane(scene, "Floor", size=6.0, material=pt.diffuse("Floor", (0.7, 0.7, 0.7)))
     pt.add_cube(scene, "Box", size=1.0, location=(0, 0, 0.5), material=pt.diffuse("Box", (0.8, 0.3, 0.2)))
@@ -110,6 +110,11 @@ def make_blend(path, width, height, samples):
     cam.keyframe_insert("location", frame=1)
     cam.location = (1.5, -4.5, 2.2)
     cam.keyframe_insert("location", frame=4)
+    if box_moves:
+        box = bpy.data.objects["Box"]
+        box.keyframe_insert("location", frame=1)
+        box.location = (0.6, 0.3, 0.5)
+        box.keyframe_insert("location", frame=4)
     bpy.ops.wm.save_as_mainfile(filepath=str(path), copy=True)
     pt.reset_file()
     return str(path)
@@ -121,12 +126,13 @@ blend, jobs = sys.argv[sys.argv.index("--") + 1], sys.argv[sys.argv.index("--") 
 bpy.ops.wm.open_mainfile(filepath=blend)
 pt.enable_addon()
 from phos.farm import blender_task as bt
-for spec in jobs:   # JOB_DIR:KEYS:FRAMES, caches and frames in this one process
+for spec in jobs:   # JOB_DIR:KEYS:FRAMES, caches and frames in this one process (KEYS -: per frame)
     job_dir, keys, frames = spec.split(":")
     scene = bpy.context.scene
-    bt.run_cache(scene, job_dir, [int(f) for f in keys.split(",")])
+    if keys != "-":
+        bt.run_cache(scene, job_dir, [int(f) for f in keys.split(",")])
     for f in frames.split(","):
-        bt.run_frame(scene, job_dir, int(f))
+        bt.run_frame(scene, job_dir, int(f), shared=keys != "-")
 """
 
 
@@ -240,6 +246,27 @@ def test_local_farm_renders_what_one_process_renders(tmp_path, farm_scene):
     check_still(still, farm_scene["still"])
     code, out = farm(tmp_path, "status", still)
     assert "6 done" in out
+
+
+def test_animated_objects_need_caches_per_frame(tmp_path):
+    """A box that moves: frames refuse the shared caches, saying so and
+    naming --caches per-frame; with it every frame makes its own, and the
+    frames are one process's bit for bit."""
+    pt.enable_addon()
+    blend = make_blend(tmp_path / "moving.blend", 40, 30, 4, box_moves=True)
+    ref = str(tmp_path / "ref")
+    render_reference(tmp_path, blend, "%s:-:1,4" % ref)
+    shared, own = str(tmp_path / "shared"), str(tmp_path / "own")
+    code, out = submit(tmp_path, blend, shared, "--frames", "1,4", "--local", "2", check=False)
+    assert code == 1, out
+    assert task_state(shared, "frame-1")["state"] == "done"   # the cache task's own frame
+    error = task_state(shared, "frame-4")["error"]
+    assert "made for other geometry" in error and "--caches per-frame" in error, error
+    submit(tmp_path, blend, own, "--frames", "1,4", "--caches", "per-frame", "--local", "2")
+    assert not os.path.exists(os.path.join(own, "tasks", "cache.json"))
+    for f in (1, 4):
+        assert "rendering frame %d with caches of its own" % f in task_log(own, "frame-%d" % f)
+        assert_same_image(frame_file(own, f), frame_file(ref, f))
 
 
 def test_farm_panel_submits_a_job(tmp_path, farm_scene, monkeypatch):
@@ -407,15 +434,17 @@ ctx.compileJob({settings: JSON.parse(process.argv[2]), addTask: (t) => tasks.pus
 console.log(JSON.stringify(tasks.map((t) => [t.name, t.cmds[0].args.slice(5), t.deps])));
 """
     js = os.path.join(pt.ADDON_DIR, "phos", "farm", "flamenco", "phos_farm.js")
-    for frames, regions, keys in (("1-3,7", "1x1", ""), ("2,5", "2x3", "5"), ("1-4", "1x2", "1,3-4")):
+    for frames, regions, keys, caches in (("1-3,7", "1x1", "", "shared"), ("2,5", "2x3", "5", "shared"),
+                                          ("1-4", "1x2", "1,3-4", "shared"), ("2-3", "2x1", "", "per-frame"),
+                                          ("8", "1x1", "", "per-frame")):
         settings = {"blendfile": "/s.blend", "job_dir": "/jobs/x", "frames": frames, "regions": regions,
-                    "key_frames": keys}
+                    "key_frames": keys, "caches": caches}
         proc = subprocess.run([node, "-e", script, js, json.dumps(settings)], stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT, timeout=60)
         assert proc.returncode == 0, proc.stdout.decode()
         fs = farm_job.parse_frames(frames)
         j = farm_job.Job("/s.blend", "/jobs/x", fs, farm_job.parse_regions(regions),
-                         farm_job.choose_key_frames(fs, keys))
+                         farm_job.choose_key_frames(fs, keys), caches=caches)
         assert json.loads(proc.stdout) == [[t.name, t.args, t.after] for t in j.tasks()]
 
 

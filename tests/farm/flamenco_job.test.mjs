@@ -193,7 +193,7 @@ test("JOB_TYPE declares the settings with Flamenco's documented fields", () => {
     const subtypes = new Set(["file_path", "dir_path", "file_name", "hashed_file_path"]);
     const visibilities = new Set(["visible", "hidden", "submission", "web"]);
     const keys = JOB_TYPE.settings.map((s) => s.key);
-    assert.deepEqual([...keys].sort(), ["blendfile", "frames", "job_dir", "key_frames", "regions"]);
+    assert.deepEqual([...keys].sort(), ["blendfile", "caches", "frames", "job_dir", "key_frames", "regions"]);
     for (const s of JOB_TYPE.settings) {
         for (const field of Object.keys(s)) {
             assert.ok(documented.has(field), `${s.key}: undocumented field ${field}`);
@@ -212,6 +212,8 @@ test("JOB_TYPE declares the settings with Flamenco's documented fields", () => {
         }
     }
     const setting = Object.fromEntries(JOB_TYPE.settings.map((s) => [s.key, s]));
+    assert.deepEqual([...setting.caches.choices], ["shared", "per-frame"]);
+    assert.equal(setting.caches.default, "shared");
     assert.equal(setting.blendfile.eval, "bpy.data.filepath");
     assert.equal(setting.blendfile.required, true);
     assert.notEqual(setting.blendfile.visible ?? "visible", "visible", "blendfile is not asked from the artist");
@@ -366,4 +368,17 @@ test("a missing blend file is refused", () => {
 test("absurd task counts are refused before building tasks", () => {
     assertRefused({ frames: "0-1000000" }, /frames: the range '0-1000000' has more than 100000 frames/);
     assertRefused({ frames: "1-1000", regions: "20x10" }, /201001 tasks/);
+});
+
+test("caches per-frame: no cache task, every task makes its own and waits for nothing", () => {
+    const { tasks } = compile({ frames: "3-4", regions: "1x2", caches: "per-frame" });
+    assert.deepEqual(tasks.map((t) => t.name), ["region-3-0", "region-3-1", "stitch-3", "region-4-0", "region-4-1", "stitch-4"]);
+    assert.deepEqual(renderArgs(tasks[1]), phosArgs("region", "--frame", "3", "--region", "1", "--regions", "1x2",
+        "--caches", "per-frame"));
+    assert.deepEqual(tasks[0].deps, []);
+    assert.deepEqual(tasks[2].deps, ["region-3-0", "region-3-1"]);
+    const whole = compile({ frames: "7", caches: "per-frame" }).tasks;
+    assert.deepEqual(whole.map((t) => t.name), ["frame-7"]);
+    assert.deepEqual(renderArgs(whole[0]), phosArgs("frame", "--frame", "7", "--caches", "per-frame"));
+    assertRefused({ frames: "1-2", caches: "sometimes" }, /^Phos farm job: caches: 'sometimes' is not/);
 });

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """python3 -m phos.farm: submit a job, watch it, resubmit failed tasks.
 
-    submit BLEND --frames 1-250 [--regions 2x2] [--key-frames 1,100,200]
+    submit BLEND --frames 1-250 [--regions 2x2] [--key-frames 1,100,200] [--caches per-frame]
            [--job-dir DIR] [--blender PATH] [--blender-args "..."]
            [--local N | --slurm-args='...']
     status JOB_DIR
@@ -15,7 +15,7 @@ import shlex
 import sys
 
 from . import local, slurm, status
-from .job import Job, JobError, choose_key_frames, parse_frames, parse_regions
+from .job import CACHES, Job, JobError, choose_key_frames, parse_frames, parse_regions
 from .run import run_task, task_state
 
 
@@ -28,13 +28,16 @@ def _submit(a):
     if exists and not a.overwrite:
         raise JobError("%s already holds a job; give another --job-dir, or --overwrite to replace it" % job_dir)
     job = Job(a.blend, job_dir, frames, parse_regions(a.regions), choose_key_frames(frames, a.key_frames),
-              a.blender, shlex.split(a.blender_args), "local" if a.local else "slurm", shlex.split(a.slurm_args))
+              a.blender, shlex.split(a.blender_args), "local" if a.local else "slurm", shlex.split(a.slurm_args),
+              caches=a.caches)
     if exists:
         job.clear()
     job.make_folders()
     job.save()
-    print("Phos farm: job %s: %d frame(s), regions %dx%d, %d key frame(s), %d task(s)"
-          % (job.job_dir, len(job.frames), job.regions[0], job.regions[1], len(job.key_frames), len(job.tasks())))
+    print("Phos farm: job %s: %d frame(s), regions %dx%d, %s, %d task(s)"
+          % (job.job_dir, len(job.frames), job.regions[0], job.regions[1],
+             "%d key frame(s)" % len(job.key_frames) if job.caches == "shared" else "caches per frame",
+             len(job.tasks())))
     if a.local:
         failed = local.run_local(job, a.local, echo=a.verbose)
         _print_status(job)
@@ -110,6 +113,9 @@ def main(argv=None):
     s.add_argument("--frames", required=True, help="frames to render, e.g. 1-250 or 1-10,20")
     s.add_argument("--regions", default="1x1", help="COLUMNSxROWS regions per frame, stitched after (default 1x1)")
     s.add_argument("--key-frames", default="", help="frames whose views the caches are made for (default: all)")
+    s.add_argument("--caches", default="shared", choices=CACHES,
+                   help="shared: one cache task for every frame (the camera alone moves); per-frame: each task "
+                        "makes its frame's own (objects, lights or materials animate)")
     s.add_argument("--job-dir", help="the job's folder, on storage every node reaches (default: BLEND.farm)")
     s.add_argument("--overwrite", action="store_true", help="replace the job already in --job-dir")
     s.add_argument("--blender", default=os.environ.get("PHOS_FARM_BLENDER", "blender"),

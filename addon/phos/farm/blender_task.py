@@ -3,8 +3,8 @@
 
     blender -b scene.blend --python-exit-code 1 --python-expr BOOTSTRAP -- \\
         cache  --job-dir DIR --frames 1-250 --key-frames 1,2,…
-        frame  --job-dir DIR --frame F
-        region --job-dir DIR --frame F --region I --regions CxR
+        frame  --job-dir DIR --frame F [--caches per-frame]
+        region --job-dir DIR --frame F --region I --regions CxR [--caches per-frame]
         stitch --job-dir DIR --frame F --regions CxR
 
 - cache: one final render of the first key frame that traces the photon
@@ -14,6 +14,7 @@
 - frame, region: the frame (or region) rendered with those caches loaded,
   written as a 32-bit float OpenEXR to DIR/frames (DIR/regions). A cache
   made for another scene is refused by the core, naming what differs.
+  With --caches per-frame the task makes its frame's caches itself.
 - stitch: the regions of a frame placed where Blender's border put them
   (engine.border_rect), written as the whole frame.
 
@@ -196,21 +197,24 @@ def run_cache(scene, job_dir, key_frames):
 
 # ---------------------------------------------------------- frame, region
 
-def _load_caches(scene, job_dir):
-    """Set the scene to read the job's caches; their names."""
+def _load_caches(scene, job_dir, shared):
+    """Set the scene to read the job's caches (or, not shared, to make
+    its own and keep none); their names."""
+    for prefix, _stage, _name in CACHE_KINDS:  # never the scene's own cache files: tasks run side by side
+        setattr(scene.phos, prefix + "_mode", 'NONE')
+    if not shared:
+        return []
     listing = read_json(os.path.join(job_dir, "caches", CACHES_FILE))
     if listing is None:
         raise TaskError("%s has no caches: the cache task has not run, or failed" % job_dir)
-    for prefix, _stage, _name in CACHE_KINDS:  # never the scene's own cache files: tasks run side by side
-        setattr(scene.phos, prefix + "_mode", 'NONE')
     for prefix, name in listing["caches"].items():
         setattr(scene.phos, prefix + "_mode", 'LOAD')
         setattr(scene.phos, prefix, os.path.join(job_dir, "caches", name))
     return sorted(listing["caches"].values())
 
 
-def run_frame(scene, job_dir, frame, region=None, regions=(1, 1)):
-    loaded = _load_caches(scene, job_dir)
+def run_frame(scene, job_dir, frame, region=None, regions=(1, 1), shared=True):
+    loaded = _load_caches(scene, job_dir, shared)
     scene.frame_set(frame)
     _output_settings(scene)
     r = scene.render
@@ -221,9 +225,15 @@ def run_frame(scene, job_dir, frame, region=None, regions=(1, 1)):
         r.use_border, r.use_crop_to_border = True, True
         r.border_min_x, r.border_max_x, r.border_min_y, r.border_max_y = region_border(region, *regions)
         out = region_path(job_dir, frame, region)
-    _say("rendering frame %d%s with %s loaded" % (frame, "" if region is None else " region %d" % region,
-                                                  ", ".join(loaded) or "no cache"))
-    _render(scene)
+    _say("rendering frame %d%s with %s" % (frame, "" if region is None else " region %d" % region,
+                                           ", ".join(loaded) + " loaded" if loaded else "caches of its own"))
+    try:
+        _render(scene)
+    except TaskError as ex:
+        if shared and "is not used: it was made for other" in str(ex):
+            raise TaskError("%s (if objects, lights or materials animate, submit the job with --caches "
+                            "per-frame)" % ex) from None
+        raise
     os.makedirs(os.path.dirname(out), exist_ok=True)
     _save_render_result(scene, out)
     _say("wrote " + out)
@@ -279,6 +289,7 @@ def _parse(argv):
     p.add_argument("--frame", type=int)
     p.add_argument("--region", type=int)
     p.add_argument("--regions", default="1x1")
+    p.add_argument("--caches", default="shared", choices=("shared", "per-frame"))
     return p.parse_args(argv)
 
 
@@ -294,12 +305,12 @@ def run(argv):
     elif a.frame is None:
         raise TaskError("%s needs --frame" % a.task)
     elif a.task == "frame":
-        run_frame(scene, a.job_dir, a.frame)
+        run_frame(scene, a.job_dir, a.frame, shared=a.caches == "shared")
     elif a.task == "region":
         regions = parse_regions(a.regions)
         if a.region is None or not 0 <= a.region < regions[0] * regions[1]:
             raise TaskError("--region must be 0 to %d for regions %s" % (regions[0] * regions[1] - 1, a.regions))
-        run_frame(scene, a.job_dir, a.frame, a.region, regions)
+        run_frame(scene, a.job_dir, a.frame, a.region, regions, shared=a.caches == "shared")
     else:
         run_stitch(scene, a.job_dir, a.frame, parse_regions(a.regions))
 

@@ -9,6 +9,10 @@ The graph (docs/farm.md, "The job"):
       +-- region-F-I            else one per region I of each frame F,
             +-- stitch-F        and one per frame, after its regions
 
+With caches "per-frame" (an animation whose objects, lights or materials
+move) there is no cache task: each frame or region task makes the caches
+of its own frame, as a render on one machine does.
+
 Each task is one `blender -b` run of the job's blend file with
 `-- SUBCOMMAND --job-dir DIR ...` after the bootstrap below; Slurm,
 local processes and Flamenco's job type (flamenco/phos_farm.js, which
@@ -140,13 +144,15 @@ class Task:
 
 
 STAGES = ("cache", "render", "stitch")
+CACHES = ("shared", "per-frame")
 
 
 class Job:
     """A farm job's settings (as job.json keeps them) and its task graph."""
 
     def __init__(self, blend_file, job_dir, frames, regions=(1, 1), key_frames=None,
-                 blender="blender", blender_args=(), manager="local", manager_args=(), manager_ids=None):
+                 blender="blender", blender_args=(), manager="local", manager_args=(), manager_ids=None,
+                 caches="shared"):
         self.blend_file = os.path.abspath(blend_file)
         self.job_dir = os.path.abspath(job_dir)
         self.frames = list(frames)
@@ -158,10 +164,13 @@ class Job:
         self.manager_args = list(manager_args)  # sbatch options of every task, resubmissions too
         self.manager_ids = dict(manager_ids or {})
         self._tasks = None
+        if caches not in CACHES:
+            raise JobError("caches: '%s' is not one of %s" % (caches, ", ".join(CACHES)))
+        self.caches = caches
         if not self.frames:
             raise JobError("frames: none given")
         per_frame = 1 if not self.split else self.regions[0] * self.regions[1] + 1
-        if 1 + len(self.frames) * per_frame > MAX_TASKS:
+        if (caches == "shared") + len(self.frames) * per_frame > MAX_TASKS:
             raise JobError("%d frames with regions %dx%d make more than %d tasks; render fewer frames or "
                            "regions per job" % (len(self.frames), self.regions[0], self.regions[1], MAX_TASKS))
 
@@ -183,17 +192,22 @@ class Job:
 
     def _make_tasks(self):
         regions = "%dx%d" % self.regions
-        out = [Task("cache", "cache", self._args("cache", "--frames", format_frames(self.frames),
-                                                 "--key-frames", format_frames(self.key_frames)), [])]
+        out, after, own = [], [], []
+        if self.caches == "shared":
+            out.append(Task("cache", "cache", self._args("cache", "--frames", format_frames(self.frames),
+                                                         "--key-frames", format_frames(self.key_frames)), []))
+            after = ["cache"]
+        else:
+            own = ["--caches", "per-frame"]
         for f in self.frames:
             if not self.split:
-                out.append(Task("frame-%d" % f, "render", self._args("frame", "--frame", f), ["cache"]))
+                out.append(Task("frame-%d" % f, "render", self._args("frame", "--frame", f, *own), after))
                 continue
             names = []
             for i in range(self.regions[0] * self.regions[1]):
                 names.append("region-%d-%d" % (f, i))
-                out.append(Task(names[-1], "render",
-                                self._args("region", "--frame", f, "--region", i, "--regions", regions), ["cache"]))
+                out.append(Task(names[-1], "render", self._args("region", "--frame", f, "--region", i, "--regions",
+                                                                regions, *own), after))
             out.append(Task("stitch-%d" % f, "stitch", self._args("stitch", "--frame", f, "--regions", regions), names))
         return out
 
@@ -201,8 +215,8 @@ class Job:
         self.tasks()
         if name in self._by_name:
             return self._by_name[name]
-        raise JobError("job %s has no task '%s' (its tasks: cache, %s)"
-                       % (self.job_dir, name, ", ".join(t.name for t in self.tasks()[1:4]) + ", …"))
+        raise JobError("job %s has no task '%s' (its tasks: %s)"
+                       % (self.job_dir, name, ", ".join(t.name for t in self.tasks()[:4]) + ", …"))
 
     def rerun(self, names, done=lambda name: False):
         """The tasks to run again for `names`, in the job's order: those;
@@ -250,7 +264,7 @@ class Job:
         data = {"version": JOB_VERSION, "blend_file": self.blend_file, "frames": format_frames(self.frames),
                 "regions": "%dx%d" % self.regions, "key_frames": format_frames(self.key_frames),
                 "blender": self.blender, "blender_args": self.blender_args, "manager": self.manager,
-                "manager_args": self.manager_args, "manager_ids": self.manager_ids}
+                "manager_args": self.manager_args, "manager_ids": self.manager_ids, "caches": self.caches}
         write_json_atomically(self.path(JOB_FILE), data)
 
     @classmethod
@@ -269,7 +283,7 @@ class Job:
         try:
             return cls(data["blend_file"], job_dir, parse_frames(data["frames"]), parse_regions(data["regions"]),
                        parse_frames(data["key_frames"], "key frames"), data["blender"], data["blender_args"],
-                       data["manager"], data["manager_args"], data["manager_ids"])
+                       data["manager"], data["manager_args"], data["manager_ids"], data["caches"])
         except (KeyError, TypeError) as ex:
             raise JobError("%s is damaged: %s is missing or wrong" % (path, ex))
 

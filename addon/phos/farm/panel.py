@@ -35,6 +35,12 @@ class PhosFarmSettings(bpy.types.PropertyGroup):
         name="Key Frames", default="",
         description="Frames whose camera views the photon maps and the irradiance cache are made for, "
                     "once for the whole job (empty: every frame rendered)")
+    caches: EnumProperty(
+        name="Caches", default='SHARED',
+        items=(('SHARED', "Shared", "One cache task makes the photon maps and the irradiance cache for every frame "
+                "(only the camera moves)", 0),
+               ('PER_FRAME', "Per Frame", "Each frame makes its own caches (objects, lights or materials "
+                "animate)", 1)))
     jobs_folder: StringProperty(
         name="Jobs Folder", default="//farm", subtype='DIR_PATH',
         description="Where each job gets a folder of its own (caches, frames, logs); every node must "
@@ -98,6 +104,7 @@ class PHOS_OT_farm_submit(bpy.types.Operator):
         cmd = [command.python(), "-m", command.MODULE, "submit", bpy.data.filepath,
                "--frames=" + _scene_frames(scene, settings), "--regions=" + settings.regions,
                "--key-frames=" + settings.key_frames, "--job-dir=" + job_dir,
+               "--caches=" + settings.caches.lower().replace("_", "-"),
                "--blender=" + shlex.quote(bpy.app.binary_path or "blender")]
         if settings.manager == 'LOCAL':
             cmd += ["--local=%d" % settings.local_processes]
@@ -183,7 +190,10 @@ class PHOS_RENDER_PT_farm(bpy.types.Panel):
         if not s.frames.strip():
             col.label(text="The scene's frames, %d-%d" % (scene.frame_start, scene.frame_end), icon='INFO')
         col.prop(s, "regions")
-        col.prop(s, "key_frames")
+        col.prop(s, "caches")
+        sub = col.column()
+        sub.active = s.caches == 'SHARED'
+        sub.prop(s, "key_frames")
         col.prop(s, "jobs_folder")
         col.prop(s, "manager")
         if s.manager == 'LOCAL':

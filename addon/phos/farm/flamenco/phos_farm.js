@@ -8,6 +8,9 @@
 // The task graph is the one our Python farm tool builds (docs/farm.md):
 //
 //   cache                       one task; builds the caches of the key frames
+//     |                         (none with caches "per-frame": then every
+//     |                         task makes its own frame's caches and waits
+//     |                         for nothing)
 //     |
 //     +-- frame-F               regions "1x1": one task per frame F,
 //     |                         each waiting for `cache`
@@ -66,6 +69,15 @@ const JOB_TYPE = {
             description: "Split each frame into COLUMNSxROWS regions rendered by separate tasks and stitched afterwards; '1x1' renders whole frames",
         },
         {
+            key: "caches",
+            type: "string",
+            label: "Caches",
+            choices: ["shared", "per-frame"],
+            required: false,
+            default: "shared",
+            description: "'shared': one cache task makes the photon maps and the irradiance cache for every frame (only the camera moves); 'per-frame': each frame makes its own (objects, lights or materials animate)",
+        },
+        {
             key: "key_frames",
             type: "string",
             label: "Key Frames",
@@ -119,21 +131,28 @@ function compileJob(job) {
     const frames = parseFrameList(settingText(settings, "frames", ""), "frames");
     const regions = parseRegions(settingText(settings, "regions", "1x1"));
     const keyFrames = chooseKeyFrames(frames, settingText(settings, "key_frames", ""));
+    const shared = parseCaches(settingText(settings, "caches", "shared"));
 
-    checkTaskCount(frames, regions);
+    checkTaskCount(frames, regions, shared);
     const keyList = formatFrameList(keyFrames);
     if (keyList.length > PHOS_MAX_ARG_CHARS) {
         fail("key_frames: " + keyFrames.length + " key frames make a command line too long for Blender; "
             + "give fewer key frames in the Key Frames setting");
     }
 
-    const cacheTask = authorCacheTask(blendfile, jobDir, frames, keyList);
-    job.addTask(cacheTask);
+    var after = [];
+    var own = ["--caches", "per-frame"];
+    if (shared) {
+        const cacheTask = authorCacheTask(blendfile, jobDir, frames, keyList);
+        job.addTask(cacheTask);
+        after = [cacheTask];
+        own = [];
+    }
 
     if (regions.count === 1) {
-        authorFrameTasks(job, cacheTask, blendfile, jobDir, frames);
+        authorFrameTasks(job, after, own, blendfile, jobDir, frames);
     } else {
-        authorRegionTasks(job, cacheTask, blendfile, jobDir, frames, regions);
+        authorRegionTasks(job, after, own, blendfile, jobDir, frames, regions);
     }
 
     print("phos-farm: " + frames.length + " frame(s), regions " + regions.text
@@ -152,15 +171,15 @@ function authorCacheTask(blendfile, jobDir, frames, keyList) {
     return blenderTask("cache", blendfile, args, []);
 }
 
-function authorFrameTasks(job, cacheTask, blendfile, jobDir, frames) {
+function authorFrameTasks(job, after, own, blendfile, jobDir, frames) {
     for (var i = 0; i < frames.length; i++) {
         const frame = String(frames[i]);
-        const args = phosArgs("frame", jobDir, ["--frame", frame]);
-        job.addTask(blenderTask("frame-" + frame, blendfile, args, [cacheTask]));
+        const args = phosArgs("frame", jobDir, ["--frame", frame].concat(own));
+        job.addTask(blenderTask("frame-" + frame, blendfile, args, after));
     }
 }
 
-function authorRegionTasks(job, cacheTask, blendfile, jobDir, frames, regions) {
+function authorRegionTasks(job, after, own, blendfile, jobDir, frames, regions) {
     for (var i = 0; i < frames.length; i++) {
         const frame = String(frames[i]);
         const regionTasks = [];
@@ -169,8 +188,8 @@ function authorRegionTasks(job, cacheTask, blendfile, jobDir, frames, regions) {
                 "--frame", frame,
                 "--region", String(region),
                 "--regions", regions.text,
-            ]);
-            const task = blenderTask("region-" + frame + "-" + region, blendfile, args, [cacheTask]);
+            ].concat(own));
+            const task = blenderTask("region-" + frame + "-" + region, blendfile, args, after);
             job.addTask(task);
             regionTasks.push(task);
         }
@@ -359,9 +378,17 @@ function chooseKeyFrames(frames, text) {
     return keys;
 }
 
-function checkTaskCount(frames, regions) {
+function parseCaches(text) {
+    const caches = text.trim();
+    if (caches !== "shared" && caches !== "per-frame") {
+        fail("caches: '" + text + "' is not 'shared' or 'per-frame'");
+    }
+    return caches === "shared";
+}
+
+function checkTaskCount(frames, regions, shared) {
     const perFrame = regions.count === 1 ? 1 : regions.count + 1;
-    const total = 1 + frames.length * perFrame;
+    const total = (shared ? 1 : 0) + frames.length * perFrame;
     if (total > PHOS_MAX_TASKS) {
         fail(frames.length + " frame(s) with regions " + regions.text + " make " + total
             + " tasks, more than " + PHOS_MAX_TASKS + "; render fewer frames or regions per job");
