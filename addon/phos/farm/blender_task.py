@@ -105,7 +105,10 @@ def _render(scene):
     """One final render of the scene as it is set; raises with the
     engine's message if Phos failed."""
     engine.last_render_error = None
-    bpy.ops.render.render()
+    try:
+        bpy.ops.render.render()
+    except RuntimeError as ex:  # the engine's ERROR report, raised by the operator in the background
+        raise TaskError(engine.last_render_error or str(ex)) from None
     if engine.last_render_error is not None:
         raise TaskError(engine.last_render_error)
 
