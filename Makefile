@@ -19,6 +19,8 @@
 #   make bench-convergence [QUICK=1]      samplers, adaptive sampling and filters against
 #                                         cached references alone (bench/convergence.py)
 #   make bench-kdtree [BENCH_ARGS=...]    the kd-tree benchmark alone
+#   make bench-farm                       a farm's cache task against caches per frame
+#                                         (bench/farm.py, docs/farm.md; part of make bench)
 #   make bench-defaults                   PHOTON settings swept against cached Cycles
 #               [BENCH_SCENES=...]        references, ranked by error per second, and
 #                                         the defaults against Cycles at equal time
@@ -63,7 +65,7 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
 
 .PHONY: test-asan test-tsan valgrind fuzz
-.PHONY: deps build binding check-binding test test-gui test-blender4 test-blender-latest bench bench-official bench-convergence bench-programs bench-kdtree bench-defaults render image-digests install uninstall package clean help
+.PHONY: deps build binding check-binding test test-gui test-blender4 test-blender-latest bench bench-official bench-convergence bench-programs bench-kdtree bench-defaults bench-farm render image-digests install uninstall package clean help
 
 help:
 	@sed -n '3,35p' Makefile | sed 's/^# \{0,1\}//'
@@ -176,6 +178,13 @@ bench-programs:
 bench-kdtree: bench-programs
 	$(BENCH_DIR)/bench/bench_kdtree $(BENCH_ARGS)
 
+# What a farm's cache task saves (bench/farm.py, docs/farm.md): an 8-frame
+# walkthrough with caches per frame against one cache task and frames that
+# load it; its table goes to $(BENCH_OUT)/farm.md.
+bench-farm: build
+	mkdir -p $(BENCH_OUT)
+	/usr/bin/python3 bench/farm.py --out $(BENCH_OUT)/farm | tee $(BENCH_OUT)/farm.md
+
 # Image quality against time (bench/quality.py, docs/benchmarks.md): the
 # Cycles references are cached in BENCH_REF_DIR and only extended, never
 # re-rendered; the CSVs go to out/bench/.
@@ -252,6 +261,7 @@ bench: bench-programs build
 	$(BLENDER_ISOLATED) $(BLENDER_RUN) --python bench/scaling.py -- --triangles $(BENCH_TRIANGLES) \
 	  --csv $(BENCH_OUT)/scaling.csv | $(BENCH_QUIET)
 	$(MAKE) bench-official BENCH_OUT=$(BENCH_OUT)
+	$(MAKE) bench-farm BENCH_OUT=$(BENCH_OUT)
 	/usr/bin/python3 bench/plots.py $(BENCH_OUT)
 
 bench-convergence: build

@@ -353,6 +353,34 @@ static phos_render_settings unread_settings(uint32_t integrator)
     return rs;
 }
 
+/* The closed box seen from outside (a) and from inside (b), with the
+ * settings of PHOTON and of PATH's reference renders of them; 0 (and
+ * nothing to free) if a scene could not be made. */
+typedef struct box_views {
+    phos_scene *a, *b;
+    phos_render_settings photon, path;
+} box_views;
+
+static void box_views_free(box_views *v)
+{
+    phos_scene_destroy(v->a);
+    phos_scene_destroy(v->b);
+}
+
+static int box_views_make(box_views *v)
+{
+    v->a = closed_box(0);
+    v->b = closed_box(1);
+    v->photon = unread_settings(PHOS_INTEGRATOR_PHOTON);
+    v->path = unread_settings(PHOS_INTEGRATOR_PATH);
+    v->path.samples = 64;
+    CHECK(v->a && v->b);
+    if (v->a && v->b)
+        return 1;
+    box_views_free(v);
+    return 0;
+}
+
 /* Renders with the photon maps' file in `mode` (path NULL: none); the
  * Combined image (RGBA, to free) and the photons stored. */
 static float *render_with_maps_file(phos_scene *s, const phos_render_settings *rs, const char *path, uint32_t mode,
@@ -438,12 +466,11 @@ static void check_unread_map_not_traced(void)
 
     const char *path = "/tmp/phos_test_unread_global.phosmap";
     remove(path);
-    phos_scene *a = closed_box(0), *b = closed_box(1);
-    CHECK(a && b);
-    if (!a || !b)
+    box_views v;
+    if (!box_views_make(&v))
         return;
-    phos_render_settings photon = unread_settings(PHOS_INTEGRATOR_PHOTON), path_rs = unread_settings(PHOS_INTEGRATOR_PATH);
-    path_rs.samples = 64;
+    phos_scene *a = v.a, *b = v.b;
+    const phos_render_settings photon = v.photon, path_rs = v.path;
     uint32_t pixels = photon.width * photon.height, stored_a, stored_b, stored_loaded, unused;
     float *img_a = render_with_maps_file(a, &photon, path, PHOS_CACHE_FILE_SAVE, &stored_a);
     float *ref_a = render_with_maps_file(a, &path_rs, NULL, 0, &unused);
@@ -463,8 +490,7 @@ static void check_unread_map_not_traced(void)
     }
     free(img_a), free(ref_a), free(img_b), free(loaded_b), free(ref_b);
     remove(path);
-    phos_scene_destroy(a);
-    phos_scene_destroy(b);
+    box_views_free(&v);
 }
 
 /* A render farm's cache job aims one map at a whole camera path
@@ -476,12 +502,11 @@ static void check_views_aim_the_map(void)
 {
     const char *path = "/tmp/phos_test_views.phosmap";
     remove(path);
-    phos_scene *a = closed_box(0), *b = closed_box(1);
-    CHECK(a && b);
-    if (!a || !b)
+    box_views v;
+    if (!box_views_make(&v))
         return;
-    phos_render_settings photon = unread_settings(PHOS_INTEGRATOR_PHOTON), path_rs = unread_settings(PHOS_INTEGRATOR_PATH);
-    path_rs.samples = 64;
+    phos_scene *a = v.a, *b = v.b;
+    const phos_render_settings photon = v.photon, path_rs = v.path;
     phos_render_settings job = photon;
     job.caches_only = 1;
     phos_camera_desc inside = test_camera_pitched(0.0f, -0.9f, 0.0f, 1.5708f, 0.8f);
@@ -503,8 +528,7 @@ static void check_views_aim_the_map(void)
         check_same_as_path("view B, the map of views A and B loaded", img, ref, pixels);
     free(img), free(ref);
     remove(path);
-    phos_scene_destroy(a);
-    phos_scene_destroy(b);
+    box_views_free(&v);
 }
 
 int main(void)
