@@ -6,6 +6,8 @@
 #   make binding                          regenerate addon/phos/phos_h.py from phos.h
 #   make test-blender4                    the same under Blender 4.3 / Embree 4 in a
 #               [PHOS_CHROOT_DIR=dir]     Debian 13 chroot (root; default /var/tmp/...)
+#   make test-blender5                    the GUI tests in Blender 5.2's window, in a Debian
+#               [PHOS_SID_CHROOT_DIR=dir] unstable chroot (root; default /var/tmp/...)
 #   make test-blender-latest              the Blender tests against the official builds of
 #                                         tools/bpy-versions.txt (4.5 LTS, newest 5.x: bpy
 #                                         from PyPI), the add-on installed as an extension
@@ -63,9 +65,10 @@ BLENDER_ISOLATED := BLENDER_USER_SCRIPTS=$(CURDIR)/$(BUILD_DIR)/blender-user/scr
                     BLENDER_USER_CONFIG=$(CURDIR)/$(BUILD_DIR)/blender-user/config
 
 PHOS_CHROOT_DIR ?= /var/tmp/phos-trixie-chroot
+PHOS_SID_CHROOT_DIR ?= /var/tmp/phos-sid-chroot
 
 .PHONY: test-asan test-tsan valgrind fuzz
-.PHONY: deps build binding check-binding test test-gui test-blender4 test-blender-latest bench bench-official bench-convergence bench-programs bench-kdtree bench-defaults bench-farm render image-digests install uninstall package clean help
+.PHONY: deps build binding check-binding test test-gui test-blender4 test-blender5 test-blender-latest bench bench-official bench-convergence bench-programs bench-kdtree bench-defaults bench-farm render image-digests install uninstall package clean help
 
 help:
 	@sed -n '3,35p' Makefile | sed 's/^# \{0,1\}//'
@@ -157,6 +160,12 @@ fuzz:
 # build-trixie/, never to build/ or addon/phos/lib. See tools/test-blender4.sh.
 test-blender4:
 	PHOS_CHROOT_DIR=$(PHOS_CHROOT_DIR) JOBS=$(JOBS) tools/test-blender4.sh $(PYTEST_ARGS)
+
+# The GUI tests in the window of Blender 5.2, from a Debian unstable chroot
+# made the same way (build-sid/): the official 5.x builds here are Python
+# modules, without a window.
+test-blender5:
+	PHOS_CHROOT_SUITE=sid PHOS_CHROOT_DIR=$(PHOS_SID_CHROOT_DIR) JOBS=$(JOBS) tools/test-blender4.sh --gui
 
 # The official Blender builds artists run (tools/bpy-versions.txt): each one's
 # Python virtual environment under build/bpy/ (or the chroot's build folder),
@@ -317,5 +326,5 @@ package: build
 	BLENDER=$(BLENDER) tools/check-addon.sh --zip dist/phos-$$(python3 tools/version.py).zip
 
 clean:
-	rm -rf $(BUILD_DIR) build-trixie build-asan build-tsan build-valgrind build-fuzz out dist $(ADDON_LIB_DIR) .pytest_cache
+	rm -rf $(BUILD_DIR) build-trixie build-sid build-asan build-tsan build-valgrind build-fuzz out dist $(ADDON_LIB_DIR) .pytest_cache
 	find $(wildcard addon scenes tests tools) -name __pycache__ -type d -prune -exec rm -rf {} +

@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Builds Phos against Embree 4 and runs the C tests and the Blender test suite
-# under Blender 4.3, inside a Debian 13 (trixie) chroot. Needs root.
+# under Blender 4.3, inside a Debian 13 (trixie) chroot. Needs root. With
+# PHOS_CHROOT_SUITE=sid, the same in a Debian unstable chroot, whose Blender
+# (5.2) is the newest with a window that Debian packages: `make
+# test-blender5` runs its GUI tests there (--gui).
 #
 #   tools/test-blender4.sh [pytest args]   build, ctest, Blender tests (default args: -q),
 #                                          the GUI tests (tools/test-gui.sh), then the
 #                                          extension check (below)
+#   tools/test-blender4.sh --gui           build, the GUI tests, the extension check
 #   tools/test-blender4.sh --bpy VERSION [pytest args]
 #                                          build, then the Blender tests against the official
 #                                          Blender VERSION as a Python module (bpy, Python 3.13)
@@ -21,7 +25,7 @@
 #   tools/test-blender4.sh --shell         interactive shell in the chroot, same mounts
 #   tools/test-blender4.sh --remove        delete the chroot
 #
-# The chroot is made once with `debootstrap --variant=minbase trixie` from the
+# The chroot is made once with `debootstrap --variant=minbase SUITE` from the
 # Debian mirror in the host's apt sources, then reused; later runs only check
 # that its packages are installed. Every mount (proc, sys, dev, tmp, the
 # checkout read-only at /phos-src, the build folder at /phos-build) is made in
@@ -39,27 +43,47 @@
 # missing or black image.
 #
 # Environment:
-#   PHOS_CHROOT_DIR        the chroot (default /var/tmp/phos-trixie-chroot)
-#   PHOS_TRIXIE_BUILD_DIR  build folder (default build-trixie in the checkout); the
+#   PHOS_CHROOT_SUITE      trixie (default: Blender 4.3) or sid (Blender 5.2)
+#   PHOS_CHROOT_DIR        the chroot (default /var/tmp/phos-SUITE-chroot)
+#   PHOS_TRIXIE_BUILD_DIR  build folder (default build-SUITE in the checkout); the
 #                          Embree-4 libphos.so goes to its lib/, never to addon/phos/lib
 #   PHOS_DEBIAN_MIRROR     Debian mirror URI (default: from /etc/apt/sources*)
 #   JOBS                   parallel build/ctest jobs (default: nproc)
 set -euo pipefail
 
-PACKAGES=(
-  blender          # 4.3 in trixie
-  libembree-dev    # Embree 4
-  cmake gcc g++ libc6-dev make pkg-config zip
-  python3-numpy python3-pytest
-  # bpy (--bpy): tools/install-deps.sh --bpy's list, so that it finds them all,
-  # with trixie's names (libxt6 is libxt6t64 there: named as libxt6, it never
-  # reads as installed, and every run would call apt again)
-  python3-venv
-  libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 libxt6t64 libsm6 libice6 libgl1
-  # the GUI tests (tools/test-gui.sh): Blender 4.3's window on Xvfb, Mesa's software OpenGL
-  xvfb xauth libgl1-mesa-dri
-)
-SUITE=trixie
+SUITE=${PHOS_CHROOT_SUITE:-trixie}
+case "$SUITE" in
+  trixie)
+    SUITE_NAME="Debian 13"
+    PACKAGES=(
+      blender          # 4.3 in trixie
+      libembree-dev    # Embree 4
+      cmake gcc g++ libc6-dev make pkg-config zip
+      python3-numpy python3-pytest
+      # bpy (--bpy): tools/install-deps.sh --bpy's list, so that it finds them all,
+      # with trixie's names (libxt6 is libxt6t64 there: named as libxt6, it never
+      # reads as installed, and every run would call apt again)
+      python3-venv
+      libx11-6 libxext6 libxrender1 libxfixes3 libxi6 libxkbcommon0 libxt6t64 libsm6 libice6 libgl1
+      # the GUI tests (tools/test-gui.sh): Blender 4.3's window on Xvfb, Mesa's software OpenGL
+      xvfb xauth libgl1-mesa-dri
+    ) ;;
+  sid)
+    # Debian unstable: Blender 5.2 with its window, which the official 5.x
+    # builds here (bpy modules) lack; Embree 4.4. Testing (forky) has no
+    # Blender at the time of writing.
+    SUITE_NAME="Debian unstable"
+    PACKAGES=(
+      blender libembree-dev
+      cmake gcc g++ libc6-dev make pkg-config zip
+      python3-numpy python3-pytest
+      # Blender's extension manager imports cattrs and requests, which the package does not
+      # pull in (without it, registering the extensions add-on fails)
+      python3-cattr python3-requests
+      xvfb xauth libgl1-mesa-dri
+    ) ;;
+  *) echo "test-blender4: PHOS_CHROOT_SUITE=$SUITE: trixie or sid" >&2; exit 1 ;;
+esac
 STAMP=var/lib/phos-chroot/ready   # inside the chroot: written once every package is in
 
 say() { echo "test-blender4: $*"; }
@@ -137,10 +161,10 @@ fi
 # ------------------------------------------------------------------ outside
 cd "$(dirname "$0")/.."
 repo=$(pwd -P)
-chroot_dir=${PHOS_CHROOT_DIR:-/var/tmp/phos-trixie-chroot}
+chroot_dir=${PHOS_CHROOT_DIR:-/var/tmp/phos-$SUITE-chroot}
 [[ "$chroot_dir" == /* ]] || chroot_dir="$repo/$chroot_dir"
 chroot_dir=${chroot_dir%/}
-build_dir=${PHOS_TRIXIE_BUILD_DIR:-build-trixie}
+build_dir=${PHOS_TRIXIE_BUILD_DIR:-build-$SUITE}
 [[ "$build_dir" == /* ]] || build_dir="$repo/$build_dir"
 export JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 t_start=$(date +%s)
@@ -276,7 +300,7 @@ if [[ $ready -eq 0 && ! -d "$chroot_dir" ]]; then
     rm -rf --one-file-system "$partial"
   fi
   mkdir -p "$(dirname "$chroot_dir")"
-  say "creating the Debian 13 chroot $chroot_dir from $mirror (a few minutes, once)"
+  say "creating the $SUITE_NAME chroot $chroot_dir from $mirror (a few minutes, once)"
   t=$(date +%s)
   # In a private mount namespace too: the mounts debootstrap makes in the
   # target go away with it even when it is killed.
@@ -285,12 +309,17 @@ if [[ $ready -eq 0 && ! -d "$chroot_dir" ]]; then
       >"$chroot_dir.debootstrap.log" 2>&1; then
     tail -n 25 "$chroot_dir.debootstrap.log" >&2
     die "debootstrap failed (log: $chroot_dir.debootstrap.log). If the Release signature
-test-blender4: does not verify, the host needs a debian-archive-keyring with the trixie keys
+test-blender4: does not verify, the host needs a debian-archive-keyring with the $SUITE keys
 test-blender4: (bookworm's 2023.3+deb12u2 or later: apt-get install debian-archive-keyring)."
   fi
   mkdir -p "$partial/etc/apt/apt.conf.d" "$partial/usr/sbin"
   printf 'APT::Install-Recommends "false";\nAPT::Install-Suggests "false";\nAcquire::Languages "none";\n' \
     >"$partial/etc/apt/apt.conf.d/90phos"
+  if [[ "$SUITE" == sid ]]; then
+    # Unstable's Release file is valid for a week only; a mirror or cache
+    # that lags behind the archive by more must still serve this chroot.
+    echo 'Acquire::Check-Valid-Until "false";' >>"$partial/etc/apt/apt.conf.d/90phos"
+  fi
   printf '#!/bin/sh\nexit 101\n' >"$partial/usr/sbin/policy-rc.d"   # never start services
   chmod 755 "$partial/usr/sbin/policy-rc.d"
   mv "$partial" "$chroot_dir"
@@ -337,8 +366,12 @@ if [[ "${1:-}" == "--shell" ]]; then
   exit "$rc"
 fi
 
-bpy_version="" bpy_run=""
-if [[ "${1:-}" == "--bpy" || "${1:-}" == "--bpy-run" ]]; then
+bpy_version="" bpy_run="" gui_only=""
+if [[ "${1:-}" == "--gui" ]]; then
+  gui_only=1
+  shift
+  [[ $# -eq 0 ]] || die "--gui takes no pytest arguments"
+elif [[ "${1:-}" == "--bpy" || "${1:-}" == "--bpy-run" ]]; then
   [[ "$1" == "--bpy-run" ]] && bpy_run=1
   bpy_version=${2:?usage: test-blender4.sh --bpy VERSION [pytest args] | --bpy-run VERSION ARGS...}
   shift 2
@@ -378,20 +411,22 @@ if [[ -n "$BPY_VERSION" ]]; then
   cd /phos-src && PHOS_BPY_DIR=/phos-build/bpy tools/test-bpy.sh --here "$BPY_VERSION" "$stage/phos" "$@"
   exit $?
 fi
-t=$(now)
-(cd /phos-build && ctest --output-on-failure -j "$JOBS") || { rc=1; say "C tests FAILED"; }
-say "C tests: $(dur $t)"
-t=$(now)
 mkdir -p /phos-build/blender-user
-PHOS_LIBRARY=/phos-build/lib/libphos.so \
-BLENDER_USER_SCRIPTS=/phos-build/blender-user/scripts \
-BLENDER_USER_CONFIG=/phos-build/blender-user/config \
-  blender -b --factory-startup --python-exit-code 1 \
-    --python /phos-src/tests/blender/run_tests.py -- "$@" || { rc=1; say "Blender tests FAILED"; }
-say "Blender tests: $(dur $t)"
-# The GUI tests (viewport, previews) in the window of Blender 4.3 on Xvfb, with
-# the whole suite (not for a chosen subset of tests).
-if [[ "$*" == "-q" ]]; then
+if [[ -z "$GUI_ONLY" ]]; then
+  t=$(now)
+  (cd /phos-build && ctest --output-on-failure -j "$JOBS") || { rc=1; say "C tests FAILED"; }
+  say "C tests: $(dur $t)"
+  t=$(now)
+  PHOS_LIBRARY=/phos-build/lib/libphos.so \
+  BLENDER_USER_SCRIPTS=/phos-build/blender-user/scripts \
+  BLENDER_USER_CONFIG=/phos-build/blender-user/config \
+    blender -b --factory-startup --python-exit-code 1 \
+      --python /phos-src/tests/blender/run_tests.py -- "$@" || { rc=1; say "Blender tests FAILED"; }
+  say "Blender tests: $(dur $t)"
+fi
+# The GUI tests (viewport, previews) in the window of Blender on Xvfb,
+# with the whole suite (not for a chosen subset of tests) or alone (--gui).
+if [[ -n "$GUI_ONLY" || "$*" == "-q" ]]; then
   t=$(now)
   PHOS_LIBRARY=/phos-build/lib/libphos.so \
   BLENDER_USER_SCRIPTS=/phos-build/blender-user/scripts \
@@ -413,10 +448,11 @@ rm -rf "$stage"
 say "extension install check: $(dur $t)"
 exit $rc'
 rc=0
-in_chroot "$repo" "$build_dir" /usr/bin/env BPY_VERSION="$bpy_version" BPY_RUN="$bpy_run" \
+in_chroot "$repo" "$build_dir" /usr/bin/env BPY_VERSION="$bpy_version" BPY_RUN="$bpy_run" GUI_ONLY="$gui_only" \
   /bin/bash -c "$inner" inner "$@" || rc=$?
 check_no_mounts "$chroot_dir"
-what="Blender 4.3"
+what="$SUITE_NAME's Blender"
+[[ -z "$gui_only" ]] || what="$SUITE_NAME's Blender, GUI tests"
 [[ -z "$bpy_version" ]] || what="Blender $bpy_version (bpy)"
 if [[ $rc -eq 0 ]]; then
   say "passed under $what / Embree 4 (total $(elapsed "$t_start"); no mounts left in $chroot_dir)"

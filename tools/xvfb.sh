@@ -20,5 +20,5 @@ xvfb_usable() {
 xvfb_blender() {
   local blender=$1 log=$2
   shift 2
-  timeout 1800 xvfb-run -a -s "-screen 0 1280x800x24" "$blender" --factory-startup "$@" >"$log" 2>&1
+  timeout 600 xvfb-run -a -s "-screen 0 1280x800x24" "$blender" --factory-startup "$@" >"$log" 2>&1
 }

@@ -90,11 +90,18 @@ class Watcher:
         return data[:data.size - data.size % (w * h * 3)].reshape(-1, h, w, 3)
 
 
+# A watcher ends by itself after this long: a Blender that locks up must not
+# leave it filling the disk until the run's time limit.
+MAX_WATCH_SECONDS = 300.0
+
+
 def _watch(x, y, w, h, path, seconds):
     import select
+    import time
     screen = Screen()
+    end = time.monotonic() + MAX_WATCH_SECONDS
     with open(path, "wb") as out:
-        while True:
+        while time.monotonic() < end:
             frame = screen.grab(x, y, w, h)
             if frame is not None:
                 out.write(np.ascontiguousarray(frame).tobytes())
