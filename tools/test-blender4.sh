@@ -390,7 +390,7 @@ t=$(now)
 cmake -S /phos-src -B /phos-build -DCMAKE_BUILD_TYPE=Release -DPHOS_ADDON_LIB_DIR=/phos-build/lib >/phos-build/cmake.log \
   || { cat /phos-build/cmake.log; say "cmake configure failed"; exit 1; }
 grep "Phos:" /phos-build/cmake.log || true
-cmake --build /phos-build -j "$JOBS" || { say "build failed"; exit 1; }
+cmake --build /phos-build -j "$JOBS" ${GUI_ONLY:+--target phos} || { say "build failed"; exit 1; }
 /phos-src/tools/check-exports.sh /phos-build/lib/libphos.so || exit 1
 say "build: $(dur $t)"
 rc=0

@@ -32,6 +32,11 @@ from .export import camera, changes as scene_changes, image as image_cache
 from .properties import PASSES, cache_files, enabled_passes, render_settings
 
 POLL_SECONDS = 0.03
+# The image shown while a final render runs is refreshed at most every
+# DISPLAY_SECONDS, and its reading may take at most 1/DISPLAY_COST_RATIO of
+# the render's time (_poll).
+DISPLAY_SECONDS = 0.5
+DISPLAY_COST_RATIO = 20.0
 
 # Material, world and light previews: Blender renders them in its own
 # preview scene, which holds none of the user's Phos settings (its
@@ -423,24 +428,36 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         return core_scene, ctx
 
     def _poll(self, render, rs):
-        """Deliver tiles as they finish until the render ends or is cancelled."""
+        """Deliver the image as tiles finish until the render ends or is cancelled.
+
+        The image goes to Blender whole (the render region), never tile by
+        tile:
+        - under the tiles of a progressive render's first pass Blender's new
+          result is still empty, so a redraw would show holes;
+        - Blender 5.2's Image Editor locks up its own main thread when a
+          result covering part of the frame arrives while it draws (found
+          by tests/gui/test_final_render.py; whole-frame results, as
+          Cycles sends, never did: docs/blender.md).
+        It is delivered when the first pass covers it (a render without
+        progressive refinement: when its first tile is done), then while
+        tiles finish at most every DISPLAY_SECONDS, or rarer when reading
+        it takes long (a large frame with many passes), and at the end.
+        """
         cancelled = False
         buffers = None
-        # With progressive refinement the first pass is shown whole, never
-        # tile by tile: under its tiles Blender's new result is still empty,
-        # so a redraw during that pass would show holes. Tiles after it only
-        # refine pixels already shown.
-        hold_first_pass = bool(rs.progressive)
+        pending = False
+        next_delivery = 0.0
         while True:
             progress = render.progress()
-            if hold_first_pass and progress.samples_done > 0:
+            while render.next_tile() is not None:
+                pending = True
+            shown_whole = not rs.progressive or progress.samples_done > 0
+            if pending and shown_whole and time.monotonic() >= next_delivery:
+                started = time.monotonic()
                 buffers = self._deliver_whole(render, rs, buffers)
-                hold_first_pass = False
-            while not hold_first_pass:
-                tile = render.next_tile()
-                if tile is None:
-                    break
-                buffers = self._deliver_tile(render, tile, buffers)
+                pending = False
+                took = time.monotonic() - started
+                next_delivery = started + max(DISPLAY_SECONDS, DISPLAY_COST_RATIO * took)
             self._show_progress(progress, rs)
             if progress.state in (core.PHOS_STATE_DONE, core.PHOS_STATE_CANCELLED,
                                   core.PHOS_STATE_FAILED):
@@ -455,11 +472,10 @@ class PhosRenderEngine(bpy.types.RenderEngine):
         # above ends because the core reaches a final state, and after a
         # cancel it does so within 0.5 s (tests/blender/test_cancel.py).
         outcome = render.wait(-1.0)
-        while True:
-            tile = render.next_tile()
-            if tile is None:
-                break
-            buffers = self._deliver_tile(render, tile, buffers)
+        while render.next_tile() is not None:
+            pending = True
+        if pending:
+            buffers = self._deliver_whole(render, rs, buffers)
         final = render.progress()
         self._show_progress(final, rs, final=True)
         if not self.is_preview:

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """A second F12 in Blender's GUI, under Xvfb (`make test-gui`;
-tools/test-gui.sh): while it renders, the Image Editor never shows a hole.
+tools/test-gui.sh): while it renders, the Image Editor never shows a hole;
+and a third, without progressive refinement, ends whole.
 
 Every pixel on screen is the previous render's or the new one's, never the
 transparency of a tile not yet written, and the new render covers the whole
@@ -141,6 +142,26 @@ def step(n):
               % (len(partial), max(partial, default=0), size, empty))
         check("the new render ends whole", counts[-1][1] == size,
               "%d of %d pixels" % (counts[-1][1], size))
+        # A third render without progressive refinement, whose tiles finish
+        # one by one: Blender 5.2's Image Editor locked up its main thread
+        # when results covering part of the frame arrived while it drew.
+        scene = bpy.context.scene
+        scene.phos.use_progressive_refine = False
+        scene.world.node_tree.nodes["Background"].inputs["Color"].default_value[:3] = RED
+        scene.phos.samples = 4
+        render_f12()
+        return 4
+    if n == 4:
+        if state["finished"] < 3:
+            return n
+        state["settled"] = time.monotonic()
+        return 5
+    if n == 5:
+        if time.monotonic() - state["settled"] < 1.0:  # the last draw
+            return n
+        red, _, _ = classify(SCREEN.grab(*state["rect"]))
+        check("a render without progressive refinement ends whole", red.all(),
+              "%d of %d pixels" % (int(red.sum()), red.size))
         return None
     return n
 
