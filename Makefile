@@ -71,7 +71,7 @@ PHOS_SID_CHROOT_DIR ?= /var/tmp/phos-sid-chroot
 .PHONY: deps build binding check-binding test test-gui test-blender4 test-blender5 test-blender-latest bench bench-official bench-convergence bench-programs bench-kdtree bench-defaults bench-farm render image-digests install uninstall package clean help
 
 help:
-	@sed -n '3,35p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '3,/^$$/p' Makefile | sed 's/^# \{0,1\}//'
 
 deps:
 	@tools/install-deps.sh
@@ -159,7 +159,7 @@ fuzz:
 # Debian 13 chroot made once with debootstrap, then reused; the build goes to
 # build-trixie/, never to build/ or addon/phos/lib. See tools/test-blender4.sh.
 test-blender4:
-	PHOS_CHROOT_DIR=$(PHOS_CHROOT_DIR) JOBS=$(JOBS) tools/test-blender4.sh $(PYTEST_ARGS)
+	PHOS_CHROOT_SUITE=trixie PHOS_CHROOT_DIR=$(PHOS_CHROOT_DIR) JOBS=$(JOBS) tools/test-blender4.sh $(PYTEST_ARGS)
 
 # The GUI tests in the window of Blender 5.2, from a Debian unstable chroot
 # made the same way (build-sid/): the official 5.x builds here are Python

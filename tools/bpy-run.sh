@@ -56,7 +56,7 @@ case "$where" in
     mkdir -p "$build/bpy-out" "$build/bpy/$version/cache"
     mapfile -d '' args < <(substitute /phos-build/bpy-out "/phos-build/bpy/$version/cache" "$@")
     rc=0
-    tools/test-blender4.sh --bpy-run "$version" "${args[@]}" || rc=$?
+    PHOS_CHROOT_SUITE=trixie tools/test-blender4.sh --bpy-run "$version" "${args[@]}" || rc=$?
     cp -r "$build/bpy-out/." "$out/" 2>/dev/null || true
     exit $rc ;;
   *) die "$versions_file: unknown place '$where' for $version" ;;

@@ -9,6 +9,8 @@
 #                                          the GUI tests (tools/test-gui.sh), then the
 #                                          extension check (below)
 #   tools/test-blender4.sh --gui           build, the GUI tests, the extension check
+#                                          (--bpy and --bpy-run below need trixie: sid's
+#                                          chroot has no Python venv nor bpy's X libraries)
 #   tools/test-blender4.sh --bpy VERSION [pytest args]
 #                                          build, then the Blender tests against the official
 #                                          Blender VERSION as a Python module (bpy, Python 3.13)
@@ -45,7 +47,8 @@
 # Environment:
 #   PHOS_CHROOT_SUITE      trixie (default: Blender 4.3) or sid (Blender 5.2)
 #   PHOS_CHROOT_DIR        the chroot (default /var/tmp/phos-SUITE-chroot)
-#   PHOS_TRIXIE_BUILD_DIR  build folder (default build-SUITE in the checkout); the
+#   PHOS_CHROOT_BUILD_DIR  build folder (default build-SUITE in the checkout; for trixie
+#                          also PHOS_TRIXIE_BUILD_DIR, its older name); the
 #                          Embree-4 libphos.so goes to its lib/, never to addon/phos/lib
 #   PHOS_DEBIAN_MIRROR     Debian mirror URI (default: from /etc/apt/sources*)
 #   JOBS                   parallel build/ctest jobs (default: nproc)
@@ -164,7 +167,9 @@ repo=$(pwd -P)
 chroot_dir=${PHOS_CHROOT_DIR:-/var/tmp/phos-$SUITE-chroot}
 [[ "$chroot_dir" == /* ]] || chroot_dir="$repo/$chroot_dir"
 chroot_dir=${chroot_dir%/}
-build_dir=${PHOS_TRIXIE_BUILD_DIR:-build-$SUITE}
+build_dir=build-$SUITE
+[[ "$SUITE" != trixie ]] || build_dir=${PHOS_TRIXIE_BUILD_DIR:-$build_dir}
+build_dir=${PHOS_CHROOT_BUILD_DIR:-$build_dir}
 [[ "$build_dir" == /* ]] || build_dir="$repo/$build_dir"
 export JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 t_start=$(date +%s)
@@ -309,7 +314,7 @@ if [[ $ready -eq 0 && ! -d "$chroot_dir" ]]; then
       >"$chroot_dir.debootstrap.log" 2>&1; then
     tail -n 25 "$chroot_dir.debootstrap.log" >&2
     die "debootstrap failed (log: $chroot_dir.debootstrap.log). If the Release signature
-test-blender4: does not verify, the host needs a debian-archive-keyring with the $SUITE keys
+test-blender4: does not verify, the host needs a debian-archive-keyring with the current archive keys
 test-blender4: (bookworm's 2023.3+deb12u2 or later: apt-get install debian-archive-keyring)."
   fi
   mkdir -p "$partial/etc/apt/apt.conf.d" "$partial/usr/sbin"

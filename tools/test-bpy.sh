@@ -67,7 +67,7 @@ if [[ "${1:-}" == "--prepare" ]]; then
     case "$series" in ''|'#'*) continue ;; esac
     case "$where" in
       debian12) tools/bpy-env.sh "$version" "${PHOS_BPY_DIR:-$repo/build/bpy}/$version" </dev/null ;;
-      debian13) tools/test-blender4.sh --prepare "$version" </dev/null ;;
+      debian13) PHOS_CHROOT_SUITE=trixie tools/test-blender4.sh --prepare "$version" </dev/null ;;
       *) die "$versions_file: unknown place '$where' for $version" ;;
     esac
   done <"$versions_file"
@@ -83,7 +83,7 @@ while read -r series version where _; do
     debian12)
       tools/test-bpy.sh --here "$version" addon/phos "$@" || rc=1 ;;
     debian13)
-      tools/test-blender4.sh --bpy "$version" "$@" || rc=1 ;;
+      PHOS_CHROOT_SUITE=trixie tools/test-blender4.sh --bpy "$version" "$@" || rc=1 ;;
     *) die "$versions_file: unknown place '$where' for $version" ;;
   esac
   ran+=("$version")

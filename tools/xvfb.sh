@@ -20,5 +20,7 @@ xvfb_usable() {
 xvfb_blender() {
   local blender=$1 log=$2
   shift 2
+  # 600 s: the GUI tests give up after 120 s (tests/gui/guitest.py); a
+  # Blender still running long after has locked up, and no redraw would end it.
   timeout 600 xvfb-run -a -s "-screen 0 1280x800x24" "$blender" --factory-startup "$@" >"$log" 2>&1
 }

@@ -1,10 +1,11 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The Phos RenderEngine: export, start the core, poll, deliver tiles.
+"""The Phos RenderEngine: export, start the core, poll, deliver the image.
 
 The engine is deliberately thin. render() exports the evaluated depsgraph
 into a core scene (export/), starts the core's asynchronous render and then
-polls it from this thread: finished tiles are copied into Blender's render
-result, progress and stats are updated, and test_break() is honoured. The
+polls it from this thread: as tiles finish, the render region is copied
+whole into Blender's render result (_poll says when and why whole),
+progress and stats are updated, and test_break() is honoured. The
 settings are copied by the core's settings table (properties.USER_SETTINGS);
 the stats line names the stages of the core's plan (Render.stages()). The
 core's worker threads never call into Python; every bpy call happens on the
@@ -13,9 +14,9 @@ thread running render(), and ctypes releases the GIL during C calls.
 Passes: the view layer's toggles (`view_layer.phos`, properties.PASSES)
 become the core's pass_mask and are registered in update_render_passes;
 Blender merges every registered pass of a result whether it was written or
-not, so every tile (and the placeholder) writes every pass of the result.
+not, so every result (and the placeholder) writes every pass of it.
 
-Whatever happens, one full-frame result is delivered if no tile was (a
+Whatever happens, one full-frame result is delivered if none was (a
 render that produces no result crashes Blender 3.4.1 when the output is
 EXR), and failures are reported with report({'ERROR'}) so that `blender -b`
 exits non-zero.
@@ -524,23 +525,23 @@ class PhosRenderEngine(bpy.types.RenderEngine):
             print(text, flush=True)
 
     def _deliver_whole(self, render, rs, buffers):
-        """The whole region in one result, once the first pass has covered
-        it: the tiles finished so far are dropped from the queue first, so
-        any that finish during the read are delivered again after it."""
+        """The whole render region in one result (_poll says when): the
+        tiles finished so far are dropped from the queue first, so any that
+        finish during the read are delivered again after it."""
         while render.next_tile() is not None:
             pass
         whole = core.phos_tile()
         whole.x, whole.y = rs.region_x, rs.region_y
         whole.width, whole.height = rs.region_width, rs.region_height
-        return self._deliver_tile(render, whole, buffers)
+        return self._deliver_rect(render, whole, buffers)
 
-    def _deliver_tile(self, render, tile, buffers):
-        """Copy one finished tile into a render result (relative to the border).
+    def _deliver_rect(self, render, tile, buffers):
+        """Copy a rectangle of the film into a render result (relative to the border).
 
         Every pass of the result is written: the ones the core rendered from
         the core, any other (a pass Phos does not know, or one enabled after
         the render started) with zeros, since Blender merges them all.
-        `buffers` (pass → float32 array) is reused from tile to tile.
+        `buffers` (pass → float32 array) is reused from result to result.
         """
         if buffers is None:
             buffers = {}

@@ -38,21 +38,23 @@ def glass_scene(scene):
 
 class _Spy:
     """Records what the engine takes from the core: the rectangles it reads
-    (`reads`, one per delivered result) and the finished tiles it is told
-    of (`tiles`, from next_tile)."""
+    (`reads`, one per pass of each delivered result, with `read_samples`,
+    the samples every pixel had then) and the finished tiles it is told of
+    (`tiles`, from next_tile)."""
 
     def __init__(self):
         from phos import core
         self.core = core
-        self.reads, self.tiles = [], []
+        self.reads, self.read_samples, self.tiles = [], [], []
 
     def __enter__(self):
         self.original_read, self.original_next = self.core.Render.read, self.core.Render.next_tile
         original_read, original_next = self.original_read, self.original_next
-        reads, tiles = self.reads, self.tiles
+        reads, read_samples, tiles = self.reads, self.read_samples, self.tiles
 
         def read(render, pass_id, x, y, width, height, out=None):
             reads.append((x, y, width, height))
+            read_samples.append(render.progress().samples_done)
             return original_read(render, pass_id, x, y, width, height, out)
 
         def next_tile(render):
@@ -138,6 +140,7 @@ def test_progressive_refinement_streams_passes_and_matches_one_pass(glass_scene,
     assert sorted(set(progressive.tiles)) == sorted(single.tiles)
     _whole_frame_reads_only(progressive)
     _whole_frame_reads_only(single)
+    assert progressive.read_samples[0] >= 1, "the first read came before the first pass covered the frame"
     diff = np.argwhere(np.any(refined != one_pass, axis=2))
     assert diff.size == 0, "%d pixels differ between progressive refinement and one pass, first at %s" % (
         len(diff), diff[:5].tolist())

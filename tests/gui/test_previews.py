@@ -52,7 +52,7 @@ class TEST_PT_light_preview(bpy.types.Panel):
 
 def record_renders():
     """Keep each preview render's settings and its whole Combined image
-    (the core.Render reads of its tiles, put together)."""
+    (the core.Render reads of its results, put together)."""
     from phos import core
     original = core.Render.read
 

@@ -70,7 +70,8 @@ def region_rect(window, region):
 
 class Watcher:
     """A process reading a screen rectangle every `seconds` into a file of
-    raw RGB frames, until stop(); frames() gives them as (n, h, w, 3)."""
+    raw RGB frames, until stop() (or its limits, below); frames() gives
+    them as (n, h, w, 3)."""
 
     def __init__(self, rect, path, seconds=0.02):
         self.rect, self.path = rect, path
@@ -90,9 +91,11 @@ class Watcher:
         return data[:data.size - data.size % (w * h * 3)].reshape(-1, h, w, 3)
 
 
-# A watcher ends by itself after this long: a Blender that locks up must not
-# leave it filling the disk until the run's time limit.
-MAX_WATCH_SECONDS = 300.0
+# A watcher ends by itself after this long or this many bytes: a Blender
+# that locks up must not leave it filling /tmp (a RAM disk in the chroots)
+# until the run's time limit. A normal F12 test writes 0.5-1.5 GB.
+MAX_WATCH_SECONDS = 120.0
+MAX_WATCH_BYTES = 3 << 30
 
 
 def _watch(x, y, w, h, path, seconds):
@@ -101,11 +104,14 @@ def _watch(x, y, w, h, path, seconds):
     screen = Screen()
     end = time.monotonic() + MAX_WATCH_SECONDS
     with open(path, "wb") as out:
-        while time.monotonic() < end:
+        written = 0
+        while time.monotonic() < end and written < MAX_WATCH_BYTES:
             frame = screen.grab(x, y, w, h)
             if frame is not None:
-                out.write(np.ascontiguousarray(frame).tobytes())
+                data = np.ascontiguousarray(frame).tobytes()
+                out.write(data)
                 out.flush()
+                written += len(data)
             ready, _, _ = select.select([sys.stdin], [], [], seconds)
             if ready and not sys.stdin.buffer.read1(1):  # closed: stop
                 return
