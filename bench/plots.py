@@ -326,7 +326,16 @@ def main():
             if os.path.exists(npz):
                 engine = rows[0].get("reference_engine", "CYCLES") if rows else "CYCLES"
                 md += ["![%s](%s)" % (scene, os.path.basename(plot_strip(scene, npz, out_dir, engine))), ""]
-    official = [r for path in sorted(glob.glob(os.path.join(out_dir, "official_*.csv"))) for r in read_csv(path)]
+    official_rows = [r for path in sorted(glob.glob(os.path.join(out_dir, "official_*.csv")))
+                     for r in read_csv(path)]
+    official = [r for r in official_rows if r.get("kind") == "official"]
+    official_equal = [r for r in official_rows if r.get("kind") == "equal_time" and r["engine"] == "PHOS"]
+    if official_equal:
+        md += ["## Equal time against Cycles as artists run it (Blender %s)" % official_equal[0].get("blender"), "",
+               "Phos at its defaults and this Cycles given the same time (issue 24's scenes).", "",
+               table(official_equal, ["scene", "integrator", lambda r: g(num(r, "seconds"), "%.1f"),
+                                      lambda r: g(num(r, "relative_mse")), lambda r: g(num(r, "vs_cycles"))],
+                     ["scene", "Phos", "seconds", "relative MSE", "Phos / Cycles at equal time"]), ""]
     if official:
         def config(r):
             return ("Phos " + r["integrator"]) if r["engine"] == "PHOS" else {

@@ -631,8 +631,8 @@ def command_bench(args):
         add(phos_denoised_measurement(scene, module, args, ref, settings, "PHOTON"), "official")
         for config in CYCLES_CONFIGS:
             add(cycles_config_measurement(scene, module, args, ref, row["seconds"], config), "official")
-    if "equal" in args.parts:
-        np.savez_compressed(os.path.join(os.path.dirname(os.path.abspath(args.csv)), "bench_%s.npz" % args.scene),
+    if "equal" in args.parts:  # beside the CSV, by its name: bench_<scene>.npz for `make bench`'s run
+        np.savez_compressed(os.path.splitext(os.path.abspath(args.csv))[0] + ".npz",
                             **{k.replace(" ", "_"): v.astype(np.float32) for k, v in images.items()})
 
 
