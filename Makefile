@@ -287,16 +287,18 @@ BENCH_OFFICIAL ?= $(shell tools/bpy-run.sh --newest)
 BENCH_BPY_RUN  := tools/bpy-run.sh $(BENCH_OFFICIAL) $(BENCH_OUT) -- -b --factory-startup --python-exit-code 1 \
                   --python bench/quality.py --
 # The scenes of issue 24's target (PATH and PHOTON at Cycles' error in equal
-# time) are also measured at equal time against this Cycles.
+# time) are also measured at equal time against this Cycles, the median of
+# three repetitions.
 BENCH_OFFICIAL_EQUAL ?= default_scene lamp_kinds
 bench-official: build
 	mkdir -p $(BENCH_OUT)
 	for s in $(BENCH_SCENES_ALL); do \
-	  parts=official; case " $(BENCH_OFFICIAL_EQUAL) " in *" $$s "*) parts="official equal";; esac; \
+	  measure="--parts official"; \
+	  case " $(BENCH_OFFICIAL_EQUAL) " in *" $$s "*) measure="--parts official equal --equal-reps 3";; esac; \
 	  $(BENCH_BPY_RUN) reference --scene $$s --resolution $(BENCH_RESOLUTION) --chunks $(BENCH_REF_CHUNKS) \
 	    --reference-dir {cache}/references | $(BENCH_QUIET); \
 	  $(BENCH_BPY_RUN) bench --scene $$s --resolution $(BENCH_RESOLUTION) --reference-dir {cache}/references \
-	    --parts $$parts --csv {out}/official_$$s.csv | $(BENCH_QUIET); \
+	    $$measure --csv {out}/official_$$s.csv | $(BENCH_QUIET); \
 	done
 
 # Not a test: digests depend on the compiler, Embree and the CPU, so two runs
