@@ -10,6 +10,8 @@ differed; none with `blender -t 1`). That would change the input, not test
 the core. Face normals are computed per face and are stable.
 """
 
+import time
+
 import numpy as np
 import pytest
 
@@ -144,6 +146,31 @@ def test_progressive_refinement_streams_passes_and_matches_one_pass(glass_scene,
     diff = np.argwhere(np.any(refined != one_pass, axis=2))
     assert diff.size == 0, "%d pixels differ between progressive refinement and one pass, first at %s" % (
         len(diff), diff[:5].tolist())
+
+
+def test_display_refreshes_at_most_every_display_seconds(glass_scene, tmp_path, monkeypatch):
+    """While a render runs, Blender gets the whole frame at most every
+    DISPLAY_SECONDS (reading a large frame with many passes costs time the
+    render needs), plus once at the end: a render of a few seconds on one
+    thread, its deliveries timed. An engine that delivered at every poll
+    (30 ms) or every tile would fail."""
+    from phos import engine
+    times = []
+    original = engine.PhosRenderEngine._deliver_whole
+
+    def timed(self, render, rs, buffers):
+        times.append(time.monotonic())
+        return original(self, render, rs, buffers)
+    monkeypatch.setattr(engine.PhosRenderEngine, "_deliver_whole", timed)
+    glass_scene.phos.samples = 1024  # about 4 s here: three deliveries need more than 1 s
+    glass_scene.phos.tile_size = 8
+    pt.configure_threads(glass_scene, 1)
+    start = time.monotonic()
+    pt.render_array(glass_scene, tmp_path, name="throttled")
+    seconds = time.monotonic() - start
+    assert len(times) >= 3, "%d deliveries in a %.1f s render" % (len(times), seconds)
+    gaps = np.diff(times[:-1])  # the last delivery is the end's, whenever the render ends
+    assert gaps.min() >= 0.95 * engine.DISPLAY_SECONDS, "deliveries %.3f s apart" % gaps.min()
 
 
 def test_same_settings_same_image(glass_scene, tmp_path):
