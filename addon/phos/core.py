@@ -234,6 +234,28 @@ def new_world():
     return d
 
 
+def sky_bake(fields, texture=True):
+    """The Sky Texture computed once (phos.h, phos_sky_bake): (pixels or
+    None, data) for a phos_sky_desc with `fields` set over the library's
+    defaults; pixels (float32, PHOS_SKY_TEXTURE_WIDTH × _HEIGHT RGBA) only
+    for the scattering models when `texture`."""
+    l = lib()
+    d = phos_sky_desc()
+    l.phos_sky_desc_init(ctypes.byref(d))
+    for name, value in fields.items():
+        if name == "sun_direction":
+            d.sun_direction[:] = [float(v) for v in value]
+        else:
+            setattr(d, name, value)
+    w, h = PHOS_SKY_TEXTURE_WIDTH, PHOS_SKY_TEXTURE_HEIGHT
+    pixels = np.empty(w * h * 4, dtype=np.float32) if texture else None
+    data = np.zeros(PHOS_SKY_DATA_FLOATS, dtype=np.float32)
+    status = l.phos_sky_bake(ctypes.byref(d), w, h, _ptr(pixels, ctypes.c_float), _ptr(data, ctypes.c_float))
+    if status != PHOS_OK:
+        raise PhosError("the sky's settings are out of range: %s" % status_string(status), status)
+    return pixels, data
+
+
 def new_render_settings():
     d = phos_render_settings()
     lib().phos_render_settings_init(ctypes.byref(d))

@@ -327,7 +327,12 @@ enum phos_shader_op {
                                     barycentrics moved with them */
     PHOS_OP_TANGENT = 46,        /* out tangent(3). mode enum phos_tangent (Tangent node; Geometry's
                                     Tangent is RADIAL_Z) */
-    PHOS_OP_COUNT = 47
+    PHOS_OP_TEX_SKY = 47,        /* in vector(3); out color(3). mode enum phos_sky_model; table: offset of the
+                                    PHOS_SKY_DATA_FLOATS floats of phos_sky_bake (with the texture's image id
+                                    at PHOS_SKY_DATA_IMAGE for the scattering models); flags 1: the vector is
+                                    the world's direction, so the core may render the sun's disc as a sun
+                                    light (docs/algorithms.md §11.4) */
+    PHOS_OP_COUNT = 48
 };
 
 /* Node enums, named as Blender names their items so the add-on maps them by name. */
@@ -415,6 +420,39 @@ enum phos_vector_rotate { PHOS_VECTOR_ROTATE_AXIS_ANGLE = 0, PHOS_VECTOR_ROTATE_
 enum phos_vector_transform_type { PHOS_VECTOR_TRANSFORM_POINT = 0, PHOS_VECTOR_TRANSFORM_VECTOR = 1,
                                   PHOS_VECTOR_TRANSFORM_NORMAL = 2, PHOS_VECTOR_TRANSFORM_COUNT = 3 };
 enum phos_space { PHOS_SPACE_WORLD = 0, PHOS_SPACE_OBJECT = 1, PHOS_SPACE_CAMERA = 2, PHOS_SPACE_COUNT = 3 };
+
+/*
+ * The Sky Texture (docs/algorithms.md §11.4). phos_sky_bake computes what
+ * the node's settings give once: PHOS_SKY_DATA_FLOATS floats for a TEX_SKY
+ * instruction's table and, for the scattering models, the texture it looks
+ * up (width × height RGBA floats, linear Rec. 709, W/(m²·sr); height odd),
+ * which the caller adds with phos_scene_add_image and whose id it writes
+ * at data[PHOS_SKY_DATA_IMAGE]. pixels may be NULL to compute the data
+ * alone. PHOS_SKY_TEXTURE_WIDTH × _HEIGHT is the resolution Phos uses.
+ */
+enum phos_sky_model { PHOS_SKY_SINGLE_SCATTERING = 0, PHOS_SKY_MULTIPLE_SCATTERING = 1, PHOS_SKY_PREETHAM = 2,
+                      PHOS_SKY_MODEL_COUNT = 3 };
+#define PHOS_SKY_DATA_FLOATS 24
+#define PHOS_SKY_DATA_IMAGE 11
+#define PHOS_SKY_TEXTURE_WIDTH 256
+#define PHOS_SKY_TEXTURE_HEIGHT 257
+typedef struct phos_sky_desc {
+    uint32_t model;             /* enum phos_sky_model */
+    /* The scattering models (the node's settings, Blender's units): */
+    float sun_elevation;        /* rad above the horizon */
+    float sun_rotation;         /* rad, clockwise seen from +z; 0 puts the sun toward +y */
+    float sun_size;             /* the disc's angular diameter, rad */
+    float sun_intensity;        /* multiplies the disc */
+    uint32_t sun_disc;          /* whether the disc is drawn */
+    float altitude;             /* m above sea level */
+    float air_density, aerosol_density, ozone_density; /* multiples of Earth's, >= 0 */
+    /* Preetham: */
+    float turbidity;            /* >= 1 */
+    float sun_direction[3];     /* toward the sun, any length > 0 */
+} phos_sky_desc;
+PHOS_API void phos_sky_desc_init(phos_sky_desc *desc);
+PHOS_API phos_status phos_sky_bake(const phos_sky_desc *desc, uint32_t width, uint32_t height, float *pixels,
+                                   float *data);
 
 typedef struct phos_shader_instruction {
     uint32_t op;                 /* enum phos_shader_op */

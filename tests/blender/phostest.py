@@ -246,6 +246,38 @@ def set_world_hdr(scene, name="forest", strength=1.0, rotation_z=0.0, projection
     return world
 
 
+def sky_types():
+    """The Sky Texture's models in the running Blender, by Phos's name:
+    SINGLE_SCATTERING is 3.x and 4.x's NISHITA."""
+    items = {e.identifier for e in bpy.types.ShaderNodeTexSky.bl_rna.properties['sky_type'].enum_items}
+    names = {"SINGLE_SCATTERING": "SINGLE_SCATTERING" if "SINGLE_SCATTERING" in items else "NISHITA"}
+    for name in ("MULTIPLE_SCATTERING", "PREETHAM", "HOSEK_WILKIE"):
+        if name in items:
+            names[name] = name
+    return names
+
+
+def set_world_sky(scene, model="SINGLE_SCATTERING", strength=1.0, **settings):
+    """A world lit by a Sky Texture → Background (strength); `model` by
+    Phos's name (sky_types), `settings` the node's (sun_elevation in
+    radians, ...; dust_density is read as aerosol_density where 5.0
+    renamed it)."""
+    world = bpy.data.worlds.new("Sky")
+    use_nodes(world)
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    bg = nodes["Background"]
+    bg.inputs["Strength"].default_value = strength
+    sky = nodes.new("ShaderNodeTexSky")
+    sky.sky_type = sky_types()[model]
+    for name, value in settings.items():
+        if name == "aerosol_density" and not hasattr(sky, name):
+            name = "dust_density"
+        setattr(sky, name, value)
+    links.new(sky.outputs["Color"], bg.inputs["Color"])
+    scene.world = world
+    return world
+
+
 BLENDER_4 = bpy.app.version >= (4, 0, 0)
 
 # Principled BSDF inputs named as in Blender 3.x → their 4.0+ names (Principled

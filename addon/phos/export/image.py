@@ -167,6 +167,60 @@ class ConvertedCache:
 CONVERTED = ConvertedCache(512 << 20)
 
 
+def _sky_settings(node, model):
+    """The phos_sky_desc fields of a Sky Texture node (Blender's names
+    across versions: 5.0 renamed dust_density to aerosol_density)."""
+    if model == core.PHOS_SKY_PREETHAM:
+        return {"model": model, "turbidity": float(node.turbidity),
+                "sun_direction": tuple(float(v) for v in node.sun_direction)}
+    aerosol = getattr(node, "aerosol_density", None)
+    if aerosol is None:
+        aerosol = getattr(node, "dust_density", 1.0)
+    return {"model": model, "sun_elevation": float(node.sun_elevation), "sun_rotation": float(node.sun_rotation),
+            "sun_size": float(node.sun_size), "sun_intensity": float(node.sun_intensity),
+            "sun_disc": int(bool(node.sun_disc)), "altitude": float(node.altitude),
+            "air_density": float(node.air_density), "aerosol_density": float(aerosol),
+            "ozone_density": float(node.ozone_density)}
+
+
+# Computed skies by their settings, the few most recent (a viewport
+# session edits one world; each texture is 1 MiB).
+SKIES = collections.OrderedDict()
+SKIES_KEPT = 8
+
+
+def _baked_sky(settings):
+    key = tuple(sorted(settings.items()))
+    if key in SKIES:
+        SKIES.move_to_end(key)
+        return SKIES[key]
+    baked = core.sky_bake(settings, texture=settings["model"] != core.PHOS_SKY_PREETHAM)
+    SKIES[key] = baked
+    while len(SKIES) > SKIES_KEPT:
+        SKIES.popitem(last=False)
+    return baked
+
+
+def add_sky(node, model, ctx, owner):
+    """(core image id or None, data floats) of a Sky Texture node: the model
+    computed by the core once per setting (and kept between exports), its
+    texture added to the scene once per export; None if the settings are
+    out of the model's range (warned)."""
+    settings = _sky_settings(node, model)
+    try:
+        pixels, data = _baked_sky(settings)
+    except core.PhosError as ex:
+        ctx.warn("Phos: %s: node '%s': %s; the node is treated as unlinked" % (owner, node.name, ex))
+        return None
+    if pixels is None:
+        return None, data
+    key = ("sky",) + tuple(sorted(settings.items()))
+    if key not in ctx.images:
+        ctx.images[key] = ctx.core.add_image(pixels, core.PHOS_SKY_TEXTURE_WIDTH, core.PHOS_SKY_TEXTURE_HEIGHT)
+        ctx.stats["images"] += 1
+    return ctx.images[key], data
+
+
 def add_image(node, ctx, owner):
     """Core image id for an Image Texture node's image, or None if it cannot
     be used. The pixels go to the core once per image; interpolation,

@@ -472,6 +472,43 @@ def _tex_environment(nc, node, stack):
     return {"Color": color, "Alpha": alpha}
 
 
+# Blender's names of the Sky Texture's models: "Nishita" until 4.5 is
+# 5.0's "Single Scattering".
+_SKY_MODELS = {'NISHITA': core.PHOS_SKY_SINGLE_SCATTERING, 'SINGLE_SCATTERING': core.PHOS_SKY_SINGLE_SCATTERING,
+               'MULTIPLE_SCATTERING': core.PHOS_SKY_MULTIPLE_SCATTERING, 'PREETHAM': core.PHOS_SKY_PREETHAM}
+
+
+def _tex_sky(nc, node, stack):
+    """The Sky Texture (docs/algorithms.md §11.4): the model computed once
+    by the core, its texture added as an image; the instruction looks it up
+    by direction. The Vector unlinked is Generated, which for the world is
+    the ray's direction: the core may then render the sun's disc as a sun
+    light (flags 1)."""
+    from . import image as image_export
+    model = _SKY_MODELS.get(node.sky_type)
+    if model is None:
+        nc.walker.note(node, "the %s sky model is not supported; the node is treated as unlinked"
+                       % node.sky_type.replace('_', ' ').title())
+        return {}
+    found = image_export.add_sky(node, model, nc.ctx, nc.walker.owner)
+    if found is None:
+        return {}
+    image_id, data = found
+    data = list(data)
+    if image_id is not None:
+        data[core.PHOS_SKY_DATA_IMAGE] = float(image_id)
+    socket = nc._find_input(node, "Vector")  # gone from 4.x's node (Generated always)
+    if socket is None:
+        nc.check_texture_mapping(node)
+        vec = nc.p.convert(nc.generated(), 3)
+    else:
+        vec = _texture_vector(nc, node, stack, nc.generated)
+    direction = nc.walker.world and (socket is None or not socket.is_linked)
+    flags = 1 if direction and model != core.PHOS_SKY_PREETHAM else 0
+    color = nc.p.emit(core.PHOS_OP_TEX_SKY, [vec], [3], mode=model, flags=flags, table=nc.p.add_table(data))[0]
+    return {"Color": color}
+
+
 def _tex_noise(nc, node, stack):
     vec = _texture_vector(nc, node, stack, nc.generated)
     names = ("W", "Scale", "Detail", "Roughness", "Lacunarity", "Offset", "Gain", "Distortion")
@@ -822,6 +859,7 @@ _HANDLERS = {
     'ShaderNodeCombineHSV': _combine_hsv,
     'ShaderNodeTexImage': _tex_image,
     'ShaderNodeTexEnvironment': _tex_environment,
+    'ShaderNodeTexSky': _tex_sky,
     'ShaderNodeTexNoise': _tex_noise,
     'ShaderNodeTexMusgrave': _tex_musgrave,
     'ShaderNodeTexWhiteNoise': _tex_white_noise,

@@ -64,6 +64,11 @@ static const layout_field fields[] = {
     FIELD(phos_light_desc, spot_angle) FIELD(phos_light_desc, spot_blend) FIELD(phos_light_desc, spot_cosine)
     FIELD(phos_light_desc, sun_angle) FIELD(phos_light_desc, camera_visible)
 
+    FIELD(phos_sky_desc, model) FIELD(phos_sky_desc, sun_elevation) FIELD(phos_sky_desc, sun_rotation)
+    FIELD(phos_sky_desc, sun_size) FIELD(phos_sky_desc, sun_intensity) FIELD(phos_sky_desc, sun_disc)
+    FIELD(phos_sky_desc, altitude) FIELD(phos_sky_desc, air_density) FIELD(phos_sky_desc, aerosol_density)
+    FIELD(phos_sky_desc, ozone_density) FIELD(phos_sky_desc, turbidity) FIELD(phos_sky_desc, sun_direction)
+
     FIELD(phos_world_desc, color)
     FIELD(phos_world_desc, material)
 
@@ -103,6 +108,7 @@ static const struct {
     {"phos_instance_desc", sizeof(phos_instance_desc)},
     {"phos_instances_desc", sizeof(phos_instances_desc)},
     {"phos_light_desc", sizeof(phos_light_desc)},
+    {"phos_sky_desc", sizeof(phos_sky_desc)},
     {"phos_world_desc", sizeof(phos_world_desc)},
     {"phos_camera_desc", sizeof(phos_camera_desc)},
     {"phos_render_settings", sizeof(phos_render_settings)},

@@ -43,8 +43,11 @@ void environment_resolution(const scene *s, const material *m, uint32_t *rows, u
     uint32_t width = 0, height = 0;
     for (uint32_t k = 0; m->has_program && k < m->program.instruction_count; k++) {
         const phos_shader_instruction *ins = &m->program.instructions[k];
-        if (ins->op == PHOS_OP_TEX_IMAGE && ins->table < s->image_count) {
-            const image *img = &s->images[ins->table];
+        uint32_t id = ins->op == PHOS_OP_TEX_IMAGE ? ins->table : PHOS_SHADER_NO_REGISTER;
+        if (ins->op == PHOS_OP_TEX_SKY && ins->mode != PHOS_SKY_PREETHAM)
+            id = (uint32_t)m->program.table[ins->table + PHOS_SKY_DATA_IMAGE];
+        if (id < s->image_count) {
+            const image *img = &s->images[id];
             width = img->width > width ? img->width : width;
             height = img->height > height ? img->height : height;
         }

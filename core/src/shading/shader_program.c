@@ -78,6 +78,8 @@ const shader_op_info shader_ops[PHOS_OP_COUNT] = {
     [PHOS_OP_NORMAL] = {"Normal", shader_op_normal, {W3}, {W3, W1}, 0, 0},
     [PHOS_OP_ATTRIBUTE] = {"Attribute", shader_op_attribute, {0}, {W3, W3, W1, W1}, 1, 3},
     [PHOS_OP_TANGENT] = {"Tangent", shader_op_tangent, {0}, {W3}, 1, PHOS_TANGENT_COUNT},
+    /* Reads the ray's flags: the sun's disc is left out when it is a light. */
+    [PHOS_OP_TEX_SKY] = {"Sky Texture", shader_op_tex_sky, {W3}, {W3}, 1, PHOS_SKY_MODEL_COUNT},
 };
 
 /* Width of each closure field (phos.h, enum phos_closure_field). */
@@ -118,6 +120,21 @@ static int all_set(const uint8_t *set, uint32_t reg, uint32_t width)
     return 1;
 }
 
+/* A Sky Texture's data lies within the table, and the scattering models'
+ * texture is an image of the scene (sky.h's layout: odd height). */
+static const char *validate_sky(const phos_shader_program_desc *d, const phos_shader_instruction *ins,
+                                uint32_t image_count)
+{
+    if (ins->table > d->table_size || d->table_size - ins->table < PHOS_SKY_DATA_FLOATS)
+        return "reads its data beyond the program's table";
+    if (ins->mode == PHOS_SKY_PREETHAM)
+        return NULL;
+    float id = d->table[ins->table + PHOS_SKY_DATA_IMAGE];
+    if (!(id >= 0.0f && id < (float)image_count && id == floorf(id)))
+        return "refers to a texture that is not an image of the scene";
+    return NULL;
+}
+
 static const char *validate_instruction(const phos_shader_program_desc *d, uint32_t i, uint32_t image_count,
                                         uint8_t *set, char *msg, size_t n)
 {
@@ -153,6 +170,11 @@ static const char *validate_instruction(const phos_shader_program_desc *d, uint3
             ins->mode * floats > d->table_size - ins->table)
             return BAD("instruction %u (%s) reads %u table entries at %u, beyond the table of %u floats", i,
                        op->name, ins->mode, ins->table, d->table_size);
+    }
+    if (ins->op == PHOS_OP_TEX_SKY) {
+        const char *bad = validate_sky(d, ins, image_count);
+        if (bad)
+            return BAD("instruction %u (%s) %s", i, op->name, bad);
     }
     for (int k = 0; k < PHOS_SHADER_MAX_OUTPUTS; k++) {
         uint32_t w = op->out_width[k];

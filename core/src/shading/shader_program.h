@@ -61,7 +61,10 @@ enum shader_ray_flags {
     SHADER_RAY_GLOSSY = 1 << 3,
     SHADER_RAY_SINGULAR = 1 << 4,
     SHADER_RAY_REFLECT = 1 << 5,
-    SHADER_RAY_TRANSMIT = 1 << 6
+    SHADER_RAY_TRANSMIT = 1 << 6,
+    /* Not a kind of ray: the world's sky sun is a light of its own
+     * (lights/environment.c), so the Sky Texture leaves its disc out. */
+    SHADER_RAY_SKY_SUN_AS_LIGHT = 1 << 7
 };
 
 /* A program as the core keeps it: validated, folded, owned. */
@@ -196,6 +199,7 @@ void shader_op_rgb_to_bw(const phos_shader_instruction *ins, shader_context *ctx
 void shader_op_blackbody(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_wavelength(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_tex_image(const phos_shader_instruction *ins, shader_context *ctx);
+void shader_op_tex_sky(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_tex_noise(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_tex_musgrave(const phos_shader_instruction *ins, shader_context *ctx);
 void shader_op_tex_white_noise(const phos_shader_instruction *ins, shader_context *ctx);

@@ -9,6 +9,7 @@
  * Blender 4.3 changed Hue/Saturation/Value's hue wrap; the add-on sets
  * PHOS_NODE_PRE_4_3 (node_util.h) on HUE_SATURATION for older versions.
  */
+#include "shading/color_space.h"
 #include "shading/nodes/node_util.h"
 #include "shading/shader_program.h"
 
@@ -360,13 +361,6 @@ void shader_op_combine_color(const phos_shader_instruction *ins, shader_context 
  * configs' rounding (≈1e-6). */
 static const vec3 REC709_TO_Y = {0.2126729f, 0.7151522f, 0.0721750f};
 
-/* CIE XYZ (D65) → linear Rec. 709, the inverse of the same matrix. */
-static const vec3 XYZ_TO_REC709[3] = {
-    {3.2404542f, -1.5371385f, -0.4985314f},
-    {-0.9692660f, 1.8760108f, 0.0415560f},
-    {0.0556434f, -0.2040259f, 1.0572252f},
-};
-
 /* in color(3); out value: the luminance of the colour. */
 void shader_op_rgb_to_bw(const phos_shader_instruction *ins, shader_context *ctx)
 {
@@ -530,8 +524,7 @@ void shader_op_wavelength(const phos_shader_instruction *ins, shader_context *ct
         x -= (float)i;
         xyz = lerp3(v3_load(CIE_1931[i]), v3_load(CIE_1931[i + 1]), x);
     }
-    vec3 rgb = v3(v3_dot(XYZ_TO_REC709[0], xyz), v3_dot(XYZ_TO_REC709[1], xyz), v3_dot(XYZ_TO_REC709[2], xyz));
-    rgb = v3_scale(rgb, 1.0f / 2.52f);
+    vec3 rgb = v3_scale(xyz_to_rec709(xyz), 1.0f / 2.52f);
     SHADER_OUT3(0, max3(rgb, v3s(0.0f)));
 }
 
