@@ -126,7 +126,7 @@ static void test_sampling(void)
     CHECK(phos_scene_commit(s) == PHOS_OK);
     environment e;
     int zero = 0;
-    CHECK(environment_build(&e, s, world_material(s), 2, &zero) == PHOS_OK && !zero);
+    CHECK(environment_build(&e, s, world_material(s), 0, 2, &zero) == PHOS_OK && !zero);
     CHECK(e.rows % GRID_Z == 0 && e.columns % GRID_PHI == 0);
 
     /* Expected counts: within a cell the density times sin θ is constant,

@@ -140,7 +140,7 @@ static float cell_density(const environment *e, float w, double total, vec3 d)
 
 vec3 environment_radiance(const scene *s, const environment *e, vec3 d, uint32_t ray_flags)
 {
-    return material_background(s, e->mat, d, ray_flags);
+    return material_background(s, e->mat, d, ray_flags | e->ray_flags);
 }
 
 /* ---------------------------------------------------------------- build */
@@ -259,11 +259,13 @@ static int build_distributions(environment *e, float *luminance)
     return ok;
 }
 
-phos_status environment_build(environment *e, const scene *s, const material *m, uint32_t threads, int *zero)
+phos_status environment_build(environment *e, const scene *s, const material *m, uint32_t ray_flags,
+                              uint32_t threads, int *zero)
 {
     memset(e, 0, sizeof(*e));
     *zero = 1;
     e->mat = m;
+    e->ray_flags = ray_flags;
     environment_resolution(s, m, &e->rows, &e->columns);
     size_t n = (size_t)e->rows * e->columns;
     float *luminance = malloc(sizeof(float) * n), *mean = malloc(sizeof(float) * n);
@@ -304,6 +306,7 @@ done:
         double integral = e->integral;
         environment_free(e);
         e->mat = m;
+        e->ray_flags = ray_flags;
         e->integral = integral;
     }
     return st;
@@ -395,8 +398,10 @@ phos_status light_environment_add(const scene *s, light_table *t, uint32_t *capa
     environment *e = calloc(1, sizeof(environment));
     if (!e)
         return PHOS_ERROR_OUT_OF_MEMORY;
-    int zero = 0;
-    phos_status st = environment_build(e, s, world, 0, &zero);
+    int zero = 0, sun = 0;
+    phos_status st = light_sky_sun_add(s, t, capacity, world, &sun);
+    if (st == PHOS_OK)
+        st = environment_build(e, s, world, sun ? SHADER_RAY_SKY_SUN_AS_LIGHT : 0, 0, &zero);
     if (st != PHOS_OK) {
         environment_destroy(e);
         return st;

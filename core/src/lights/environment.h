@@ -40,6 +40,8 @@ typedef struct environment {
     double bin_total[ENVIRONMENT_BINS * ENVIRONMENT_BINS];
     float bin_integral[ENVIRONMENT_BINS * ENVIRONMENT_BINS]; /* ∫ over the bin of the channel mean of L dω, W/m² */
     double integral;            /* the same over the sphere: W/m² */
+    uint32_t ray_flags;         /* added to every evaluation: SHADER_RAY_SKY_SUN_AS_LIGHT when the sky's
+                                   sun is a light of its own (lights/sky_sun.c) */
 } environment;
 
 /* Cells for a world material: a quarter pixel of the largest image its
@@ -50,11 +52,12 @@ void environment_resolution(const scene *s, const material *m, uint32_t *rows, u
  * estimate). */
 size_t environment_bytes(uint32_t rows, uint32_t columns);
 
-/* Evaluates the world on the cells and builds the
- * distribution; *zero is set when the world sends no light at all.
+/* Evaluates the world on the cells (with ray_flags added to every
+ * evaluation, as e->ray_flags) and builds the distribution; *zero is set when the world sends no light at all.
  * Returns PHOS_ERROR_OUT_OF_MEMORY or PHOS_ERROR_CANCELLED (s->cancel).
  * A world of no power keeps no distribution (weight NULL). */
-phos_status environment_build(environment *e, const scene *s, const material *m, uint32_t threads, int *zero);
+phos_status environment_build(environment *e, const scene *s, const material *m, uint32_t ray_flags,
+                              uint32_t threads, int *zero);
 void environment_free(environment *e);
 
 /* Radiance W/(m²·sr) arriving along −d, i.e. seen by a ray of unit

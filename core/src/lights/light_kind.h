@@ -99,6 +99,12 @@ phos_status light_mesh_emitters_add(scene *s, light_table *t, uint32_t *capacity
 phos_status light_world_add(const scene *s, light_table *t, uint32_t *capacity);
 phos_status light_environment_add(const scene *s, light_table *t, uint32_t *capacity, const material *world);
 
+/* The Sky Texture's sun as a sun light, when the world's program allows
+ * (sky_sun.c); *added tells whether it did, and then the world's radiance
+ * is to be read without the disc (SHADER_RAY_SKY_SUN_AS_LIGHT). */
+phos_status light_sky_sun_add(const scene *s, light_table *t, uint32_t *capacity, const material *world,
+                              int *added);
+
 /* The shape of area lamps, which portals share (area.c): the fields of an
  * AREA or PORTAL desc; a uniform point on the shape; the crossing of the
  * ray o + t·d, 0 < t < tmax, with its emitting face (the side
