@@ -431,8 +431,8 @@ enum phos_space { PHOS_SPACE_WORLD = 0, PHOS_SPACE_OBJECT = 1, PHOS_SPACE_CAMERA
  * alone. PHOS_SKY_TEXTURE_WIDTH × _HEIGHT is the resolution Phos uses.
  */
 enum phos_sky_model { PHOS_SKY_SINGLE_SCATTERING = 0, PHOS_SKY_MULTIPLE_SCATTERING = 1, PHOS_SKY_PREETHAM = 2,
-                      PHOS_SKY_MODEL_COUNT = 3 };
-#define PHOS_SKY_DATA_FLOATS 24
+                      PHOS_SKY_HOSEK_WILKIE = 3, PHOS_SKY_MODEL_COUNT = 4 };
+#define PHOS_SKY_DATA_FLOATS 32
 #define PHOS_SKY_DATA_IMAGE 11
 #define PHOS_SKY_TEXTURE_WIDTH 256
 #define PHOS_SKY_TEXTURE_HEIGHT 257
@@ -446,8 +446,9 @@ typedef struct phos_sky_desc {
     uint32_t sun_disc;          /* whether the disc is drawn */
     float altitude;             /* m above sea level */
     float air_density, aerosol_density, ozone_density; /* multiples of Earth's, >= 0 */
-    /* Preetham: */
-    float turbidity;            /* >= 1 */
+    /* Preetham and Hosek-Wilkie: */
+    float turbidity;            /* 1 to 10 (Hosek-Wilkie's data; Preetham's formulas take more) */
+    float ground_albedo;        /* Hosek-Wilkie: 0 to 1 */
     float sun_direction[3];     /* toward the sun, any length > 0 */
 } phos_sky_desc;
 PHOS_API void phos_sky_desc_init(phos_sky_desc *desc);

@@ -170,8 +170,8 @@ CONVERTED = ConvertedCache(512 << 20)
 def _sky_settings(node, model):
     """The phos_sky_desc fields of a Sky Texture node (Blender's names
     across versions: 5.0 renamed dust_density to aerosol_density)."""
-    if model == core.PHOS_SKY_PREETHAM:
-        return {"model": model, "turbidity": float(node.turbidity),
+    if model in (core.PHOS_SKY_PREETHAM, core.PHOS_SKY_HOSEK_WILKIE):
+        return {"model": model, "turbidity": float(node.turbidity), "ground_albedo": float(node.ground_albedo),
                 "sun_direction": tuple(float(v) for v in node.sun_direction)}
     aerosol = getattr(node, "aerosol_density", None)
     if aerosol is None:
@@ -194,7 +194,8 @@ def _baked_sky(settings):
     if key in SKIES:
         SKIES.move_to_end(key)
         return SKIES[key]
-    baked = core.sky_bake(settings, texture=settings["model"] != core.PHOS_SKY_PREETHAM)
+    textured = settings["model"] in (core.PHOS_SKY_SINGLE_SCATTERING, core.PHOS_SKY_MULTIPLE_SCATTERING)
+    baked = core.sky_bake(settings, texture=textured)
     SKIES[key] = baked
     while len(SKIES) > SKIES_KEPT:
         SKIES.popitem(last=False)

@@ -475,7 +475,10 @@ def _tex_environment(nc, node, stack):
 # Blender's names of the Sky Texture's models: "Nishita" until 4.5 is
 # 5.0's "Single Scattering".
 _SKY_MODELS = {'NISHITA': core.PHOS_SKY_SINGLE_SCATTERING, 'SINGLE_SCATTERING': core.PHOS_SKY_SINGLE_SCATTERING,
-               'MULTIPLE_SCATTERING': core.PHOS_SKY_MULTIPLE_SCATTERING, 'PREETHAM': core.PHOS_SKY_PREETHAM}
+               'MULTIPLE_SCATTERING': core.PHOS_SKY_MULTIPLE_SCATTERING, 'PREETHAM': core.PHOS_SKY_PREETHAM,
+               'HOSEK_WILKIE': core.PHOS_SKY_HOSEK_WILKIE}
+# The models computed into a texture (the rest are evaluated per direction).
+SKY_TEXTURED = {core.PHOS_SKY_SINGLE_SCATTERING, core.PHOS_SKY_MULTIPLE_SCATTERING}
 
 
 def _tex_sky(nc, node, stack):
@@ -486,7 +489,7 @@ def _tex_sky(nc, node, stack):
     light (flags 1)."""
     from . import image as image_export
     model = _SKY_MODELS.get(node.sky_type)
-    if model is None:
+    if model is None:  # a model a newer Blender added
         nc.walker.note(node, "the %s sky model is not supported; the node is treated as unlinked"
                        % node.sky_type.replace('_', ' ').title())
         return {}
@@ -504,7 +507,7 @@ def _tex_sky(nc, node, stack):
     else:
         vec = _texture_vector(nc, node, stack, nc.generated)
     direction = nc.walker.world and (socket is None or not socket.is_linked)
-    flags = 1 if direction and model != core.PHOS_SKY_PREETHAM else 0
+    flags = 1 if direction and model in SKY_TEXTURED else 0
     color = nc.p.emit(core.PHOS_OP_TEX_SKY, [vec], [3], mode=model, flags=flags, table=nc.p.add_table(data))[0]
     return {"Color": color}
 

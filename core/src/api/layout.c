@@ -67,7 +67,8 @@ static const layout_field fields[] = {
     FIELD(phos_sky_desc, model) FIELD(phos_sky_desc, sun_elevation) FIELD(phos_sky_desc, sun_rotation)
     FIELD(phos_sky_desc, sun_size) FIELD(phos_sky_desc, sun_intensity) FIELD(phos_sky_desc, sun_disc)
     FIELD(phos_sky_desc, altitude) FIELD(phos_sky_desc, air_density) FIELD(phos_sky_desc, aerosol_density)
-    FIELD(phos_sky_desc, ozone_density) FIELD(phos_sky_desc, turbidity) FIELD(phos_sky_desc, sun_direction)
+    FIELD(phos_sky_desc, ozone_density) FIELD(phos_sky_desc, turbidity)
+    FIELD(phos_sky_desc, ground_albedo) FIELD(phos_sky_desc, sun_direction)
 
     FIELD(phos_world_desc, color)
     FIELD(phos_world_desc, material)

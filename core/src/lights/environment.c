@@ -11,6 +11,7 @@
 #include "sampling/warp.h"
 #include "shading/material.h"
 #include "shading/shader_program.h"
+#include "shading/sky/sky.h"
 #include "util/parallel.h"
 
 #define BIN_COUNT (ENVIRONMENT_BINS * ENVIRONMENT_BINS)
@@ -44,7 +45,7 @@ void environment_resolution(const scene *s, const material *m, uint32_t *rows, u
     for (uint32_t k = 0; m->has_program && k < m->program.instruction_count; k++) {
         const phos_shader_instruction *ins = &m->program.instructions[k];
         uint32_t id = ins->op == PHOS_OP_TEX_IMAGE ? ins->table : PHOS_SHADER_NO_REGISTER;
-        if (ins->op == PHOS_OP_TEX_SKY && ins->mode != PHOS_SKY_PREETHAM)
+        if (ins->op == PHOS_OP_TEX_SKY && sky_model_textured(ins->mode))
             id = (uint32_t)m->program.table[ins->table + PHOS_SKY_DATA_IMAGE];
         if (id < s->image_count) {
             const image *img = &s->images[id];

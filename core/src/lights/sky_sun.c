@@ -26,7 +26,7 @@
 #include "sampling/warp.h"
 #include "shading/material.h"
 #include "shading/shader_program.h"
-#include "shading/sky.h"
+#include "shading/sky/sky.h"
 
 #define SUN_SIDE 16 /* SUN_SIDE² points of the disc, on a stratified grid */
 
@@ -39,7 +39,7 @@ static const float *sky_with_sun(const material *world)
     const float *found = NULL;
     for (uint32_t k = 0; k < p->instruction_count; k++) {
         const phos_shader_instruction *ins = &p->instructions[k];
-        if (ins->op != PHOS_OP_TEX_SKY || ins->mode == PHOS_SKY_PREETHAM)
+        if (ins->op != PHOS_OP_TEX_SKY || !sky_model_textured(ins->mode))
             continue;
         const float *data = p->table + ins->table;
         if (!(data[SKY_SUN_DIAMETER] > 0.0f && data[SKY_SUN_INTENSITY] > 0.0f))

@@ -13,6 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "shading/sky/sky.h"
+
 #define W1 1
 #define W3 3
 
@@ -127,7 +129,7 @@ static const char *validate_sky(const phos_shader_program_desc *d, const phos_sh
 {
     if (ins->table > d->table_size || d->table_size - ins->table < PHOS_SKY_DATA_FLOATS)
         return "reads its data beyond the program's table";
-    if (ins->mode == PHOS_SKY_PREETHAM)
+    if (!sky_model_textured(ins->mode))
         return NULL;
     float id = d->table[ins->table + PHOS_SKY_DATA_IMAGE];
     if (!(id >= 0.0f && id < (float)image_count && id == floorf(id)))

@@ -1,30 +1,24 @@
 /*
  * texture_sky.c — the Sky Texture node: the radiance of the daylight
- * models of shading/sky.c in a direction, as Cycles draws them
+ * models of shading/sky/ in a direction, as Cycles draws them
  * (docs/algorithms.md §11.4).
  */
 #include "scene/scene.h"
-#include "shading/color_space.h"
 #include "shading/shader_program.h"
-#include "shading/sky.h"
+#include "shading/sky/sky.h"
 #include "shading/texture.h"
-
-/* The angle between two unit vectors, accurate near 0 and π. */
-static float angle_between(vec3 a, vec3 b)
-{
-    return 2.0f * atan2f(v3_length(v3_sub(a, b)), v3_length(v3_add(a, b)));
-}
 
 /* The sun's disc at d: the radiance of its lowest and highest points
  * blended by elevation, darkened toward the limb as
  * 1 − 0.6 (1 − √(1 − (r/R)²)) (r the angle from the centre, R the
- * disc's), and hidden below the horizon's dip. */
+ * disc's), and hidden below the horizon's dip (the single-scattering
+ * sky, which has no ground, below the horizon itself). */
 static vec3 sun_disc(const float *data, vec3 d, float elevation, int multiple)
 {
     float diameter = data[SKY_SUN_DIAMETER], half = 0.5f * diameter;
     if (!(diameter > 0.0f) || elevation <= data[SKY_EARTH_ANGLE] || (!multiple && d.z < 0.0f))
         return v3s(0.0f);
-    float r = angle_between(d, sky_sun_direction(data[SKY_SUN_ELEVATION], data[SKY_SUN_ROTATION]));
+    float r = sky_angle_between(d, sky_sun_direction(data[SKY_SUN_ELEVATION], data[SKY_SUN_ROTATION]));
     if (r >= half)
         return v3s(0.0f);
     float y = (elevation - data[SKY_SUN_ELEVATION]) / diameter + 0.5f;
@@ -51,24 +45,6 @@ static vec3 scattering_sky(const shader_context *ctx, const phos_shader_instruct
     return v3_add(sky, sun_disc(data, d, elevation, ins->mode == PHOS_SKY_MULTIPLE_SCATTERING));
 }
 
-/* Preetham et al.: Y, x, y each the zenith's value times the Perez
- * function of the view's polar angle θ (held above the horizon) and its
- * angle γ from the sun; then CIE XYZ and Rec. 709. */
-static vec3 preetham_sky(const float *data, vec3 d)
-{
-    float st = sinf(data[SKY_PREETHAM_THETA]);
-    vec3 sun = v3(st * sinf(data[SKY_PREETHAM_PHI]), st * cosf(data[SKY_PREETHAM_PHI]),
-                  cosf(data[SKY_PREETHAM_THETA]));
-    float gamma = angle_between(d, sun);
-    float theta = minf(acosf(clampf(d.z, -1.0f, 1.0f)), 0.5f * PHOS_PI - 0.001f);
-    float Y = data[SKY_PREETHAM_ZENITH] * sky_perez(data + SKY_PREETHAM_PEREZ, theta, gamma);
-    float x = data[SKY_PREETHAM_ZENITH + 1] * sky_perez(data + SKY_PREETHAM_PEREZ + 5, theta, gamma);
-    float y = data[SKY_PREETHAM_ZENITH + 2] * sky_perez(data + SKY_PREETHAM_PEREZ + 10, theta, gamma);
-    if (!(y != 0.0f))
-        return v3s(0.0f);
-    return xyz_to_rec709(v3(x * Y / y, Y, (1.0f - x - y) * Y / y));
-}
-
 /* in vector(3); out color(3), never negative (Cycles clamps the colours
  * outside Rec. 709's gamut to it). */
 void shader_op_tex_sky(const phos_shader_instruction *ins, shader_context *ctx)
@@ -77,6 +53,12 @@ void shader_op_tex_sky(const phos_shader_instruction *ins, shader_context *ctx)
     vec3 d = SHADER_IN3(0);
     float l = v3_length(d);
     d = l > 0.0f ? v3_scale(d, 1.0f / l) : v3(0.0f, 0.0f, 1.0f);
-    vec3 rgb = ins->mode == PHOS_SKY_PREETHAM ? preetham_sky(data, d) : scattering_sky(ctx, ins, data, d);
+    vec3 rgb;
+    if (ins->mode == PHOS_SKY_PREETHAM)
+        rgb = sky_preetham_radiance(data, d);
+    else if (ins->mode == PHOS_SKY_HOSEK_WILKIE)
+        rgb = sky_hosek_wilkie_radiance(data, d);
+    else
+        rgb = scattering_sky(ctx, ins, data, d);
     SHADER_OUT3(0, v3_max(rgb, v3s(0.0f)));
 }
