@@ -68,8 +68,9 @@ phos_status light_groups_build(light_table *t, const float *power);
  * *pdf (0: nothing can light c). c NULL: by power. */
 uint32_t light_pick(const light_table *t, const light_context *c, float u, float *pdf);
 
-/* Whether the uniform world is sampled apart at c (one sample of its own
- * besides the picked light's, light_sample_world) rather than picked. */
+/* Whether the world is sampled apart at c (one sample of its own
+ * besides the picked light's, light_sample_world) rather than picked: the
+ * uniform world always, one that varies with direction beside other lights. */
 int light_world_apart(const light_table *t, const light_context *c);
 
 /* A sample of the world alone (pick pdf 1), for a world sampled apart. */

@@ -8,7 +8,7 @@
 #include "scene/ray.h"
 
 #define SHADOW_MAX_TRANSPARENT_STEPS 64
-/* The uniform world's own light sample (light_pick.c) draws from a sampler
+/* The world's own light sample (light_pick.c) draws from a sampler
  * split off the path's, at the light-point dimensions of its vertex, so it
  * is stratified over the pixel's samples apart from the picked light's. */
 #define WORLD_SAMPLE_STREAM 0x3f1d0000u

@@ -1,0 +1,366 @@
+/*
+ * test_sky.c — the Sky Texture's models (shading/sky/) and its sun as a
+ * light (lights/sky_sun.c). Cycles is the reference for each model's
+ * values (tests/blender/test_sky.py); here, what has a closed form:
+ *
+ *  - Single scattering in the optically thin limit: with the sun at the
+ *    zenith, the radiance seen along a view is ε σ p(μ) E ∫ ρ(h(s)) ds,
+ *    so the ratio of the horizon's radiance to the zenith's is
+ *    p(0)/p(1) times the ratio of the density's integrals along the two
+ *    rays, whatever the spectrum: ½ for molecules (Rayleigh), the
+ *    Cornette-Shanks ratio for aerosols. The integrals come from a fine
+ *    quadrature here, the model's from its own 32 segments.
+ *  - The sun's disc: its radiance × its solid angle (the irradiance it
+ *    gives) does not depend on its size.
+ *  - A sky without air is black.
+ *  - The sun as a light: its irradiance equals the disc's radiance, as the
+ *    program draws it (limb darkening and all), integrated over the disc;
+ *    the world's map no longer holds the disc.
+ *  - Bad settings and bad programs are refused.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lights/environment.h"
+#include "lights/light.h"
+#include "sampling/warp.h"
+#include "scene/scene.h"
+#include "shading/material.h"
+#include "shading/shader_program.h"
+#include "shading/sky/sky.h"
+#include "test_scenes.h"
+#include "test_util.h"
+
+#define W PHOS_SKY_TEXTURE_WIDTH
+#define H PHOS_SKY_TEXTURE_HEIGHT
+
+static const double PI = 3.14159265358979323846;
+
+static float *bake(const phos_sky_desc *d, float *data)
+{
+    float *px = malloc(sizeof(float) * 4 * W * H);
+    CHECK(phos_sky_bake(d, W, H, px, data) == PHOS_OK);
+    return px;
+}
+
+static const float *texel(const float *px, uint32_t column, uint32_t row) { return px + 4 * ((size_t)row * W + column); }
+
+/* ∫ exp(−h(s)/scale) ds along a ray from height a (m) above a sphere of
+ * radius r at elevation e, to the sphere of radius top: a fine midpoint
+ * sum. */
+static double density_integral(double r, double top, double a, double e, double scale)
+{
+    double o = r + a, b = o * sin(e), c = o * o - top * top;
+    double length = -b + sqrt(b * b - c);
+    const int n = 200000;
+    double ds = length / n, sum = 0.0;
+    for (int i = 0; i < n; i++) {
+        double s = (i + 0.5) * ds;
+        double x = s * cos(e), z = o + s * sin(e);
+        sum += exp(-(sqrt(x * x + z * z) - r) / scale);
+    }
+    return sum * ds;
+}
+
+static phos_sky_desc thin_air(float air, float aerosol)
+{
+    phos_sky_desc d;
+    phos_sky_desc_init(&d);
+    d.sun_elevation = (float)(PI / 2);
+    d.sun_disc = 0;
+    d.altitude = 1.0f;
+    d.air_density = air;
+    d.aerosol_density = aerosol;
+    d.ozone_density = 0.0f;
+    return d;
+}
+
+static void test_thin_limit(void)
+{
+    const double r = 6360e3, top = 6420e3;
+    float data[PHOS_SKY_DATA_FLOATS];
+    /* Molecules: phase (1 + μ²) gives ½ at the horizon (μ = 0) against 1
+     * at the zenith (μ = 1). */
+    phos_sky_desc d = thin_air(1e-4f, 0.0f);
+    float *px = bake(&d, data);
+    double expected = 0.5 * density_integral(r, top, 1.0, 0.0, 8e3) / density_integral(r, top, 1.0, PI / 2, 8e3);
+    for (int c = 0; c < 3; c++)
+        CHECK_REL(texel(px, 10, (H - 1) / 2)[c] / texel(px, 10, H - 1)[c], expected, 0.01);
+    /* Symmetric about the sun: every azimuth of the horizon alike. */
+    CHECK_REL(texel(px, 0, (H - 1) / 2)[1], texel(px, W - 1, (H - 1) / 2)[1], 1e-5);
+    free(px);
+    /* Aerosols (scale height 1.2 km, which the model's 32 segments of the
+     * zenith ray do not resolve, so not against the integral): the zenith
+     * lit by a sun on the horizon (μ = 0) over a sun at the zenith
+     * (μ = 1) along the same ray is the phase functions' ratio,
+     * Cornette-Shanks with g = 0.76, and Rayleigh's ½ for molecules. */
+    const double g = 0.76;
+    const double ratios[2] = {0.5, (1.0 / pow(1.0 + g * g, 1.5)) / (2.0 / pow(1.0 + g * g - 2.0 * g, 1.5))};
+    for (int kind = 0; kind < 2; kind++) {
+        float zenith[2];
+        for (int k = 0; k < 2; k++) {
+            d = thin_air(kind ? 0.0f : 1e-4f, kind ? 1e-4f : 0.0f);
+            d.sun_elevation = k ? 0.0f : (float)(PI / 2);
+            px = bake(&d, data);
+            zenith[k] = texel(px, 10, H - 1)[1];
+            free(px);
+        }
+        CHECK_REL(zenith[1] / zenith[0], ratios[kind], 0.01);
+    }
+}
+
+static void test_airless_sky_is_black(void)
+{
+    for (uint32_t model = PHOS_SKY_SINGLE_SCATTERING; model <= PHOS_SKY_MULTIPLE_SCATTERING; model++) {
+        phos_sky_desc d = thin_air(0.0f, 0.0f);
+        d.model = model;
+        d.sun_elevation = 0.4f;
+        float data[PHOS_SKY_DATA_FLOATS];
+        float *px = bake(&d, data);
+        double sum = 0.0;
+        for (size_t i = 0; i < (size_t)W * H; i++)
+            sum += fabs(px[4 * i]) + fabs(px[4 * i + 1]) + fabs(px[4 * i + 2]);
+        CHECK_MSG(sum == 0.0, "model %u: a sky without air sums to %g", model, sum);
+        free(px);
+    }
+}
+
+static void test_sun_irradiance_independent_of_size(void)
+{
+    for (uint32_t model = PHOS_SKY_SINGLE_SCATTERING; model <= PHOS_SKY_MULTIPLE_SCATTERING; model++) {
+        float e[2];
+        for (int k = 0; k < 2; k++) {
+            phos_sky_desc d;
+            phos_sky_desc_init(&d);
+            d.model = model;
+            d.sun_elevation = 0.6f;
+            d.sun_size = k ? 0.02f : 0.01f;
+            float data[PHOS_SKY_DATA_FLOATS];
+            CHECK(phos_sky_bake(&d, 0, 0, NULL, data) == PHOS_OK);
+            float omega = 2.0f * (float)PI * (1.0f - cosf(0.5f * d.sun_size));
+            e[k] = 0.5f * (data[SKY_SUN_BOTTOM + 1] + data[SKY_SUN_TOP + 1]) * omega;
+            CHECK(data[SKY_SUN_DIAMETER] == d.sun_size);
+        }
+        CHECK_REL(e[1], e[0], 2e-3);
+    }
+}
+
+/* --------------------------------------------------------- the sun as a light */
+
+/* A world: Generated (the direction) → Sky Texture → Background. */
+static void set_sky_world(phos_scene *s, const phos_sky_desc *d, uint32_t flags)
+{
+    static float data[PHOS_SKY_DATA_FLOATS];
+    float *px = malloc(sizeof(float) * 4 * W * H);
+    CHECK(phos_sky_bake(d, W, H, px, data) == PHOS_OK);
+    phos_image_desc im;
+    phos_image_desc_init(&im);
+    im.width = W, im.height = H, im.pixels = px;
+    uint32_t image = 0;
+    CHECK(phos_scene_add_image(s, &im, &image) == PHOS_OK);
+    free(px);
+    data[PHOS_SKY_DATA_IMAGE] = (float)image;
+    phos_shader_instruction ins[2];
+    memset(ins, 0, sizeof(ins));
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < PHOS_SHADER_MAX_OUTPUTS; k++)
+            ins[i].outputs[k] = PHOS_SHADER_NO_REGISTER;
+    ins[0].op = PHOS_OP_TEXTURE_COORDINATE;
+    ins[0].outputs[0] = 0;
+    ins[1].op = PHOS_OP_TEX_SKY;
+    ins[1].mode = d->model;
+    ins[1].flags = flags;
+    ins[1].table = 0;
+    ins[1].inputs[0] = 0;
+    ins[1].outputs[0] = 3;
+    phos_shader_binding bind = {0, PHOS_FIELD_WEIGHT, 3};
+    phos_shader_program_desc p;
+    memset(&p, 0, sizeof(p));
+    p.register_count = 6;
+    p.instructions = ins;
+    p.instruction_count = 2;
+    p.table = data;
+    p.table_size = PHOS_SKY_DATA_FLOATS;
+    p.bindings = &bind;
+    p.binding_count = 1;
+    phos_closure_desc c;
+    phos_closure_desc_init(&c);
+    c.type = PHOS_CLOSURE_EMISSION;
+    c.weight[0] = c.weight[1] = c.weight[2] = 1.0f;
+    phos_material_desc m;
+    phos_material_desc_init(&m);
+    m.closure_count = 1;
+    m.closures = &c;
+    m.program = &p;
+    phos_world_desc wd;
+    phos_world_desc_init(&wd);
+    CHECK(phos_scene_add_material(s, &m, &wd.material) == PHOS_OK);
+    CHECK(phos_scene_set_world(s, &wd) == PHOS_OK);
+}
+
+static const light *find_sun(const phos_scene *s)
+{
+    for (uint32_t i = 0; i < s->lights.count; i++)
+        if (s->lights.lights[i].kind == LIGHT_SUN)
+            return &s->lights.lights[i];
+    return NULL;
+}
+
+static void test_sun_becomes_a_light(void)
+{
+    phos_sky_desc d;
+    phos_sky_desc_init(&d);
+    d.sun_elevation = 0.5f;
+    d.sun_rotation = 0.7f;
+    d.sun_size = 0.03f;
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quad_mesh(s, 1.0f), test_add_diffuse(s, 0.5f, 0.5f, 0.5f), 0, 0, 0);
+    set_sky_world(s, &d, 1);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    const light *sun = find_sun(s);
+    CHECK(sun != NULL);
+    if (sun) {
+        /* The disc as the program draws it, integrated over its cone on a
+         * fine grid: irradiance at normal incidence, W/m². */
+        const material *world = &s->materials[s->world.material];
+        vec3 to_sun = sky_sun_direction(d.sun_elevation, d.sun_rotation);
+        float cos_half = cosf(0.5f * d.sun_size);
+        const int n = 160;
+        double e[3] = {0, 0, 0};
+        for (int i = 0; i < n * n; i++) {
+            float2 u = {((float)(i % n) + 0.5f) / n, ((float)(i / n) + 0.5f) / n};
+            vec3 w = warp_cone(to_sun, cos_half, u);
+            vec3 with = material_background(s, world, w, 0);
+            vec3 without = material_background(s, world, w, SHADER_RAY_SKY_SUN_AS_LIGHT);
+            double weight = cone_solid_angle(cos_half) / (n * n) * v3_dot(w, to_sun);
+            e[0] += (with.x - without.x) * weight, e[1] += (with.y - without.y) * weight;
+            e[2] += (with.z - without.z) * weight;
+        }
+        CHECK_REL(sun->color.x, e[0], 2e-3);
+        CHECK_REL(sun->color.y, e[1], 2e-3);
+        CHECK_REL(sun->color.z, e[2], 2e-3);
+        CHECK(fabsf(v3_dot(sun->direction, to_sun) + 1.0f) < 1e-5f);
+        CHECK(sun->camera_visible);
+        /* The world's map holds the sky without the disc: at the sun's
+         * centre the environment is far darker than the disc. */
+        vec3 env = environment_radiance(s, s->lights.env, to_sun, 0);
+        CHECK_MSG(v3_average(env) < 1e-3f * v3_average(sun->sun_radiance), "the map still holds the disc: %g vs %g",
+                  v3_average(env), v3_average(sun->sun_radiance));
+    }
+    phos_scene_destroy(s);
+
+    /* A sky looked up by another vector (flags 0), or a sun at the
+     * horizon, keeps its disc in the program. */
+    for (int k = 0; k < 2; k++) {
+        s = phos_scene_create();
+        test_add_instance(s, test_add_quad_mesh(s, 1.0f), test_add_diffuse(s, 0.5f, 0.5f, 0.5f), 0, 0, 0);
+        phos_sky_desc h = d;
+        if (k)
+            h.sun_elevation = 0.01f;
+        set_sky_world(s, &h, k ? 1u : 0u);
+        CHECK(phos_scene_commit(s) == PHOS_OK);
+        CHECK(find_sun(s) == NULL);
+        phos_scene_destroy(s);
+    }
+}
+
+/* ------------------------------------------------------------ bad input */
+
+static void test_bad_settings_refused(void)
+{
+    float data[PHOS_SKY_DATA_FLOATS], px[4 * 4 * 5];
+    phos_sky_desc d;
+    phos_sky_desc_init(&d);
+    CHECK(phos_sky_bake(NULL, 0, 0, NULL, data) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_sky_bake(&d, 0, 0, NULL, NULL) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_sky_bake(&d, 4, 4, px, data) == PHOS_ERROR_INVALID_ARGUMENT); /* an even height */
+    CHECK(phos_sky_bake(&d, 1, 5, px, data) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(phos_sky_bake(&d, 4, 5, px, data) == PHOS_OK);
+    phos_sky_desc bad = d;
+    bad.sun_elevation = NAN;
+    CHECK(phos_sky_bake(&bad, 0, 0, NULL, data) == PHOS_ERROR_INVALID_ARGUMENT);
+    bad = d;
+    bad.air_density = -1.0f;
+    CHECK(phos_sky_bake(&bad, 0, 0, NULL, data) == PHOS_ERROR_INVALID_ARGUMENT);
+    bad = d;
+    bad.model = PHOS_SKY_MODEL_COUNT;
+    CHECK(phos_sky_bake(&bad, 0, 0, NULL, data) == PHOS_ERROR_INVALID_ARGUMENT);
+    bad = d;
+    bad.model = PHOS_SKY_HOSEK_WILKIE;
+    bad.sun_direction[0] = bad.sun_direction[1] = bad.sun_direction[2] = 0.0f;
+    CHECK(phos_sky_bake(&bad, 0, 0, NULL, data) == PHOS_ERROR_INVALID_ARGUMENT);
+    bad = d;
+    bad.model = PHOS_SKY_PREETHAM;
+    bad.turbidity = 0.5f;
+    CHECK(phos_sky_bake(&bad, 0, 0, NULL, data) == PHOS_ERROR_INVALID_ARGUMENT);
+    /* The analytic models below the horizon: finite everywhere. */
+    for (uint32_t model = PHOS_SKY_PREETHAM; model <= PHOS_SKY_HOSEK_WILKIE; model++) {
+        phos_sky_desc a = d;
+        a.model = model;
+        a.sun_direction[0] = 1.0f, a.sun_direction[2] = -0.2f;
+        CHECK(phos_sky_bake(&a, 0, 0, NULL, data) == PHOS_OK);
+        for (int i = 0; i < 64; i++) {
+            float t = (float)PI * (float)i / 63.0f;
+            vec3 v = v3(sinf(t), 0.0f, cosf(t));
+            vec3 L = model == PHOS_SKY_PREETHAM ? sky_preetham_radiance(data, v) : sky_hosek_wilkie_radiance(data, v);
+            CHECK(v3_is_finite(L));
+        }
+    }
+}
+
+static void test_bad_program_refused(void)
+{
+    phos_scene *s = phos_scene_create();
+    phos_sky_desc d;
+    phos_sky_desc_init(&d);
+    set_sky_world(s, &d, 1); /* image 0 */
+    float data[PHOS_SKY_DATA_FLOATS];
+    CHECK(phos_sky_bake(&d, 0, 0, NULL, data) == PHOS_OK);
+    phos_shader_instruction ins;
+    memset(&ins, 0, sizeof(ins));
+    for (int k = 0; k < PHOS_SHADER_MAX_OUTPUTS; k++)
+        ins.outputs[k] = PHOS_SHADER_NO_REGISTER;
+    ins.op = PHOS_OP_TEX_SKY;
+    ins.outputs[0] = 3;
+    phos_shader_program_desc p;
+    memset(&p, 0, sizeof(p));
+    p.register_count = 6;
+    p.constant_count = 3;
+    float zero[3] = {0, 0, 1};
+    p.constants = zero;
+    p.instructions = &ins;
+    p.instruction_count = 1;
+    p.table = data;
+    phos_closure_desc c;
+    phos_closure_desc_init(&c);
+    c.type = PHOS_CLOSURE_EMISSION;
+    phos_material_desc m;
+    phos_material_desc_init(&m);
+    m.closure_count = 1;
+    m.closures = &c;
+    m.program = &p;
+    uint32_t id;
+    p.table_size = PHOS_SKY_DATA_FLOATS - 1; /* the data does not fit */
+    CHECK(phos_scene_add_material(s, &m, &id) == PHOS_ERROR_INVALID_ARGUMENT);
+    p.table_size = PHOS_SKY_DATA_FLOATS;
+    data[PHOS_SKY_DATA_IMAGE] = 7.0f; /* no such image */
+    CHECK(phos_scene_add_material(s, &m, &id) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(phos_scene_error(s), "not an image") != NULL);
+    data[PHOS_SKY_DATA_IMAGE] = 0.0f;
+    CHECK(phos_scene_add_material(s, &m, &id) == PHOS_OK);
+    ins.mode = PHOS_SKY_MODEL_COUNT;
+    CHECK(phos_scene_add_material(s, &m, &id) == PHOS_ERROR_INVALID_ARGUMENT);
+    phos_scene_destroy(s);
+}
+
+int main(void)
+{
+    test_thin_limit();
+    test_airless_sky_is_black();
+    test_sun_irradiance_independent_of_size();
+    test_sun_becomes_a_light();
+    test_bad_settings_refused();
+    test_bad_program_refused();
+    return test_summary("test_sky");
+}
