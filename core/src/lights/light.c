@@ -107,7 +107,7 @@ static phos_status build_picking(light_table *t)
         power[i] = light_power(&t->lights[i], t->radius);
     phos_status st = distribution_build(&t->pick, power, t->count) ? light_groups_build(t, power)
                                                                    : PHOS_ERROR_OUT_OF_MEMORY;
-    if (st == PHOS_OK && t->world >= 0 && t->lights[t->world].kind == LIGHT_WORLD)
+    if (st == PHOS_OK && light_world_sampled_apart(t))
         power[t->world] = 0.0f; /* sampled apart (light_pick.c) */
     if (st == PHOS_OK && !distribution_build(&t->pick_nee, power, t->count))
         st = PHOS_ERROR_OUT_OF_MEMORY;

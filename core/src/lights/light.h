@@ -72,6 +72,7 @@ uint32_t light_pick(const light_table *t, const light_context *c, float u, float
  * besides the picked light's, light_sample_world) rather than picked: the
  * uniform world always, one that varies with direction beside other lights. */
 int light_world_apart(const light_table *t, const light_context *c);
+int light_world_sampled_apart(const light_table *t); /* the same, for next-event estimation anywhere */
 
 /* A sample of the world alone (pick pdf 1), for a world sampled apart. */
 int light_sample_world(const scene *s, const light_context *c, float2 u, light_sample *out);

@@ -128,13 +128,15 @@ static float group_importance(const light_table *t, const light_group *g, const 
  * direct light; 1.42 and 0.45 with 4 bounces, at the same time. Alone, it
  * is the only light to pick and keeps the path's own sampler dimensions.
  */
-int light_world_apart(const light_table *t, const light_context *c)
+int light_world_sampled_apart(const light_table *t)
 {
-    if (t->world < 0 || !c)
+    if (t->world < 0)
         return 0;
     uint32_t kind = t->lights[t->world].kind;
     return kind == LIGHT_WORLD || (kind == LIGHT_ENVIRONMENT && t->count > 1);
 }
+
+int light_world_apart(const light_table *t, const light_context *c) { return c && light_world_sampled_apart(t); }
 
 /* The groups' importances at c into w; returns their sum. A world sampled
  * apart (light_world_apart) is not among them. */
