@@ -235,10 +235,10 @@ def new_world():
 
 
 def sky_bake(fields, texture=True):
-    """The Sky Texture computed once (phos.h, phos_sky_bake): (pixels or
-    None, data) for a phos_sky_desc with `fields` set over the library's
-    defaults; pixels (float32, PHOS_SKY_TEXTURE_WIDTH × _HEIGHT RGBA) only
-    for the scattering models when `texture`."""
+    """The Sky Texture computed once (phos.h, phos_sky_bake): (pixels,
+    width, height, data) for a phos_sky_desc with `fields` set over the
+    library's defaults; pixels (float32 RGBA) None for the analytic models,
+    or without `texture`."""
     l = lib()
     d = phos_sky_desc()
     l.phos_sky_desc_init(ctypes.byref(d))
@@ -247,13 +247,17 @@ def sky_bake(fields, texture=True):
             d.sun_direction[:] = [float(v) for v in value]
         else:
             setattr(d, name, value)
-    w, h = PHOS_SKY_TEXTURE_WIDTH, PHOS_SKY_TEXTURE_HEIGHT
-    pixels = np.empty(w * h * 4, dtype=np.float32) if texture else None
+    w, h = _u32(), _u32()
+    status = l.phos_sky_texture_size(ctypes.byref(d), ctypes.byref(w), ctypes.byref(h))
+    pixels = None
+    if status == PHOS_OK and texture and w.value:
+        pixels = np.empty(w.value * h.value * 4, dtype=np.float32)
     data = np.zeros(PHOS_SKY_DATA_FLOATS, dtype=np.float32)
-    status = l.phos_sky_bake(ctypes.byref(d), w, h, _ptr(pixels, ctypes.c_float), _ptr(data, ctypes.c_float))
+    if status == PHOS_OK:
+        status = l.phos_sky_bake(ctypes.byref(d), _ptr(pixels, ctypes.c_float), _ptr(data, ctypes.c_float))
     if status != PHOS_OK:
         raise PhosError("the sky's settings are out of range: %s" % status_string(status), status)
-    return pixels, data
+    return pixels, w.value, h.value, data
 
 
 def new_render_settings():

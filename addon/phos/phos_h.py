@@ -21,8 +21,6 @@ PHOS_SHADER_MAX_INSTRUCTIONS = 4096
 PHOS_SHADER_MAX_TABLE = 65536
 PHOS_SKY_DATA_FLOATS = 32
 PHOS_SKY_DATA_IMAGE = 11
-PHOS_SKY_TEXTURE_WIDTH = 256
-PHOS_SKY_TEXTURE_HEIGHT = 257
 PHOS_MAX_CLOSURES = 16
 PHOS_MAX_MESH_ATTRIBUTES = 64
 PHOS_WORLD_NO_MATERIAL = 4294967295
@@ -353,6 +351,11 @@ PHOS_SKY_PREETHAM = 2
 PHOS_SKY_HOSEK_WILKIE = 3
 PHOS_SKY_MODEL_COUNT = 4
 
+# enum phos_sky_layout
+PHOS_SKY_LAYOUT_HEMISPHERE = 0
+PHOS_SKY_LAYOUT_SPHERE = 1
+PHOS_SKY_LAYOUT_COUNT = 2
+
 # enum phos_closure_field
 PHOS_FIELD_WEIGHT = 0
 PHOS_FIELD_ROUGHNESS = 1
@@ -529,6 +532,7 @@ ENUMS = {
     'phos_vector_transform_type': {'PHOS_VECTOR_TRANSFORM_POINT': 0, 'PHOS_VECTOR_TRANSFORM_VECTOR': 1, 'PHOS_VECTOR_TRANSFORM_NORMAL': 2, 'PHOS_VECTOR_TRANSFORM_COUNT': 3},
     'phos_space': {'PHOS_SPACE_WORLD': 0, 'PHOS_SPACE_OBJECT': 1, 'PHOS_SPACE_CAMERA': 2, 'PHOS_SPACE_COUNT': 3},
     'phos_sky_model': {'PHOS_SKY_SINGLE_SCATTERING': 0, 'PHOS_SKY_MULTIPLE_SCATTERING': 1, 'PHOS_SKY_PREETHAM': 2, 'PHOS_SKY_HOSEK_WILKIE': 3, 'PHOS_SKY_MODEL_COUNT': 4},
+    'phos_sky_layout': {'PHOS_SKY_LAYOUT_HEMISPHERE': 0, 'PHOS_SKY_LAYOUT_SPHERE': 1, 'PHOS_SKY_LAYOUT_COUNT': 2},
     'phos_closure_field': {'PHOS_FIELD_WEIGHT': 0, 'PHOS_FIELD_ROUGHNESS': 1, 'PHOS_FIELD_IOR': 2, 'PHOS_FIELD_SPECULAR_COLOR': 3, 'PHOS_FIELD_TRANSMISSION_TINT': 4, 'PHOS_FIELD_TRANSMISSION_ROUGHNESS': 5, 'PHOS_FIELD_MULTISCATTER_FRESNEL': 6, 'PHOS_FIELD_SPECULAR_TINT': 7, 'PHOS_FIELD_THIN_FILM_THICKNESS': 8, 'PHOS_FIELD_THIN_FILM_IOR': 9, 'PHOS_FIELD_LAYER_WEIGHT': 10, 'PHOS_FIELD_LAYER_TINT': 11, 'PHOS_FIELD_LAYER_TINT_WEIGHT': 12, 'PHOS_FIELD_NORMAL': 13, 'PHOS_FIELD_ROUGHNESS_Y': 14, 'PHOS_FIELD_TANGENT_ROTATION': 15, 'PHOS_FIELD_TANGENT': 16, 'PHOS_FIELD_COUNT': 17},
     'phos_attribute_type': {'PHOS_ATTRIBUTE_FLOAT': 0, 'PHOS_ATTRIBUTE_FLOAT2': 1, 'PHOS_ATTRIBUTE_VECTOR': 2, 'PHOS_ATTRIBUTE_COLOR': 3, 'PHOS_ATTRIBUTE_TYPE_COUNT': 4},
     'phos_light_type': {'PHOS_LIGHT_POINT': 0, 'PHOS_LIGHT_SPOT': 1, 'PHOS_LIGHT_AREA': 2, 'PHOS_LIGHT_SUN': 3, 'PHOS_LIGHT_PORTAL': 4},
@@ -592,6 +596,7 @@ class phos_closure_desc(ctypes.Structure):
 class phos_sky_desc(ctypes.Structure):
     _fields_ = [
         ("model", ctypes.c_uint32),
+        ("layout", ctypes.c_uint32),
         ("sun_elevation", ctypes.c_float),
         ("sun_rotation", ctypes.c_float),
         ("sun_size", ctypes.c_float),
@@ -861,7 +866,8 @@ FUNCTIONS = {
     "phos_scene_add_image": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_image_desc), ctypes.POINTER(ctypes.c_uint32)]),
     "phos_closure_desc_init": (None, [ctypes.POINTER(phos_closure_desc)]),
     "phos_sky_desc_init": (None, [ctypes.POINTER(phos_sky_desc)]),
-    "phos_sky_bake": (ctypes.c_int, [ctypes.POINTER(phos_sky_desc), ctypes.c_uint32, ctypes.c_uint32, ctypes.POINTER(ctypes.c_float), ctypes.POINTER(ctypes.c_float)]),
+    "phos_sky_texture_size": (ctypes.c_int, [ctypes.POINTER(phos_sky_desc), ctypes.POINTER(ctypes.c_uint32), ctypes.POINTER(ctypes.c_uint32)]),
+    "phos_sky_bake": (ctypes.c_int, [ctypes.POINTER(phos_sky_desc), ctypes.POINTER(ctypes.c_float), ctypes.POINTER(ctypes.c_float)]),
     "phos_material_desc_init": (None, [ctypes.POINTER(phos_material_desc)]),
     "phos_scene_add_material": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(phos_material_desc), ctypes.POINTER(ctypes.c_uint32)]),
     "phos_mesh_desc_init": (None, [ctypes.POINTER(phos_mesh_desc)]),
@@ -1169,8 +1175,6 @@ __all__ = (
     'PHOS_SHADER_MAX_TABLE',
     'PHOS_SKY_DATA_FLOATS',
     'PHOS_SKY_DATA_IMAGE',
-    'PHOS_SKY_TEXTURE_WIDTH',
-    'PHOS_SKY_TEXTURE_HEIGHT',
     'PHOS_MAX_CLOSURES',
     'PHOS_MAX_MESH_ATTRIBUTES',
     'PHOS_WORLD_NO_MATERIAL',
@@ -1444,6 +1448,9 @@ __all__ = (
     'PHOS_SKY_PREETHAM',
     'PHOS_SKY_HOSEK_WILKIE',
     'PHOS_SKY_MODEL_COUNT',
+    'PHOS_SKY_LAYOUT_HEMISPHERE',
+    'PHOS_SKY_LAYOUT_SPHERE',
+    'PHOS_SKY_LAYOUT_COUNT',
     'PHOS_FIELD_WEIGHT',
     'PHOS_FIELD_ROUGHNESS',
     'PHOS_FIELD_IOR',

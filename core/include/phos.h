@@ -425,19 +425,23 @@ enum phos_space { PHOS_SPACE_WORLD = 0, PHOS_SPACE_OBJECT = 1, PHOS_SPACE_CAMERA
  * The Sky Texture (docs/algorithms.md §11.4). phos_sky_bake computes what
  * the node's settings give once: PHOS_SKY_DATA_FLOATS floats for a TEX_SKY
  * instruction's table and, for the scattering models, the texture it looks
- * up (width × height RGBA floats, linear Rec. 709, W/(m²·sr); height odd),
- * which the caller adds with phos_scene_add_image and whose id it writes
- * at data[PHOS_SKY_DATA_IMAGE]. pixels may be NULL to compute the data
- * alone. PHOS_SKY_TEXTURE_WIDTH × _HEIGHT is the resolution Phos uses.
+ * up (RGBA floats, linear Rec. 709, W/(m²·sr), of the size
+ * phos_sky_texture_size gives: Cycles' texture, laid out as the Blender
+ * version's Cycles lays it out), which the caller adds with
+ * phos_scene_add_image and whose id it writes at data[PHOS_SKY_DATA_IMAGE].
+ * pixels may be NULL to compute the data alone.
  */
 enum phos_sky_model { PHOS_SKY_SINGLE_SCATTERING = 0, PHOS_SKY_MULTIPLE_SCATTERING = 1, PHOS_SKY_PREETHAM = 2,
                       PHOS_SKY_HOSEK_WILKIE = 3, PHOS_SKY_MODEL_COUNT = 4 };
+/* The scattering models' texture: 512 × 128 over the upper hemisphere, the
+ * ground a fade of the horizon (Blender 2.90 to 4.x), or 512 × 256 over
+ * the whole sphere (5.x). */
+enum phos_sky_layout { PHOS_SKY_LAYOUT_HEMISPHERE = 0, PHOS_SKY_LAYOUT_SPHERE = 1, PHOS_SKY_LAYOUT_COUNT = 2 };
 #define PHOS_SKY_DATA_FLOATS 32
 #define PHOS_SKY_DATA_IMAGE 11
-#define PHOS_SKY_TEXTURE_WIDTH 256
-#define PHOS_SKY_TEXTURE_HEIGHT 257
 typedef struct phos_sky_desc {
     uint32_t model;             /* enum phos_sky_model */
+    uint32_t layout;            /* enum phos_sky_layout; MULTIPLE_SCATTERING is SPHERE's only */
     /* The scattering models (the node's settings, Blender's units): */
     float sun_elevation;        /* rad above the horizon */
     float sun_rotation;         /* rad, clockwise seen from +z; 0 puts the sun toward +y */
@@ -452,8 +456,9 @@ typedef struct phos_sky_desc {
     float sun_direction[3];     /* toward the sun, any length > 0 */
 } phos_sky_desc;
 PHOS_API void phos_sky_desc_init(phos_sky_desc *desc);
-PHOS_API phos_status phos_sky_bake(const phos_sky_desc *desc, uint32_t width, uint32_t height, float *pixels,
-                                   float *data);
+/* The texture's size for desc: 0 × 0 for the analytic models. */
+PHOS_API phos_status phos_sky_texture_size(const phos_sky_desc *desc, uint32_t *width, uint32_t *height);
+PHOS_API phos_status phos_sky_bake(const phos_sky_desc *desc, float *pixels, float *data);
 
 typedef struct phos_shader_instruction {
     uint32_t op;                 /* enum phos_shader_op */

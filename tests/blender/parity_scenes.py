@@ -73,6 +73,21 @@ def _hdr_world(name, rotation_z=0.0, projection='EQUIRECTANGULAR', camera_color=
     return build
 
 
+def _sky_world(model, glossy=True, **settings):
+    """The stage under a Sky Texture (issue 22: a Sky Texture scene), the
+    sphere glossy-coated as under the HDRs, or diffuse: the scattering
+    models' sun is a light of its own (core/src/lights/sky_sun.c), the
+    analytic models' sky is evaluated per direction."""
+    def build(scene):
+        sphere = None
+        if glossy:
+            sphere = pt.node_material("Sphere", "ShaderNodeBsdfPrincipled",
+                                      {"Base Color": (0.8, 0.55, 0.3, 1.0), "Roughness": 0.25})
+        _stage(scene, sphere)
+        pt.set_world_sky(scene, model, **settings)
+    return build
+
+
 def _portal_interior(scene):
     """A closed 4 × 4 × 2.5 m room lit only through a window (1.6 × 1 m in
     the back wall) by a studio HDR, a portal filling the window and facing
@@ -177,6 +192,18 @@ LIGHT_SCENES = {
     "hdr_sunset_mirror_ball": _hdr_world("sunset", projection='MIRROR_BALL'),
     "portal_interior": _portal_interior,
     "hdr_city_camera_sees_grey": _hdr_world("city", rotation_z=math.radians(-120.0), camera_color=(0.2, 0.2, 0.2)),
+    "sky_single_scattering": _sky_world("SINGLE_SCATTERING", sun_elevation=math.radians(25.0),
+                                        sun_rotation=math.radians(40.0), altitude=100.0),
+    "sky_multiple_scattering": _sky_world("MULTIPLE_SCATTERING", sun_elevation=math.radians(12.0),
+                                          sun_rotation=math.radians(-60.0), sun_intensity=0.5),
+    "sky_single_scattering_diffuse": _sky_world("SINGLE_SCATTERING", glossy=False, sun_elevation=math.radians(25.0),
+                                                sun_rotation=math.radians(40.0), altitude=100.0),
+    "sky_multiple_scattering_diffuse": _sky_world("MULTIPLE_SCATTERING", glossy=False,
+                                                  sun_elevation=math.radians(12.0),
+                                                  sun_rotation=math.radians(-60.0), sun_intensity=0.5),
+    "sky_preetham": _sky_world("PREETHAM", sun_direction=(0.4, -0.6, 0.5), turbidity=3.0),
+    "sky_hosek_wilkie": _sky_world("HOSEK_WILKIE", sun_direction=(-0.5, -0.5, 0.4), turbidity=4.0,
+                                   ground_albedo=0.3),
     "default_cube": _default_cube,
     "mixed": _mixed_lights,
     "area_exposure_temperature": _light_settings(
@@ -637,6 +664,8 @@ MIN_VERSION = {
     # (channel means within 0.5 %, the glass 1.2 %, on 3.4) but not the
     # shape of its highlights: parity per pixel is for 4.0 and later.
     **{name: (4, 0, 0) for name in MATERIAL_SCENES if name.startswith("multiscatter_")},
+    "sky_multiple_scattering": (5, 0, 0),  # Blender 5's model
+    "sky_multiple_scattering_diffuse": (5, 0, 0),
     "point_sphere": (4, 1, 0),
     "spot_sphere": (4, 1, 0),
     "principled_coat": (4, 0, 0),

@@ -167,16 +167,18 @@ class ConvertedCache:
 CONVERTED = ConvertedCache(512 << 20)
 
 
-def _sky_settings(node, model):
+def _sky_settings(node, model, ctx):
     """The phos_sky_desc fields of a Sky Texture node (Blender's names
-    across versions: 5.0 renamed dust_density to aerosol_density)."""
+    across versions: 5.0 renamed dust_density to aerosol_density), with the
+    texture laid out as the running Blender's Cycles lays it out."""
     if model in (core.PHOS_SKY_PREETHAM, core.PHOS_SKY_HOSEK_WILKIE):
         return {"model": model, "turbidity": float(node.turbidity), "ground_albedo": float(node.ground_albedo),
                 "sun_direction": tuple(float(v) for v in node.sun_direction)}
     aerosol = getattr(node, "aerosol_density", None)
     if aerosol is None:
         aerosol = getattr(node, "dust_density", 1.0)
-    return {"model": model, "sun_elevation": float(node.sun_elevation), "sun_rotation": float(node.sun_rotation),
+    layout = core.PHOS_SKY_LAYOUT_SPHERE if ctx.at_least(5, 0) else core.PHOS_SKY_LAYOUT_HEMISPHERE
+    return {"model": model, "layout": layout, "sun_elevation": float(node.sun_elevation), "sun_rotation": float(node.sun_rotation),
             "sun_size": float(node.sun_size), "sun_intensity": float(node.sun_intensity),
             "sun_disc": int(bool(node.sun_disc)), "altitude": float(node.altitude),
             "air_density": float(node.air_density), "aerosol_density": float(aerosol),
@@ -184,7 +186,7 @@ def _sky_settings(node, model):
 
 
 # Computed skies by their settings, the few most recent (a viewport
-# session edits one world; each texture is 1 MiB).
+# session edits one world; each texture is 1 or 2 MiB).
 SKIES = collections.OrderedDict()
 SKIES_KEPT = 8
 
@@ -207,9 +209,9 @@ def add_sky(node, model, ctx, owner):
     computed by the core once per setting (and kept between exports), its
     texture added to the scene once per export; None if the settings are
     out of the model's range (warned)."""
-    settings = _sky_settings(node, model)
+    settings = _sky_settings(node, model, ctx)
     try:
-        pixels, data = _baked_sky(settings)
+        pixels, width, height, data = _baked_sky(settings)
     except core.PhosError as ex:
         ctx.warn("Phos: %s: node '%s': %s; the node is treated as unlinked" % (owner, node.name, ex))
         return None
@@ -217,7 +219,7 @@ def add_sky(node, model, ctx, owner):
         return None, data
     key = ("sky",) + tuple(sorted(settings.items()))
     if key not in ctx.images:
-        ctx.images[key] = ctx.core.add_image(pixels, core.PHOS_SKY_TEXTURE_WIDTH, core.PHOS_SKY_TEXTURE_HEIGHT)
+        ctx.images[key] = ctx.core.add_image(pixels, width, height)
         ctx.stats["images"] += 1
     return ctx.images[key], data
 

@@ -500,7 +500,9 @@ def _tex_sky(nc, node, stack):
     data = list(data)
     if image_id is not None:
         data[core.PHOS_SKY_DATA_IMAGE] = float(image_id)
-    socket = nc._find_input(node, "Vector")  # gone from 4.x's node (Generated always)
+    socket = nc._find_input(node, "Vector")
+    if socket is not None and not socket.enabled:
+        socket = None  # 3.x's scattering sky ignores it (unavailable); 4.x's node has none
     if socket is None:
         nc.check_texture_mapping(node)
         vec = nc.p.convert(nc.generated(), 3)

@@ -64,7 +64,7 @@ static const layout_field fields[] = {
     FIELD(phos_light_desc, spot_angle) FIELD(phos_light_desc, spot_blend) FIELD(phos_light_desc, spot_cosine)
     FIELD(phos_light_desc, sun_angle) FIELD(phos_light_desc, camera_visible)
 
-    FIELD(phos_sky_desc, model) FIELD(phos_sky_desc, sun_elevation) FIELD(phos_sky_desc, sun_rotation)
+    FIELD(phos_sky_desc, model) FIELD(phos_sky_desc, layout) FIELD(phos_sky_desc, sun_elevation) FIELD(phos_sky_desc, sun_rotation)
     FIELD(phos_sky_desc, sun_size) FIELD(phos_sky_desc, sun_intensity) FIELD(phos_sky_desc, sun_disc)
     FIELD(phos_sky_desc, altitude) FIELD(phos_sky_desc, air_density) FIELD(phos_sky_desc, aerosol_density)
     FIELD(phos_sky_desc, ozone_density) FIELD(phos_sky_desc, turbidity)

@@ -139,9 +139,11 @@ static float cell_density(const environment *e, float w, double total, vec3 d)
            (2.0f * PHOS_PI * PHOS_PI * sin_theta);
 }
 
+/* Camera rays see the world as its program draws it: the sky's disc
+ * too, which is a light of its own for every other ray (sky_sun.c). */
 vec3 environment_radiance(const scene *s, const environment *e, vec3 d, uint32_t ray_flags)
 {
-    return material_background(s, e->mat, d, ray_flags | e->ray_flags);
+    return material_background(s, e->mat, d, ray_flags | (ray_flags & SHADER_RAY_CAMERA ? 0u : e->ray_flags));
 }
 
 /* ---------------------------------------------------------------- build */

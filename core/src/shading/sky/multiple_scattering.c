@@ -178,7 +178,6 @@ typedef struct ms_job {
     multiple_atmosphere *a;
     float altitude;
     vec3 sun;
-    uint32_t width, height;
     float *pixels;
 } ms_job;
 
@@ -195,12 +194,10 @@ static void ms_bake_row(void *ctx, uint32_t row, uint32_t thread)
 {
     (void)thread;
     const ms_job *job = ctx;
-    for (uint32_t column = 0; column < job->width; column++) {
+    for (uint32_t column = 0; column < SKY_TEXTURE_WIDTH / 2; column++) {
         float e;
-        vec3 d = sky_texel_direction(column, row, job->width, job->height, &e);
-        vec3 rgb = ms_sky(job->a, job->altitude, d, job->sun);
-        float *p = job->pixels + ((size_t)row * job->width + column) * 4;
-        p[0] = rgb.x, p[1] = rgb.y, p[2] = rgb.z, p[3] = 1.0f;
+        vec3 d = sky_texel_direction(PHOS_SKY_LAYOUT_SPHERE, 1, column, row, &e);
+        sky_store_texel(job->pixels, column, row, ms_sky(job->a, job->altitude, d, job->sun));
     }
 }
 
@@ -212,8 +209,7 @@ static vec3 ms_sun(const multiple_atmosphere *a, float elevation, float height, 
     return ms_to_rgb(v4_scale(v4_mul(MS_SUN_IRRADIANCE, t), 1.0f / solid_angle));
 }
 
-phos_status sky_multiple_scattering_bake(const phos_sky_desc *d, uint32_t width, uint32_t height, float *pixels,
-                                         float *data)
+phos_status sky_multiple_scattering_bake(const phos_sky_desc *d, float *pixels, float *data)
 {
     multiple_atmosphere *a = malloc(sizeof(multiple_atmosphere));
     if (!a)
@@ -231,10 +227,11 @@ phos_status sky_multiple_scattering_bake(const phos_sky_desc *d, uint32_t width,
     sky_write_sun(d, low, high, -acosf(MS_EARTH_RADIUS / (MS_EARTH_RADIUS + altitude)), data);
     int ok = 1;
     if (pixels) {
-        ms_job job = {a, altitude, v3(cosf(d->sun_elevation), 0.0f, sinf(d->sun_elevation)), width, height, pixels};
+        /* The sun at azimuth π, the texture's middle column, as in the single-scattering texture. */
+        ms_job job = {a, altitude, v3(-cosf(d->sun_elevation), 0.0f, sinf(d->sun_elevation)), pixels};
         uint32_t threads = parallel_thread_count(0);
         ok = parallel_for(MS_LUT_HEIGHT, threads, ms_lut_row, &job, NULL) &&
-             parallel_for(height, threads, ms_bake_row, &job, NULL);
+             parallel_for(sky_texture_height(PHOS_SKY_LAYOUT_SPHERE), threads, ms_bake_row, &job, NULL);
     }
     free(a);
     return ok ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;

@@ -214,42 +214,41 @@ static vec3 sun_radiance(const atmosphere *a, vec3 d, float solid_angle)
 typedef struct bake_job {
     const atmosphere *a;
     vec3 sun;                   /* in the texels' frame */
-    uint32_t width, height;
+    uint32_t layout;
     float *pixels;
 } bake_job;
 
-/* Below the horizon the single-scattering sky fades to black by 0.4 of the
- * way down (sin e > −0.4) as (1 + 2.5 sin e)³ times the horizon's colour:
- * the model has no ground, and this is how Cycles draws it. */
-static float ground_fade(float elevation)
-{
-    float z = sinf(elevation);
-    return z < -0.4f ? 0.0f : powf(1.0f + 2.5f * z, 3.0f);
-}
-
+/* A row of the sky above the horizon (the left half, mirrored). */
 static void bake_row(void *ctx, uint32_t row, uint32_t thread)
 {
     (void)thread;
     const bake_job *job = ctx;
-    uint32_t horizon = (job->height - 1) / 2;
     vec3 origin = v3(0.0f, 0.0f, EARTH_RADIUS + job->a->altitude);
-    for (uint32_t column = 0; column < job->width; column++) {
+    uint32_t first = job->layout == PHOS_SKY_LAYOUT_SPHERE ? sky_texture_height(job->layout) / 2 : 0;
+    for (uint32_t column = 0; column < SKY_TEXTURE_WIDTH / 2; column++) {
         float e;
-        vec3 d = sky_texel_direction(column, row < horizon ? horizon : row, job->width, job->height, &e);
+        vec3 d = sky_texel_direction(job->layout, 0, column, first + row, &e);
         spectrum s = single_scattering(job->a, origin, d, job->sun);
-        vec3 rgb = spectrum_to_rgb(&s);
-        if (row < horizon) {
-            float below;
-            sky_texel_direction(column, row, job->width, job->height, &below);
-            rgb = v3_scale(rgb, ground_fade(below));
-        }
-        float *p = job->pixels + ((size_t)row * job->width + column) * 4;
-        p[0] = rgb.x, p[1] = rgb.y, p[2] = rgb.z, p[3] = 1.0f;
+        sky_store_texel(job->pixels, column, first + row, spectrum_to_rgb(&s));
     }
 }
 
-phos_status sky_single_scattering_bake(const phos_sky_desc *d, uint32_t width, uint32_t height, float *pixels,
-                                       float *data)
+/* The sphere layout's rows below the horizon: its fade (sky.h). */
+static void fill_ground(float *pixels)
+{
+    const uint32_t half = sky_texture_height(PHOS_SKY_LAYOUT_SPHERE) / 2;
+    const float *horizon = pixels + (size_t)half * SKY_TEXTURE_WIDTH * 4;
+    for (uint32_t row = 0; row < half; row++) {
+        float e;
+        sky_texel_direction(PHOS_SKY_LAYOUT_SPHERE, 0, 0, row, &e);
+        float fade = sky_ground_fade(e);
+        float *p = pixels + (size_t)row * SKY_TEXTURE_WIDTH * 4;
+        for (uint32_t k = 0; k < SKY_TEXTURE_WIDTH * 4; k++)
+            p[k] = (k & 3u) == 3u ? 1.0f : horizon[k] * fade;
+    }
+}
+
+phos_status sky_single_scattering_bake(const phos_sky_desc *d, float *pixels, float *data)
 {
     atmosphere a = make_atmosphere(d);
     float half = 0.5f * d->sun_size;
@@ -263,7 +262,13 @@ phos_status sky_single_scattering_bake(const phos_sky_desc *d, uint32_t width, u
     sky_write_sun(d, low, high, -acosf(EARTH_RADIUS / (EARTH_RADIUS + a.altitude)), data);
     if (!pixels)
         return PHOS_OK;
-    bake_job job = {&a, v3(cosf(d->sun_elevation), 0.0f, sinf(d->sun_elevation)), width, height, pixels};
-    return parallel_for(height, parallel_thread_count(0), bake_row, &job, NULL) ? PHOS_OK
-                                                                                : PHOS_ERROR_OUT_OF_MEMORY;
+    bake_job job = {&a, v3(cosf(d->sun_elevation), 0.0f, sinf(d->sun_elevation)), d->layout, pixels};
+    uint32_t rows = sky_texture_height(d->layout);
+    if (d->layout == PHOS_SKY_LAYOUT_SPHERE)
+        rows /= 2;
+    if (!parallel_for(rows, parallel_thread_count(0), bake_row, &job, NULL))
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    if (d->layout == PHOS_SKY_LAYOUT_SPHERE)
+        fill_ground(pixels);
+    return PHOS_OK;
 }

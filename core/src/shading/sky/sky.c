@@ -14,21 +14,51 @@ vec3 sky_sun_direction(float elevation, float rotation)
     return v3(ce * sinf(rotation), ce * cosf(rotation), sinf(elevation));
 }
 
-void sky_texture_coordinates(float elevation, float azimuth, uint32_t width, uint32_t height, float *u, float *v)
+uint32_t sky_texture_height(uint32_t layout) { return layout == PHOS_SKY_LAYOUT_SPHERE ? 256u : 128u; }
+
+void sky_texture_coordinates(uint32_t layout, float elevation, float azimuth, float *u, float *v)
 {
-    float a = fabsf(remainderf(azimuth, 2.0f * PHOS_PI)) * PHOS_INV_PI; /* [0, 1] */
-    float s = copysignf(sqrtf(fminf(fabsf(elevation) * (2.0f * PHOS_INV_PI), 1.0f)), elevation);
-    *u = (a * (float)(width - 1) + 0.5f) / (float)width;
-    *v = ((s + 1.0f) * 0.5f * (float)(height - 1) + 0.5f) / (float)height;
+    float a = remainderf(azimuth, 2.0f * PHOS_PI); /* (−π, π] */
+    *u = 0.5f + a * (0.5f * PHOS_INV_PI);
+    *u -= floorf(*u);
+    float s = sqrtf(fminf(fabsf(elevation) * (2.0f * PHOS_INV_PI), 1.0f));
+    if (layout == PHOS_SKY_LAYOUT_SPHERE)
+        *v = copysignf(s, elevation) * 0.5f + 0.5f;
+    else
+        *v = elevation >= 0.0f ? s : -0.5f;
 }
 
-vec3 sky_texel_direction(uint32_t column, uint32_t row, uint32_t width, uint32_t height, float *elevation)
+vec3 sky_texel_direction(uint32_t layout, int centred, uint32_t column, uint32_t row, float *elevation)
 {
-    float s = 2.0f * (float)row / (float)(height - 1) - 1.0f;
-    float e = copysignf(s * s, s) * (0.5f * PHOS_PI);
-    float a = PHOS_PI * (float)column / (float)(width - 1);
+    const float w = SKY_TEXTURE_WIDTH, h = (float)sky_texture_height(layout);
+    float e, a;
+    if (centred) {
+        float l = ((float)row + 0.5f) / (0.5f * h) - 1.0f;
+        e = copysignf(l * l, l) * (0.5f * PHOS_PI);
+        a = 2.0f * PHOS_PI * ((float)column + 0.5f) / w;
+    } else {
+        float f = layout == PHOS_SKY_LAYOUT_SPHERE ? (float)row / (0.5f * h) - 1.0f : (float)row / h;
+        float top = layout == PHOS_SKY_LAYOUT_SPHERE ? 0.5f * PHOS_PI : 0.5f * PHOS_PI + 0.25f * PHOS_PI / h;
+        e = top * f * f;
+        a = 2.0f * PHOS_PI * (float)column / w - PHOS_PI;
+    }
     *elevation = e;
     return v3(cosf(e) * cosf(a), cosf(e) * sinf(a), sinf(e));
+}
+
+void sky_store_texel(float *pixels, uint32_t column, uint32_t row, vec3 rgb)
+{
+    uint32_t columns[2] = {column, SKY_TEXTURE_WIDTH - 1 - column};
+    for (int k = 0; k < 2; k++) {
+        float *p = pixels + ((size_t)row * SKY_TEXTURE_WIDTH + columns[k]) * 4;
+        p[0] = rgb.x, p[1] = rgb.y, p[2] = rgb.z, p[3] = 1.0f;
+    }
+}
+
+float sky_ground_fade(float elevation)
+{
+    float z = sinf(fabsf(elevation));
+    return z >= 0.4f ? 0.0f : powf(1.0f - 2.5f * z, 3.0f);
 }
 
 vec3 sky_analytic_sun(const float *data)
@@ -80,7 +110,9 @@ static int finite_desc(const phos_sky_desc *d)
 /* Settings no model can use (Blender's own ranges are narrower). */
 static int valid_desc(const phos_sky_desc *d)
 {
-    if (d->model >= PHOS_SKY_MODEL_COUNT || !finite_desc(d))
+    if (d->model >= PHOS_SKY_MODEL_COUNT || d->layout >= PHOS_SKY_LAYOUT_COUNT || !finite_desc(d))
+        return 0;
+    if (d->model == PHOS_SKY_MULTIPLE_SCATTERING && d->layout != PHOS_SKY_LAYOUT_SPHERE)
         return 0;
     if (d->model == PHOS_SKY_PREETHAM || d->model == PHOS_SKY_HOSEK_WILKIE)
         return d->turbidity >= 1.0f && d->turbidity <= 64.0f && d->ground_albedo >= 0.0f &&
@@ -89,21 +121,30 @@ static int valid_desc(const phos_sky_desc *d)
            d->ozone_density >= 0.0f;
 }
 
-phos_status phos_sky_bake(const phos_sky_desc *d, uint32_t width, uint32_t height, float *pixels, float *data)
+phos_status phos_sky_texture_size(const phos_sky_desc *d, uint32_t *width, uint32_t *height)
+{
+    if (!d || !width || !height || !valid_desc(d))
+        return PHOS_ERROR_INVALID_ARGUMENT;
+    int textured = sky_model_textured(d->model);
+    *width = textured ? SKY_TEXTURE_WIDTH : 0;
+    *height = textured ? sky_texture_height(d->layout) : 0;
+    return PHOS_OK;
+}
+
+phos_status phos_sky_bake(const phos_sky_desc *d, float *pixels, float *data)
 {
     if (!d || !data || !valid_desc(d))
         return PHOS_ERROR_INVALID_ARGUMENT;
-    if (pixels && (width < 2 || height < 3 || !(height & 1u) || width > 8192 || height > 8193))
-        return PHOS_ERROR_INVALID_ARGUMENT;
     memset(data, 0, sizeof(float) * PHOS_SKY_DATA_FLOATS);
+    data[SKY_LAYOUT] = (float)d->layout;
     switch (d->model) {
     case PHOS_SKY_PREETHAM:
         return sky_preetham_bake(d, data);
     case PHOS_SKY_HOSEK_WILKIE:
         return sky_hosek_wilkie_bake(d, data);
     case PHOS_SKY_MULTIPLE_SCATTERING:
-        return sky_multiple_scattering_bake(d, width, height, pixels, data);
+        return sky_multiple_scattering_bake(d, pixels, data);
     default:
-        return sky_single_scattering_bake(d, width, height, pixels, data);
+        return sky_single_scattering_bake(d, pixels, data);
     }
 }

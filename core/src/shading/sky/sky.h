@@ -8,11 +8,12 @@
  * 1999; hosek_wilkie.c, Hosek and Wilkie 2012). phos_sky_bake (sky.c)
  * computes them; shading/nodes/texture_sky.c looks them up.
  *
- * The texture: column k holds the azimuth k/(width − 1)·π away from the
- * sun's (the sky is symmetric about it), row j the elevation
- * sign(s)·s²·π/2 with s = 2j/(height − 1) − 1: rows crowd toward the
- * horizon, where the sky changes fastest, and the horizon is row
- * (height − 1)/2. Colours are linear Rec. 709, W/(m²·sr).
+ * The texture is Cycles', texel for texel, so that the sky Phos draws is
+ * the one Cycles draws, its interpolation included (enum phos_sky_layout):
+ * 512 columns over the azimuth from the sun's, the two halves mirrored;
+ * rows crowded toward the horizon, where the sky changes fastest, as the
+ * square of the elevation's share (sky_texel_direction). Colours are
+ * linear Rec. 709, W/(m²·sr).
  */
 #ifndef PHOS_SKY_H
 #define PHOS_SKY_H
@@ -31,6 +32,7 @@ enum sky_data {
     SKY_SUN_INTENSITY = 9,
     SKY_EARTH_ANGLE = 10,   /* rad: the disc is hidden below this elevation (the horizon's dip) */
     SKY_IMAGE = PHOS_SKY_DATA_IMAGE,
+    SKY_LAYOUT = 12,        /* enum phos_sky_layout */
     /* PREETHAM and HOSEK_WILKIE */
     SKY_ANALYTIC_THETA = 0, /* the sun's polar angle from +z, rad */
     SKY_ANALYTIC_PHI = 1,   /* its azimuth, atan2(x, y), rad */
@@ -53,14 +55,33 @@ static inline int sky_model_textured(uint32_t model)
  * clockwise seen from above). */
 vec3 sky_sun_direction(float elevation, float rotation);
 
-/* The texture coordinates (*u, *v) of a direction at `elevation` above
- * the horizon (rad) and `azimuth` from the sun's (rad, any sign), for
- * image_lookup_rgba with width × height texels. */
-void sky_texture_coordinates(float elevation, float azimuth, uint32_t width, uint32_t height, float *u, float *v);
+/* The texture's size in a layout. */
+#define SKY_TEXTURE_WIDTH 512
+uint32_t sky_texture_height(uint32_t layout);
 
-/* The direction of texel (column, row) with its elevation, in the frame
- * where the sun's azimuth is 0 (+x). */
-vec3 sky_texel_direction(uint32_t column, uint32_t row, uint32_t width, uint32_t height, float *elevation);
+/* The texture coordinates (*u, *v) Cycles reads a direction at
+ * `elevation` above the horizon (rad) and `azimuth` from the sun's (rad,
+ * any sign) at, for image_lookup_rgba; below the horizon the hemisphere
+ * layout reads its lowest row. */
+void sky_texture_coordinates(uint32_t layout, float elevation, float azimuth, float *u, float *v);
+
+/* The direction a texel of the left half (column < 256) holds, with its
+ * elevation, in the frame where the sun's azimuth is 0 (+x): the
+ * hemisphere layout's row y at elevation (π/2 + π/512)(y/128)², column x
+ * at azimuth 2πx/512 − π; the sphere layout's upper rows y at
+ * π/2 (y/128 − 1)² (the lower ones are the single-scattering sky's fade,
+ * sky_ground_fade), or with `centred` (the multiple-scattering sky) the
+ * texel's centre: elevation ±π/2 l², l = (y + ½)/128 − 1, azimuth
+ * 2π(x + ½)/512. */
+vec3 sky_texel_direction(uint32_t layout, int centred, uint32_t column, uint32_t row, float *elevation);
+
+/* Stores a left-half texel and its mirror image across the sun's azimuth. */
+void sky_store_texel(float *pixels, uint32_t column, uint32_t row, vec3 rgb);
+
+/* The single-scattering sky below the horizon: (1 − 2.5 sin|e|)³ of the
+ * horizon's colour, black from sin|e| = 0.4 down (Cycles'; the model has
+ * no ground). */
+float sky_ground_fade(float elevation);
 
 /* The angle between two unit vectors, accurate near 0 and π. */
 static inline float sky_angle_between(vec3 a, vec3 b)
@@ -77,10 +98,8 @@ void sky_write_sun(const phos_sky_desc *d, vec3 bottom, vec3 top, float earth_an
 
 /* --------------------------------------------------------------- models */
 
-phos_status sky_single_scattering_bake(const phos_sky_desc *d, uint32_t width, uint32_t height, float *pixels,
-                                       float *data);
-phos_status sky_multiple_scattering_bake(const phos_sky_desc *d, uint32_t width, uint32_t height, float *pixels,
-                                         float *data);
+phos_status sky_single_scattering_bake(const phos_sky_desc *d, float *pixels, float *data);
+phos_status sky_multiple_scattering_bake(const phos_sky_desc *d, float *pixels, float *data);
 phos_status sky_preetham_bake(const phos_sky_desc *d, float *data);
 phos_status sky_hosek_wilkie_bake(const phos_sky_desc *d, float *data);
 
