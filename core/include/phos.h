@@ -331,7 +331,7 @@ enum phos_shader_op {
                                     PHOS_SKY_DATA_FLOATS floats of phos_sky_bake (with the texture's image id
                                     at PHOS_SKY_DATA_IMAGE for the scattering models); flags 1: the vector is
                                     the world's direction, so the core may render the sun's disc as a sun
-                                    light (docs/algorithms.md §11.4) */
+                                    light (docs/algorithms.md §11.1) */
     PHOS_OP_COUNT = 48
 };
 
@@ -422,7 +422,7 @@ enum phos_vector_transform_type { PHOS_VECTOR_TRANSFORM_POINT = 0, PHOS_VECTOR_T
 enum phos_space { PHOS_SPACE_WORLD = 0, PHOS_SPACE_OBJECT = 1, PHOS_SPACE_CAMERA = 2, PHOS_SPACE_COUNT = 3 };
 
 /*
- * The Sky Texture (docs/algorithms.md §11.4). phos_sky_bake computes what
+ * The Sky Texture (docs/algorithms.md §11.1). phos_sky_bake computes what
  * the node's settings give once: PHOS_SKY_DATA_FLOATS floats for a TEX_SKY
  * instruction's table and, for the scattering models, the texture it looks
  * up (RGBA floats, linear Rec. 709, W/(m²·sr), of the size

@@ -13,7 +13,7 @@ within 2 %, and the per-pixel squared difference D at most 1.3 times the
 two engines' noise V measured from two seeds each (plus 1e-6 of the mean
 squared, for views with next to no noise). The single-scattering sky
 differs most near the horizon, by up to 1.5 % (Cycles reads its coarser
-texture half a texel toward the horizon; docs/algorithms.md §11.4).
+texture half a texel toward the horizon; docs/algorithms.md §11.1).
 """
 
 import math

@@ -482,7 +482,7 @@ SKY_TEXTURED = {core.PHOS_SKY_SINGLE_SCATTERING, core.PHOS_SKY_MULTIPLE_SCATTERI
 
 
 def _tex_sky(nc, node, stack):
-    """The Sky Texture (docs/algorithms.md §11.4): the model computed once
+    """The Sky Texture (docs/algorithms.md §11.1): the model computed once
     by the core, its texture added as an image; the instruction looks it up
     by direction. The Vector unlinked is Generated, which for the world is
     the ray's direction: the core may then render the sun's disc as a sun

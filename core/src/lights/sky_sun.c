@@ -1,6 +1,6 @@
 /*
  * sky_sun.c — the Sky Texture's sun as a light of its own
- * (docs/algorithms.md §11.4).
+ * (docs/algorithms.md §11.1).
  *
  * The scattering skies draw the sun as a disc of 0.5° or so whose
  * radiance is some 10⁵ times the sky's. The environment map's cells are

@@ -1,7 +1,7 @@
 /*
  * texture_sky.c — the Sky Texture node: the radiance of the daylight
  * models of shading/sky/ in a direction, as Cycles draws them
- * (docs/algorithms.md §11.4).
+ * (docs/algorithms.md §11.1).
  */
 #include "scene/scene.h"
 #include "shading/shader_program.h"

@@ -1,6 +1,6 @@
 /*
  * hosek_wilkie.c — Hosek and Wilkie 2012, "An analytic model for full
- * spectral sky-dome radiance" (docs/algorithms.md §11.4), in its CIE XYZ
+ * spectral sky-dome radiance" (docs/algorithms.md §11.1), in its CIE XYZ
  * form, as Blender's Sky Texture uses it.
  *
  * Per channel, the radiance along a view at polar angle θ and angle γ from

@@ -3,7 +3,7 @@
  * model for daylight": the Perez et al. (1993) luminance distribution with
  * coefficients linear in turbidity (the paper's Appendix A.2), and the
  * zenith's luminance and chromaticity (A.3); no sun disc
- * (docs/algorithms.md §11.4).
+ * (docs/algorithms.md §11.1).
  */
 #include "shading/color_space.h"
 #include "shading/sky/sky.h"

@@ -2,7 +2,7 @@
  * single_scattering.c — Blender's "Nishita" sky (before 5.0; "Single
  * Scattering" from 5.0): Nishita, Sirai, Tadamura and Nakamae 1993,
  * "Display of the Earth taking into account atmospheric scattering", with
- * the parameters Blender's Sky Texture gives it (docs/algorithms.md §11.4).
+ * the parameters Blender's Sky Texture gives it (docs/algorithms.md §11.1).
  *
  * A spherical Earth (6360 km) under 60 km of air whose molecules
  * (Rayleigh, scale height 8 km) and aerosols (Mie, 1.2 km, the

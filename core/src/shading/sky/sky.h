@@ -1,5 +1,5 @@
 /*
- * sky.h — the Sky Texture's daylight models (docs/algorithms.md §11.4),
+ * sky.h — the Sky Texture's daylight models (docs/algorithms.md §11.1),
  * one file each in this folder: the physical atmospheres computed once
  * into a texture over elevation and the azimuth from the sun
  * (single_scattering.c, after Nishita et al. 1993; multiple_scattering.c,
