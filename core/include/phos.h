@@ -449,9 +449,9 @@ typedef struct phos_sky_desc {
     float sun_intensity;        /* multiplies the disc */
     uint32_t sun_disc;          /* whether the disc is drawn */
     float altitude;             /* m above sea level */
-    float air_density, aerosol_density, ozone_density; /* multiples of Earth's, >= 0 */
+    float air_density, aerosol_density, ozone_density; /* multiples of Earth's, 0 to 1000 */
     /* Preetham and Hosek-Wilkie: */
-    float turbidity;            /* 1 to 10 (Hosek-Wilkie's data; Preetham's formulas take more) */
+    float turbidity;            /* 1 to 10 (Blender's range, and Hosek-Wilkie's data) */
     float ground_albedo;        /* Hosek-Wilkie: 0 to 1 */
     float sun_direction[3];     /* toward the sun, any length > 0 */
 } phos_sky_desc;

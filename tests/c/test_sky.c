@@ -142,24 +142,34 @@ static void test_airless_sky_is_black(void)
     }
 }
 
-static void test_sun_irradiance_independent_of_size(void)
+/* Without air the disc gives the sun's whole irradiance: its radiance ×
+ * its solid angle has the luminance ∫ ȳ(λ) E(λ) dλ of a black body of
+ * 5778 K seen at 1 AU, E = πB(λ, T)(R☉/d)², summed here at the model's 21
+ * wavelengths (CIE 1931 ȳ, CIE 15:2004 Table T.4). */
+static void test_sun_irradiance(void)
 {
-    for (uint32_t model = PHOS_SKY_SINGLE_SCATTERING; model <= PHOS_SKY_MULTIPLE_SCATTERING; model++) {
-        float e[2];
-        for (int k = 0; k < 2; k++) {
-            phos_sky_desc d;
-            phos_sky_desc_init(&d);
-            d.model = model;
-            d.layout = PHOS_SKY_LAYOUT_SPHERE;
-            d.sun_elevation = 0.6f;
-            d.sun_size = k ? 0.02f : 0.01f;
-            float data[PHOS_SKY_DATA_FLOATS];
-            CHECK(phos_sky_bake(&d, NULL, data) == PHOS_OK);
-            float omega = 2.0f * (float)PI * (1.0f - cosf(0.5f * d.sun_size));
-            e[k] = 0.5f * (data[SKY_SUN_BOTTOM + 1] + data[SKY_SUN_TOP + 1]) * omega;
-            CHECK(data[SKY_SUN_DIAMETER] == d.sun_size);
-        }
-        CHECK_REL(e[1], e[0], 2e-3);
+    static const double ybar[21] = {0.000039, 0.000396, 0.004,  0.023,    0.06,     0.13902,  0.323,
+                                     0.71,     0.954,    0.995,  0.87,     0.631,    0.381,    0.175,
+                                     0.061,    0.017,    0.004102, 0.001047, 0.0002492, 0.00006, 0.00001499};
+    const double h = 6.62607015e-34, c = 2.99792458e8, k = 1.380649e-23, t = 5778.0, ratio = 6.957e8 / 1.495978707e11;
+    double luminance = 0.0;
+    for (int i = 0; i < 21; i++) {
+        double l = (380.0 + 20.0 * i) * 1e-9;
+        double b = 2.0 * h * c * c / pow(l, 5.0) / expm1(h * c / (l * k * t));
+        luminance += ybar[i] * PI * b * ratio * ratio * 1e-9 * 20.0;
+    }
+    for (uint32_t layout = 0; layout < PHOS_SKY_LAYOUT_COUNT; layout++) {
+        phos_sky_desc d = thin_air(0.0f, 0.0f);
+        d.layout = layout;
+        d.sun_elevation = 0.6f;
+        d.sun_disc = 1;
+        d.sun_size = 0.02f;
+        float data[PHOS_SKY_DATA_FLOATS];
+        CHECK(phos_sky_bake(&d, NULL, data) == PHOS_OK);
+        float omega = sky_disc_solid_angle(d.sun_size);
+        CHECK_REL(rgb_luminance(v3_load(data + SKY_SUN_BOTTOM)) * omega, luminance, 1e-3);
+        CHECK_REL(rgb_luminance(v3_load(data + SKY_SUN_TOP)) * omega, luminance, 1e-3);
+        CHECK(data[SKY_SUN_DIAMETER] == d.sun_size);
     }
 }
 
@@ -223,64 +233,79 @@ static const light *find_sun(const phos_scene *s)
     return NULL;
 }
 
+/* The disc's mean radiance as the texture defines it: the limb darkening
+ * 1 − 0.6(1 − √(1 − x²)) averages 0.8 over a disc (x² uniform), the
+ * bottom-to-top blend averages the two; times the intensity. */
+static vec3 disc_mean(const float *data)
+{
+    vec3 mid = v3_scale(v3_add(v3_load(data + SKY_SUN_BOTTOM), v3_load(data + SKY_SUN_TOP)), 0.5f);
+    return v3_scale(mid, 0.8f * data[SKY_SUN_INTENSITY]);
+}
+
 static void test_sun_becomes_a_light(void)
 {
-    phos_sky_desc d;
-    phos_sky_desc_init(&d);
-    d.sun_elevation = 0.5f;
-    d.sun_rotation = 0.7f;
-    d.sun_size = 0.03f;
-    phos_scene *s = phos_scene_create();
-    test_add_instance(s, test_add_quad_mesh(s, 1.0f), test_add_diffuse(s, 0.5f, 0.5f, 0.5f), 0, 0, 0);
-    set_sky_world(s, &d, 1);
-    CHECK(phos_scene_commit(s) == PHOS_OK);
-    const light *sun = find_sun(s);
-    CHECK(sun != NULL);
-    if (sun) {
-        /* The disc as the program draws it, integrated over its cone on a
-         * fine grid: irradiance at normal incidence, W/m². */
-        const material *world = &s->materials[s->world.material];
-        vec3 to_sun = sky_sun_direction(d.sun_elevation, d.sun_rotation);
-        float cos_half = cosf(0.5f * d.sun_size);
-        const int n = 160;
-        double e[3] = {0, 0, 0};
-        for (int i = 0; i < n * n; i++) {
-            float2 u = {((float)(i % n) + 0.5f) / n, ((float)(i / n) + 0.5f) / n};
-            vec3 w = warp_cone(to_sun, cos_half, u);
-            vec3 with = material_background(s, world, w, 0);
-            vec3 without = material_background(s, world, w, SHADER_RAY_SKY_SUN_AS_LIGHT);
-            double weight = cone_solid_angle(cos_half) / (n * n) * v3_dot(w, to_sun);
-            e[0] += (with.x - without.x) * weight, e[1] += (with.y - without.y) * weight;
-            e[2] += (with.z - without.z) * weight;
-        }
-        CHECK_REL(sun->color.x, e[0], 5e-4);
-        CHECK_REL(sun->color.y, e[1], 5e-4);
-        CHECK_REL(sun->color.z, e[2], 5e-4);
-        CHECK(fabsf(v3_dot(sun->direction, to_sun) + 1.0f) < 1e-5f);
-        CHECK(!sun->camera_visible);
-        /* Camera rays see the disc the program draws, limb and all. */
-        vec3 seen = environment_radiance(s, s->lights.env, to_sun, SHADER_RAY_CAMERA);
-        CHECK_REL(v3_average(seen), v3_average(material_background(s, world, to_sun, 0)), 1e-6);
-        /* The world's map holds the sky without the disc: at the sun's
-         * centre the environment is far darker than the disc. */
-        vec3 env = environment_radiance(s, s->lights.env, to_sun, 0);
-        CHECK_MSG(v3_average(env) < 1e-3f * v3_average(sun->sun_radiance), "the map still holds the disc: %g vs %g",
-                  v3_average(env), v3_average(sun->sun_radiance));
-    }
-    phos_scene_destroy(s);
-
-    /* A sky looked up by another vector (flags 0), or a sun at the
-     * horizon, keeps its disc in the program. */
-    for (int k = 0; k < 2; k++) {
-        s = phos_scene_create();
+    for (uint32_t layout = 0; layout < PHOS_SKY_LAYOUT_COUNT; layout++) {
+        phos_sky_desc d;
+        phos_sky_desc_init(&d);
+        d.layout = layout;
+        d.sun_elevation = 0.5f;
+        d.sun_rotation = 0.7f;
+        d.sun_size = 0.03f;
+        d.sun_intensity = 0.7f;
+        phos_scene *s = phos_scene_create();
         test_add_instance(s, test_add_quad_mesh(s, 1.0f), test_add_diffuse(s, 0.5f, 0.5f, 0.5f), 0, 0, 0);
-        phos_sky_desc h = d;
-        if (k)
-            h.sun_elevation = 0.01f;
-        set_sky_world(s, &h, k ? 1u : 0u);
+        set_sky_world(s, &d, 1);
         CHECK(phos_scene_commit(s) == PHOS_OK);
-        CHECK(find_sun(s) == NULL);
+        const light *sun = find_sun(s);
+        CHECK(sun != NULL);
+        if (!sun) {
+            phos_scene_destroy(s);
+            continue;
+        }
+        const float *data = s->materials[s->world.material].program.table;
+        vec3 to_sun = sky_sun_direction(d.sun_elevation, d.sun_rotation);
+        CHECK(fabsf(v3_dot(sun->direction, to_sun) + 1.0f) < 1e-5f);
+        /* Its radiance is the disc's mean (Blender 4's disc replaces the
+         * sky behind it, 5's adds to it), its irradiance at normal
+         * incidence that × π sin²(size/2). */
+        vec3 sky = environment_radiance(s, s->lights.env, to_sun, 0);
+        vec3 expected = disc_mean(data);
+        if (layout == PHOS_SKY_LAYOUT_HEMISPHERE)
+            expected = v3_sub(expected, sky);
+        float s2 = sqr(sinf(0.5f * d.sun_size));
+        for (int c = 0; c < 3; c++) {
+            CHECK_REL(v3_component(sun->sun_radiance, c), v3_component(expected, c), 1e-3);
+            CHECK_REL(v3_component(sun->color, c), v3_component(expected, c) * (float)PI * s2, 1e-3);
+        }
+        /* Hidden from the camera, which sees the disc the program draws:
+         * at its centre (limb 1, the blend half way) the mean of bottom
+         * and top, and in Blender 5 the sky behind it too. */
+        CHECK(!sun->camera_visible);
+        vec3 centre = v3_scale(v3_add(v3_load(data + SKY_SUN_BOTTOM), v3_load(data + SKY_SUN_TOP)),
+                               0.5f * data[SKY_SUN_INTENSITY]);
+        if (layout == PHOS_SKY_LAYOUT_SPHERE)
+            centre = v3_add(centre, sky);
+        vec3 seen = environment_radiance(s, s->lights.env, to_sun, SHADER_RAY_CAMERA);
+        for (int c = 0; c < 3; c++)
+            CHECK_REL(v3_component(seen, c), v3_component(centre, c), 1e-3);
+        /* Every other ray finds the sky alone: far darker than the disc. */
+        CHECK_MSG(v3_average(sky) < 1e-3f * v3_average(sun->sun_radiance), "the map still holds the disc: %g vs %g",
+                  v3_average(sky), v3_average(sun->sun_radiance));
         phos_scene_destroy(s);
+
+        /* A sky looked up by another vector (flags 0), or a sun at the
+         * horizon, keeps its disc in the program. */
+        for (int k = 0; k < 2; k++) {
+            s = phos_scene_create();
+            test_add_instance(s, test_add_quad_mesh(s, 1.0f), test_add_diffuse(s, 0.5f, 0.5f, 0.5f), 0, 0, 0);
+            phos_sky_desc h = d;
+            if (k)
+                h.sun_elevation = 0.01f;
+            set_sky_world(s, &h, k ? 1u : 0u);
+            CHECK(phos_scene_commit(s) == PHOS_OK);
+            CHECK(find_sun(s) == NULL);
+            phos_scene_destroy(s);
+        }
     }
 }
 
@@ -318,6 +343,18 @@ static void test_bad_settings_refused(void)
     bad.model = PHOS_SKY_PREETHAM;
     bad.turbidity = 0.5f;
     CHECK(phos_sky_bake(&bad, NULL, data) == PHOS_ERROR_INVALID_ARGUMENT);
+    /* Preetham's zenith normalisation crosses 0 near turbidity 1.643: the
+     * sky stays finite and bounded there. */
+    for (int k = 0; k < 3; k++) {
+        phos_sky_desc p = d;
+        p.model = PHOS_SKY_PREETHAM;
+        p.turbidity = 1.642f + 0.001f * (float)k;
+        p.sun_direction[0] = 0.3f;
+        CHECK(phos_sky_bake(&p, NULL, data) == PHOS_OK);
+        vec3 L = sky_preetham_radiance(data, v3(0.0f, 0.6f, 0.8f));
+        CHECK_MSG(v3_is_finite(L) && v3_max_component(L) < 1e4f, "turbidity %g: %g", (double)p.turbidity,
+                  (double)v3_max_component(L));
+    }
     /* The analytic models below the horizon: finite everywhere. */
     for (uint32_t model = PHOS_SKY_PREETHAM; model <= PHOS_SKY_HOSEK_WILKIE; model++) {
         phos_sky_desc a = d;
@@ -382,7 +419,7 @@ int main(void)
 {
     test_thin_limit();
     test_airless_sky_is_black();
-    test_sun_irradiance_independent_of_size();
+    test_sun_irradiance();
     test_sun_becomes_a_light();
     test_bad_settings_refused();
     test_bad_program_refused();

@@ -217,7 +217,9 @@ def add_sky(node, model, ctx, owner):
         return None
     if pixels is None:
         return None, data
-    key = ("sky",) + tuple(sorted(settings.items()))
+    # The texture depends on the sky, not on the sun's disc.
+    key = ("sky",) + tuple(sorted((k, v) for k, v in settings.items()
+                                  if k not in ("sun_size", "sun_intensity", "sun_disc", "sun_rotation")))
     if key not in ctx.images:
         ctx.images[key] = ctx.core.add_image(pixels, width, height)
         ctx.stats["images"] += 1

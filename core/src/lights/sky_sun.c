@@ -4,7 +4,8 @@
  *
  * The scattering skies draw the sun as a disc of 0.5° or so whose
  * radiance is some 10⁵ times the sky's. The environment map's cells are
- * wider than the disc, so drawn from the map it would be found by chance:
+ * 0.7° (Blender 4's texture) or 0.35° (Blender 5's) and each is read at
+ * its centre, so drawn from the map the disc would be found by chance:
  * the direct light of a sunlit scene would be noise. When the world's
  * program has one Sky Texture with a disc, looked up by the world's
  * direction, the disc becomes a sun light (sun.c: a cone sampled
@@ -82,7 +83,10 @@ phos_status light_sky_sun_add(const scene *s, light_table *t, uint32_t *capacity
         return PHOS_OK;
     vec3 to_sun = sky_sun_direction(data[SKY_SUN_ELEVATION], data[SKY_SUN_ROTATION]);
     float cos_half = cosf(half);
-    vec3 lit = disc_radiance(s, world, to_sun, cos_half);
+    /* A channel can come out below 0 where the disc replaces the sky
+     * (Blender 4) and the program clamps the disc's colour, outside Rec.
+     * 709, to the gamut: a light gives no negative light. */
+    vec3 lit = v3_max(disc_radiance(s, world, to_sun, cos_half), v3s(0.0f));
     if (!(v3_average(lit) > 0.0f) || !v3_is_finite(lit))
         return PHOS_OK;
     light l;

@@ -123,7 +123,7 @@ static int all_set(const uint8_t *set, uint32_t reg, uint32_t width)
 }
 
 /* A Sky Texture's data lies within the table, and the scattering models'
- * texture is an image of the scene (sky.h's layout: odd height). */
+ * data names a texture layout and an image of the scene. */
 static const char *validate_sky(const phos_shader_program_desc *d, const phos_shader_instruction *ins,
                                 uint32_t image_count)
 {
@@ -131,6 +131,9 @@ static const char *validate_sky(const phos_shader_program_desc *d, const phos_sh
         return "reads its data beyond the program's table";
     if (!sky_model_textured(ins->mode))
         return NULL;
+    float layout = d->table[ins->table + SKY_LAYOUT];
+    if (!(layout == (float)PHOS_SKY_LAYOUT_HEMISPHERE || layout == (float)PHOS_SKY_LAYOUT_SPHERE))
+        return "names no texture layout";
     float id = d->table[ins->table + PHOS_SKY_DATA_IMAGE];
     if (!(id >= 0.0f && id < (float)image_count && id == floorf(id)))
         return "refers to a texture that is not an image of the scene";

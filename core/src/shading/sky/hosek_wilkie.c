@@ -60,8 +60,8 @@ phos_status sky_hosek_wilkie_bake(const phos_sky_desc *d, float *data)
     data[SKY_ANALYTIC_THETA] = theta;
     data[SKY_ANALYTIC_PHI] = atan2f(sun.x, sun.y);
     /* The dataset covers the sun from the horizon to the zenith. */
-    double elevation = fmax(0.5 * 3.14159265358979 - theta, 0.0);
-    double x = pow(elevation / (0.5 * 3.14159265358979), 1.0 / 3.0);
+    double elevation = fmax(0.5 * (double)PHOS_PI - theta, 0.0);
+    double x = pow(elevation / (0.5 * (double)PHOS_PI), 1.0 / 3.0);
     double t = fmin(fmax(d->turbidity, 1.0), 10.0), a = d->ground_albedo;
     for (int c = 0; c < 3; c++) {
         for (int k = 0; k < CONFIGS; k++)
@@ -84,8 +84,8 @@ static float channel(const float *c, float theta, float gamma)
  * 2π/683, and so does Phos, so the two agree. */
 vec3 sky_hosek_wilkie_radiance(const float *data, vec3 d)
 {
-    float gamma = sky_angle_between(d, sky_analytic_sun(data));
-    float theta = minf(acosf(clampf(d.z, -1.0f, 1.0f)), 0.5f * PHOS_PI - 0.001f);
+    float theta, gamma;
+    sky_analytic_angles(data, d, &theta, &gamma);
     const float *c = data + SKY_ANALYTIC_CONFIG;
     vec3 xyz = v3(channel(c, theta, gamma) * data[SKY_ANALYTIC_ZENITH],
                   channel(c + CONFIGS, theta, gamma) * data[SKY_ANALYTIC_ZENITH + 1],

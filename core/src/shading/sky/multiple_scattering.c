@@ -1,7 +1,6 @@
 /*
- * multiple_scattering.c — Blender 5's "Multiple Scattering" sky:
- * García Liñán 2024 ("A spectral sky model with a multiple-scattering
- * approximation", the model of Blender 5's "Multiple Scattering" sky): four
+ * multiple_scattering.c — Blender 5's "Multiple Scattering" sky, the model
+ * of F. García Liñán's master's thesis (2024): four
  * wavelengths (630, 560, 490, 430 nm) whose combination against fitted
  * weights gives CIE XYZ; molecules, a log-normal ozone layer and urban
  * aerosols over a 6371 km Earth under 100 km of air; single scattering
@@ -124,13 +123,16 @@ static vec4f ms_lookup(const multiple_atmosphere *a, float cos_zenith, float hei
 static vec4f ms_multiple(const multiple_atmosphere *a, float cos_zenith, float height, float r)
 {
     static const vec4f fit = {{0.217f, 0.347f, 0.594f, 1.0f}};
-    float omega = 2.0f * PHOS_PI * (1.0f - sqrtf(1.0f - sqr(MS_EARTH_RADIUS / r)));
+    /* r can fall a rounding error below the Earth's radius on a ray that
+     * grazes it (its distance is found in float). */
+    float omega = 2.0f * PHOS_PI * (1.0f - safe_sqrtf(1.0f - sqr(MS_EARTH_RADIUS / fmaxf(r, MS_EARTH_RADIUS))));
     vec4f ground_to_sun = ms_lookup(a, cos_zenith, 0.0f);
     vec4f from_ground = ms_lookup(a, 1.0f, 0.0f), above = ms_lookup(a, 1.0f, height);
     vec4f ground = v4s(0.0f);
     for (int i = 0; i < 4; i++)
-        ground.v[i] = PHOS_INV_4PI * omega * MS_GROUND_ALBEDO * PHOS_INV_PI * ground_to_sun.v[i] *
-                      (from_ground.v[i] / above.v[i]) * cos_zenith;
+        ground.v[i] = above.v[i] > 0.0f ? PHOS_INV_4PI * omega * MS_GROUND_ALBEDO * PHOS_INV_PI *
+                                              ground_to_sun.v[i] * (from_ground.v[i] / above.v[i]) * cos_zenith
+                                        : 0.0f; /* the sun's light never gets this deep */
     return v4_add(v4_scale(fit, 0.02f / (1.0f + 5.0f * expf(-17.92f * cos_zenith))), ground);
 }
 
@@ -151,7 +153,7 @@ static vec3 ms_sky(const multiple_atmosphere *a, float altitude, vec3 view, vec3
     float length = ground >= 0.0f ? ground : ms_sphere(o, view, MS_ATMOSPHERE_RADIUS);
     float cos_theta = -v3_dot(view, sun);
     float den = 1.0f + MS_AEROSOL_G * MS_AEROSOL_G + 2.0f * MS_AEROSOL_G * cos_theta;
-    float p_molecular = 3.0f / (16.0f * PHOS_PI) * (1.0f + cos_theta * cos_theta);
+    float p_molecular = sky_phase_rayleigh(cos_theta);
     float p_aerosol = PHOS_INV_4PI * (1.0f - MS_AEROSOL_G * MS_AEROSOL_G) / (den * sqrtf(den));
     float dt = length / MS_STEPS;
     vec4f radiance = v4s(0.0f), transmittance = v4s(1.0f);
@@ -218,7 +220,7 @@ phos_status sky_multiple_scattering_bake(const phos_sky_desc *d, float *pixels, 
     a->aerosol = d->aerosol_density;
     a->ozone = d->ozone_density;
     float altitude = clampf(d->altitude, 1.0f, 99999.0f) * 1e-3f; /* km */
-    float half = 0.5f * d->sun_size, solid_angle = 2.0f * PHOS_PI * (1.0f - cosf(half));
+    float half = 0.5f * d->sun_size, solid_angle = sky_disc_solid_angle(d->sun_size);
     vec3 low = v3s(0.0f), high = v3s(0.0f);
     if (solid_angle > 0.0f) {
         low = ms_sun(a, d->sun_elevation - half, altitude / MS_THICKNESS, solid_angle);

@@ -54,20 +54,27 @@ phos_status sky_preetham_bake(const phos_sky_desc *d, float *data)
                 sum += tt[i] * ZENITH_CHROMA[k][i][j] * th[j];
         zenith[k + 1] = sum;
     }
-    /* F(θ, γ) is normalised by its value at the zenith, where γ = θ_sun. */
-    for (int k = 0; k < 3; k++)
-        data[SKY_ANALYTIC_ZENITH + k] = zenith[k] / perez(data + SKY_ANALYTIC_CONFIG + 5 * k, 0.0f, theta);
+    /* F(θ, γ) is normalised by its value at the zenith, where γ = θ_sun.
+     * The paper's fit for Y makes that value 0 at turbidity 1.643 (its
+     * first factor, 1 + A e^B, changes sign there): Cycles divides by it
+     * all the same, and its sky blows up; Phos holds the divisor at 10⁻³
+     * from 0, the same sky elsewhere. */
+    for (int k = 0; k < 3; k++) {
+        float f = perez(data + SKY_ANALYTIC_CONFIG + 5 * k, 0.0f, theta);
+        if (fabsf(f) < 1e-3f)
+            f = copysignf(1e-3f, f);
+        data[SKY_ANALYTIC_ZENITH + k] = zenith[k] / f;
+    }
     return PHOS_OK;
 }
-
 
 /* Y, x, y each the zenith's value times the Perez function of the view's
  * polar angle θ (held above the horizon) and its angle γ from the sun;
  * then CIE XYZ. */
 vec3 sky_preetham_radiance(const float *data, vec3 d)
 {
-    float gamma = sky_angle_between(d, sky_analytic_sun(data));
-    float theta = minf(acosf(clampf(d.z, -1.0f, 1.0f)), 0.5f * PHOS_PI - 0.001f);
+    float theta, gamma;
+    sky_analytic_angles(data, d, &theta, &gamma);
     const float *c = data + SKY_ANALYTIC_CONFIG;
     float Y = data[SKY_ANALYTIC_ZENITH] * perez(c, theta, gamma);
     float x = data[SKY_ANALYTIC_ZENITH + 1] * perez(c + 5, theta, gamma);

@@ -82,7 +82,7 @@ static float solar_irradiance(float lambda_nm)
     const double r_sun = 6.957e8, au = 1.495978707e11;
     double l = lambda_nm * 1e-9;
     double b = 2.0 * h * c * c / (l * l * l * l * l) / expm1(h * c / (l * k * t));
-    return (float)(3.14159265358979 * b * (r_sun / au) * (r_sun / au) * 1e-9);
+    return (float)((double)PHOS_PI * b * (r_sun / au) * (r_sun / au) * 1e-9);
 }
 
 /* Rayleigh's scattering coefficient of air at sea level,
@@ -90,7 +90,7 @@ static float solar_irradiance(float lambda_nm)
  * (Nishita et al. 1993, eq. 2 integrated over the phase function). */
 static float rayleigh_scattering(float lambda_nm)
 {
-    const double n = 1.0002926, molecules = 2.504e25, pi = 3.14159265358979;
+    const double n = 1.0002926, molecules = 2.504e25, pi = (double)PHOS_PI;
     double l = lambda_nm * 1e-9, n2 = n * n - 1.0;
     return (float)(8.0 * pi * pi * pi * n2 * n2 / (3.0 * molecules * l * l * l * l));
 }
@@ -143,8 +143,6 @@ static vec3 optical_length(vec3 p, vec3 d)
     return v3_scale(sum, length);
 }
 
-static float phase_rayleigh(float mu) { return 3.0f / (16.0f * PHOS_PI) * (1.0f + mu * mu); }
-
 /* Cornette and Shanks 1992. */
 static float phase_mie(float mu)
 {
@@ -168,7 +166,7 @@ static spectrum single_scattering(const atmosphere *a, vec3 origin, vec3 view, v
     memset(&out, 0, sizeof(out));
     float step = to_top(origin, view) / VIEW_STEPS;
     float mu = v3_dot(view, sun);
-    float p_r = phase_rayleigh(mu), p_m = phase_mie(mu);
+    float p_r = sky_phase_rayleigh(mu), p_m = phase_mie(mu);
     vec3 scale = v3(a->air, a->aerosol, a->ozone);
     vec3 viewed = v3s(0.0f); /* density × length from the viewer, per kind */
     for (int s = 0; s < VIEW_STEPS; s++) {
@@ -251,8 +249,7 @@ static void fill_ground(float *pixels)
 phos_status sky_single_scattering_bake(const phos_sky_desc *d, float *pixels, float *data)
 {
     atmosphere a = make_atmosphere(d);
-    float half = 0.5f * d->sun_size;
-    float solid_angle = 2.0f * PHOS_PI * (1.0f - cosf(half));
+    float half = 0.5f * d->sun_size, solid_angle = sky_disc_solid_angle(d->sun_size);
     float bottom = maxf(d->sun_elevation - half, 0.0f), top = maxf(d->sun_elevation + half, 0.0f);
     vec3 low = v3s(0.0f), high = v3s(0.0f);
     if (top > 0.0f && solid_angle > 0.0f) {

@@ -61,10 +61,12 @@ float sky_ground_fade(float elevation)
     return z >= 0.4f ? 0.0f : powf(1.0f - 2.5f * z, 3.0f);
 }
 
-vec3 sky_analytic_sun(const float *data)
+void sky_analytic_angles(const float *data, vec3 d, float *theta, float *gamma)
 {
     float st = sinf(data[SKY_ANALYTIC_THETA]);
-    return v3(st * sinf(data[SKY_ANALYTIC_PHI]), st * cosf(data[SKY_ANALYTIC_PHI]), cosf(data[SKY_ANALYTIC_THETA]));
+    vec3 sun = v3(st * sinf(data[SKY_ANALYTIC_PHI]), st * cosf(data[SKY_ANALYTIC_PHI]), cosf(data[SKY_ANALYTIC_THETA]));
+    *gamma = sky_angle_between(d, sun);
+    *theta = minf(acosf(clampf(d.z, -1.0f, 1.0f)), 0.5f * PHOS_PI - 0.001f);
 }
 
 void sky_write_sun(const phos_sky_desc *d, vec3 bottom, vec3 top, float earth_angle, float *data)
@@ -115,10 +117,13 @@ static int valid_desc(const phos_sky_desc *d)
     if (d->model == PHOS_SKY_MULTIPLE_SCATTERING && d->layout != PHOS_SKY_LAYOUT_SPHERE)
         return 0;
     if (d->model == PHOS_SKY_PREETHAM || d->model == PHOS_SKY_HOSEK_WILKIE)
-        return d->turbidity >= 1.0f && d->turbidity <= 64.0f && d->ground_albedo >= 0.0f &&
+        return d->turbidity >= 1.0f && d->turbidity <= 10.0f && d->ground_albedo >= 0.0f &&
                d->ground_albedo <= 1.0f && v3_length2(v3_load(d->sun_direction)) > 0.0f;
-    return d->sun_size >= 0.0f && d->sun_size <= PHOS_PI && d->air_density >= 0.0f && d->aerosol_density >= 0.0f &&
-           d->ozone_density >= 0.0f;
+    /* Blender's densities reach 10; far denser air only underflows. */
+    const float most = 1000.0f;
+    return d->sun_size >= 0.0f && d->sun_size <= PHOS_PI && d->air_density >= 0.0f && d->air_density <= most &&
+           d->aerosol_density >= 0.0f && d->aerosol_density <= most && d->ozone_density >= 0.0f &&
+           d->ozone_density <= most;
 }
 
 phos_status phos_sky_texture_size(const phos_sky_desc *d, uint32_t *width, uint32_t *height)

@@ -89,8 +89,16 @@ static inline float sky_angle_between(vec3 a, vec3 b)
     return 2.0f * atan2f(v3_length(v3_sub(a, b)), v3_length(v3_add(a, b)));
 }
 
-/* The sun of the direction (θ, φ) stored by the analytic models. */
-vec3 sky_analytic_sun(const float *data);
+/* Rayleigh's phase function, 3(1 + μ²)/(16π) per steradian. */
+static inline float sky_phase_rayleigh(float mu) { return 3.0f / (16.0f * PHOS_PI) * (1.0f + mu * mu); }
+
+/* The solid angle of a disc of angular diameter `size`, 2π(1 − cos(size/2)). */
+static inline float sky_disc_solid_angle(float size) { return 2.0f * PHOS_PI * (1.0f - cosf(0.5f * size)); }
+
+/* The analytic models' angles of a view d: its polar angle θ held above
+ * the horizon (π/2 − 0.001, as Cycles), and its angle γ from the sun of
+ * the direction (θ, φ) they store. */
+void sky_analytic_angles(const float *data, vec3 d, float *theta, float *gamma);
 
 /* Writes the scattering models' sun data: the disc's radiance at its
  * bottom and top, the node's sun settings, and the horizon's dip. */
