@@ -280,38 +280,33 @@ static phos_scene *test_cornell_box(int spheres)
     return s;
 }
 
-/* Renders synchronously; returns a malloc'd RGBA image or NULL. */
-/* A world lit by an image of w × h linear RGBA pixels (rows bottom-up),
- * through an Environment Texture of the given projection (enum
- * phos_image_projection) fed by Texture Coordinate's Generated: the
- * world's program, as the add-on writes it for an HDR. */
-static void test_set_environment(phos_scene *s, const float *pixels, uint32_t w, uint32_t h, uint32_t projection,
-                                 uint32_t interpolation)
+/* The world as the add-on writes a textured one: Texture Coordinate's
+ * Generated (the direction, registers 0-2) into `texture` (its op, mode,
+ * flags and table set by the caller; its input and output are filled in
+ * here), whose Color (registers 3-5) is the weight of the world's one
+ * EMISSION closure; `table` the program's floats. Returns the status of
+ * adding the material. */
+static phos_status test_set_world_texture(phos_scene *s, phos_shader_instruction texture, const float *table,
+                                          uint32_t table_size)
 {
-    phos_image_desc im;
-    phos_image_desc_init(&im);
-    im.width = w, im.height = h, im.pixels = pixels;
-    uint32_t image = 0;
-    phos_scene_add_image(s, &im, &image);
     phos_shader_instruction ins[2];
     memset(ins, 0, sizeof(ins));
+    ins[1] = texture;
     for (int i = 0; i < 2; i++)
         for (int k = 0; k < PHOS_SHADER_MAX_OUTPUTS; k++)
             ins[i].outputs[k] = PHOS_SHADER_NO_REGISTER;
     ins[0].op = PHOS_OP_TEXTURE_COORDINATE;
-    ins[0].outputs[0] = 0;                  /* Generated: the direction, registers 0-2 */
-    ins[1].op = PHOS_OP_TEX_IMAGE;
-    ins[1].mode = projection;
-    ins[1].flags = interpolation;
-    ins[1].table = image;
+    ins[0].outputs[0] = 0;
     ins[1].inputs[0] = 0;
-    ins[1].outputs[0] = 3;                  /* Color, registers 3-5 */
+    ins[1].outputs[0] = 3;
     phos_shader_binding bind = {0, PHOS_FIELD_WEIGHT, 3};
     phos_shader_program_desc p;
     memset(&p, 0, sizeof(p));
-    p.register_count = 7;
+    p.register_count = 6;
     p.instructions = ins;
     p.instruction_count = 2;
+    p.table = table;
+    p.table_size = table_size;
     p.bindings = &bind;
     p.binding_count = 1;
     phos_closure_desc c;
@@ -325,8 +320,29 @@ static void test_set_environment(phos_scene *s, const float *pixels, uint32_t w,
     m.program = &p;
     phos_world_desc wd;
     phos_world_desc_init(&wd);
-    phos_scene_add_material(s, &m, &wd.material);
-    phos_scene_set_world(s, &wd);
+    phos_status st = phos_scene_add_material(s, &m, &wd.material);
+    return st == PHOS_OK ? phos_scene_set_world(s, &wd) : st;
+}
+
+/* A world lit by an image of w × h linear RGBA pixels (rows bottom-up),
+ * through an Environment Texture of the given projection (enum
+ * phos_image_projection) fed by Texture Coordinate's Generated: the
+ * world's program, as the add-on writes it for an HDR. */
+static void test_set_environment(phos_scene *s, const float *pixels, uint32_t w, uint32_t h, uint32_t projection,
+                                 uint32_t interpolation)
+{
+    phos_image_desc im;
+    phos_image_desc_init(&im);
+    im.width = w, im.height = h, im.pixels = pixels;
+    uint32_t image = 0;
+    phos_scene_add_image(s, &im, &image);
+    phos_shader_instruction tex;
+    memset(&tex, 0, sizeof(tex));
+    tex.op = PHOS_OP_TEX_IMAGE;
+    tex.mode = projection;
+    tex.flags = interpolation;
+    tex.table = image;
+    test_set_world_texture(s, tex, NULL, 0);
 }
 
 /* A 32 × 16 sky of radiance `background` with a patch of radiance `patch`
@@ -345,6 +361,7 @@ static void test_set_sky_with_patch(phos_scene *s, float background, float patch
     free(px);
 }
 
+/* Renders synchronously; returns a malloc'd RGBA image or NULL. */
 static float *test_render(phos_scene *s, const phos_render_settings *rs)
 {
     phos_render *r = NULL;

@@ -187,42 +187,12 @@ static void set_sky_world(phos_scene *s, const phos_sky_desc *d, uint32_t flags)
     CHECK(phos_scene_add_image(s, &im, &image) == PHOS_OK);
     free(px);
     data[PHOS_SKY_DATA_IMAGE] = (float)image;
-    phos_shader_instruction ins[2];
-    memset(ins, 0, sizeof(ins));
-    for (int i = 0; i < 2; i++)
-        for (int k = 0; k < PHOS_SHADER_MAX_OUTPUTS; k++)
-            ins[i].outputs[k] = PHOS_SHADER_NO_REGISTER;
-    ins[0].op = PHOS_OP_TEXTURE_COORDINATE;
-    ins[0].outputs[0] = 0;
-    ins[1].op = PHOS_OP_TEX_SKY;
-    ins[1].mode = d->model;
-    ins[1].flags = flags;
-    ins[1].table = 0;
-    ins[1].inputs[0] = 0;
-    ins[1].outputs[0] = 3;
-    phos_shader_binding bind = {0, PHOS_FIELD_WEIGHT, 3};
-    phos_shader_program_desc p;
-    memset(&p, 0, sizeof(p));
-    p.register_count = 6;
-    p.instructions = ins;
-    p.instruction_count = 2;
-    p.table = data;
-    p.table_size = PHOS_SKY_DATA_FLOATS;
-    p.bindings = &bind;
-    p.binding_count = 1;
-    phos_closure_desc c;
-    phos_closure_desc_init(&c);
-    c.type = PHOS_CLOSURE_EMISSION;
-    c.weight[0] = c.weight[1] = c.weight[2] = 1.0f;
-    phos_material_desc m;
-    phos_material_desc_init(&m);
-    m.closure_count = 1;
-    m.closures = &c;
-    m.program = &p;
-    phos_world_desc wd;
-    phos_world_desc_init(&wd);
-    CHECK(phos_scene_add_material(s, &m, &wd.material) == PHOS_OK);
-    CHECK(phos_scene_set_world(s, &wd) == PHOS_OK);
+    phos_shader_instruction sky;
+    memset(&sky, 0, sizeof(sky));
+    sky.op = PHOS_OP_TEX_SKY;
+    sky.mode = d->model;
+    sky.flags = flags;
+    CHECK(test_set_world_texture(s, sky, data, PHOS_SKY_DATA_FLOATS) == PHOS_OK);
 }
 
 static const light *find_sun(const phos_scene *s)
