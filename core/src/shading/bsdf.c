@@ -419,6 +419,35 @@ static int closure_diffuse_like(const closure *c)
     }
 }
 
+/* The pick weights as Cycles sets them: a closure is picked in proportion
+ * to the light it returns toward wo, not to its weight alone, so a
+ * Principled BSDF's dielectric specular, which returns a few per cent,
+ * stops taking half the samples from the diffuse base under it. Cycles
+ * multiplies a Fresnel closure's sample weight by its Fresnel colour
+ * (3.x) or its directional albedo (4.x), and a layered closure's weight
+ * by what the layers over it let through. The mixture's pdf (bsdf_eval)
+ * uses the same weights, so only the variance changes. A floor of 1 % of
+ * the weight keeps every closure drawable. */
+void bsdf_weight_picks(bsdf *b, vec3 wo)
+{
+    float mus[BSDF_MAX_FRAMES];
+    frame_cosines(b, wo, mus);
+    vec3 scales[BSDF_MAX_LAYERS];
+    if (b->layer_count)
+        layer_scales(b, mus, scales);
+    b->sample_weight_sum = 0.0f;
+    for (uint32_t k = 0; k < b->count; k++) {
+        closure *c = &b->closures[k];
+        float mu = clampf(mus[c->frame], 0.0f, 1.0f);
+        vec3 albedo = v3_mul(v3_max(c->weight, v3_neg(c->weight)), closure_albedo_estimate(c, mu));
+        if (c->under_layers)
+            albedo = v3_mul(albedo, scale_under(scales, c->under_layers));
+        float w = v3_average(albedo);
+        c->sample_weight = isfinite(w) ? maxf(w, 0.01f * c->sample_weight) : c->sample_weight;
+        b->sample_weight_sum += c->sample_weight;
+    }
+}
+
 void bsdf_denoising_features(const bsdf *b, vec3 wo, bsdf_features *out)
 {
     memset(out, 0, sizeof(*out));
@@ -433,7 +462,7 @@ void bsdf_denoising_features(const bsdf *b, vec3 wo, bsdf_features *out)
         vec3 albedo = v3_mul(c->weight, closure_albedo_estimate(c, mu));
         if (c->under_layers)
             albedo = v3_mul(albedo, scale_under(scales, c->under_layers));
-        float w = c->sample_weight * v3_average(closure_albedo_estimate(c, mu));
+        float w = c->sample_weight; /* the light it returns toward wo (bsdf_weight_picks) */
         out->weight_total += w;
         if (closure_diffuse_like(c)) {
             out->albedo_diffuse = v3_add(out->albedo_diffuse, albedo);

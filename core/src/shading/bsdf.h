@@ -215,6 +215,11 @@ typedef struct bsdf_features {
 } bsdf_features;
 void bsdf_denoising_features(const bsdf *b, vec3 wo, bsdf_features *out);
 
+/* Sets the closures' pick weights to the light each returns toward wo
+ * (their weight × albedo estimate), as Cycles does; material_bsdf calls it
+ * once the BSDF is whole. */
+void bsdf_weight_picks(bsdf *b, vec3 wo);
+
 /* Whether some closure has a non-delta lobe (next-event estimation helps). */
 int bsdf_has_non_delta(const bsdf *b);
 

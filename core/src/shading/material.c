@@ -461,6 +461,7 @@ void material_bsdf(const scene *s, const surface *sf, bsdf *out)
         c.frame = frame;
         bsdf_add_closure(out, &c);
     }
+    bsdf_weight_picks(out, sf->wo);
 }
 
 /* The summed weights of the material's closures of one type at the
