@@ -419,6 +419,24 @@ static int closure_diffuse_like(const closure *c)
     }
 }
 
+/* What each closure returns toward wo, per channel: its weight times its
+ * albedo estimate at the cosine of wo with its normal, times what the
+ * layers over it let through (out[k] for closure k). */
+static void returned_light(const bsdf *b, vec3 wo, vec3 *out)
+{
+    float mus[BSDF_MAX_FRAMES];
+    frame_cosines(b, wo, mus);
+    vec3 scales[BSDF_MAX_LAYERS];
+    if (b->layer_count)
+        layer_scales(b, mus, scales);
+    for (uint32_t k = 0; k < b->count; k++) {
+        const closure *c = &b->closures[k];
+        out[k] = v3_mul(c->weight, closure_albedo_estimate(c, clampf(mus[c->frame], 0.0f, 1.0f)));
+        if (c->under_layers)
+            out[k] = v3_mul(out[k], scale_under(scales, c->under_layers));
+    }
+}
+
 /* The pick weights as Cycles sets them: a closure is picked in proportion
  * to the light it returns toward wo, not to its weight alone, so a
  * Principled BSDF's dielectric specular, which returns a few per cent,
@@ -430,19 +448,13 @@ static int closure_diffuse_like(const closure *c)
  * the weight keeps every closure drawable. */
 void bsdf_weight_picks(bsdf *b, vec3 wo)
 {
-    float mus[BSDF_MAX_FRAMES];
-    frame_cosines(b, wo, mus);
-    vec3 scales[BSDF_MAX_LAYERS];
-    if (b->layer_count)
-        layer_scales(b, mus, scales);
+    vec3 returned[PHOS_MAX_CLOSURES];
+    returned_light(b, wo, returned);
     b->sample_weight_sum = 0.0f;
     for (uint32_t k = 0; k < b->count; k++) {
         closure *c = &b->closures[k];
-        float mu = clampf(mus[c->frame], 0.0f, 1.0f);
-        vec3 albedo = v3_mul(v3_max(c->weight, v3_neg(c->weight)), closure_albedo_estimate(c, mu));
-        if (c->under_layers)
-            albedo = v3_mul(albedo, scale_under(scales, c->under_layers));
-        float w = v3_average(albedo);
+        vec3 r = returned[k];
+        float w = (fabsf(r.x) + fabsf(r.y) + fabsf(r.z)) * (1.0f / 3.0f);
         c->sample_weight = isfinite(w) ? maxf(w, 0.01f * c->sample_weight) : c->sample_weight;
         b->sample_weight_sum += c->sample_weight;
     }
@@ -451,24 +463,17 @@ void bsdf_weight_picks(bsdf *b, vec3 wo)
 void bsdf_denoising_features(const bsdf *b, vec3 wo, bsdf_features *out)
 {
     memset(out, 0, sizeof(*out));
-    float mus[BSDF_MAX_FRAMES];
-    frame_cosines(b, wo, mus);
-    vec3 scales[BSDF_MAX_LAYERS];
-    if (b->layer_count)
-        layer_scales(b, mus, scales);
+    vec3 returned[PHOS_MAX_CLOSURES];
+    returned_light(b, wo, returned);
     for (uint32_t k = 0; k < b->count; k++) {
         const closure *c = &b->closures[k];
-        float mu = clampf(mus[c->frame], 0.0f, 1.0f);
-        vec3 albedo = v3_mul(c->weight, closure_albedo_estimate(c, mu));
-        if (c->under_layers)
-            albedo = v3_mul(albedo, scale_under(scales, c->under_layers));
         float w = c->sample_weight; /* the light it returns toward wo (bsdf_weight_picks) */
         out->weight_total += w;
         if (closure_diffuse_like(c)) {
-            out->albedo_diffuse = v3_add(out->albedo_diffuse, albedo);
+            out->albedo_diffuse = v3_add(out->albedo_diffuse, returned[k]);
             out->weight_diffuse += w;
         } else {
-            out->albedo_specular = v3_add(out->albedo_specular, albedo);
+            out->albedo_specular = v3_add(out->albedo_specular, returned[k]);
         }
     }
 }
