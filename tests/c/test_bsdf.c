@@ -1476,6 +1476,46 @@ static void test_bump_shadowing(void)
     CHECK(fabsf(bsdf_eval(&bent, wo2, wi, NULL).x - bsdf_eval(&plain, wo2, wi, NULL).x) <= 1e-6f);
 }
 
+/* A Principled-like BSDF, a diffuse base of weight 0.55 under a white
+ * dielectric specular of weight 1 (η = 1.5, returning about 5 % at normal
+ * incidence): picked by weight the specular takes 1/1.55 of the samples;
+ * picked by the light each returns (bsdf_weight_picks, as Cycles) it takes
+ * its share of the albedo. The estimate stays unbiased (the mean sample
+ * weight is the quadrature albedo either way) and its variance falls. */
+static void test_pick_by_returned_light(void)
+{
+    const vec3 z = v3(0.0f, 0.0f, 1.0f);
+    closure spec = make_closure(PHOS_CLOSURE_REFLECTION_FRESNEL, 0.25f, 1.5f);
+    spec.f0 = v3s(0.04f);
+    closure cl[2] = {weighted(make_closure(PHOS_CLOSURE_PRINCIPLED_DIFFUSE, 0.5f, 1.0f), 0.55f), spec};
+    double mean[2], var[2];
+    for (int picks = 0; picks < 2; picks++) {
+        bsdf b;
+        make_bsdf(&b, cl, 2, z, z);
+        if (picks)
+            bsdf_weight_picks(&b, z);
+        float share = b.closures[1].sample_weight / b.sample_weight_sum;
+        if (picks)
+            CHECK_MSG(share > 0.02f && share < 0.15f, "the specular's pick share %g", (double)share);
+        else
+            CHECK_REL(share, 1.0 / 1.55, 1e-5);
+        const int n = 200000;
+        double sum = 0.0, sum2 = 0.0;
+        for (int k = 0; k < n; k++) {
+            sampler s = sampler_independent(77, 3, (uint64_t)k);
+            bsdf_sample bs;
+            double w = 0.0;
+            if (bsdf_sample_direction(&b, z, sampler_1d(&s, 0), sampler_2d(&s, 1), &bs))
+                w = avg3(bs.weight);
+            sum += w, sum2 += w * w;
+        }
+        mean[picks] = sum / n;
+        var[picks] = sum2 / n - mean[picks] * mean[picks];
+        CHECK_REL(mean[picks], albedo_quadrature(&b, z, 400, 200), 0.01);
+    }
+    CHECK_MSG(var[1] < 0.5 * var[0], "sample weight variance %g picked by light, %g by weight", var[1], var[0]);
+}
+
 int main(void)
 {
     test_chi2_law();
@@ -1489,5 +1529,6 @@ int main(void)
     test_closure_frames();
     test_bump_shadowing();
     test_chi2_all();
+    test_pick_by_returned_light();
     return test_summary("test_bsdf");
 }

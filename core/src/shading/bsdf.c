@@ -445,9 +445,12 @@ static void returned_light(const bsdf *b, vec3 wo, vec3 *out)
  * (3.x) or its directional albedo (4.x), and a layered closure's weight
  * by what the layers over it let through. The mixture's pdf (bsdf_eval)
  * uses the same weights, so only the variance changes. A floor of 1 % of
- * the weight keeps every closure drawable. */
+ * the weight keeps every closure drawable. A lone closure is always
+ * picked: nothing to weigh. */
 void bsdf_weight_picks(bsdf *b, vec3 wo)
 {
+    if (b->count < 2)
+        return;
     vec3 returned[PHOS_MAX_CLOSURES];
     returned_light(b, wo, returned);
     b->sample_weight_sum = 0.0f;
@@ -455,7 +458,8 @@ void bsdf_weight_picks(bsdf *b, vec3 wo)
         closure *c = &b->closures[k];
         vec3 r = returned[k];
         float w = (fabsf(r.x) + fabsf(r.y) + fabsf(r.z)) * (1.0f / 3.0f);
-        c->sample_weight = isfinite(w) ? maxf(w, 0.01f * c->sample_weight) : c->sample_weight;
+        float by_weight = (fabsf(c->weight.x) + fabsf(c->weight.y) + fabsf(c->weight.z)) * (1.0f / 3.0f);
+        c->sample_weight = isfinite(w) ? maxf(w, 0.01f * by_weight) : by_weight;
         b->sample_weight_sum += c->sample_weight;
     }
 }
