@@ -348,40 +348,22 @@ static void test_bad_program_refused(void)
     set_sky_world(s, &d, 1); /* image 0 */
     float data[PHOS_SKY_DATA_FLOATS];
     CHECK(phos_sky_bake(&d, NULL, data) == PHOS_OK);
-    phos_shader_instruction ins;
-    memset(&ins, 0, sizeof(ins));
-    for (int k = 0; k < PHOS_SHADER_MAX_OUTPUTS; k++)
-        ins.outputs[k] = PHOS_SHADER_NO_REGISTER;
-    ins.op = PHOS_OP_TEX_SKY;
-    ins.outputs[0] = 3;
-    phos_shader_program_desc p;
-    memset(&p, 0, sizeof(p));
-    p.register_count = 6;
-    p.constant_count = 3;
-    float zero[3] = {0, 0, 1};
-    p.constants = zero;
-    p.instructions = &ins;
-    p.instruction_count = 1;
-    p.table = data;
-    phos_closure_desc c;
-    phos_closure_desc_init(&c);
-    c.type = PHOS_CLOSURE_EMISSION;
-    phos_material_desc m;
-    phos_material_desc_init(&m);
-    m.closure_count = 1;
-    m.closures = &c;
-    m.program = &p;
-    uint32_t id;
-    p.table_size = PHOS_SKY_DATA_FLOATS - 1; /* the data does not fit */
-    CHECK(phos_scene_add_material(s, &m, &id) == PHOS_ERROR_INVALID_ARGUMENT);
-    p.table_size = PHOS_SKY_DATA_FLOATS;
+    phos_shader_instruction sky;
+    memset(&sky, 0, sizeof(sky));
+    sky.op = PHOS_OP_TEX_SKY;
+    /* The data does not fit in the table. */
+    CHECK(test_set_world_texture(s, sky, data, PHOS_SKY_DATA_FLOATS - 1) == PHOS_ERROR_INVALID_ARGUMENT);
     data[PHOS_SKY_DATA_IMAGE] = 7.0f; /* no such image */
-    CHECK(phos_scene_add_material(s, &m, &id) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(test_set_world_texture(s, sky, data, PHOS_SKY_DATA_FLOATS) == PHOS_ERROR_INVALID_ARGUMENT);
     CHECK(strstr(phos_scene_error(s), "not an image") != NULL);
     data[PHOS_SKY_DATA_IMAGE] = 0.0f;
-    CHECK(phos_scene_add_material(s, &m, &id) == PHOS_OK);
-    ins.mode = PHOS_SKY_MODEL_COUNT;
-    CHECK(phos_scene_add_material(s, &m, &id) == PHOS_ERROR_INVALID_ARGUMENT);
+    data[SKY_LAYOUT] = 5.0f; /* no such layout */
+    CHECK(test_set_world_texture(s, sky, data, PHOS_SKY_DATA_FLOATS) == PHOS_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(phos_scene_error(s), "no texture layout") != NULL);
+    data[SKY_LAYOUT] = (float)d.layout;
+    CHECK(test_set_world_texture(s, sky, data, PHOS_SKY_DATA_FLOATS) == PHOS_OK);
+    sky.mode = PHOS_SKY_MODEL_COUNT;
+    CHECK(test_set_world_texture(s, sky, data, PHOS_SKY_DATA_FLOATS) == PHOS_ERROR_INVALID_ARGUMENT);
     phos_scene_destroy(s);
 }
 
