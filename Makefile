@@ -112,8 +112,9 @@ test-gui: build
 # reports have lines; a report is an error (halt_on_error, and UBSan does
 # not recover, see CMakeLists.txt). LeakSanitizer runs with ASan. Embree is
 # not instrumented; TSan's suppressions name only its threads' internals
-# (tests/sanitizers/tsan.supp).
-SANITIZER_ENV := ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:abort_on_error=1 \
+# (tests/sanitizers/tsan.supp). PHOS_TEST_SANITIZER leaves the tests whose
+# time is statistics to the plain build (tests/c/test_util.h).
+SANITIZER_ENV := PHOS_TEST_SANITIZER=1 ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:abort_on_error=1 \
                  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
                  TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/tests/sanitizers/tsan.supp
 test-asan: deps

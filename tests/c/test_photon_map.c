@@ -830,6 +830,8 @@ static void pass_mean_of_pair(phos_scene *s, phos_render_settings rs, uint32_t p
 
 static void test_photon_vs_path(void)
 {
+    if (test_left_to_plain_build(__func__))
+        return;
     phos_scene *s = glass_sphere_scene();
     const uint32_t w = 32, n = w * w;
     float *path[PHOS_PASS_COUNT], *path2[PHOS_PASS_COUNT], *pm[PHOS_PASS_COUNT], *pm2[PHOS_PASS_COUNT];
@@ -1083,6 +1085,8 @@ static void test_glossy_gather_hits(void)
  * measured from a second seed, is subtracted in quadrature). */
 static void test_glossy_caustic_on_a_floor(void)
 {
+    if (test_left_to_plain_build(__func__))
+        return;
     phos_scene *s = metal_ceiling_scene_of(0.25f);
     const uint32_t w = 16, n = w * w, combined = 1u;
     float *ref[PHOS_PASS_COUNT], *ref2[PHOS_PASS_COUNT], *pm[PHOS_PASS_COUNT];
@@ -1662,6 +1666,8 @@ static void test_global_photons_aimed_at_the_room(void)
  * -0.51 %, +0.70 % (strip -1.16 %, -0.91 %, -0.07 %) with whole discs. */
 static void test_sunlit_room(void)
 {
+    if (test_left_to_plain_build(__func__))
+        return;
     phos_scene *s = room_scene(0);
     const uint32_t w = 32, n = w * w;
     unsigned char strip[32 * 32], all[32 * 32];
@@ -1789,6 +1795,8 @@ static void white_cube_room_regions(unsigned char masks[ROOM_REGIONS][32 * 32], 
  * test fails. */
 static void test_fast_view_in_a_white_cube_room(void)
 {
+    if (test_left_to_plain_build(__func__))
+        return;
     phos_scene *s = white_cube_room_scene();
     const uint32_t w = 32, n = w * w, seeds = 8;
     unsigned char masks[ROOM_REGIONS][32 * 32];

@@ -46,4 +46,20 @@ static inline int test_summary(const char *name)
     return test_failed_count == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 
+/* The sanitizer runs (`make test-asan`, `make test-tsan`) set
+ * PHOS_TEST_SANITIZER. A test whose time goes to the statistics of large
+ * renders, on code paths that smaller tests of its program also walk,
+ * leaves itself to the plain builds there: under ASan it ran 2.5-3.5x
+ * slower and doubled CI's C time, and a sanitizer finds a bad access on
+ * the first pixel that makes it, not the millionth
+ * (docs/reliability.md lists them). Returns whether to skip, and says so. */
+static inline int test_left_to_plain_build(const char *name)
+{
+    const char *v = getenv("PHOS_TEST_SANITIZER");
+    if (!v || !*v || (v[0] == '0' && !v[1]))
+        return 0;
+    printf("%s: left to the plain build under a sanitizer (PHOS_TEST_SANITIZER)\n", name);
+    return 1;
+}
+
 #endif /* PHOS_TEST_UTIL_H */
