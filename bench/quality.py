@@ -588,25 +588,36 @@ def command_bench(args):
         write_rows(args.csv, rows)
 
     # Equal time at the defaults, and the images for the strips. Each of
-    # --equal-reps repetitions renders Phos, then Cycles in Phos's time; the
-    # row kept is the repetition of median ratio (what Cycles fits into a
-    # half-second render moves its error by a factor 1.5 from run to run).
+    # --equal-reps repetitions renders Phos, then Cycles in Phos's time, both
+    # with the repetition's own seed (args.seed + k): one seed's error is one
+    # draw, and a few fireflies in a half-second render move it, Phos's as
+    # much as Cycles'. The ratio reported is that of the mean MSE x time
+    # over the repetitions, which estimates the ratio of the expected
+    # errors at equal time; the rows and images kept are the repetition of
+    # median ratio.
     for integrator in ("PHOTON", "PATH") if "equal" in args.parts else ():
         reps = []
-        for _ in range(max(1, args.equal_reps)):
-            row = phos_measurement(scene, module, args, ref, {}, integrator)
+        for k in range(max(1, args.equal_reps)):
+            rep_args = argparse.Namespace(**dict(vars(args), seed=args.seed + k))
+            row = phos_measurement(scene, module, rep_args, ref, {}, integrator)
             image = _last_image[0]
-            crow = cycles_measurement(scene, module, args, ref, row["seconds"])
+            crow = cycles_measurement(scene, module, rep_args, ref, row["seconds"])
             ratio = row["relative_mse"] * row["seconds"] / (crow["relative_mse"] * crow["seconds"])
-            row["vs_cycles"] = crow["vs_cycles"] = ratio
-            row["equal_reps"] = crow["equal_reps"] = args.equal_reps
             crow["integrator"] = "vs " + integrator
             reps.append((ratio, row, image, crow, _last_image[0]))
+        mean_ratio = (sum(r[1]["relative_mse"] * r[1]["seconds"] for r in reps) /
+                      sum(r[3]["relative_mse"] * r[3]["seconds"] for r in reps))
         ratio, row, image, crow, cycles_image = sorted(reps, key=lambda r: r[0])[len(reps) // 2]
+        for r in (row, crow):
+            r.update(vs_cycles=mean_ratio, equal_reps=len(reps),
+                     rep_ratios=" ".join("%.3g" % rep[0] for rep in reps),
+                     rep_phos_mse=" ".join("%.3g" % rep[1]["relative_mse"] for rep in reps),
+                     rep_cycles_mse=" ".join("%.3g" % rep[3]["relative_mse"] for rep in reps))
         add(row, "equal_time", image=image, label=integrator)
         add(crow, "equal_time", image=cycles_image, label="CYCLES vs " + integrator)
-        log("%s %s: relative MSE Phos / Cycles at equal time (%.1f s) = %.3g (median of %s)"
-            % (args.scene, integrator, row["seconds"], ratio, ", ".join("%.3g" % r[0] for r in reps)))
+        log("%s %s: relative MSE x time, Phos / Cycles at equal time (%.1f s) = %.3g over %d seeds (each: %s; "
+            "relative MSE, Phos: %s, Cycles: %s)" % (args.scene, integrator, row["seconds"], mean_ratio, len(reps),
+                                                     row["rep_ratios"], row["rep_phos_mse"], row["rep_cycles_mse"]))
 
     # Fixed budgets.
     for budget in args.budgets if "budgets" in args.parts else ():
@@ -626,9 +637,19 @@ def command_bench(args):
     for _ in range(args.path_reps if "path" in args.parts else 0):
         for engine in runs:
             runs[engine].append(_path_speed_row(scene, module, args, ref, engine, samples))
+    kept = {}
     for engine, reps in runs.items():  # not `rows`: add() appends to the table's rows
         if reps:
-            add(sorted(reps, key=lambda r: r["seconds_per_sample"])[len(reps) // 2], "path_speed")
+            kept[engine] = sorted(reps, key=lambda r: r["seconds_per_sample"])[len(reps) // 2]
+            add(kept[engine], "path_speed")
+    if len(kept) == 2:
+        # Error x time per sample: what equal time converges to as the
+        # budget grows, free of start-up and of one short render's fireflies.
+        p, c = kept["PHOS"], kept["CYCLES"]
+        log("%s PATH: variance x time per sample, Phos / Cycles = %.3g (variance %.3g, time %.3g)"
+            % (args.scene, p["variance_per_sample"] * p["seconds_per_sample"] /
+               (c["variance_per_sample"] * c["seconds_per_sample"]),
+               p["variance_per_sample"] / c["variance_per_sample"], p["seconds_per_sample"] / c["seconds_per_sample"]))
     # Cycles as artists run it (the official builds), and Phos through the
     # same denoiser, all at the time Phos PHOTON takes at its defaults, or
     # at the settings --grid gives (the first value of each).
@@ -650,7 +671,8 @@ def main():
     p.add_argument("--budgets", type=float, nargs="+", default=[4.0, 16.0, 64.0])
     p.add_argument("--path-samples", type=int, default=64)
     p.add_argument("--equal-reps", type=int, default=1,
-                   help="bench: repetitions of each equal-time pair; the one of median ratio is kept")
+                   help="bench: repetitions of each equal-time pair, seeds seed..seed+N-1; "
+                        "the ratio of their mean MSE x time is reported")
     p.add_argument("--path-reps", type=int, default=5,
                    help="alternating repetitions of the PATH time per sample; the median is kept")
     p.add_argument("--parts", nargs="+", default=["equal", "budgets", "path"],
