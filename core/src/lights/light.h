@@ -141,6 +141,9 @@ float light_escape_pdf(const scene *s, const light_context *c, uint32_t index, v
 
 /* Spot attenuation for the direction from the light toward the point. */
 float light_spot_attenuation(const light *l, vec3 dir_from_light);
+/* The same for a direction at cosine c to the spot's axis; it never falls
+ * as c grows (light_pick.c bounds a spot with a radius by it). */
+float light_spot_attenuation_cos(const light *l, float c);
 
 /* Emitted power (W), the channels' mean: the flux its photons carry. */
 float light_power(const light *l, float scene_radius);

@@ -54,18 +54,20 @@ static float receiver_bound(const light_context *c, vec3 w, float sin_beta, floa
     return maxf(bound, 1e-3f);
 }
 
-/* Spot attenuation toward p, or an upper bound of it for a spot with a
- * radius, whose points see p within β of the direction from its centre. */
+/* The largest spot attenuation any ray from the lamp to p can carry. A
+ * spot with a radius shapes its beam by the direction of each ray leaving
+ * its sphere (point.c), and those directions lie within β of the one from
+ * its centre, so the largest is the attenuation at the angle θ − β to the
+ * axis: it never falls as the angle shrinks. Any smaller figure is no
+ * bound: a point just outside the cone, or in its blend, would be picked
+ * for less than the light it gets, and each pick would weigh too much. */
 static float spot_bound(const light *l, vec3 from_light, float sin_beta, float cos_beta, int inside)
 {
-    float a = light_spot_attenuation(l, from_light);
-    if (a > 0.0f || l->radius <= 0.0f)
-        return a;
+    if (l->radius <= 0.0f)
+        return light_spot_attenuation(l, from_light);
     if (inside)
-        return 1.0f;
-    /* Inside the cone widened by β: cos(angle − β) > cos_half. */
-    float bound = cone_cos_bound(v3_dot(from_light, l->direction), sin_beta, cos_beta);
-    return bound > l->spot_cos_half ? 0.05f : 0.0f;
+        return light_spot_attenuation_cos(l, 1.0f);
+    return light_spot_attenuation_cos(l, cone_cos_bound(v3_dot(from_light, l->direction), sin_beta, cos_beta));
 }
 
 /* Bound on the irradiance (W/m²) group g can give the point. */

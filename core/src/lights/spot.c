@@ -19,7 +19,11 @@ static float smoothstepf(float x)
 
 float light_spot_attenuation(const light *l, vec3 dir_from_light)
 {
-    float c = v3_dot(dir_from_light, l->direction);
+    return light_spot_attenuation_cos(l, v3_dot(dir_from_light, l->direction));
+}
+
+float light_spot_attenuation_cos(const light *l, float c)
+{
     if (c <= l->spot_cos_half)
         return 0.0f;
     float a = l->spot_cosine ? c : 1.0f;
