@@ -382,6 +382,65 @@ static void test_caustic_projection_unbiased(int sky)
     phos_scene_destroy(s);
 }
 
+/* The caustic pass aimed at the view (photon_trace.c, aim_caustic): a sun
+ * over a glass sphere, whose caustic the camera sees, and a mirror sphere
+ * out of view. The pilots weigh the sun's cells by the share of their
+ * paths that store a caustic photon in view, so more of the emitted paths
+ * end there, and the caustic power in view is the same as unweighted
+ * (within 4 standard errors). */
+static void test_caustic_aimed_at_view(void)
+{
+    phos_scene *s = phos_scene_create();
+    test_add_instance(s, test_add_quad_mesh(s, 4.0f), test_add_diffuse(s, 0.6f, 0.6f, 0.6f), 0, 0, 0);
+    test_add_instance(s, test_add_sphere_mesh(s, 0.3f, 32, 16, 0), test_add_glass(s, 1.5f), 0, 0, 0.3f);
+    test_add_instance(s, test_add_sphere_mesh(s, 0.3f, 32, 16, 0), test_add_mirror(s), -2.0f, 0, 0.3f);
+    phos_light_desc l;
+    phos_light_desc_init(&l);
+    l.type = PHOS_LIGHT_SUN;
+    l.direction[0] = 0.6f;
+    l.direction[2] = -0.8f;
+    l.sun_angle = 0.01f;
+    l.color[0] = l.color[1] = l.color[2] = 3.0f;
+    phos_scene_add_light(s, &l, NULL);
+    /* Looking straight down at x in [0.1, 1.3], y in [−0.6, 0.6]: the glass
+     * sphere's caustic, which the sun throws toward +x. */
+    test_set_camera(s, 0.7f, 0.0f, 2.0f, 0.3f);
+    CHECK(phos_scene_commit(s) == PHOS_OK);
+    double power[2], se2[2], yield[2];
+    for (int aimed = 0; aimed < 2; aimed++) {
+        photon_trace_settings ps = trace_settings(0, 40000, 0);
+        ps.unaimed = aimed ? 0 : 1;
+        ps.seed = 5u + (uint32_t)aimed;
+        photon_maps m;
+        photon_maps_init(&m);
+        atomic_int cancel = 0;
+        CHECK(photon_maps_trace(s, &ps, &m, &cancel, NULL) == PHOS_OK);
+        uint32_t in_view = 0;
+        power[aimed] = se2[aimed] = 0.0;
+        for (uint32_t i = 0; i < m.caustic.count; i++) {
+            const photon *p = &m.caustic.photons[i];
+            if (fabsf(p->position[0] - 0.7f) > 0.6f || fabsf(p->position[1]) > 0.6f)
+                continue;
+            double w = v3_average(photon_power(p));
+            power[aimed] += w;
+            se2[aimed] += w * w;
+            in_view++;
+        }
+        yield[aimed] = (double)in_view / (double)m.caustic_emitted;
+        printf("  caustic photons in view, %s: %u of %llu paths (%.4f a path), %.5f W\n",
+               aimed ? "cells weighed by the view" : "cells unweighed", in_view,
+               (unsigned long long)m.caustic_emitted, yield[aimed], power[aimed]);
+        CHECK(m.aimed_at_view == aimed);
+        photon_maps_free(&m);
+    }
+    CHECK_MSG(yield[1] > 2.0 * yield[0], "the view's pilots raised the yield in view only from %.4f to %.4f",
+              yield[0], yield[1]);
+    double se = sqrt(se2[0] + se2[1]);
+    CHECK_MSG(fabs(power[1] - power[0]) < 4.0 * se, "caustic power in view %.5f W aimed, %.5f W unaimed (± %.5f)",
+              power[1], power[0], 4.0 * se);
+    phos_scene_destroy(s);
+}
+
 /* Radiance-photon lookups in a corner: a floor (normal +z, L = 1) with a
  * record every 5 cm meets a wall (normal +y, L = 2) with a record every
  * 5 mm. Just in front of the wall the 8 records nearest to a floor point
@@ -1946,6 +2005,7 @@ int main(void)
     test_caustic_photons_aimed_at_a_bead();
     test_caustic_projection_unbiased(0);
     test_caustic_projection_unbiased(1);
+    test_caustic_aimed_at_view();
     test_radiance_lookup_in_a_corner();
     test_power_in_closed_sphere();
     test_maps_deterministic();

@@ -402,13 +402,10 @@ static int position_is_finite(const photon *p)
     return isfinite(p->position[0]) && isfinite(p->position[1]) && isfinite(p->position[2]);
 }
 
-int photon_map_append(photon_map *m, const photon *photons, uint32_t count)
+photon *photon_map_extend(photon_map *m, uint32_t count)
 {
-    if (m->built || count > PHOTON_MAP_MAX_PHOTONS - m->count)
-        return 0;
-    for (uint32_t i = 0; i < count; i++)
-        if (!position_is_finite(&photons[i]))
-            return 0;
+    if (m->built || count == 0 || count > PHOTON_MAP_MAX_PHOTONS - m->count)
+        return NULL;
     uint32_t need = m->count + count;
     if (need > m->capacity) {
         /* Grow by half so that N appends of one photon cost O(N). */
@@ -418,11 +415,24 @@ int photon_map_append(photon_map *m, const photon *photons, uint32_t count)
         if (grown > PHOTON_MAP_MAX_PHOTONS)
             grown = PHOTON_MAP_MAX_PHOTONS;
         if (!photon_map_resize(m, (uint32_t)grown))
-            return 0;
+            return NULL;
     }
-    if (count)
-        memcpy(m->photons + m->count, photons, sizeof(photon) * count);
+    photon *slots = m->photons + m->count;
     m->count = need;
+    return slots;
+}
+
+int photon_map_append(photon_map *m, const photon *photons, uint32_t count)
+{
+    if (count == 0)
+        return !m->built;
+    for (uint32_t i = 0; i < count; i++)
+        if (!position_is_finite(&photons[i]))
+            return 0;
+    photon *slots = photon_map_extend(m, count);
+    if (!slots)
+        return 0;
+    memcpy(slots, photons, sizeof(photon) * count);
     return 1;
 }
 

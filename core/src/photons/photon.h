@@ -115,7 +115,8 @@ static inline int photon_is_direct(const photon *p) { return (p->flags & PHOTON_
  * photon_map_build → read-only queries from any number of threads
  * (photon_map_knn and the others in kdtree.h) → photon_map_free.
  * Appending is single-threaded: a parallel tracer collects per-thread
- * batches and appends them in photon-index order, and the built map then
+ * batches and appends them in photon-index order (photon_map_extend lets
+ * its threads write their own slots), and the built map then
  * depends only on that sequence of photons (not on the reserve size, the
  * growth pattern or the thread count). */
 /* Photons are kept in classes: by the dominant axis of their normal (+x,
@@ -180,6 +181,13 @@ int photon_map_reserve(photon_map *m, uint32_t capacity);
  * finite is rejected, and so is the whole call, before anything is stored.
  * Returns 0 on rejection, exhausted memory or an already built map. */
 int photon_map_append(photon_map *m, const photon *photons, uint32_t count);
+/* Room for count more photons at the map's end (grown as append grows it),
+ * counted as stored at once: the caller writes each of them, with a finite
+ * position, before any other call on the map. It may do so from several
+ * threads, each into slots of its own (the tracer packs its batches in
+ * parallel). NULL when count is 0, memory is exhausted, the map is built
+ * or it would pass PHOTON_MAP_MAX_PHOTONS. */
+photon *photon_map_extend(photon_map *m, uint32_t count);
 /* Sorts the photons into their classes (stably: the result depends
  * only on the appended sequence), builds the kd-tree (kdtree_build) and
  * shrinks the storage to exactly 20·count bytes. Returns 0 when memory is

@@ -37,7 +37,7 @@
 #define RADIANCE_SITE_STRIDE 4u   /* Christensen: a quarter of the photons (RAD's default 0.25) */
 
 /* The photon passes; each draws its paths from a sample domain of its own. */
-enum { MAP_GLOBAL = 0, MAP_CAUSTIC = 1, MAP_RADIANCE_SITES = 2, MAP_PILOT = 3 };
+enum { MAP_GLOBAL = 0, MAP_CAUSTIC = 1, MAP_RADIANCE_SITES = 2, MAP_PILOT = 3, MAP_CAUSTIC_PILOT = 4 };
 
 #define PILOT_PHOTONS 8        /* pilot paths per cell of a sun's plane */
 #define WORLD_PILOT_PHOTONS 4  /* per cell of the world's planes, which have 16 times as many */
@@ -51,9 +51,11 @@ typedef struct traced_photon {
     uint16_t flags;
 } traced_photon;
 
+/* One batch's photons, in path order: what one work item traced. */
 typedef struct batch {
     traced_photon *items;
     uint32_t count, capacity;
+    uint32_t caustic; /* of count, those flagged PHOTON_CAUSTIC */
     int out_of_memory;
 } batch;
 
@@ -70,6 +72,96 @@ static void batch_push(batch *b, const traced_photon *p)
         b->capacity = cap;
     }
     b->items[b->count++] = *p;
+    b->caustic += (p->flags & PHOTON_CAUSTIC) != 0;
+}
+
+/* Keeps the first n of b's photons. */
+static void batch_truncate(batch *b, uint32_t n)
+{
+    for (uint32_t i = n; i < b->count; i++)
+        b->caustic -= (b->items[i].flags & PHOTON_CAUSTIC) != 0;
+    b->count = n;
+}
+
+/* A map's photons in path order: the batches it kept, whole, each as its
+ * tracer filled it. The batches are moved here, not copied: a copy of
+ * every record (80 bytes) into one array was a serial pass between the
+ * waves, a tenth of the tracing's time on two threads
+ * (docs/benchmarks.md, "Where photon tracing's time goes"). */
+typedef struct traced_list {
+    batch *parts;
+    uint32_t part_count, part_capacity;
+    uint32_t count; /* photons over all parts */
+} traced_list;
+
+static void traced_list_free(traced_list *l)
+{
+    for (uint32_t i = 0; i < l->part_count; i++)
+        free(l->parts[i].items);
+    free(l->parts);
+    memset(l, 0, sizeof(*l));
+}
+
+/* Moves the first n photons of *b to the end of l, leaving *b empty (its
+ * buffer goes with them). Returns 0 when memory runs out (*b unchanged). */
+static int traced_list_take(traced_list *l, batch *b, uint32_t n)
+{
+    if (n == 0)
+        return 1;
+    if (l->part_count == l->part_capacity) {
+        uint32_t cap = l->part_capacity ? 2 * l->part_capacity : 64;
+        batch *parts = realloc(l->parts, sizeof(batch) * cap);
+        if (!parts)
+            return 0;
+        l->parts = parts;
+        l->part_capacity = cap;
+    }
+    batch_truncate(b, n);
+    l->parts[l->part_count++] = *b;
+    l->count += n;
+    memset(b, 0, sizeof(*b));
+    return 1;
+}
+
+/* The photons of paths before `path`: l's first ones, as l is in path order. */
+static uint32_t traced_list_count_before(const traced_list *l, uint64_t path)
+{
+    uint32_t n = l->count;
+    for (uint32_t i = l->part_count; i-- > 0;) {
+        const batch *b = &l->parts[i];
+        uint32_t j = b->count;
+        while (j > 0 && b->items[j - 1].path >= path)
+            j--;
+        n -= b->count - j;
+        if (j > 0)
+            break;
+    }
+    return n;
+}
+
+/* Keeps l's first n photons. */
+static void traced_list_truncate(traced_list *l, uint32_t n)
+{
+    /* Whole parts past the n-th photon go; the last left keeps its photons
+     * before it. */
+    while (l->part_count > 0 && l->count - l->parts[l->part_count - 1].count >= n) {
+        batch *b = &l->parts[--l->part_count];
+        l->count -= b->count;
+        free(b->items);
+    }
+    if (l->count > n) {
+        batch *b = &l->parts[l->part_count - 1];
+        batch_truncate(b, n - (l->count - b->count));
+        l->count = n;
+    }
+}
+
+static uint32_t traced_list_caustic(const traced_list *l)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < l->part_count; i++)
+        n += l->parts[i].caustic;
+    return n;
 }
 
 /* Diffuse reflectance of the BSDF, for radiance photons: its diffuse
@@ -239,9 +331,8 @@ static uint64_t wave_paths(uint32_t target, uint32_t kept, uint64_t emitted, uin
 /* Traces paths until `target` photons are kept; fills *kept (path order)
  * and *emitted. */
 static phos_status trace_map(const scene *s, const photon_trace_settings *ps, uint32_t map, const projection_map *aim,
-                             uint32_t target,
-                             batch *kept, uint64_t *emitted, atomic_int *cancel, photon_trace_progress *progress,
-                             uint32_t stored_before)
+                             uint32_t target, traced_list *kept, uint64_t *emitted, atomic_int *cancel,
+                             photon_trace_progress *progress, uint32_t stored_before)
 {
     memset(kept, 0, sizeof(*kept));
     *emitted = 0;
@@ -263,57 +354,51 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
             w.end_path = ps->max_emitted;
         uint32_t nb = (uint32_t)((w.end_path - next + per_batch - 1) / per_batch);
         for (uint32_t i = 0; i < nb; i++)
-            batches[i].count = 0;
+            batch_truncate(&batches[i], 0);
         if (!parallel_for(nb, threads, trace_batch, &w, cancel)) {
             status = PHOS_ERROR_CANCELLED;
             break;
         }
-        /* Merge in path order; stop after the path that fills the map. */
-        uint64_t cut = UINT64_MAX;
+        /* Keep the batches in path order, up to the end of the path whose
+         * photon fills the map. */
         for (uint32_t i = 0; i < nb && !done; i++) {
-            if (batches[i].out_of_memory) {
+            batch *b = &batches[i];
+            if (b->out_of_memory) {
                 status = PHOS_ERROR_OUT_OF_MEMORY;
-                done = 1;
                 break;
             }
-            for (uint32_t j = 0; j < batches[i].count; j++) {
-                const traced_photon *tp = &batches[i].items[j];
-                if (tp->path > cut) {
-                    done = 1;
-                    break;
-                }
-                batch_push(kept, tp);
-                if (kept->count >= target && cut == UINT64_MAX)
-                    cut = tp->path;
+            uint32_t take = b->count;
+            if (take > 0 && kept->count + take >= target) {
+                uint64_t cut = b->items[target - kept->count - 1].path;
+                take = target - kept->count;
+                while (take < b->count && b->items[take].path == cut)
+                    take++;
+                *emitted = cut + 1;
+                done = 1;
             }
+            if (!traced_list_take(kept, b, take))
+                status = PHOS_ERROR_OUT_OF_MEMORY;
+            if (status != PHOS_OK)
+                break;
         }
-        if (kept->out_of_memory)
-            status = PHOS_ERROR_OUT_OF_MEMORY;
         if (progress)
             atomic_store(&progress->stored, stored_before + kept->count);
-        if (status != PHOS_OK)
+        if (status != PHOS_OK || done)
             break;
-        if (cut != UINT64_MAX) {
-            *emitted = cut + 1;
-            done = 1;
-        } else {
-            next = w.end_path;
-            *emitted = next;
-            if (next >= ps->max_emitted)
-                done = 1; /* photons escape or are absorbed: keep what there is */
-            /* The yield is judged at fixed path counts (1 M, 2 M, 4 M, ...),
-             * not at wave ends, which depend on the thread count. */
-            while (map != MAP_RADIANCE_SITES && !done && next >= checkpoint) {
-                uint32_t before = kept->count;
-                while (before > 0 && kept->items[before - 1].path >= checkpoint)
-                    before--;
-                if (caustic_yield_hopeless(checkpoint, before, target, ps->max_emitted)) {
-                    kept->count = before;
-                    *emitted = checkpoint;
-                    done = 1;
-                }
-                checkpoint *= 2;
+        next = w.end_path;
+        *emitted = next;
+        if (next >= ps->max_emitted)
+            done = 1; /* photons escape or are absorbed: keep what there is */
+        /* The yield is judged at fixed path counts (1 M, 2 M, 4 M, ...),
+         * not at wave ends, which depend on the thread count. */
+        while (map != MAP_RADIANCE_SITES && !done && next >= checkpoint) {
+            uint32_t before = traced_list_count_before(kept, checkpoint);
+            if (caustic_yield_hopeless(checkpoint, before, target, ps->max_emitted)) {
+                traced_list_truncate(kept, before);
+                *emitted = checkpoint;
+                done = 1;
             }
+            checkpoint *= 2;
         }
     }
     for (uint32_t i = 0; i < batches_per_wave; i++)
@@ -324,80 +409,70 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
 
 /* Packing traced photons into 20-byte records (photon_make: frexp, acos,
  * atan2 and the normal's octahedral search, some 100 ns each) runs on
- * every thread, in chunks of this many, each into its own slots. */
-#define ENCODE_CHUNK 16384u
-
+ * every thread, a kept batch at a time, each into its own slots of the
+ * map. */
 typedef struct encode_job {
-    const batch *kept;
+    const traced_list *kept;
     float scale;
     uint16_t flags;
-    const uint32_t *first_out; /* per chunk: its first slot in out */
+    const uint32_t *first_out; /* per part: its first slot in out */
     photon *out;
+    atomic_int not_finite;     /* a photon's position was not finite */
 } encode_job;
 
-static void encode_chunk(void *ctx, uint32_t item, uint32_t thread)
+static void encode_part(void *ctx, uint32_t item, uint32_t thread)
 {
     (void)thread;
     const encode_job *job = ctx;
-    uint32_t begin = item * ENCODE_CHUNK, end = begin + ENCODE_CHUNK;
-    if (end > job->kept->count)
-        end = job->kept->count;
+    const batch *b = &job->kept->parts[item];
     photon *out = job->out + job->first_out[item];
-    for (uint32_t i = begin; i < end; i++) {
-        const traced_photon *tp = &job->kept->items[i];
-        if ((tp->flags & job->flags) == job->flags)
-            *out++ = photon_make(tp->position, v3_scale(tp->power, job->scale), tp->direction, tp->normal,
-                                 tp->flags);
+    for (uint32_t i = 0; i < b->count; i++) {
+        const traced_photon *tp = &b->items[i];
+        if ((tp->flags & job->flags) != job->flags)
+            continue;
+        /* A map never holds a position that is not finite (photon_map_append's rule). */
+        if (!v3_is_finite(tp->position))
+            atomic_store(&job->not_finite, 1);
+        *out++ = photon_make(tp->position, v3_scale(tp->power, job->scale), tp->direction, tp->normal, tp->flags);
     }
 }
 
-/* Appends the kept photons (those with all of `flags`) scaled by
- * `scale`, packed into 20-byte records on `threads` threads, in their
- * order. */
-static phos_status append_photons(photon_map *m, const batch *kept, float scale, uint16_t flags, uint32_t threads)
+/* Appends the kept photons (all, or those flagged PHOTON_CAUSTIC: `flags`)
+ * scaled by `scale`, packed into 20-byte records on `threads` threads,
+ * in their order. */
+static phos_status append_photons(photon_map *m, const traced_list *kept, float scale, uint16_t flags,
+                                  uint32_t threads)
 {
-    uint32_t chunks = (kept->count + ENCODE_CHUNK - 1) / ENCODE_CHUNK;
-    if (chunks == 0)
+    if (kept->part_count == 0)
         return PHOS_OK;
-    uint32_t *first_out = malloc(sizeof(uint32_t) * chunks);
+    uint32_t *first_out = malloc(sizeof(uint32_t) * kept->part_count);
     if (!first_out)
         return PHOS_ERROR_OUT_OF_MEMORY;
     uint32_t total = 0;
-    for (uint32_t c = 0; c < chunks; c++) {
-        first_out[c] = total;
-        uint32_t end = (c + 1) * ENCODE_CHUNK < kept->count ? (c + 1) * ENCODE_CHUNK : kept->count;
-        for (uint32_t i = c * ENCODE_CHUNK; i < end; i++)
-            total += (kept->items[i].flags & flags) == flags;
+    for (uint32_t i = 0; i < kept->part_count; i++) {
+        first_out[i] = total;
+        total += flags == PHOTON_CAUSTIC ? kept->parts[i].caustic : kept->parts[i].count;
     }
-    photon *out = malloc(sizeof(photon) * (total ? total : 1));
-    phos_status st = out ? PHOS_OK : PHOS_ERROR_OUT_OF_MEMORY;
-    if (st == PHOS_OK) {
-        encode_job job = {kept, scale, flags, first_out, out};
-        parallel_for(chunks, threads, encode_chunk, &job, NULL);
-        if (!photon_map_append(m, out, total))
-            st = PHOS_ERROR_OUT_OF_MEMORY;
+    phos_status st = PHOS_OK;
+    photon *out = total ? photon_map_extend(m, total) : NULL;
+    if (total && !out) {
+        st = PHOS_ERROR_OUT_OF_MEMORY;
+    } else if (total) {
+        encode_job job = {kept, scale, flags, first_out, out, 0};
+        parallel_for(kept->part_count, threads, encode_part, &job, NULL);
+        if (atomic_load(&job.not_finite))
+            st = PHOS_ERROR_INTERNAL; /* a hit point off every finite scene */
     }
-    free(out);
     free(first_out);
     return st;
 }
 
 /* Scales by 1/emitted and fills the map. */
-static phos_status fill_map(photon_map *m, const batch *kept, uint64_t emitted, uint32_t threads)
+static phos_status fill_map(photon_map *m, const traced_list *kept, uint64_t emitted, uint32_t threads)
 {
     if (kept->count == 0)
         return PHOS_OK;
-    if (!photon_map_reserve(m, kept->count))
-        return PHOS_ERROR_OUT_OF_MEMORY;
     return append_photons(m, kept, 1.0f / (float)emitted, 0, threads);
-}
-
-static uint32_t count_caustic(const batch *kept)
-{
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < kept->count; i++)
-        n += (kept->items[i].flags & PHOTON_CAUSTIC) != 0;
-    return n;
 }
 
 /* The caustic map from two independent estimates of the same caustic
@@ -408,8 +483,8 @@ static uint32_t count_caustic(const batch *kept)
  * n_g/(n_g + n_c) weighs each set by its count, which is its inverse
  * variance where the two sets' photons carry similar power, and gives
  * every photon the same share of the map's power on average. */
-static phos_status fill_caustic_map(photon_map *m, const batch *global, uint64_t global_emitted, uint32_t reused,
-                                    const batch *own, uint64_t own_emitted, uint32_t threads)
+static phos_status fill_caustic_map(photon_map *m, const traced_list *global, uint64_t global_emitted,
+                                    uint32_t reused, const traced_list *own, uint64_t own_emitted, uint32_t threads)
 {
     uint32_t n = reused + own->count;
     if (n == 0)
@@ -497,7 +572,7 @@ static phos_status trace_radiance_sites(const scene *s, const photon_trace_setti
                                         photon_maps *out, uint32_t n, atomic_int *cancel,
                                         photon_trace_progress *progress)
 {
-    batch kept;
+    traced_list kept;
     uint64_t emitted;
     phos_status st = trace_map(s, ps, MAP_RADIANCE_SITES, aim, n, &kept, &emitted, cancel, progress, out->global.count);
     if (st == PHOS_OK && kept.count > 0) {
@@ -505,17 +580,18 @@ static phos_status trace_radiance_sites(const scene *s, const photon_trace_setti
         if (!out->radiance_sites) {
             st = PHOS_ERROR_OUT_OF_MEMORY;
         } else {
-            for (uint32_t i = 0; i < kept.count; i++) {
-                const traced_photon *tp = &kept.items[i];
-                float *site = out->radiance_sites + 9 * i;
-                memcpy(site, &tp->position, sizeof(vec3));
-                memcpy(site + 3, &tp->normal, sizeof(vec3));
-                memcpy(site + 6, &tp->albedo, sizeof(vec3));
-            }
+            float *site = out->radiance_sites;
+            for (uint32_t i = 0; i < kept.part_count; i++)
+                for (uint32_t j = 0; j < kept.parts[i].count; j++, site += 9) {
+                    const traced_photon *tp = &kept.parts[i].items[j];
+                    memcpy(site, &tp->position, sizeof(vec3));
+                    memcpy(site + 3, &tp->normal, sizeof(vec3));
+                    memcpy(site + 6, &tp->albedo, sizeof(vec3));
+                }
             out->radiance_site_count = kept.count;
         }
     }
-    free(kept.items);
+    traced_list_free(&kept);
     return st;
 }
 
@@ -530,6 +606,7 @@ typedef struct pilot {
     const photon_trace_settings *ps;
     const projection_map *pm;
     const photon_importance *imp;
+    uint32_t map;                /* MAP_GLOBAL or MAP_CAUSTIC: the photons a pilot stores */
     uint32_t cells;              /* items below this are cells */
     const uint32_t *item_group;  /* the group of each item */
     const uint32_t *group_pilots;/* pilot paths through each group's cells or cones */
@@ -551,7 +628,8 @@ static void pilot_item(void *ctx, uint32_t item, uint32_t thread)
     for (uint32_t i = 0; i < pilots; i++) {
         uint64_t path = is_cone ? CONE_PILOT_BASE + (uint64_t)(item - p->cells) * CONE_PILOT_PHOTONS + i
                                 : (uint64_t)item * PILOT_PHOTONS + i;
-        sampler smp = sampler_for_index(p->ps->sampler, p->ps->seed, MAP_PILOT, path);
+        sampler smp = sampler_for_index(p->ps->sampler, p->ps->seed,
+                                        p->map == MAP_CAUSTIC ? MAP_CAUSTIC_PILOT : MAP_PILOT, path);
         vec3 o, d;
         if (is_cone) {
             if (!projection_map_cone_ray(p->s, p->pm, g, k, sampler_1d(&smp, DIM_EMIT), sampler_2d(&smp, DIM_EMIT + 1),
@@ -562,7 +640,7 @@ static void pilot_item(void *ctx, uint32_t item, uint32_t thread)
                                     &o, &d);
         }
         b.count = 0;
-        trace_from(p->s, p->ps, MAP_GLOBAL, &smp, o, d, v3s(1.0f), path, &b);
+        trace_from(p->s, p->ps, p->map, &smp, o, d, v3s(1.0f), path, &b);
         for (uint32_t j = 0; j < b.count; j++)
             if (photon_importance_marked(p->imp, b.items[j].position, b.items[j].normal)) {
                 useful++;
@@ -574,9 +652,10 @@ static void pilot_item(void *ctx, uint32_t item, uint32_t thread)
 }
 
 /* Weighs the map's cells and (where a lamp has more than one) cones by
- * pilots; *weighed: any were. */
+ * pilots, each by the share of its paths that store a photon of `map`
+ * where the camera reads; *weighed: any were. */
 static phos_status weigh_by_pilots(const scene *s, const photon_trace_settings *ps, projection_map *aim,
-                                   const photon_importance *imp, atomic_int *cancel, int *weighed)
+                                   const photon_importance *imp, uint32_t map, atomic_int *cancel, int *weighed)
 {
     uint32_t cells = 0, cones = 0;
     for (uint32_t g = 0; g < aim->group_count; g++) {
@@ -598,7 +677,7 @@ static phos_status weigh_by_pilots(const scene *s, const photon_trace_settings *
             for (uint32_t k = 0; !pg->all && k < pg->count; k++)
                 item_group[base + pg->first + k] = g;
         }
-        pilot p = {s, ps, aim, imp, cells, item_group, group_pilots, weights};
+        pilot p = {s, ps, aim, imp, map, cells, item_group, group_pilots, weights};
         if (!parallel_for(items, parallel_thread_count(ps->threads), pilot_item, &p, cancel))
             st = PHOS_ERROR_CANCELLED;
         else if (!projection_map_set_weights(aim, s, weights) || !projection_map_set_cone_weights(aim, weights + cells))
@@ -654,11 +733,69 @@ static phos_status aim_global(const scene *s, const photon_trace_settings *ps, p
         return PHOS_OK;
     }
     const photon_importance *imp = view_pilot_get(view, s, ps);
-    phos_status st = imp ? weigh_by_pilots(s, ps, aim, imp, cancel, at_view) : PHOS_ERROR_OUT_OF_MEMORY;
+    phos_status st = imp ? weigh_by_pilots(s, ps, aim, imp, MAP_GLOBAL, cancel, at_view) : PHOS_ERROR_OUT_OF_MEMORY;
     if (st != PHOS_OK)
         projection_map_free(aim);
     else
         *aimed = 1;
+    return st;
+}
+
+/* The caustic pass's aim (docs/algorithms.md §3.1): every light's cells
+ * or cones toward the objects that scatter caustics (projection_map.h);
+ * with a camera, pilot photons weigh a sun's cells, and the cones of a
+ * lamp that reaches several such objects, by the share of their paths
+ * that store a caustic photon where the camera reads. Most of a sun's
+ * paths through an object's bounding sphere miss the object, or pass it
+ * and land unscattered (86 % through a metal ring's), and most caustic
+ * photons of a close-up land out of view: neither is then traced much.
+ * *at_view: the camera weighed it. */
+static phos_status aim_caustic(const scene *s, const photon_trace_settings *ps, projection_map *aim, view_pilot *view,
+                               atomic_int *cancel, int *at_view)
+{
+    *at_view = 0;
+    if (!projection_map_build(aim, s, ps->caustic_roughness))
+        return PHOS_ERROR_OUT_OF_MEMORY;
+    int weighable = 0;
+    for (uint32_t g = 0; g < aim->group_count; g++) {
+        const projection_group *pg = &aim->groups[g];
+        weighable |= !pg->all && pg->count > (pg->distant ? 0u : 1u);
+    }
+    if (ps->unaimed || !s->has_camera || !weighable)
+        return PHOS_OK;
+    const photon_importance *imp = view_pilot_get(view, s, ps);
+    phos_status st = imp ? weigh_by_pilots(s, ps, aim, imp, MAP_CAUSTIC, cancel, at_view) : PHOS_ERROR_OUT_OF_MEMORY;
+    if (st != PHOS_OK)
+        projection_map_free(aim);
+    return st;
+}
+
+phos_status photon_caustic_aim_build(const scene *s, const photon_trace_settings *ps, projection_map *aim,
+                                     atomic_int *cancel)
+{
+    view_pilot view = {0};
+    int at_view;
+    phos_status st = aim_caustic(s, ps, aim, &view, cancel, &at_view);
+    if (view.state == 1)
+        photon_importance_free(&view.imp);
+    return st;
+}
+
+/* The caustic pass's own photons (target of them, aimed by `aim`) into
+ * out's caustic map, after `reused` caustic photons of the global pass. */
+static phos_status trace_caustic_pass(const scene *s, const photon_trace_settings *ps, const projection_map *aim,
+                                      uint32_t target, photon_maps *out, const traced_list *global, uint32_t reused,
+                                      atomic_int *cancel, photon_trace_progress *progress)
+{
+    traced_list own;
+    phos_status st = trace_map(s, ps, MAP_CAUSTIC, aim, target, &own, &out->caustic_emitted, cancel, progress,
+                               out->global.count + reused);
+    if (st == PHOS_OK) {
+        st = fill_caustic_map(&out->caustic, global, out->global_emitted, reused, &own, out->caustic_emitted,
+                              parallel_thread_count(ps->threads));
+        out->caustic_reused = reused;
+    }
+    traced_list_free(&own);
     return st;
 }
 
@@ -667,31 +804,39 @@ static phos_status aim_global(const scene *s, const photon_trace_settings *ps, p
  * surface has a delta lobe the map can never fill, and every path traced
  * for it would be wasted. The global pass's caustic-flagged photons
  * already hold part of the map; the caustic pass traces only the rest,
- * aimed at the objects that scatter delta (projection_map.h). */
+ * aimed at the objects that scatter delta (aim_caustic). */
 static phos_status trace_caustic_map(const scene *s, const photon_trace_settings *ps, photon_maps *out,
-                                     const batch *global, atomic_int *cancel, photon_trace_progress *progress)
+                                     const traced_list *global, view_pilot *view, atomic_int *cancel,
+                                     photon_trace_progress *progress)
 {
     if (ps->caustic_photons == 0 || !scene_can_scatter_caustic(s, ps->caustic_roughness))
         return PHOS_OK;
-    uint32_t reused = count_caustic(global);
+    uint32_t reused = traced_list_caustic(global);
     uint32_t target = reused < ps->caustic_photons ? ps->caustic_photons - reused : 0;
     if (progress)
         atomic_store(&progress->map, PHOS_MAP_CAUSTIC);
-    batch own;
-    memset(&own, 0, sizeof(own));
     projection_map aim;
-    if (target && !projection_map_build(&aim, s, ps->caustic_roughness))
-        return PHOS_ERROR_OUT_OF_MEMORY;
-    phos_status st = trace_map(s, ps, MAP_CAUSTIC, target ? &aim : NULL, target, &own, &out->caustic_emitted, cancel,
-                               progress, out->global.count + reused);
+    int at_view = 0;
+    phos_status st = target ? aim_caustic(s, ps, &aim, view, cancel, &at_view) : PHOS_OK;
+    if (st != PHOS_OK)
+        return st;
+    st = trace_caustic_pass(s, ps, target ? &aim : NULL, target, out, global, reused, cancel, progress);
+    out->aimed_at_view |= at_view;
     if (target)
         projection_map_free(&aim);
-    if (st == PHOS_OK) {
-        st = fill_caustic_map(&out->caustic, global, out->global_emitted, reused, &own, out->caustic_emitted,
-                              parallel_thread_count(ps->threads));
-        out->caustic_reused = reused;
-    }
-    free(own.items);
+    return st;
+}
+
+phos_status photon_maps_trace_caustic(const scene *s, const photon_trace_settings *ps, const projection_map *aim,
+                                      photon_maps *out, atomic_int *cancel)
+{
+    if (ps->caustic_photons == 0 || !scene_can_scatter_caustic(s, ps->caustic_roughness))
+        return PHOS_OK;
+    traced_list none;
+    memset(&none, 0, sizeof(none));
+    phos_status st = trace_caustic_pass(s, ps, aim, ps->caustic_photons, out, &none, 0, cancel, NULL);
+    if (st == PHOS_OK)
+        photon_maps_note_short(out, s, ps);
     return st;
 }
 
@@ -719,7 +864,7 @@ static phos_status global_target(const scene *s, const photon_trace_settings *ps
 phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, photon_maps *out, atomic_int *cancel,
                               photon_trace_progress *progress)
 {
-    batch kept;
+    traced_list kept;
     if (progress)
         atomic_store(&progress->map, PHOS_MAP_GLOBAL);
     projection_map global_aim;
@@ -729,10 +874,11 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     phos_status st = global_target(s, ps, &view, &target);
     if (st == PHOS_OK && target && !ps->unaimed)
         st = aim_global(s, ps, &global_aim, &aimed, &at_view, &view, cancel);
-    if (view.state == 1)
-        photon_importance_free(&view.imp);
-    if (st != PHOS_OK)
+    if (st != PHOS_OK) {
+        if (view.state == 1)
+            photon_importance_free(&view.imp);
         return st;
+    }
     const projection_map *ga = aimed ? &global_aim : NULL;
     st = trace_map(s, ps, MAP_GLOBAL, ga, target, &kept, &out->global_emitted, cancel, progress, 0);
     if (st == PHOS_OK)
@@ -747,8 +893,10 @@ phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, p
     if (aimed)
         projection_map_free(&global_aim);
     if (st == PHOS_OK)
-        st = trace_caustic_map(s, ps, out, &kept, cancel, progress);
-    free(kept.items);
+        st = trace_caustic_map(s, ps, out, &kept, &view, cancel, progress);
+    if (view.state == 1)
+        photon_importance_free(&view.imp);
+    traced_list_free(&kept);
     if (st == PHOS_OK)
         photon_maps_note_short(out, s, ps);
     return st;

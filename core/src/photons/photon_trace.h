@@ -11,6 +11,7 @@
 
 #include "photons/kdtree.h"
 #include "photons/photon.h"
+#include "photons/projection_map.h"
 #include "scene/scene.h"
 
 typedef struct photon_maps {
@@ -52,7 +53,8 @@ typedef struct photon_trace_settings {
     float max_radius;          /* search radius cap, scene units */
     float caustic_roughness;   /* glossy closures smoother than this carry caustic paths and store no
                                   photons (bsdf.h, closure_scatters_caustic) */
-    uint32_t unaimed;          /* 1: the global map's lights emit over their whole distribution (the
+    uint32_t unaimed;          /* 1: the global map's lights emit over their whole distribution and the
+                                  caustic map's cells and cones are not weighed by the view (the
                                   tests' reference for aimed maps); 0 in every render */
     uint32_t gathers_only;     /* 1: the render reads the global map only at the hits of gathers
                                   from surfaces (render_global_read_by_gathers), so a map that no
@@ -93,6 +95,15 @@ void photon_maps_free(photon_maps *m);
 phos_status photon_maps_trace(const scene *s, const photon_trace_settings *ps, photon_maps *out,
                               atomic_int *cancel, photon_trace_progress *progress);
 
+/* The caustic map alone, traced with an aim built once by
+ * photon_caustic_aim_build for the scene and settings: progressive
+ * caustics trace a map every sample (progressive_caustics.h), and their
+ * aim, with its pilot photons, is the same for all. ps->global_photons is
+ * not read. Statuses as photon_maps_trace. */
+phos_status photon_caustic_aim_build(const scene *s, const photon_trace_settings *ps, projection_map *aim,
+                                     atomic_int *cancel);
+phos_status photon_maps_trace_caustic(const scene *s, const photon_trace_settings *ps, const projection_map *aim,
+                                      photon_maps *out, atomic_int *cancel);
 /* Sets m->short_maps from its maps' counts against the settings (traced
  * or read from a file alike). */
 void photon_maps_note_short(photon_maps *m, const scene *s, const photon_trace_settings *ps);

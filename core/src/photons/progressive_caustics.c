@@ -30,6 +30,9 @@ void progressive_caustics_free(progressive_caustics *pc)
 {
     photon_maps_free(&pc->maps[0]);
     photon_maps_free(&pc->maps[1]);
+    if (pc->aim_built)
+        projection_map_free(&pc->aim);
+    pc->aim_built = 0;
     pc->current = pc->previous = NULL;
 }
 
@@ -49,9 +52,17 @@ static phos_status trace_sample_map(progressive_caustics *pc, const scene *s, ui
 {
     photon_maps_free(m);
     photon_maps_init(m);
+    /* The aim and its pilots depend on the scene and the render's seed
+     * alone: built with the first map, read by every one. */
+    if (!pc->aim_built) {
+        phos_status st = photon_caustic_aim_build(s, &pc->trace, &pc->aim, cancel);
+        if (st != PHOS_OK)
+            return st;
+        pc->aim_built = 1;
+    }
     photon_trace_settings ps = pc->trace;
     ps.seed = hash_combine(hash_combine(pc->trace.seed, 0x50504d31u /* "PPM1" */), i);
-    phos_status st = photon_maps_trace(s, &ps, m, cancel, NULL);
+    phos_status st = photon_maps_trace_caustic(s, &ps, &pc->aim, m, cancel);
     if (st == PHOS_OK)
         st = photon_maps_build(m, ps.threads, cancel);
     if (st == PHOS_OK)

@@ -36,6 +36,8 @@ typedef struct progressive_caustics {
     float max_radius;             /* R_0 where fewer than k lie within it, scene units */
     const struct phos_scene *clip; /* the scene whose walls cut the discs (radiance_estimate.h) */
     photon_trace_settings trace;  /* for every sample's map: no global map, its own count */
+    projection_map aim;           /* every sample's caustic photons are aimed by it (photon_trace.h) */
+    int aim_built;
     uint32_t sample;              /* the sample whose map is current; UINT32_MAX before the first */
     uint64_t photons_traced;      /* stored over all samples so far, for the progress line */
 } progressive_caustics;

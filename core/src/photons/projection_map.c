@@ -707,6 +707,9 @@ int projection_map_build(projection_map *pm, const scene *s, float max_roughness
             weight[g] = tab->groups[g].power;
             pm->groups[g].all = 1;
         }
+        /* A local group's pick weight, kept for when pilots reweigh the
+         * cells (rebuild_pick). */
+        pm->groups[g].power = weight[g];
         pm->group_count++;
         sent += weight[g];
         total += tab->groups[g].power;
