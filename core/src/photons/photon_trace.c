@@ -282,10 +282,11 @@ static void trace_batch(void *ctx, uint32_t item, uint32_t thread)
     uint64_t end = begin + w->paths_per_batch;
     if (end > w->end_path)
         end = w->end_path;
-    /* Filled as a copy on this thread's stack: the wave's batches lie side
-     * by side, and two threads pushing into neighbours wrote the same
-     * cache line at every photon (a quarter of the tracing's time on two
-     * threads went to that line's stalls). */
+    /* Filled as a copy on this thread's stack, and stored back: the wave's
+     * batches lie side by side, and two threads pushing into neighbours
+     * wrote the same cache line at every photon (two threads took 10 %
+     * more CPU time than one; docs/benchmarks.md, "Where photon tracing's
+     * time goes"). */
     batch b = w->batches[item];
     for (uint64_t i = begin; i < end; i++) {
         if ((i & 255u) == 0 && atomic_load_explicit(w->cancel, memory_order_relaxed))
