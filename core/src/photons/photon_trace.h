@@ -31,8 +31,9 @@ typedef struct photon_maps {
     float *radiance_sites;
     uint32_t radiance_site_count;
     /* The global map's photons from suns, the world or lamps reaching
-     * several objects were aimed at what the scene's camera reads
-     * (photon_importance.h): an unbiased map for any view, but densest
+     * several objects, or the caustic map's from suns or lamps reaching
+     * several specular objects, were aimed at what the scene's camera
+     * reads (photon_importance.h): unbiased maps for any view, but densest
      * where that camera looked. */
     int aimed_at_view;
     /* Bit (1 << enum phos_photon_map) of each map traced that ended short

@@ -54,6 +54,6 @@ const char *shared_maps_mismatch(const shared_maps *m, const scene *s, const pho
         return "they hold no radiance photons (made for another Indirect Light than final gathering)";
     /* Byte equality: the same description puts every pilot ray where it was. */
     if (!any_view && m->maps.aimed_at_view && memcmp(&m->camera, &s->camera, sizeof(s->camera)) != 0)
-        return "their global photons were aimed at, or left out for, another view";
+        return "their photons were aimed at, or left out for, another view";
     return NULL;
 }

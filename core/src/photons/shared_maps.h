@@ -22,7 +22,7 @@ struct phos_photon_maps {
     uint64_t scene_id, scene_version;  /* the scene and its version without the camera (scene.h) */
     uint32_t settings[PHOTON_TRACE_SETTING_WORDS];
     int has_radiance;                  /* radiance photons precomputed (final gathering) */
-    phos_camera_desc camera;           /* the view the global map was aimed at, if maps.aimed_at_view */
+    phos_camera_desc camera;           /* the view the maps were aimed at, if maps.aimed_at_view */
 };
 
 typedef struct phos_photon_maps shared_maps;
