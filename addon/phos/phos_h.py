@@ -1068,7 +1068,7 @@ RENDER_SETTINGS = (
         label='Progressive',
         description='A new caustic map for every sample, read within a radius that shrinks from sample to sample, so caustics converge to the exact image as samples grow instead of staying blurred by a fixed number of nearest photons'),
     RenderSetting(
-        name='progressive_caustic_photons', ctype='uint32_t', default=20000, min=1, max=67108864,
+        name='progressive_caustic_photons', ctype='uint32_t', default=10000, min=1, max=67108864,
         user=True, prop='progressive_caustic_photons', kind='NUMBER', enum=None, soft_max=1000000,
         label='Photons per Sample',
         description='Caustic photons stored for each sample when caustics are progressive'),

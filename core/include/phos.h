@@ -966,10 +966,10 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
          "A new caustic map for every sample, read within a radius that shrinks from sample to "  \
          "sample, so caustics converge to the exact image as samples grow instead of staying "    \
          "blurred by a fixed number of nearest photons")                                          \
-    /* 20 000 photons a sample, 4 in the first radius, α = 0.5: measured on the               \
-     * metal ring, its cusp close up and the glass sphere (docs/benchmarks.md,                 \
+    /* 10 000 photons a sample, 4 in the first radius, α = 0.5: by error × time on           \
+     * the metal ring and the glass sphere, in full and close up (docs/benchmarks.md,          \
      * "The ring's cusp close up"). */                                                         \
-    USER(uint32_t, progressive_caustic_photons, 20000, 1, 1u << 26, progressive_caustic_photons,  \
+    USER(uint32_t, progressive_caustic_photons, 10000, 1, 1u << 26, progressive_caustic_photons,  \
          NUMBER, 1000000, "Photons per Sample",                                                   \
          "Caustic photons stored for each sample when caustics are progressive")                  \
     USER(uint32_t, progressive_first_photons, 4, 1, 10000, progressive_first_photons, NUMBER,     \
