@@ -233,6 +233,29 @@ def look_at_rotation(location, target, up_axis="Y"):
     return d.to_track_quat("-Z", up_axis).to_euler()
 
 
+# The benchmark's reference for a caustic seen close up
+# (scenes/metal_ring_cusp.py, scenes/glass_sphere_focus.py): Phos with
+# consistent methods only (bench/quality.py), sharper than its default
+# Phos recipe because there the fixed estimate's blur is what is measured:
+# 2 photons in the first radius instead of 4 and alpha 0.3, 4 chunks of
+# 4096 samples (docs/benchmarks.md, "The ring's cusp close up"). Cycles
+# finds such caustics only where a path happens to hit the light through
+# the specular object, and not in any reasonable time.
+CLOSE_UP_REFERENCE = {
+    "engine": "PHOS", "chunks": 4, "chunk_samples": 4096,
+    "settings": {"use_progressive_caustics": True, "photon_view": "PATH_TRACED", "irradiance_cache": "OFF",
+                 "progressive_caustic_photons": 20000, "progressive_first_photons": 2, "progressive_alpha": 0.3,
+                 "caustic_photons": 4000000, "caustic_estimate_photons": 20, "final_gather_rays": 1},
+}
+
+
+def close_up(scene, lens_mm, target):
+    """The scene's camera, where it stands, with a longer lens aimed at target."""
+    scene.camera.data.lens = lens_mm
+    scene.camera.rotation_euler = look_at_rotation(scene.camera.location, target)
+    return scene
+
+
 def configure_cycles(scene, samples, max_bounces, seed=0, filter_width=1.5):
     """Cycles settings that make it an unbiased reference for Phos."""
     c = scene.cycles

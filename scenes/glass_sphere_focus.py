@@ -27,25 +27,11 @@ LENS_MM = 180.0
 # at about (0.38, -0.29, 0).
 FOCUS = (0.38, -0.29, 0.0)
 
-# The benchmark's reference (bench/quality.py), as scenes/metal_ring_cusp.py's:
-# Phos with consistent methods only, sharper than PHOS_REFERENCE_SETTINGS
-# because the fixed estimate's blur is what is measured here. Cycles finds
-# this caustic only where a path happens to hit the 2 cm lamp through the
-# glass.
-BENCH_REFERENCE = {
-    "engine": "PHOS", "chunks": 4, "chunk_samples": 4096,
-    "settings": {"use_progressive_caustics": True, "photon_view": "PATH_TRACED", "irradiance_cache": "OFF",
-                 "progressive_caustic_photons": 20000, "progressive_first_photons": 2, "progressive_alpha": 0.3,
-                 "caustic_photons": 4000000, "caustic_estimate_photons": 20, "final_gather_rays": 1},
-}
+BENCH_REFERENCE = _common.CLOSE_UP_REFERENCE
 
 
 def build(scene):
-    glass_sphere_caustic.build(scene)
-    camera = scene.camera
-    camera.data.lens = LENS_MM
-    camera.rotation_euler = _common.look_at_rotation(camera.location, FOCUS)
-    return scene
+    return _common.close_up(glass_sphere_caustic.build(scene), LENS_MM, FOCUS)
 
 
 if __name__ == "__main__":

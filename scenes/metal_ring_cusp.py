@@ -29,28 +29,11 @@ LENS_MM = 160.0
 # (azimuth 135° + 180°), rounded to the centimetre.
 CUSP = (0.35, -0.35, 0.0)
 
-# The benchmark's reference (bench/quality.py): Phos with consistent
-# methods only, as for the other caustic scenes, but sharper than
-# PHOS_REFERENCE_SETTINGS, since here the fixed estimate's blur is what is
-# measured: 2 photons in the first radius instead of 8 and α 0.3, so that
-# after 4096 samples its disc is about a twentieth of the fixed estimate's
-# (docs/benchmarks.md, "The ring's cusp close up"). Cycles finds this
-# caustic only through the 0.5° sun by way of the mirror, and not in any
-# reasonable time.
-BENCH_REFERENCE = {
-    "engine": "PHOS", "chunks": 4, "chunk_samples": 4096,
-    "settings": {"use_progressive_caustics": True, "photon_view": "PATH_TRACED", "irradiance_cache": "OFF",
-                 "progressive_caustic_photons": 20000, "progressive_first_photons": 2, "progressive_alpha": 0.3,
-                 "caustic_photons": 4000000, "caustic_estimate_photons": 20, "final_gather_rays": 1},
-}
+BENCH_REFERENCE = _common.CLOSE_UP_REFERENCE
 
 
 def build(scene):
-    metal_ring.build(scene)
-    camera = scene.camera
-    camera.data.lens = LENS_MM
-    camera.rotation_euler = _common.look_at_rotation(camera.location, CUSP)
-    return scene
+    return _common.close_up(metal_ring.build(scene), LENS_MM, CUSP)
 
 
 if __name__ == "__main__":
