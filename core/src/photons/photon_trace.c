@@ -433,7 +433,7 @@ typedef struct encode_job {
 static void encode_part(void *ctx, uint32_t item, uint32_t thread)
 {
     (void)thread;
-    const encode_job *job = ctx;
+    encode_job *job = ctx; /* not const: it raises not_finite */
     const batch *b = &job->kept->parts[item];
     photon *out = job->out + job->first_out[item];
     for (uint32_t i = 0; i < b->count; i++) {
