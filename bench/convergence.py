@@ -67,8 +67,6 @@ sys.path.insert(0, BENCH_DIR)
 import quality  # noqa: E402
 from quality import log  # noqa: E402
 
-sys.path.insert(0, os.path.join(quality.REPO_DIR, "tests", "blender"))
-import exrread  # noqa: E402  (multilayer EXR passes, numpy only)
 import _common  # noqa: E402  (scenes/, on sys.path through quality)
 
 SAMPLERS = ("RANDOM", "STRATIFIED", "HALTON", "SOBOL")
@@ -127,21 +125,12 @@ def setup(scene, module, args, integrator, samples, seed=0, **settings):
 
 def render_passes(scene, passes=()):
     """Render with the view layer's Phos passes `passes` (use_pass_<name>)
-    on; returns ({pass name: float64 (h, w, channels)}, seconds). Rows go
-    up, as in quality.render's images and the references."""
+    on and the other noise passes off; returns ({pass name: float64 (h, w,
+    channels)}, seconds) (quality.render_layers)."""
     vl = scene.view_layers[0]
     for name in ("sample_count", "noisy_image"):
         setattr(vl.phos, "use_pass_" + name, name in passes)
-    seconds = quality.timed_render(scene)
-    fmt = scene.render.image_settings
-    saved = (fmt.file_format, fmt.color_mode, fmt.color_depth)
-    with tempfile.TemporaryDirectory() as tmp:
-        path = os.path.join(tmp, "result.exr")
-        _common.set_multilayer_exr(fmt)
-        bpy.data.images["Render Result"].save_render(path, scene=scene)
-        layers = exrread.read_passes(path)
-    fmt.file_format, fmt.color_mode, fmt.color_depth = saved
-    return {k: v.astype(np.float64) for k, v in layers.items()}, seconds
+    return quality.render_layers(scene, passes)
 
 
 EMITTER_RADIANCE = 1.0   # a reference pixel above this (any channel) sees an emitter

@@ -33,6 +33,12 @@ Commands (each takes --scene NAME, a script in scenes/, and --resolution W H):
                 setting), Phos raw and through the Denoise node, Cycles
                 plain, with path guiding, and with OpenImageDenoise.
 
+--pass NAME (reference and sweep; Phos references only) scores one of
+Phos's light passes instead of the image: --pass Caustics compares the
+caustic estimate alone, where the image's other light (paths that find a
+caustic only after a second diffuse bounce, say) would bury it in its own
+noise. Its references are kept apart (<scene>_<W>x<H>_phos_ppm_caustics.npz).
+
 Relative MSE (Rousselle et al. 2011): the mean over pixels and RGB channels
 of (x - r)^2 / (r^2 + 0.01), minus the reference's own share, the same sum
 with the variance of the reference mean (from its chunks) in the numerator:
@@ -59,7 +65,9 @@ import numpy as np
 
 REPO_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO_DIR, "scenes"))
+sys.path.insert(0, os.path.join(REPO_DIR, "tests", "blender"))
 import _common  # noqa: E402
+import exrread  # noqa: E402  (multilayer EXR passes, numpy only)
 
 RELATIVE_EPSILON = 0.01      # the denominator's offset of relative MSE
 FULL_HD_PIXELS = 1920 * 1080  # Blender's default output size
@@ -68,6 +76,9 @@ PHOTON_SETTING_NAMES = ("global_photons", "caustic_photons", "global_estimate_ph
                         "caustic_estimate_photons", "final_gather_rays", "max_radius",
                         "caustic_sample_share", "irradiance_cache", "ic_accuracy", "ic_rays", "ic_min_spacing",
                         "ic_max_spacing")
+# The passes --pass scores: the light components whose sum is the image
+# (core/include/phos.h), by their names in Blender.
+LIGHT_PASSES = ("Emission", "Direct", "Specular", "Caustics", "Indirect")
 
 
 def log(msg):
@@ -127,8 +138,34 @@ def timed_render(scene):
     return clock.end - clock.start
 
 
-def render(scene):
-    """Render the scene; returns (linear RGB float64 array (h, w, 3), seconds)."""
+def render_layers(scene, phos_passes=()):
+    """Render with the view layer's Phos passes named in phos_passes (the
+    add-on's use_pass_<name>, e.g. "caustics") on, and every other of
+    them as it was; returns ({pass name: float64 (h, w, channels)}, seconds).
+    Rows go up, as in render's images and the references."""
+    vl = scene.view_layers[0]
+    for name in phos_passes:
+        setattr(vl.phos, "use_pass_" + name, True)
+    seconds = timed_render(scene)
+    fmt = scene.render.image_settings
+    saved = (fmt.file_format, fmt.color_mode, fmt.color_depth)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "result.exr")
+        _common.set_multilayer_exr(fmt)
+        bpy.data.images["Render Result"].save_render(path, scene=scene)
+        layers = exrread.read_passes(path)
+    fmt.file_format, fmt.color_mode, fmt.color_depth = saved
+    return {k: v.astype(np.float64) for k, v in layers.items()}, seconds
+
+
+def render(scene, pass_name=None):
+    """Render the scene; returns (linear RGB float64 array (h, w, 3), seconds):
+    the image, or the Phos light pass pass_name (LIGHT_PASSES)."""
+    if pass_name:
+        layers, seconds = render_layers(scene, (pass_name.lower(),))
+        rgb = layers[pass_name][..., :3]
+        _last_image[0] = rgb
+        return rgb, seconds
     seconds = timed_render(scene)
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "result.exr")
@@ -203,11 +240,14 @@ def reference_recipe(module, engine=None):
     return recipe
 
 
-def reference_path(ref_dir, scene_name, resolution, engine="CYCLES"):
+def reference_path(ref_dir, scene_name, resolution, engine="CYCLES", pass_name=None):
     """The cached reference's file. A Phos reference's name says it is the
     consistent one ("_phos_ppm"), so that one rendered by an older recipe
-    (fixed-k PHOTON) is never read as it."""
+    (fixed-k PHOTON) is never read as it; a pass's reference ends in the
+    pass's name."""
     suffix = "" if engine == "CYCLES" else "_" + engine.lower() + "_ppm"
+    if pass_name:
+        suffix += "_" + pass_name.lower()
     return os.path.join(ref_dir, "%s_%dx%d%s.npz" % (scene_name, resolution[0], resolution[1], suffix))
 
 
@@ -274,7 +314,8 @@ def command_reference(args):
     scene, module = build_scene(args.scene)
     recipe = reference_recipe(module, getattr(args, "reference_engine", None))
     engine = recipe["engine"]
-    path = reference_path(args.reference_dir, args.scene, args.resolution, engine)
+    check_pass(args, engine)
+    path = reference_path(args.reference_dir, args.scene, args.resolution, engine, args.pass_name)
     ref = Reference.load(path)
     chunks = recipe.get("chunks", args.chunks)
     chunk_samples = recipe.get("chunk_samples", args.chunk_samples)
@@ -284,10 +325,11 @@ def command_reference(args):
     for k in range(start, chunks):
         configure(scene, module, "PHOS" if engine == "PHOS" else "CYCLES", args.resolution, chunk_samples,
                   REFERENCE_SEED_BASE + k, "PHOTON", recipe.get("settings"))
-        image, seconds = render(scene)
+        image, seconds = render(scene, args.pass_name)
         if ref is None:
             meta = dict(machine_description(), scene=args.scene, resolution=list(args.resolution),
-                        engine=engine, settings=recipe.get("settings", {}), seed_base=REFERENCE_SEED_BASE,
+                        engine=engine, render_pass=args.pass_name or "Combined",
+                        settings=recipe.get("settings", {}), seed_base=REFERENCE_SEED_BASE,
                         max_bounces=module.MAX_BOUNCES)
             ref = Reference(np.zeros_like(image), np.zeros_like(image), 0, chunk_samples, meta)
         ref.total += image
@@ -303,10 +345,18 @@ def command_reference(args):
     log("%s: reference of %d samples in %s" % (args.scene, ref.chunks * ref.chunk_samples, path))
 
 
+def check_pass(args, engine):
+    """--pass scores a Phos light pass, which Cycles' references do not have."""
+    if args.pass_name and engine != "PHOS":
+        raise SystemExit("--pass %s needs a Phos reference (--reference-engine PHOS): Cycles renders no such pass"
+                         % args.pass_name)
+
+
 def load_reference(args):
     module = importlib.import_module(args.scene)
     engine = reference_recipe(module, getattr(args, "reference_engine", None))["engine"]
-    path = reference_path(args.reference_dir, args.scene, args.resolution, engine)
+    check_pass(args, engine)
+    path = reference_path(args.reference_dir, args.scene, args.resolution, engine, args.pass_name)
     ref = Reference.load(path)
     if ref is None:
         raise SystemExit("no reference %s: run the reference command first" % path)
@@ -363,11 +413,12 @@ def phos_measurement(scene, module, args, ref, settings, integrator):
     props = scene.phos.bl_rna.properties
     settings = dict({name: props[name].default for name in PHOTON_SETTING_NAMES}, **settings)
     configure(scene, module, "PHOS", args.resolution, samples, args.seed, integrator, settings)
-    image, seconds = render(scene)
+    image, seconds = render(scene, args.pass_name)
     tiles = phos_tile_seconds(seconds)
     fixed = max(seconds - tiles, 0.0)
     rel, own = ref.relative_mse(image)
-    row = {"scene": args.scene, "engine": "PHOS", "integrator": integrator, "samples": samples}
+    row = {"scene": args.scene, "engine": "PHOS", "integrator": integrator, "samples": samples,
+           "render_pass": args.pass_name or "Combined"}
     row.update(settings)
     tracing = phos_stage_seconds("PHOS_STAGE_TRACING_PHOTONS")
     kept = getattr(sys.modules.get(_common.ADDON_NAME + ".engine"), "last_render_seconds", {})
@@ -691,9 +742,14 @@ def main():
     p.add_argument("--integrator", default="PHOTON", choices=("PATH", "PHOTON"))
     p.add_argument("--integrators", nargs="+", default=["PHOTON", "PATH"])
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--pass", dest="pass_name", choices=LIGHT_PASSES, default=None,
+                   help="reference, sweep: score this Phos light pass instead of the image "
+                        "(a Phos reference only)")
     p.add_argument("--csv", default=os.path.join(REPO_DIR, "out", "bench", "quality.csv"))
     args = p.parse_args(_common.script_argv())
     args.resolution = tuple(args.resolution)
+    if args.pass_name and args.command not in ("reference", "sweep"):
+        raise SystemExit("--pass is for the reference and sweep commands: the others compare with Cycles")
     {"reference": command_reference, "sweep": command_sweep, "equal-time": command_equal_time,
      "bench": command_bench}[args.command](args)
 

@@ -57,3 +57,34 @@ def test_phos_reference_on_request_is_consistent(name):
     assert recipe["engine"] == "PHOS" and "chunks" not in recipe
     for setting, value in quality.CONSISTENT_PHOS_REFERENCE.items():
         assert recipe["settings"][setting] == value, setting
+
+
+def test_pass_reference_is_kept_apart():
+    """A reference of one light pass (--pass) is never read as the image's."""
+    path = quality.reference_path("/refs", "glass_sphere_focus", (128, 128), "PHOS", "Caustics")
+    assert path == "/refs/glass_sphere_focus_128x128_phos_ppm_caustics.npz"
+
+
+def test_pass_needs_a_phos_reference():
+    """Cycles has no Caustics pass: scoring one against a Cycles reference
+    is refused rather than compared with Cycles' whole image."""
+    args = types.SimpleNamespace(pass_name="Caustics")
+    with pytest.raises(SystemExit, match="Phos reference"):
+        quality.check_pass(args, "CYCLES")
+    quality.check_pass(args, "PHOS")
+    quality.check_pass(types.SimpleNamespace(pass_name=None), "CYCLES")
+
+
+def test_render_reads_the_caustics_pass():
+    """quality.render(scene, "Caustics") returns the caustic estimate alone:
+    bright where the glass sphere focuses the lamp, nowhere above the image,
+    and a small part of the image's light."""
+    scene, module = quality.build_scene("glass_sphere_caustic")
+    quality.configure(scene, module, "PHOS", (48, 48), 2, 0, "PHOTON",
+                      {"global_photons": 20000, "caustic_photons": 50000, "final_gather_rays": 4})
+    caustics, _ = quality.render(scene, "Caustics")
+    image, _ = quality.render(scene)
+    assert caustics.shape == image.shape == (48, 48, 3)
+    assert caustics.max() > 1.0  # the focus
+    assert (caustics <= image + 1e-4).all()
+    assert 0.0 < caustics.sum() < 0.5 * image.sum()
