@@ -31,8 +31,11 @@ import collections
 import csv
 import math
 
+# What a row measured, as against the settings it was measured at: every
+# other column is a setting (bench/quality.py phos_measurement).
 KEYS_NOT_SETTINGS = {"scene", "engine", "integrator", "seconds", "fixed_seconds", "full_hd_seconds",
-                     "relative_mse", "reference_share", "mean_ratio", "vs_cycles"}
+                     "relative_mse", "reference_share", "mean_ratio", "vs_cycles",
+                     "tracing_seconds", "tracing_share", "photon_yield"}
 
 
 def read_rows(paths):

@@ -2,7 +2,9 @@
 """The benchmark's references come only from methods that converge to the
 exact image as their samples grow (bench/quality.py): Cycles, or Phos with
 progressive caustics and path-traced gathers. A method is never its own
-reference: fixed-k PHOTON with more photons would keep its own blur."""
+reference: fixed-k PHOTON with more photons would keep its own blur.
+Also what the benchmark reads and reports from its renders: a light pass
+on its own (--pass), and the defaults' ranking over scenes."""
 
 import glob
 import importlib
@@ -88,3 +90,27 @@ def test_render_reads_the_caustics_pass():
     assert caustics.max() > 1.0  # the focus
     assert (caustics <= image + 1e-4).all()
     assert 0.0 < caustics.sum() < 0.5 * image.sum()
+
+
+def test_defaults_report_groups_rows_by_their_settings(tmp_path, capsys):
+    """bench/defaults_report.py ranks a setting measured on every scene.
+    The photon tracing time, its share and the photon yield are
+    measurements, which differ on every row: taken for settings, they left
+    no setting common to two scenes."""
+    import defaults_report
+    fields = ["scene", "engine", "integrator", "samples", "caustic_photons", "seconds", "fixed_seconds",
+              "full_hd_seconds", "relative_mse", "reference_share", "mean_ratio", "tracing_seconds",
+              "tracing_share", "photon_yield"]
+    rows = [["cornell_box", "PHOS", "PHOTON", 16, 800000, 2.0, 1.0, 9.0, 0.01, 0.0, 1.0, 0.4, 0.2, 0.9],
+            ["sunlit_room", "PHOS", "PHOTON", 16, 800000, 3.0, 1.5, 12.0, 0.02, 0.0, 1.0, 0.7, 0.23, 0.8]]
+    path = tmp_path / "sweep.csv"
+    path.write_text("\n".join(",".join(str(v) for v in r) for r in [fields] + rows) + "\n")
+    argv = sys.argv
+    sys.argv = ["defaults_report.py", str(path)]
+    try:
+        defaults_report.main()
+    finally:
+        sys.argv = argv
+    out = capsys.readouterr().out
+    assert "1 settings measured on all of them" in out
+    assert "caustic_photons=800000 samples=16" in out
