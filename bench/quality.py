@@ -148,13 +148,17 @@ def render_layers(scene, phos_passes=()):
         setattr(vl.phos, "use_pass_" + name, True)
     seconds = timed_render(scene)
     fmt = scene.render.image_settings
-    saved = (fmt.file_format, fmt.color_mode, fmt.color_depth)
+    # The output format as it was, media type first: from 5.0 it limits
+    # which file formats may be set.
+    saved = [(name, getattr(fmt, name)) for name in ("media_type", "file_format", "color_mode", "color_depth",
+                                                     "exr_codec", "use_exr_interleave") if hasattr(fmt, name)]
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "result.exr")
         _common.set_multilayer_exr(fmt)
         bpy.data.images["Render Result"].save_render(path, scene=scene)
         layers = exrread.read_passes(path)
-    fmt.file_format, fmt.color_mode, fmt.color_depth = saved
+    for name, value in saved:
+        setattr(fmt, name, value)
     return {k: v.astype(np.float64) for k, v in layers.items()}, seconds
 
 
