@@ -106,6 +106,19 @@ vec3 progressive_caustic_radiance(const progressive_caustics *pc, const bsdf *b,
     kdtree_filter f = {n, ESTIMATE_NORMAL_MIN_COS, 0, 1};
     float max_r2 = pc->max_radius * pc->max_radius;
     uint32_t capacity = q->k;
+    /* Where this sample's map holds no photon within the largest radius
+     * the estimate can take, R_0 · shrink ≤ max_radius · shrink, the
+     * estimate is zero whatever R_0 is: skip the search for R_0, which
+     * explores the whole maximum radius where the other map is sparse.
+     * The same filter and metric as the estimate's, so the answer is
+     * exactly the one the estimate would give. */
+    float reach = pc->max_radius * pc->shrink;
+    q->k = 1;
+    photon_map_knn_surface(pc->current, x, ESTIMATE_DISC_FLATTEN, &f, reach * reach, q);
+    if (q->found == 0) {
+        q->k = capacity;
+        return v3s(0.0f);
+    }
     q->k = pc->k < capacity ? pc->k : capacity;
     photon_map_knn_surface(pc->previous, x, ESTIMATE_DISC_FLATTEN, &f, max_r2, q);
     float r0 = q->found == q->k ? sqrtf(q->radius2) : pc->max_radius;
