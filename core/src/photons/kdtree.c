@@ -30,9 +30,14 @@
 #define KDTREE_PARALLEL_ITEMS_PER_THREAD 4u
 
 /* A subtree is at most 31 levels deep (n ≤ 2^31 − 1 in buckets of ≥ 1),
- * each level pushes at most one far child, and the class roots are pushed
+ * so a descent pushes at most 31 far children, and popped last in,
+ * first out the entries above any base lie at increasing levels: at most
+ * 31 of them. The nearest-first picks of a search's first phase
+ * (map_search) break that order, so they are made only while
+ * KDTREE_NEAREST_FIRST_ROOM entries are free; the 24 class roots come
  * first. */
-#define KDTREE_STACK_SIZE (PHOTON_CLASSES + 40)
+#define KDTREE_STACK_SIZE 256
+#define KDTREE_NEAREST_FIRST_ROOM 64
 
 uint32_t kdtree_depth(uint32_t n)
 {
@@ -562,6 +567,23 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
         /* Read field by field: the entry's slot is reused by the first
          * far child pushed, and a whole-struct copy went through memory
          * (a stalled store-to-load forward at every push). */
+        /* Until k photons are held the radius is the maximum, and the
+         * farthest of the first k found sets where it shrinks to: so take
+         * the nearest cell waiting, not the last pushed (best-first, as
+         * Arya & Mount's priority search), and the first k are near x.
+         * At k = 50 and a maximum radius five times the k-th distance
+         * this halved the photons put into the heap and taken out again
+         * (docs/algorithms.md §2.4). Once k are held, last in, first out. */
+        if (!visit && q->found < q->k && top > 1 && top <= KDTREE_STACK_SIZE - KDTREE_NEAREST_FIRST_ROOM) {
+            int nearest = top - 1;
+            for (int j = top - 2; j >= 0; j--)
+                nearest = stack[j].d2 < stack[nearest].d2 ? j : nearest;
+            if (nearest != top - 1) {
+                search_entry e = stack[nearest];
+                stack[nearest] = stack[top - 1];
+                stack[top - 1] = e;
+            }
+        }
         const search_entry *popped = &stack[--top];
         float cell_d2 = popped->d2;
         if (!(cell_d2 < r2))
