@@ -552,6 +552,52 @@ static void *thread_main(void *arg)
     return NULL;
 }
 
+/* Large k against brute force: a search that takes hundreds of photons
+ * before the heap is full visits many cells nearest-first, which breaks
+ * the stack's depth-first bound (kdtree.c); at k = 500 on 200 k photons it
+ * once overran a 64-entry stack. Every metric, a wide and an unbounded
+ * radius, on sets with room (uniform) and without (a box's faces). */
+static void test_large_k(void)
+{
+    static const uint32_t big_ks[] = {500, 3000};
+    static const float big_radii2[] = {0.3f * 0.3f, INFINITY};
+    static const int kinds[] = {SET_UNIFORM, SET_BOX};
+    const uint32_t n = 100000;
+    brute b;
+    brute_init(&b, n);
+    for (size_t si = 0; si < sizeof(kinds) / sizeof(kinds[0]); si++) {
+        photon *in = make_set(kinds[si], n, 4242);
+        photon_map m;
+        CHECK(build_map(&m, in, n));
+        int queries = 0, bad = 0;
+        uint32_t s = 17;
+        for (uint32_t ki = 0; ki < 2; ki++) {
+            kdtree_query q;
+            CHECK(kdtree_query_init(&q, big_ks[ki]));
+            for (uint32_t j = 0; j < 12; j++) {
+                vec3 x = query_point(m.photons, n, j, &s);
+                int mode = (int)(j % 3);
+                metric mt = {mode > 0, v3_normalize(v3(rnd(&s) - 0.5f, rnd(&s) - 0.5f, 1.0f)), 6.0f, NULL};
+                kdtree_filter f = {mt.normal, 0.2f, PHOTON_CAUSTIC, (uint16_t)(j & 1)};
+                if (mode == 2)
+                    mt.filter = &f;
+                brute_compute(&b, &mt, m.photons, n, x);
+                for (int ri = 0; ri < 2; ri++) {
+                    metric_knn(&mt, &m, x, big_radii2[ri], &q);
+                    queries++;
+                    bad += !knn_matches(&b, &q, big_ks[ki], big_radii2[ri]);
+                }
+            }
+            kdtree_query_free(&q);
+        }
+        CHECK_MSG(bad == 0, "%s, k = 500 and 3000: %d of %d queries differ from brute force", set_names[kinds[si]],
+                  bad, queries);
+        photon_map_free(&m);
+        free(in);
+    }
+    brute_free(&b);
+}
+
 static void test_threads(void)
 {
     const uint32_t n = 50000;
@@ -594,6 +640,7 @@ int main(void)
     test_small_sets(qk);
     test_large_sets(qk);
     test_map_classes(qk);
+    test_large_k();
     test_edge_cases();
     test_parallel_build();
     test_threads();
