@@ -103,7 +103,8 @@ def ensure_reference(args, scene_name):
     """quality.py's reference of the scene at --resolution, rendered or
     extended to --ref-chunks chunks if it holds fewer; returns it."""
     ns = argparse.Namespace(scene=scene_name, resolution=args.resolution, reference_dir=args.reference_dir,
-                            chunks=args.ref_chunks, chunk_samples=args.chunk_samples)
+                            chunks=args.ref_chunks, chunk_samples=args.chunk_samples,
+                            reference_engine=None, pass_name=None)  # the scene's own reference, whole image
     engine = quality.reference_recipe(importlib.import_module(scene_name))["engine"]
     ref = quality.Reference.load(quality.reference_path(args.reference_dir, scene_name, args.resolution, engine))
     if ref is None or ref.chunks < args.ref_chunks:

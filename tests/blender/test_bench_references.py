@@ -77,6 +77,21 @@ def test_pass_needs_a_phos_reference():
     quality.check_pass(types.SimpleNamespace(pass_name=None), "CYCLES")
 
 
+def test_convergence_reads_a_cached_reference(tmp_path):
+    """bench/convergence.py asks quality.py for its references with
+    arguments of its own: a cached one is read, not rendered again. (It
+    once lacked the --pass argument quality.py had gained, and `make
+    bench` stopped there.)"""
+    import numpy as np
+    import convergence
+    image = np.full((4, 4, 3), 0.5, dtype=np.float32)
+    path = quality.reference_path(str(tmp_path), "cornell_box", (4, 4))
+    quality.Reference(image * 2, image * image * 2, 2, 16, {"engine": "CYCLES"}).save(path)
+    args = types.SimpleNamespace(resolution=(4, 4), reference_dir=str(tmp_path), ref_chunks=2, chunk_samples=16)
+    ref = convergence.ensure_reference(args, "cornell_box")
+    assert ref.chunks == 2 and np.allclose(ref.mean, image)
+
+
 def test_render_reads_the_caustics_pass():
     """quality.render(scene, "Caustics") returns the caustic estimate alone:
     bright where the glass sphere focuses the lamp, nowhere above the image,
