@@ -217,9 +217,10 @@ static void test_radiance_photons_unbiased(void)
  * it by the projection map, about one in five does. With a diffuse board
  * between the lamp and the bead no aimed photon can reach it, and the
  * caustic pass gives up at the first checkpoint (1 M paths) instead of
- * running to its cap of 50 M, keeps the photons it has, and does so at the
- * same path whatever the thread count. */
-static void bead_maps(int blocked, photon_maps *a, photon_maps *b)
+ * running to its cap (10 paths a photon of its target: 2 M for 200 000;
+ * before that cap, the 50 M of the emission limit), keeps the photons it
+ * has, and does so at the same path whatever the thread count. */
+static void bead_maps(int blocked, uint32_t caustic, photon_maps *a, photon_maps *b)
 {
     phos_scene *s = phos_scene_create();
     uint32_t grey = test_add_diffuse(s, 0.5f, 0.5f, 0.5f);
@@ -235,7 +236,7 @@ static void bead_maps(int blocked, photon_maps *a, photon_maps *b)
     test_set_camera(s, 0, 0, 3.0f, 0.5f);
     CHECK(phos_scene_commit(s) == PHOS_OK);
     for (int t = 0; t < 2; t++) {
-        photon_trace_settings ps = trace_settings(1000, 50000, t ? 2u : 1u);
+        photon_trace_settings ps = trace_settings(1000, caustic, t ? 2u : 1u);
         photon_maps *m = t ? b : a;
         photon_maps_init(m);
         atomic_int cancel = 0;
@@ -251,15 +252,15 @@ static void bead_maps(int blocked, photon_maps *a, photon_maps *b)
 static void test_caustic_photons_aimed_at_a_bead(void)
 {
     photon_maps a, b;
-    bead_maps(0, &a, &b);
-    printf("  glass bead: %u caustic photons from %llu paths (cap 50 M)\n", a.caustic.count,
+    bead_maps(0, 50000, &a, &b);
+    printf("  glass bead: %u caustic photons from %llu paths (cap 500 k)\n", a.caustic.count,
            (unsigned long long)a.caustic_emitted);
     CHECK_MSG(a.caustic.count >= 50000 && a.caustic_emitted < 1000000,
               "aimed at the bead, 50 000 caustic photons took %llu paths (%u stored)",
               (unsigned long long)a.caustic_emitted, a.caustic.count);
     photon_maps_free(&a);
     photon_maps_free(&b);
-    bead_maps(1, &a, &b);
+    bead_maps(1, 200000, &a, &b);
     printf("  glass bead behind a board: %u caustic photons from %llu paths\n", a.caustic.count,
            (unsigned long long)a.caustic_emitted);
     CHECK_MSG(a.caustic_emitted == 1000000, "the caustic pass emitted %llu paths, not 1 M",
@@ -1345,7 +1346,7 @@ static void photon_vs_path_passes(const char *name, phos_scene *s, uint32_t phot
  * image onto the floor around it, a caustic (L S D) that leaves the panel
  * by its delta lobe. Caustic paths used to stop at the panel's diffuse
  * half and the image was missing. */
-static phos_scene *mirror_mix_scene(void)
+static phos_scene *mirror_mix_scene(float mirror, float diffuse)
 {
     phos_scene *s = phos_scene_create();
     test_add_instance(s, test_add_quad_mesh(s, 3.0f), test_add_diffuse(s, 0.7f, 0.7f, 0.7f), 0, 0, 0);
@@ -1355,8 +1356,10 @@ static phos_scene *mirror_mix_scene(void)
     c[0].type = PHOS_CLOSURE_REFLECTION;
     c[0].roughness = 0.0f;
     c[1].type = PHOS_CLOSURE_DIFFUSE;
-    for (int k = 0; k < 3; k++)
-        c[0].weight[k] = c[1].weight[k] = 0.45f;
+    for (int k = 0; k < 3; k++) {
+        c[0].weight[k] = mirror;
+        c[1].weight[k] = diffuse;
+    }
     test_add_ceiling(s, 1.0f, 1.5f, test_add_mix_material(s, c, 2));
     phos_light_desc l;
     phos_light_desc_init(&l);
@@ -1378,7 +1381,7 @@ static phos_scene *mirror_mix_scene(void)
  * PHOTON's Caustics and Indirect match PATH's. */
 static void test_mirror_mix_caustic(void)
 {
-    phos_scene *s = mirror_mix_scene();
+    phos_scene *s = mirror_mix_scene(0.45f, 0.45f);
     phos_render_settings rs = test_settings(PHOS_INTEGRATOR_PHOTON, 1u << PHOS_PASS_CAUSTICS, 1, 1, 8);
     rs.global_photons = rs.caustic_photons = 20000;
     float *passes[PHOS_PASS_COUNT];
@@ -1391,6 +1394,48 @@ static void test_mirror_mix_caustic(void)
               progress.caustic_photons);
     photon_vs_path_passes("mirror mix", s, 200000, 2048, 64, 16,
                           (1u << PHOS_PASS_CAUSTICS) | (1u << PHOS_PASS_INDIRECT));
+    phos_scene_destroy(s);
+}
+
+/* A clear coat's reflection: the panel a 4 % mirror over a 90 % diffuse
+ * base. Most aimed caustic paths leave the panel by its diffuse part and
+ * store nothing, so the caustic pass stops at 10 paths a photon of what
+ * it was to trace (photon_trace.c, CAUSTIC_PATHS_PER_PHOTON), the map
+ * reported short, instead of tracing on to the 50 M-path cap. Its photons
+ * still carry the caustic's whole power: that of the global pass's
+ * caustic photons, emitted everywhere and capped by nothing (within 4
+ * standard errors). */
+static void test_faint_caustic_path_budget(void)
+{
+    phos_scene *s = mirror_mix_scene(0.04f, 0.9f);
+    const uint32_t target = 50000;
+    double sum[2], sum2[2];
+    uint32_t n[2];
+    uint64_t emitted = 0;
+    uint32_t own = 0, short_maps = 0;
+    for (int k = 0; k < 2; k++) {
+        photon_trace_settings ps = trace_settings(k ? 0 : 2000000, k ? target : 0, 0);
+        photon_maps m;
+        photon_maps_init(&m);
+        atomic_int cancel = 0;
+        CHECK(photon_maps_trace(s, &ps, &m, &cancel, NULL) == PHOS_OK);
+        sum[k] = caustic_power(k ? &m.caustic : &m.global, k == 0, &sum2[k], &n[k]);
+        if (k) {
+            emitted = m.caustic_emitted;
+            own = m.caustic.count - m.caustic_reused;
+            short_maps = m.short_maps;
+        }
+        photon_maps_free(&m);
+    }
+    printf("  faint caustic: %u photons from %llu caustic paths (target %u), %.5f W; global pass's caustic "
+           "photons %.5f W (%u)\n", own, (unsigned long long)emitted, target, sum[1], sum[0], n[0]);
+    CHECK_MSG(emitted <= 10ull * target && own < target,
+              "the caustic pass traced %llu paths for %u photons of %u", (unsigned long long)emitted, own, target);
+    CHECK(short_maps == (1u << PHOS_MAP_CAUSTIC));
+    CHECK(n[0] > 1000 && own > 1000);
+    double se = sqrt(sum2[0] + sum2[1]);
+    CHECK_MSG(fabs(sum[1] - sum[0]) < 4.0 * se, "faint caustic: the caustic map carries %.5f W, the global "
+              "pass's caustic photons %.5f W (± %.5f)", sum[1], sum[0], 4.0 * se);
     phos_scene_destroy(s);
 }
 
@@ -2016,6 +2061,7 @@ int main(void)
     test_glossy_caustic_on_a_floor();
     test_glossy_receivers();
     test_mirror_mix_caustic();
+    test_faint_caustic_path_budget();
     test_frosted_shade();
     test_pool_caustic();
     test_global_photons_aimed_at_the_room();

@@ -299,9 +299,9 @@ static void trace_batch(void *ctx, uint32_t item, uint32_t thread)
 }
 
 /* A pass gives up once it has emitted CAUSTIC_PROBE_PATHS paths and its
- * yield so far would not store a tenth of its target even at the cap on
- * emitted paths: a small glass object far from the light, a spot that
- * lights nothing. The photons it has stay (they carry 1/emitted each, so
+ * yield so far would not store a tenth of its target even at its cap on
+ * emitted paths (pass_path_cap): a small glass object far from the light,
+ * a spot that lights nothing. The photons it has stay (they carry 1/emitted each, so
  * the map is as right as any, only sparse), and the tens of millions of
  * paths the cap would allow, which would store almost nothing, are not
  * traced. The map is then short (photon_maps.short_maps), which the host
@@ -309,12 +309,37 @@ static void trace_batch(void *ctx, uint32_t item, uint32_t thread)
 #define CAUSTIC_PROBE_PATHS 1000000u
 #define CAUSTIC_HOPELESS_FRACTION 10u
 
-static int caustic_yield_hopeless(uint64_t emitted, uint32_t stored, uint32_t target, uint64_t max_emitted)
+/* A caustic pass traces at most this many paths per photon of its target.
+ * Its photons each carry Φ/N_emitted, so the cap keeps them at least as
+ * strong as those of a pass that stores one photon every
+ * CAUSTIC_PATHS_PER_PHOTON paths (the aimed glass and metal objects of
+ * docs/benchmarks.md store one in 2.7 to 8). Where far fewer paths end in
+ * a caustic (a clear coat's few per cent of reflection over a diffuse
+ * base), the caustic is faint in proportion, and so is the absolute error
+ * of a map with fewer photons. Without the cap such a pass ran to the
+ * emission cap: on the procedural-materials scene 50 M paths, 16.5 s of a
+ * 19.5 s render, for 200 k photons of a light that the image's error did
+ * not see (docs/algorithms.md §3.2). With it, and the hopeless-yield rule
+ * judged against it, that pass stops at the 1 M-path probe. */
+#define CAUSTIC_PATHS_PER_PHOTON 10u
+
+/* The most paths a pass of `map` may trace for `target` photons: the
+ * user's emission cap, and for a caustic pass CAUSTIC_PATHS_PER_PHOTON a
+ * photon. */
+static uint64_t pass_path_cap(const photon_trace_settings *ps, uint32_t map, uint32_t target)
+{
+    if (map != MAP_CAUSTIC)
+        return ps->max_emitted;
+    uint64_t budget = (uint64_t)target * CAUSTIC_PATHS_PER_PHOTON;
+    return budget < ps->max_emitted ? budget : ps->max_emitted;
+}
+
+static int caustic_yield_hopeless(uint64_t emitted, uint32_t stored, uint32_t target, uint64_t cap)
 {
     if (emitted < CAUSTIC_PROBE_PATHS)
         return 0;
-    /* stored · max_emitted / emitted < target / 10, in integers */
-    return (long double)stored * (long double)max_emitted * CAUSTIC_HOPELESS_FRACTION <
+    /* stored · cap / emitted < target / 10, in integers */
+    return (long double)stored * (long double)cap * CAUSTIC_HOPELESS_FRACTION <
            (long double)target * (long double)emitted;
 }
 
@@ -345,6 +370,7 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
     if (target == 0 || s->lights.count == 0)
         return PHOS_OK;
     uint32_t threads = parallel_thread_count(ps->threads);
+    uint64_t cap = pass_path_cap(ps, map, target);
     /* 16 batches a thread: a wave ends when its last batch does, so the
      * other threads wait for half a batch on average, a smaller share of
      * the wave the more batches it has (8 a thread: 1.85 times one
@@ -360,8 +386,8 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
         uint64_t paths = wave_paths(target, kept->count, next, (uint64_t)batches_per_wave * PATHS_PER_BATCH);
         uint32_t per_batch = (uint32_t)((paths + batches_per_wave - 1) / batches_per_wave);
         wave w = {s, ps, map, aim, next, next + paths, per_batch, batches, progress, cancel};
-        if (w.end_path > ps->max_emitted)
-            w.end_path = ps->max_emitted;
+        if (w.end_path > cap)
+            w.end_path = cap;
         uint32_t nb = (uint32_t)((w.end_path - next + per_batch - 1) / per_batch);
         for (uint32_t i = 0; i < nb; i++)
             batch_truncate(&batches[i], 0);
@@ -397,13 +423,13 @@ static phos_status trace_map(const scene *s, const photon_trace_settings *ps, ui
             break;
         next = w.end_path;
         *emitted = next;
-        if (next >= ps->max_emitted)
+        if (next >= cap)
             done = 1; /* photons escape or are absorbed: keep what there is */
         /* The yield is judged at fixed path counts (1 M, 2 M, 4 M, ...),
          * not at wave ends, which depend on the thread count. */
         while (map != MAP_RADIANCE_SITES && !done && next >= checkpoint) {
             uint32_t before = traced_list_count_before(kept, checkpoint);
-            if (caustic_yield_hopeless(checkpoint, before, target, ps->max_emitted)) {
+            if (caustic_yield_hopeless(checkpoint, before, target, cap)) {
                 traced_list_truncate(kept, before);
                 *emitted = checkpoint;
                 done = 1;
