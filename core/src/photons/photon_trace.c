@@ -961,10 +961,75 @@ typedef struct precompute {
     const photon_maps *maps;
     const photon_trace_settings *ps;
     kdtree_query *queries; /* one per thread */
+    const uint32_t *order; /* the sites to estimate, in space order */
     photon *out;
 } precompute;
 
 #define SITES_PER_ITEM 256u
+
+/* The sites are traced in path order, which scatters consecutive ones over
+ * the whole scene: each search then finds the global map's buckets cold.
+ * Estimated along a Morton curve instead, consecutive searches share their
+ * buckets (docs/benchmarks.md, "Thread scaling by stage"). Each site's
+ * radiance photon is written to its own slot, so the map is the same. */
+typedef struct site_key {
+    uint32_t code, index;
+} site_key;
+
+/* The low 10 bits of v, spread to every third bit. */
+static uint32_t spread_bits_10(uint32_t v)
+{
+    v &= 1023u;
+    v = (v | (v << 16)) & 0x030000ffu;
+    v = (v | (v << 8)) & 0x0300f00fu;
+    v = (v | (v << 4)) & 0x030c30c3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+}
+
+static int compare_site_keys(const void *a, const void *b)
+{
+    const site_key *x = a, *y = b;
+    if (x->code != y->code)
+        return x->code < y->code ? -1 : 1;
+    return x->index < y->index ? -1 : (x->index > y->index);
+}
+
+/* The n sites' indices along a Morton curve over their bounding box, 1024
+ * cells an axis (ties by index, so the order is the same on every run);
+ * NULL when memory runs out. */
+static uint32_t *sites_in_space_order(const float *sites, uint32_t n)
+{
+    site_key *keys = malloc(sizeof(site_key) * (n ? n : 1));
+    uint32_t *order = malloc(sizeof(uint32_t) * (n ? n : 1));
+    if (!keys || !order) {
+        free(keys);
+        free(order);
+        return NULL;
+    }
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = 0; i < n; i++)
+        for (int a = 0; a < 3; a++) {
+            lo[a] = fminf(lo[a], sites[9 * i + a]);
+            hi[a] = fmaxf(hi[a], sites[9 * i + a]);
+        }
+    float scale[3];
+    for (int a = 0; a < 3; a++)
+        scale[a] = hi[a] > lo[a] ? 1023.0f / (hi[a] - lo[a]) : 0.0f;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t code = 0;
+        for (int a = 0; a < 3; a++) {
+            float cell = (sites[9 * i + a] - lo[a]) * scale[a];
+            code |= spread_bits_10(cell > 0.0f ? (uint32_t)fminf(cell, 1023.0f) : 0u) << a; /* NaN: 0 */
+        }
+        keys[i] = (site_key){code, i};
+    }
+    qsort(keys, n, sizeof(site_key), compare_site_keys);
+    for (uint32_t i = 0; i < n; i++)
+        order[i] = keys[i].index;
+    free(keys);
+    return order;
+}
 
 static void precompute_sites(void *ctx, uint32_t item, uint32_t thread)
 {
@@ -976,7 +1041,8 @@ static void precompute_sites(void *ctx, uint32_t item, uint32_t thread)
     uint32_t begin = item * SITES_PER_ITEM, end = begin + SITES_PER_ITEM;
     if (end > m->radiance_site_count)
         end = m->radiance_site_count;
-    for (uint32_t i = begin; i < end; i++) {
+    for (uint32_t k = begin; k < end; k++) {
+        uint32_t i = pc->order[k];
         const float *site = m->radiance_sites + 9 * i;
         vec3 p = v3_load(site), n = v3_load(site + 3), rho = v3_load(site + 6);
         kdtree_query *q = &pc->queries[thread];
@@ -997,9 +1063,10 @@ phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_s
     if (n == 0)
         return PHOS_OK;
     uint32_t threads = parallel_thread_count(ps->threads);
-    precompute pc = {s, m, ps, calloc(threads, sizeof(kdtree_query)), malloc(sizeof(photon) * n)};
+    uint32_t *order = sites_in_space_order(m->radiance_sites, n);
+    precompute pc = {s, m, ps, calloc(threads, sizeof(kdtree_query)), order, malloc(sizeof(photon) * n)};
     phos_status st = PHOS_OK;
-    if (!pc.queries || !pc.out)
+    if (!pc.queries || !pc.out || !order)
         st = PHOS_ERROR_OUT_OF_MEMORY;
     for (uint32_t t = 0; st == PHOS_OK && t < threads; t++)
         if (!kdtree_query_init(&pc.queries[t], ps->radiance_k))
@@ -1012,6 +1079,7 @@ phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_s
     for (uint32_t t = 0; pc.queries && t < threads; t++)
         kdtree_query_free(&pc.queries[t]);
     free(pc.queries);
+    free(order);
     free(pc.out);
     free(m->radiance_sites);
     m->radiance_sites = NULL;
