@@ -7,8 +7,9 @@
  *             Embree on the same BVH with the same rays, recorded from a
  *             one-thread render of the same image and replayed on as many
  *             threads;
- *   threads   1 thread against all cores: photon tracing, the kd-tree
- *             build, and rendering (PATH and PHOTON);
+ *   threads   1 thread against all cores: every stage of a PHOTON and a
+ *             PATH render sized so that their main stages take a second
+ *             or more on one thread;
  *   photons   photon maps of 10⁵, 10⁶ and 10⁷ photons: trace, build and
  *             k-nearest query time, bytes per photon, against n·log n and
  *             the 20-byte record;
@@ -323,39 +324,67 @@ static map_timing time_maps(phos_scene *s, uint32_t global, uint32_t threads, ph
     return t;
 }
 
+/* Thread scaling as issue 25 states its target: at least 1.9x on 2 cores
+ * for every stage that takes a second or more. Whole renders, 1 thread
+ * against all, each stage's time read from the render's own progress
+ * (best of 3 per stage); the renders are sized so that their main stages
+ * take a second or more on one thread here. Stages under a second are
+ * listed too, marked: starting and joining the threads is a visible share
+ * of them, and the target leaves them out. */
+typedef struct scaling_render {
+    const char *name;
+    uint32_t integrator, size, samples, global_photons;
+} scaling_render;
+
+static const char *const stage_names[PHOS_STAGE_COUNT] = {
+    [PHOS_STAGE_TRACING_PHOTONS] = "tracing photons",
+    [PHOS_STAGE_BUILDING_KDTREES] = "building kd-trees",
+    [PHOS_STAGE_PRECOMPUTING_RADIANCE] = "precomputing radiance",
+    [PHOS_STAGE_FILLING_IRRADIANCE_CACHE] = "filling the irradiance cache",
+    [PHOS_STAGE_RENDERING] = "rendering",
+    [PHOS_STAGE_FILTERING] = "filtering",
+};
+
 static void bench_threads(const char *csv_dir)
 {
     phos_scene *s = cornell_box();
     uint32_t all = parallel_thread_count(0);
-    printf("\nthread scaling: Cornell box, 1 thread against %u (best of 3)\n", all);
-    printf("  %-34s %10s %10s %8s\n", "", "1 thread", "all", "speed-up");
-    FILE *f = csv_open(csv_dir, "threads.csv", "stage,threads,seconds_1,seconds_all,speedup");
-    double trace[2] = {1e30, 1e30}, build[2] = {1e30, 1e30};
-    for (int k = 0; k < 3; k++)
-        for (int a = 0; a < 2; a++) {
-            map_timing t = time_maps(s, 1000000, a ? all : 1, NULL);
-            trace[a] = t.trace < trace[a] ? t.trace : trace[a];
-            build[a] = t.build < build[a] ? t.build : build[a];
-        }
-    const char *names[4] = {"photon tracing (1 M global)", "kd-tree build (1 M)", "rendering PATH 96² at 8 spp",
-                            "rendering PHOTON 96² at 8 spp × 4 rays"};
-    double one[4] = {trace[0], build[0], 1e30, 1e30}, many[4] = {trace[1], build[1], 1e30, 1e30};
-    for (int i = 2; i < 4; i++)
+    printf("\nthread scaling: Cornell box, whole renders' stages, 1 thread against %u (best of 3)\n", all);
+    printf("  %-52s %10s %10s %8s\n", "", "1 thread", "all", "speed-up");
+    FILE *f = csv_open(csv_dir, "threads.csv", "stage,threads,seconds_1,seconds_all,speedup,a_second_or_more");
+    const scaling_render renders[2] = {
+        {"PHOTON 192² at 16 spp with 2 M global photons", PHOS_INTEGRATOR_PHOTON, 192, 16, 2000000},
+        {"PATH 160² at 32 spp", PHOS_INTEGRATOR_PATH, 160, 32, 0},
+    };
+    for (int i = 0; i < 2; i++) {
+        double best[2][PHOS_STAGE_COUNT];
+        for (int a = 0; a < 2; a++)
+            for (int st = 0; st < PHOS_STAGE_COUNT; st++)
+                best[a][st] = 1e30;
         for (int k = 0; k < 3; k++)
             for (int a = 0; a < 2; a++) {
                 phos_render_settings rs =
-                    render_settings(i == 2 ? PHOS_INTEGRATOR_PATH : PHOS_INTEGRATOR_PHOTON, 96, 8, a ? all : 1);
-                rs.final_gather_rays = 4;
-                double t = render_once(s, &rs).stage[PHOS_STAGE_RENDERING];
-                double *slot = a ? &many[i] : &one[i];
-                *slot = t < *slot ? t : *slot;
+                    render_settings(renders[i].integrator, renders[i].size, renders[i].samples, a ? all : 1);
+                if (renders[i].global_photons)
+                    rs.global_photons = renders[i].global_photons;
+                render_timing t = render_once(s, &rs);
+                for (int st = 0; st < PHOS_STAGE_COUNT; st++)
+                    best[a][st] = t.stage[st] < best[a][st] ? t.stage[st] : best[a][st];
             }
-    for (int i = 0; i < 4; i++) {
-        printf("  %-34s %9.3fs %9.3fs %8.2f\n", names[i], one[i], many[i], one[i] / many[i]);
-        if (f)
-            fprintf(f, "%s,%u,%.6f,%.6f,%.4f\n", names[i], all, one[i], many[i], one[i] / many[i]);
+        for (int st = 0; st < PHOS_STAGE_COUNT; st++) {
+            if (!stage_names[st] || !(best[0][st] >= 0.01))
+                continue; /* a stage this render does not have, or next to nothing */
+            char name[160];
+            snprintf(name, sizeof name, "%s: %s", renders[i].name, stage_names[st]);
+            int counts = best[0][st] >= 1.0;
+            printf("  %-52s %9.3fs %9.3fs %8.2f%s\n", name, best[0][st], best[1][st], best[0][st] / best[1][st],
+                   counts ? "" : "  (under 1 s)");
+            if (f)
+                fprintf(f, "%s,%u,%.6f,%.6f,%.4f,%d\n", name, all, best[0][st], best[1][st],
+                        best[0][st] / best[1][st], counts);
+        }
     }
-    printf("  (target >= 1.9x on 2 cores)\n");
+    printf("  (target >= 1.9x on 2 cores for every stage of a second or more)\n");
     if (f)
         fclose(f);
     phos_scene_destroy(s);
