@@ -15,8 +15,8 @@
 #   make package                          dist/phos-<version>.zip
 #   make bench [QUICK=1]                  Phos against Cycles, raw Embree and nanoflann in one
 #               [BENCH_SCENES_ALL=...]    run: out/bench/ (CSV, plots, summary.md); cached
-#                                         references (docs/benchmarks.md; 36 min from a
-#                                         fresh clone, QUICK=1 a few minutes)
+#                                         references (docs/benchmarks.md: hours, most of
+#                                         it references; QUICK=1 a few minutes)
 #   make bench-official                   the part against official Cycles (guiding, OIDN) alone
 #   make bench-convergence [QUICK=1]      samplers, adaptive sampling and filters against
 #                                         cached references alone (bench/convergence.py)
