@@ -1399,9 +1399,11 @@ static void test_mirror_mix_caustic(void)
 
 /* A clear coat's reflection: the panel a 4 % mirror over a 90 % diffuse
  * base. Most aimed caustic paths leave the panel by its diffuse part and
- * store nothing, so the caustic pass stops at 10 paths a photon of what
- * it was to trace (photon_trace.c, CAUSTIC_PATHS_PER_PHOTON), the map
- * reported short, instead of tracing on to the 50 M-path cap. Its photons
+ * store nothing (about one path in 60 stores a photon), so the caustic pass
+ * stops at 10 paths a photon of what it was to trace (photon_trace.c,
+ * CAUSTIC_PATHS_PER_PHOTON), the map reported short, instead of tracing
+ * on until it holds its target (some 3 M paths here; a fainter caustic
+ * ran to the 50 M-path emission cap). Its photons
  * still carry the caustic's whole power: that of the global pass's
  * caustic photons, emitted everywhere and capped by nothing (within 4
  * standard errors). */
