@@ -59,12 +59,15 @@ def run(cmd, env=None, **kw):
 
 def build(out, frames, resolution, samples):
     blend = os.path.join(out, "walk.blend")
-    run(["blender", "-b", "--factory-startup", "--python", os.path.join(REPO, "scenes", "cornell_box.py"), "--",
+    # --python-exit-code: a script that raises would otherwise leave Blender's
+    # exit status 0, and the run render Blender's default 250 frames.
+    run(["blender", "-b", "--factory-startup", "--python-exit-code", "1", "--python",
+         os.path.join(REPO, "scenes", "cornell_box.py"), "--",
          "--save", blend, "--resolution", str(resolution[0]), str(resolution[1]), "--samples", str(samples)])
     script = os.path.join(out, "animate.py")
     with open(script, "w") as f:
         f.write(ANIMATE)
-    run(["blender", "-b", blend, "--python", script, "--", str(frames), blend])
+    run(["blender", "-b", blend, "--python-exit-code", "1", "--python", script, "--", str(frames), blend])
     return blend
 
 
