@@ -391,9 +391,13 @@ int kdtree_query_init(kdtree_query *q, uint32_t k)
     q->k = k;
     q->found = 0;
     q->radius2 = 0.0f;
-    q->index = malloc(sizeof(uint32_t) * (k ? k : 1));
-    q->dist2 = malloc(sizeof(float) * (k + 1)); /* and the heap's −∞ past the end */
-    if (!q->index || !q->dist2) {
+    /* One block for both arrays, on cache lines of its own: the heap is
+     * written on every replacement, and queries are made one per thread
+     * (util/parallel.h, PARALLEL_CACHE_LINE). */
+    uint32_t slots = k ? k : 1;
+    q->index = parallel_scratch_calloc(1, sizeof(uint32_t) * slots + sizeof(float) * (k + 1));
+    q->dist2 = q->index ? (float *)(q->index + slots) : NULL; /* and the heap's −∞ past the end */
+    if (!q->index) {
         kdtree_query_free(q);
         return 0;
     }
@@ -404,8 +408,7 @@ void kdtree_query_free(kdtree_query *q)
 {
     if (!q)
         return;
-    free(q->index);
-    free(q->dist2);
+    free(q->index); /* dist2 lies in the same block */
     q->index = NULL;
     q->dist2 = NULL;
     q->k = 0;

@@ -16,7 +16,9 @@
  * needs no pointers (docs/algorithms.md §2.1).
  *
  * After the build the tree is read-only, so any number of threads may query
- * it at once; each brings its own kdtree_query (results and heap).
+ * it at once; each brings its own kdtree_query (results and heap), which
+ * lies on cache lines of its own so that two threads' searches never
+ * write the same line (util/parallel.h, PARALLEL_CACHE_LINE).
  */
 #ifndef PHOS_KDTREE_H
 #define PHOS_KDTREE_H
@@ -24,6 +26,7 @@
 #include <stdint.h>
 
 #include "photons/photon.h"
+#include "util/parallel.h"
 #include "util/vec.h"
 
 #ifdef __cplusplus
@@ -58,7 +61,7 @@ uint32_t kdtree_depth(uint32_t n);
  * unordered, except that when k were found the k-th nearest is the first,
  * j = 0 (the arrays are the search's max-heap). */
 typedef struct kdtree_query {
-    uint32_t k;        /* at most k photons are returned */
+    PARALLEL_LINE_ALIGNED uint32_t k; /* at most k photons are returned */
     uint32_t found;    /* photons found, ≤ k */
     float radius2;     /* search radius² at the end: the k-th distance² if k were
                         * found, otherwise the max radius² (docs/algorithms.md §2.4) */
@@ -66,7 +69,9 @@ typedef struct kdtree_query {
     float *dist2;      /* k entries: squared distances (in the query's metric) */
 } kdtree_query;
 
-/* Allocates room for k results (8·k + 4 bytes). Returns 0 when memory is
+/* Allocates room for k results (8·k + 4 bytes, rounded up to whole cache
+ * lines and starting on one). An array of queries, one per thread, is
+ * allocated with parallel_scratch_calloc. Returns 0 when memory is
  * exhausted. q->k may be lowered later (a nearest photon search with
  * k = 1 on a query made for more), not raised. */
 int kdtree_query_init(kdtree_query *q, uint32_t k);

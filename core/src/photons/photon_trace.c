@@ -1064,7 +1064,7 @@ phos_status photon_maps_precompute_radiance(const scene *s, const photon_trace_s
         return PHOS_OK;
     uint32_t threads = parallel_thread_count(ps->threads);
     uint32_t *order = sites_in_space_order(m->radiance_sites, n);
-    precompute pc = {s, m, ps, calloc(threads, sizeof(kdtree_query)), order, malloc(sizeof(photon) * n)};
+    precompute pc = {s, m, ps, parallel_scratch_calloc(threads, sizeof(kdtree_query)), order, malloc(sizeof(photon) * n)};
     phos_status st = PHOS_OK;
     if (!pc.queries || !pc.out || !order)
         st = PHOS_ERROR_OUT_OF_MEMORY;

@@ -712,7 +712,7 @@ int render_prepare(render *r)
     r->use_progressive = r->use_maps && render_progressive_caustics(rs);
     progressive_caustics_init(&r->progressive, ps, rs->progressive_caustic_photons, rs->progressive_alpha,
                               rs->progressive_first_photons, radius);
-    r->scratch = calloc(r->threads, sizeof(integrator_scratch));
+    r->scratch = parallel_scratch_calloc(r->threads, sizeof(integrator_scratch));
     if (!r->scratch)
         return 0;
     uint32_t k_radiance = 1; /* radiance_photon_lookup: the nearest facing record */

@@ -7,6 +7,7 @@
 
 #include <pthread.h>
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 
 typedef struct job {
@@ -80,4 +81,16 @@ int parallel_for(uint32_t count, uint32_t threads, parallel_fn fn, void *ctx, at
         free(ws);
     }
     return !(cancel && atomic_load(cancel)) && atomic_load(&j.next) >= count;
+}
+
+void *parallel_scratch_calloc(size_t count, size_t size)
+{
+    if (count == 1)
+        size = (size + PARALLEL_CACHE_LINE - 1) / PARALLEL_CACHE_LINE * PARALLEL_CACHE_LINE;
+    if (count == 0 || size == 0 || size % PARALLEL_CACHE_LINE || count > SIZE_MAX / size)
+        return NULL;
+    void *p = aligned_alloc(PARALLEL_CACHE_LINE, count * size);
+    if (p)
+        memset(p, 0, count * size);
+    return p;
 }
