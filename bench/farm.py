@@ -107,6 +107,9 @@ def main():
     p.add_argument("--out", default=os.path.join(REPO, "build", "bench-farm"))
     p.add_argument("--slurm", action="store_true")
     a = p.parse_args()
+    # Absolute: Blender's save operator refuses a relative path, and the
+    # Makefile passes one (out/bench/farm).
+    a.out = os.path.abspath(a.out)
     os.makedirs(a.out, exist_ok=True)
     blend = build(a.out, a.frames, a.resolution, a.samples)
     env = farm_env(a.out)
