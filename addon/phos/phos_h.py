@@ -1041,7 +1041,7 @@ RENDER_SETTINGS = (
         name='caustic_photons', ctype='uint32_t', default=800000, min=0, max=268435456,
         user=True, prop='caustic_photons', kind='NUMBER', enum=None, soft_max=10000000,
         label='Caustic Photons',
-        description='Photons stored in the caustic photon map (light focused by mirrors and glass)'),
+        description='Photons stored in the caustic photon map (light focused by mirrors and glass); tracing stops after ten light paths per photon asked for, so a faint caustic stores fewer (still right, only sparser)'),
     RenderSetting(
         name='caustic_roughness', ctype='float', default=0.3, min=0.0, max=1.0,
         user=True, prop='caustic_roughness', kind='FACTOR', enum=None, soft_max=0.0,

@@ -46,14 +46,20 @@ def cache_text(progress):
 
 
 def short_map_warnings(progress, rs):
-    """A warning per photon map that ended short of its count (the core
-    stopped it: its lights' photons mostly leave the scene or are
-    absorbed), saying what to do about it."""
+    """A warning per photon map that ended short of its count, saying why
+    the core stopped it and what to do about it. The core stops the global
+    pass at its emission cap, or at its probe when that stores almost
+    nothing; the caustic pass also at ten paths a photon asked for, which
+    a faint caustic (a dark mirror, a coat over a diffuse base) reaches
+    first (docs/algorithms.md §3.2)."""
+    maps = ((core.PHOS_MAP_GLOBAL, "global", progress.global_photons, rs.global_photons,
+             "its lights' photons mostly leave the scene or are absorbed"),
+            (core.PHOS_MAP_CAUSTIC, "caustic", progress.caustic_photons, rs.caustic_photons,
+             "few of its lights' paths reach a diffuse surface by way of a mirror or glass "
+             "(a faint caustic); raising Caustic Photons traces more of them"))
     out = []
-    for bit, name, got, want in ((core.PHOS_MAP_GLOBAL, "global", progress.global_photons, rs.global_photons),
-                                 (core.PHOS_MAP_CAUSTIC, "caustic", progress.caustic_photons, rs.caustic_photons)):
+    for bit, name, got, want, reason in maps:
         if progress.photon_maps_short & (1 << bit):
-            out.append("Phos: the %s photon map holds %s of %s photons: its lights' photons mostly leave the "
-                       "scene or are absorbed, so tracing stopped early (the map is right, only sparser)"
-                       % (name, "{:,}".format(got), "{:,}".format(want)))
+            out.append("Phos: the %s photon map holds %s of %s photons: %s, so tracing stopped early "
+                       "(the map is right, only sparser)" % (name, "{:,}".format(got), "{:,}".format(want), reason))
     return out

@@ -933,7 +933,9 @@ PHOS_API uint32_t phos_pass_channels(uint32_t pass);
          "photons are emitted until this many are stored")                                        \
     USER(uint32_t, caustic_photons, 800000, 0, 1u << 28, caustic_photons, NUMBER, 10000000,        \
          "Caustic Photons",                                                                       \
-         "Photons stored in the caustic photon map (light focused by mirrors and glass)")         \
+         "Photons stored in the caustic photon map (light focused by mirrors and glass); "        \
+         "tracing stops after ten light paths per photon asked for, so a faint caustic stores "   \
+         "fewer (still right, only sparser)")                                                     \
     /* 0.3: the rough metal and glass artists use for jewellery and                           \
      * bottles still focus light into a caustic, which path tracing from a                    \
      * diffuse floor finds only by chance (docs/algorithms.md §12). */                        \

@@ -510,6 +510,46 @@ def test_short_map_is_reported(tmp_path):
     assert emitted and int(emitted[-1].replace(",", "")) <= 2000000, emitted[-3:]
 
 
+FAINT_CAUSTIC_SCRIPT = r"""
+import bpy
+import phostest as pt
+sc = pt.reset_file()
+pt.add_plane(sc, "Floor", size=10.0, material=pt.diffuse("Grey", (0.6, 0.6, 0.6)))
+# A coat that reflects 4 % sharply over a 90 % diffuse base: aimed caustic
+# paths mostly leave it by the diffuse part, which ends them.
+mat, nt, out = pt.empty_material("Coat")
+base = pt.setup_node(nt.nodes.new("ShaderNodeBsdfDiffuse"), {"Color": (0.9, 0.9, 0.9)})
+mirror = pt.setup_node(nt.nodes.new("ShaderNodeBsdfGlossy"), {"Color": (1.0, 1.0, 1.0)}, {"distribution": "SHARP"})
+mix = pt.setup_node(nt.nodes.new("ShaderNodeMixShader"), {"Fac": 0.04})
+nt.links.new(base.outputs[0], mix.inputs[1])
+nt.links.new(mirror.outputs[0], mix.inputs[2])
+nt.links.new(mix.outputs[0], out.inputs["Surface"])
+pt.add_sphere(sc, "Ball", radius=0.5, location=(0, 0, 0.5), material=mat)
+pt.add_light(sc, 'POINT', 500.0, location=(1, -1, 3))
+pt.set_world(sc, (0, 0, 0), 0.0)
+pt.add_camera(sc)
+pt.configure_output(sc, 32, 24)
+pt.configure_phos(sc, 1)
+sc.phos.integrator = 'PHOTON'
+sc.phos.caustic_photons = 20000
+sc.render.engine = 'PHOS'
+bpy.ops.render.render()
+print("FAINT-CAUSTIC-SCRIPT-DONE")
+"""
+
+
+def test_faint_caustic_short_map_is_reported(tmp_path):
+    """A faint caustic stops at ten paths a caustic photon asked for
+    (docs/algorithms.md §3.2): the render warns that the caustic map is
+    short and gives that reason, not the global map's."""
+    rc, out = pt.run_script(FAINT_CAUSTIC_SCRIPT, tmp_path, timeout=120)
+    assert rc == 0 and "FAINT-CAUSTIC-SCRIPT-DONE" in out, out[-3000:]
+    m = re.search(r"the caustic photon map holds ([\d,]+) of 20,000 photons: few of its lights' paths", out)
+    assert m, out[-3000:]
+    assert 0 < int(m.group(1).replace(",", "")) < 20000, m.group(0)
+    assert "global photon map holds" not in out, out[-3000:]
+
+
 # ------------------------------------------------------------ determinism
 
 def test_photon_render_thread_count_bit_identical(scene, tmp_path):
