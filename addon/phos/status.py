@@ -53,13 +53,14 @@ def short_map_warnings(progress, rs):
     a faint caustic (a dark mirror, a coat over a diffuse base) reaches
     first (docs/algorithms.md §3.2)."""
     maps = ((core.PHOS_MAP_GLOBAL, "global", progress.global_photons, rs.global_photons,
-             "its lights' photons mostly leave the scene or are absorbed"),
+             "its lights' photons mostly leave the scene or are absorbed", ""),
             (core.PHOS_MAP_CAUSTIC, "caustic", progress.caustic_photons, rs.caustic_photons,
-             "few of its lights' paths reach a diffuse surface by way of a mirror or glass "
-             "(a faint caustic); raising Caustic Photons traces more of them"))
+             "few of its lights' paths reach a diffuse surface by way of a mirror or glass (a faint caustic)",
+             "; raising Caustic Photons traces more paths"))
     out = []
-    for bit, name, got, want, reason in maps:
+    for bit, name, got, want, reason, advice in maps:
         if progress.photon_maps_short & (1 << bit):
             out.append("Phos: the %s photon map holds %s of %s photons: %s, so tracing stopped early "
-                       "(the map is right, only sparser)" % (name, "{:,}".format(got), "{:,}".format(want), reason))
+                       "(the map is right, only sparser)%s"
+                       % (name, "{:,}".format(got), "{:,}".format(want), reason, advice))
     return out
