@@ -232,17 +232,17 @@ static int knn_matches(const brute *b, const kdtree_query *q, uint32_t k, float 
     float want_r2 = (k > 0 && inside >= k) ? b->sorted[k - 1] : r2;
     if (q->found != want || q->radius2 != want_r2)
         return 0;
-    if (k > 0 && q->found == k && q->dist2[0] != want_r2) /* the k-th nearest comes first */
+    if (k > 0 && q->found == k && kdtree_result_dist2(q, 0) != want_r2) /* the k-th nearest comes first */
         return 0;
     memset(b->seen, 0, b->n);
     uint32_t nearer = 0;
     for (uint32_t j = 0; j < q->found; j++) {
-        uint32_t i = q->index[j];
-        if (i >= b->n || b->seen[i] || q->dist2[j] != b->d2[i] || !(q->dist2[j] < r2) ||
-            q->dist2[j] > want_r2)
+        uint32_t i = kdtree_result_index(q, j);
+        float d2 = kdtree_result_dist2(q, j);
+        if (i >= b->n || b->seen[i] || d2 != b->d2[i] || !(d2 < r2) || d2 > want_r2)
             return 0;
         b->seen[i] = 1;
-        nearer += q->dist2[j] < want_r2;
+        nearer += d2 < want_r2;
     }
     uint32_t nearer_all = 0;
     while (nearer_all < b->n && b->sorted[nearer_all] < want_r2)
@@ -263,7 +263,7 @@ static int slots_found(const photon_map *m, uint32_t first, kdtree_query *q1)
 {
     for (uint32_t i = first; i < m->count; i++) {
         vec3 x = photon_position(&m->photons[i]);
-        if (photon_map_knn(m, x, 1e-12f, q1) != 1 || q1->dist2[0] != 0.0f)
+        if (photon_map_knn(m, x, 1e-12f, q1) != 1 || kdtree_result_dist2(q1, 0) != 0.0f)
             return 0;
     }
     return 1;
@@ -570,17 +570,16 @@ static void test_query_on_own_lines(void)
         return;
     for (int t = 0; t < 2; t++) {
         CHECK((uintptr_t)&qs[t] % line == 0);
-        CHECK(qs[t].k == 0 && qs[t].index == NULL); /* zeroed */
+        CHECK(qs[t].k == 0 && qs[t].heap == NULL); /* zeroed */
         CHECK(kdtree_query_init(&qs[t], 50));
-        CHECK((uintptr_t)qs[t].index % line == 0);
-        CHECK((const char *)qs[t].dist2 == (const char *)(qs[t].index + 50)); /* one block */
+        CHECK((uintptr_t)qs[t].heap % line == 0);
     }
     /* The two heaps' blocks do not meet on a line: a block covers whole
      * lines, so the other's first line lies past this one's last. */
     for (int t = 0; t < 2; t++) {
-        uintptr_t first = (uintptr_t)qs[t].index / line, last = ((uintptr_t)(qs[t].dist2 + 51) - 1) / line;
-        uintptr_t other = (uintptr_t)qs[1 - t].index / line;
-        uintptr_t other_last = ((uintptr_t)(qs[1 - t].dist2 + 51) - 1) / line;
+        uintptr_t first = (uintptr_t)qs[t].heap / line, last = ((uintptr_t)(qs[t].heap + 51) - 1) / line;
+        uintptr_t other = (uintptr_t)qs[1 - t].heap / line;
+        uintptr_t other_last = ((uintptr_t)(qs[1 - t].heap + 51) - 1) / line;
         CHECK(other_last < first || other > last);
     }
     for (int t = 0; t < 2; t++)

@@ -75,7 +75,7 @@ static vec3 reference_radiance(const photon_map *m, const bsdf *b, vec3 wo, vec3
     CHECK(q->found == q->k);
     uint32_t far = 0;
     for (uint32_t j = 1; j < q->found; j++)
-        if (q->dist2[j] > q->dist2[far])
+        if (kdtree_result_dist2(q, j) > kdtree_result_dist2(q, far))
             far = j;
     vec3 sum = v3s(0.0f);
     *below_ng = 0;

@@ -391,47 +391,56 @@ int kdtree_query_init(kdtree_query *q, uint32_t k)
     q->k = k;
     q->found = 0;
     q->radius2 = 0.0f;
-    /* One block for both arrays, on cache lines of its own: the heap is
-     * written on every replacement, and queries are made one per thread
-     * (util/parallel.h, PARALLEL_CACHE_LINE). */
-    uint32_t slots = k ? k : 1;
-    q->index = parallel_scratch_calloc(1, sizeof(uint32_t) * slots + sizeof(float) * (k + 1));
-    q->dist2 = q->index ? (float *)(q->index + slots) : NULL; /* and the heap's −∞ past the end */
-    if (!q->index) {
-        kdtree_query_free(q);
-        return 0;
-    }
-    return 1;
+    /* On cache lines of its own: the heap is written on every
+     * replacement, and queries are made one per thread (util/parallel.h,
+     * PARALLEL_CACHE_LINE). */
+    q->heap = parallel_scratch_calloc(1, sizeof(uint64_t) * ((size_t)k + 1));
+    return q->heap != NULL;
 }
 
 void kdtree_query_free(kdtree_query *q)
 {
     if (!q)
         return;
-    free(q->index); /* dist2 lies in the same block */
-    q->index = NULL;
-    q->dist2 = NULL;
+    free(q->heap);
+    q->heap = NULL;
     q->k = 0;
     q->found = 0;
 }
 
-/* Max-heap on dist2 (0-based: children of j are 2j+1, 2j+2): moves the
- * entry (d, id) down from j to its place. dist2[size] is −∞, so the last
- * parent's missing right child is never the larger one and the loop tests
- * no bound but the first child's. */
-static inline void heap_sift_down(float *dist2, uint32_t *index, uint32_t size, uint32_t j, float d, uint32_t id)
+/* A heap key (kdtree.h): d2 ≥ +0 (a sum of squares, never −0), whose bit
+ * pattern orders as the float does. */
+static inline uint64_t heap_key(float d2, uint32_t index)
+{
+    uint32_t bits;
+    memcpy(&bits, &d2, sizeof bits);
+    return (uint64_t)bits << 32 | index;
+}
+
+static inline float heap_key_dist2(uint64_t key)
+{
+    uint32_t bits = (uint32_t)(key >> 32);
+    float d2;
+    memcpy(&d2, &bits, sizeof d2);
+    return d2;
+}
+
+/* Max-heap of keys (0-based: children of j are 2j+1, 2j+2): moves `key`
+ * down from j to its place. heap[size] is 0, below every key but an equal
+ * one, so the last parent's missing right child is never taken and the
+ * loop tests no bound but the first child's. */
+static inline void heap_sift_down(uint64_t *heap, uint32_t size, uint32_t j, uint64_t key)
 {
     for (uint32_t c = 2 * j + 1; c < size; c = 2 * j + 1) {
-        c += dist2[c + 1] > dist2[c]; /* the larger child, without a branch to mispredict */
-        float dc = dist2[c];
-        if (dc <= d)
+        uint64_t left = heap[c], right = heap[c + 1];
+        int take_right = right > left; /* the larger child, without a branch to mispredict */
+        uint64_t larger = take_right ? right : left;
+        if (larger <= key)
             break;
-        dist2[j] = dc;
-        index[j] = index[c];
-        j = c;
+        heap[j] = larger;
+        j = c + take_right;
     }
-    dist2[j] = d;
-    index[j] = id;
+    heap[j] = key;
 }
 
 /* Takes a photon at d2 < current radius². Until k are held they are only
@@ -441,18 +450,18 @@ static inline void heap_sift_down(float *dist2, uint32_t *index, uint32_t size, 
  * farthest. Returns the new radius². */
 static inline float knn_add(kdtree_query *q, float d2, uint32_t i, float r2)
 {
+    uint64_t key = heap_key(d2, i);
     if (q->found < q->k) {
-        q->dist2[q->found] = d2;
-        q->index[q->found] = i;
+        q->heap[q->found] = key;
         if (++q->found < q->k)
             return r2;
-        q->dist2[q->k] = -INFINITY;
+        q->heap[q->k] = 0;
         for (uint32_t j = q->k / 2; j-- > 0;)
-            heap_sift_down(q->dist2, q->index, q->k, j, q->dist2[j], q->index[j]);
-        return q->dist2[0];
+            heap_sift_down(q->heap, q->k, j, q->heap[j]);
+        return heap_key_dist2(q->heap[0]);
     }
-    heap_sift_down(q->dist2, q->index, q->k, 0, d2, i);
-    return q->dist2[0];
+    heap_sift_down(q->heap, q->k, 0, key);
+    return heap_key_dist2(q->heap[0]);
 }
 
 /* The largest n·m over the unit normals m of facing c (dominant axis
