@@ -607,9 +607,13 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
         const kdtree_split *splits = m->splits ? m->splits + t->first_split : NULL; /* NULL: no class splits */
         uint32_t leaves = 1u << t->depth;
         const photon *class_photons = m->photons + t->start;
-        uint32_t below = t->depth - (31u - (uint32_t)__builtin_clz(h)); /* levels from h to its buckets */
-        if (below <= KDTREE_PREFETCH_LEVELS)
-            prefetch_buckets(class_photons, t->count, t->depth, h, below);
+        /* Levels from h to its buckets. A cell popped at or below the
+         * prefetch level lies under a node whose buckets were asked for
+         * when the descent that pushed it passed that node, so it is not
+         * asked for again: that cost 5–10 % of a search whose photons are
+         * in cache (docs/benchmarks.md). Only the root of a class of at
+         * most 4 buckets is never asked for. */
+        uint32_t below = t->depth - (31u - (uint32_t)__builtin_clz(h));
         /* Descend toward x, leaving the far children on the stack. */
         while (h < leaves) {
             const kdtree_split *sp = &splits[h - 1];
@@ -618,16 +622,21 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
             int right = to_lo + to_hi > 0.0f; /* nearer the right child's side of the gap */
             float cut = right ? to_lo : to_hi; /* to the far child's plane */
             float far_d2 = cell_d2 - off[a] * off[a] + cut * cut;
-            if (far_d2 < r2) {
-                search_entry *far = &stack[top++];
-                far->cls = cls;
-                far->node = 2 * h + !right;
-                far->d2 = far_d2;
-                far->off[0] = off[0];
-                far->off[1] = off[1];
-                far->off[2] = off[2];
-                far->off[a] = cut;
-            }
+            /* The far child is written above the stack's top always and
+             * kept only if it lies within the radius: whether it does goes
+             * either way, and a branch on it was guessed wrong often
+             * enough to cost 3–7 % of a search (docs/benchmarks.md). The
+             * slot exists: the bound above KDTREE_STACK_SIZE keeps top
+             * under KDTREE_STACK_SIZE − KDTREE_NEAREST_FIRST_ROOM + 31. */
+            search_entry *far = &stack[top];
+            far->cls = cls;
+            far->node = 2 * h + !right;
+            far->d2 = far_d2;
+            far->off[0] = off[0];
+            far->off[1] = off[1];
+            far->off[2] = off[2];
+            far->off[a] = cut;
+            top += far_d2 < r2;
             h = 2 * h + right;
             if (--below == KDTREE_PREFETCH_LEVELS)
                 prefetch_buckets(class_photons, t->count, t->depth, h, below);
