@@ -146,7 +146,8 @@ static vec3 estimate(const photon_map *m, const bsdf *b, vec3 wo, vec3 x, vec3 n
         if (j == far_index)
             continue;
         const photon *p = kdtree_result(m->photons, q, j);
-        sum = v3_madd(sum, reflected_power(p, lambertian, b, wo, n), kernel_weight(ep, kdtree_result_dist2(q, j), w.r2));
+        float weight = kernel_weight(ep, kdtree_result_dist2(q, j), w.r2);
+        sum = v3_madd(sum, reflected_power(p, lambertian, b, wo, n), weight);
     }
     if (lambertian)
         sum = v3_mul(sum, v3_scale(rho, PHOS_INV_PI));
