@@ -408,21 +408,13 @@ void kdtree_query_free(kdtree_query *q)
     q->found = 0;
 }
 
-/* A heap key (kdtree.h): d2 ≥ +0 (a sum of squares, never −0), whose bit
- * pattern orders as the float does. */
+/* A heap key (kdtree.h; read back with kdtree_key_dist2): d2 ≥ +0 (a sum
+ * of squares, never −0), whose bit pattern orders as the float does. */
 static inline uint64_t heap_key(float d2, uint32_t index)
 {
     uint32_t bits;
     memcpy(&bits, &d2, sizeof bits);
     return (uint64_t)bits << 32 | index;
-}
-
-static inline float heap_key_dist2(uint64_t key)
-{
-    uint32_t bits = (uint32_t)(key >> 32);
-    float d2;
-    memcpy(&d2, &bits, sizeof d2);
-    return d2;
 }
 
 /* Max-heap of keys (0-based: children of j are 2j+1, 2j+2): moves `key`
@@ -458,10 +450,10 @@ static inline float knn_add(kdtree_query *q, float d2, uint32_t i, float r2)
         q->heap[q->k] = 0;
         for (uint32_t j = q->k / 2; j-- > 0;)
             heap_sift_down(q->heap, q->k, j, q->heap[j]);
-        return heap_key_dist2(q->heap[0]);
+        return kdtree_key_dist2(q->heap[0]);
     }
     heap_sift_down(q->heap, q->k, 0, key);
-    return heap_key_dist2(q->heap[0]);
+    return kdtree_key_dist2(q->heap[0]);
 }
 
 /* The largest n·m over the unit normals m of facing c (dominant axis
@@ -607,12 +599,13 @@ static inline __attribute__((always_inline)) uint32_t map_search(const photon_ma
         const kdtree_split *splits = m->splits ? m->splits + t->first_split : NULL; /* NULL: no class splits */
         uint32_t leaves = 1u << t->depth;
         const photon *class_photons = m->photons + t->start;
-        /* Levels from h to its buckets. A cell popped at or below the
-         * prefetch level lies under a node whose buckets were asked for
-         * when the descent that pushed it passed that node, so it is not
-         * asked for again: that cost 5–10 % of a search whose photons are
-         * in cache (docs/benchmarks.md). Only the root of a class of at
-         * most 4 buckets is never asked for. */
+        /* Levels from h to its buckets. A cell popped below the prefetch
+         * level lies under a node whose buckets the descent that pushed it
+         * asked for, and asking again on every pop at or below that level
+         * cost 5–10 % of a search whose photons are in cache. The cells
+         * popped at that level (a sibling of a node the descent asked for,
+         * or a class of at most 4 buckets) are not asked for at all:
+         * asking for those alone measured no faster (docs/benchmarks.md). */
         uint32_t below = t->depth - (31u - (uint32_t)__builtin_clz(h));
         /* Descend toward x, leaving the far children on the stack. */
         while (h < leaves) {

@@ -151,17 +151,21 @@ typedef void (*kdtree_visit)(void *ctx, const photon *p, float d2);
 uint32_t photon_map_range_surface(const photon_map *m, vec3 x, float flatten, const kdtree_filter *f,
                                   float radius2, kdtree_visit visit, void *ctx);
 /* Result j < q->found: its photon's index in the photon array, its
- * squared distance, and the photon itself. */
+ * squared distance (from its heap key), and the photon itself. */
 static inline uint32_t kdtree_result_index(const kdtree_query *q, uint32_t j)
 {
     return (uint32_t)q->heap[j];
 }
-static inline float kdtree_result_dist2(const kdtree_query *q, uint32_t j)
+static inline float kdtree_key_dist2(uint64_t key)
 {
-    uint32_t bits = (uint32_t)(q->heap[j] >> 32);
+    uint32_t bits = (uint32_t)(key >> 32);
     float d2;
     memcpy(&d2, &bits, sizeof d2);
     return d2;
+}
+static inline float kdtree_result_dist2(const kdtree_query *q, uint32_t j)
+{
+    return kdtree_key_dist2(q->heap[j]);
 }
 static inline const photon *kdtree_result(const photon *tree, const kdtree_query *q, uint32_t j)
 {
